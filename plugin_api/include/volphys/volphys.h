@@ -1,0 +1,338 @@
+/*
+ * VolPhys — physics plugin C ABI. This is the only public header. C99, no C++ types.
+ *
+ * Conventions
+ * - Every call returns a vpStatus. On failure vpGetLastError() returns a message (owned by
+ *   the library, valid until the next VolPhys call on the same thread) that names the bad
+ *   argument or field and its value. A failing call changes nothing.
+ * - Objects are referred to by small value ids (index + generation). An all-zero id is null.
+ *   Using a null, destroyed or foreign id returns vpStatus_InvalidId, never crashes.
+ * - Creation takes an XxxDef struct. Always start from vpDefaultXxxDef() and then change
+ *   fields: the structSize field lets the library detect a header/library mismatch.
+ * - Units are SI (metres, seconds, kilograms, pascals). Y is up only by the default gravity.
+ *
+ * Threading contract
+ * - Different worlds are independent: any calls on different worlds may run concurrently
+ *   from any threads.
+ * - Calls on one world (and on its colliders and actors) must not overlap: the host
+ *   serializes them. A call that finds the world inside vpWorldStep on another thread
+ *   returns vpStatus_Busy and changes nothing (this is detected, but it is a host bug).
+ * - The task callbacks in vpWorldDef are invoked only from inside vpWorldStep (and the
+ *   creation calls that precompute data), on the thread that called it; tasks may then run
+ *   on any host threads. Log callbacks may be invoked from any thread that is running a
+ *   VolPhys call, including task threads, and must be thread-safe.
+ * - vpSetAllocator and vpSetLogCallback are process-wide: call them before the first world
+ *   is created (vpSetAllocator returns vpStatus_Busy while any world exists).
+ * - During a step nothing the host owns is written; results are read afterwards through
+ *   the getters into host buffers.
+ */
+#ifndef VOLPHYS_H
+#define VOLPHYS_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#if defined(_WIN32)
+#  if defined(VP_BUILDING_LIBRARY)
+#    define VP_API __declspec(dllexport)
+#  else
+#    define VP_API __declspec(dllimport)
+#  endif
+#elif defined(__GNUC__)
+#  define VP_API __attribute__((visibility("default")))
+#else
+#  define VP_API
+#endif
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---------------------------------------------------------------- version */
+
+#define VP_VERSION_MAJOR 0
+#define VP_VERSION_MINOR 1
+#define VP_VERSION_PATCH 0
+/* Major changes break the ABI; minor ones only add. */
+#define VP_HEADER_VERSION ((VP_VERSION_MAJOR << 16) | (VP_VERSION_MINOR << 8) | VP_VERSION_PATCH)
+
+typedef struct vpVersion {
+  int32_t major, minor, patch;
+} vpVersion;
+
+VP_API vpVersion vpGetVersion(void);
+
+/* ---------------------------------------------------------------- status */
+
+typedef enum vpStatus {
+  vpStatus_Ok = 0,
+  vpStatus_InvalidArgument = 1,
+  vpStatus_InvalidId = 2,
+  vpStatus_OutOfMemory = 3,
+  vpStatus_Unsupported = 4,
+  vpStatus_IoError = 5,
+  vpStatus_ParseError = 6,
+  vpStatus_Busy = 7,
+  vpStatus_Diverged = 8,
+  vpStatus_VersionMismatch = 9,
+  vpStatus_Internal = 10
+} vpStatus;
+
+/* Message of the last failing call on this thread ("" if none). */
+VP_API const char* vpGetLastError(void);
+VP_API const char* vpStatusName(vpStatus status);
+
+/* Checks that the library was built from a header compatible with the one the caller
+ * compiled against (same major, library minor >= header minor). Use vpCheckVersion(). */
+VP_API vpStatus vpCheckHeaderVersion(uint32_t headerVersion, uint32_t worldDefSize);
+
+/* ---------------------------------------------------------------- math */
+
+typedef struct vpVec3 {
+  float x, y, z;
+} vpVec3;
+
+/* Unit quaternion, w last (as Bullet and most engines store it). */
+typedef struct vpQuat {
+  float x, y, z, w;
+} vpQuat;
+
+typedef struct vpTransform {
+  vpVec3 position;
+  vpQuat rotation;
+} vpTransform;
+
+/* ---------------------------------------------------------------- hooks */
+
+/* Allocator: alignment is a power of two <= 64. Must be thread-safe. Routes VolPhys' bulk
+ * simulation arrays and Bullet's allocations; small bookkeeping may use the C++ heap. */
+typedef void* vpAllocFn(size_t size, size_t alignment, void* userContext);
+typedef void vpFreeFn(void* memory, void* userContext);
+/* NULL functions restore the default (aligned malloc/free). Busy while any world exists. */
+VP_API vpStatus vpSetAllocator(vpAllocFn* allocFn, vpFreeFn* freeFn, void* userContext);
+
+typedef enum vpLogLevel {
+  vpLogLevel_Debug = 0,
+  vpLogLevel_Info = 1,
+  vpLogLevel_Warning = 2,
+  vpLogLevel_Error = 3,
+  vpLogLevel_Off = 4
+} vpLogLevel;
+typedef void vpLogFn(vpLogLevel level, const char* message, void* userContext);
+/* NULL restores the default (warnings and errors to stderr). */
+VP_API vpStatus vpSetLogCallback(vpLogFn* logFn, void* userContext, vpLogLevel minLevel);
+
+/* Task system, in the style of Box2D v3. VolPhys splits work into `itemCount` items whose
+ * boundaries do not depend on the worker count (so results are bitwise identical for any
+ * worker count). The host runs task(start, end, workerIndex, taskContext) over sub-ranges
+ * covering [0, itemCount), each at least minRange long, possibly in parallel, with
+ * workerIndex < vpWorldDef.workerCount. enqueueTask may run everything inline and return
+ * NULL; otherwise it returns a handle that finishTask waits for. */
+typedef void vpTaskFn(int32_t startIndex, int32_t endIndex, uint32_t workerIndex, void* taskContext);
+typedef void* vpEnqueueTaskFn(vpTaskFn* task, int32_t itemCount, int32_t minRange, void* taskContext,
+                              void* userContext);
+typedef void vpFinishTaskFn(void* userTask, void* userContext);
+
+/* Monotonic clock in seconds used for the frame budget. NULL means the system's steady
+ * clock. Hosts with their own frame timer (and tests) can inject one. */
+typedef double vpClockFn(void* userContext);
+
+/* ---------------------------------------------------------------- ids */
+
+typedef struct vpWorldId {
+  uint16_t index1; /* slot + 1; 0 = null */
+  uint16_t generation;
+} vpWorldId;
+
+typedef struct vpColliderId {
+  uint32_t index1; /* slot + 1; 0 = null */
+  uint32_t generation;
+  vpWorldId world;
+} vpColliderId;
+
+VP_API int vpWorldIdIsNull(vpWorldId id);
+VP_API int vpColliderIdIsNull(vpColliderId id);
+
+/* ---------------------------------------------------------------- world */
+
+typedef struct vpWorldDef {
+  uint32_t structSize;
+  vpVec3 gravity;              /* default (0, -9.81, 0) */
+  int32_t workerCount;         /* worker threads incl. the caller, 1..64; default 1 */
+  float frameBudgetMs;         /* per-step budget for iterative solvers; 0 = unlimited; default 16 */
+  float rigidMaxSubstep;       /* Bullet sub-step length bound in seconds; default 1/120 */
+  vpEnqueueTaskFn* enqueueTask;/* both NULL: built-in thread pool with workerCount threads */
+  vpFinishTaskFn* finishTask;
+  void* userTaskContext;
+  vpClockFn* clock;            /* NULL: steady clock */
+  void* clockContext;
+  void* userData;
+} vpWorldDef;
+
+VP_API vpWorldDef vpDefaultWorldDef(void);
+VP_API vpStatus vpWorldCreate(const vpWorldDef* def, vpWorldId* outWorld);
+VP_API vpStatus vpWorldDestroy(vpWorldId world);
+VP_API vpStatus vpWorldIsValid(vpWorldId world); /* Ok or InvalidId */
+VP_API vpStatus vpWorldSetGravity(vpWorldId world, vpVec3 gravity);
+VP_API vpStatus vpWorldGetGravity(vpWorldId world, vpVec3* outGravity);
+VP_API vpStatus vpWorldSetFrameBudget(vpWorldId world, float frameBudgetMs);
+
+/* Advances everything by dt seconds (0 < dt <= 1) under the world's frame budget. */
+VP_API vpStatus vpWorldStep(vpWorldId world, float dt);
+
+/* Adds the colliders (and, later, actors) of a JSON scene file to the world; the scene's
+ * optional "world" block sets gravity and budget. All-or-nothing: on error nothing is
+ * added and the message gives the JSON path of the problem. */
+VP_API vpStatus vpWorldLoadScene(vpWorldId world, const char* path);
+
+/* ---------------------------------------------------------------- stats */
+
+typedef enum vpPhase {
+  vpPhase_Rigid = 0,     /* Bullet step */
+  vpPhase_Corotate = 1,  /* deformables: rotations and element forces */
+  vpPhase_Assemble = 2,
+  vpPhase_Contacts = 3,
+  vpPhase_Solve = 4,
+  vpPhase_Embed = 5,     /* render-mesh update */
+  vpPhase_Advect = 6,    /* fluids */
+  vpPhase_Forces = 7,
+  vpPhase_Fractions = 8,
+  vpPhase_Pressure = 9,
+  vpPhase_Surface = 10,
+  vpPhase_Count = 11
+} vpPhase;
+
+#define VP_MAX_PHASES 16
+
+typedef struct vpPhaseStats {
+  float ms;
+  int32_t iterations; /* solver iterations, 0 for non-iterative phases */
+  float residual;     /* final relative residual, 0 if not applicable */
+  int32_t budgetCut;  /* 1 if the phase stopped early because the budget was spent */
+} vpPhaseStats;
+
+typedef enum vpActorKind {
+  vpActorKind_Rigid = 0, /* the world's Bullet step as a whole */
+  vpActorKind_Deformable = 1,
+  vpActorKind_Fluid = 2
+} vpActorKind;
+
+typedef struct vpActorStats {
+  vpActorKind kind;
+  uint32_t index1;    /* the actor id's index1 (0 for the rigid pseudo-actor) */
+  float totalMs;
+  vpPhaseStats phases[VP_MAX_PHASES]; /* indexed by vpPhase */
+} vpActorStats;
+
+typedef struct vpStepStats {
+  uint32_t structSize;
+  uint64_t stepIndex;  /* number of completed steps */
+  float dt;
+  float totalMs;
+  float budgetMs;      /* the budget this step ran under (0 = unlimited) */
+  int32_t budgetCut;   /* any phase was cut */
+  int32_t actorCount;  /* entries available through vpWorldGetActorStats */
+  int32_t colliderCount;
+  int32_t rigidSubsteps;
+} vpStepStats;
+
+VP_API vpStepStats vpDefaultStepStats(void);
+/* Statistics of the last completed step. */
+VP_API vpStatus vpWorldGetStepStats(vpWorldId world, vpStepStats* outStats);
+/* Per-actor statistics of the last step; actorIndex in [0, actorCount). Entry 0 is the rigid
+ * pseudo-actor (the Bullet step). */
+VP_API vpStatus vpWorldGetActorStats(vpWorldId world, int32_t actorIndex, vpActorStats* outStats);
+
+/* ---------------------------------------------------------------- colliders */
+
+typedef enum vpBodyType {
+  vpBodyType_Static = 0,
+  vpBodyType_Kinematic = 1, /* moved by the host: target pose or velocity */
+  vpBodyType_Dynamic = 2
+} vpBodyType;
+
+typedef enum vpShapeType {
+  vpShapeType_Sphere = 0,       /* radius */
+  vpShapeType_Box = 1,          /* halfExtents */
+  vpShapeType_Capsule = 2,      /* radius, halfHeight of the cylindrical part, along local Y */
+  vpShapeType_Cylinder = 3,     /* radius, halfHeight, along local Y */
+  vpShapeType_Plane = 4,        /* normal, offset: points x with dot(normal, x) <= offset are solid */
+  vpShapeType_ConvexHull = 5,   /* points, pointCount */
+  vpShapeType_TriangleMesh = 6  /* points + indices, or meshFile */
+} vpShapeType;
+
+typedef struct vpShapeDef {
+  uint32_t structSize;
+  vpShapeType type;
+  float radius;
+  float halfHeight;
+  vpVec3 halfExtents;
+  vpVec3 normal;
+  float offset;
+  const float* points;     /* xyz triples, pointCount of them (copied) */
+  int32_t pointCount;
+  const int32_t* indices;  /* triangle vertex indices, 3 * triangleCount (copied) */
+  int32_t triangleCount;
+  const char* meshFile;    /* any format assimp reads; used when points == NULL */
+  vpVec3 meshScale;        /* applied to points or file vertices; default (1,1,1) */
+} vpShapeDef;
+
+typedef struct vpColliderDef {
+  uint32_t structSize;
+  vpBodyType bodyType;
+  vpShapeDef shape;
+  vpTransform pose;
+  vpVec3 linearVelocity;
+  vpVec3 angularVelocity;
+  float mass;            /* dynamic bodies only, > 0; default 1 */
+  float friction;        /* >= 0; default 0.5 */
+  float restitution;     /* 0..1; default 0 */
+  float linearDamping;   /* 0..1; default 0 */
+  float angularDamping;  /* 0..1; default 0.05 */
+  void* userData;
+} vpColliderDef;
+
+VP_API vpShapeDef vpDefaultShapeDef(void);
+VP_API vpColliderDef vpDefaultColliderDef(void);
+VP_API vpStatus vpColliderCreate(vpWorldId world, const vpColliderDef* def, vpColliderId* outCollider);
+VP_API vpStatus vpColliderDestroy(vpColliderId collider);
+VP_API vpStatus vpColliderIsValid(vpColliderId collider); /* Ok or InvalidId */
+VP_API vpStatus vpColliderGetPose(vpColliderId collider, vpTransform* outPose);
+/* Teleports the body (any type). Clears a pending kinematic target. */
+VP_API vpStatus vpColliderSetPose(vpColliderId collider, const vpTransform* pose);
+VP_API vpStatus vpColliderGetVelocity(vpColliderId collider, vpVec3* outLinear, vpVec3* outAngular);
+/* Dynamic: sets the velocity. Kinematic: the body moves with this velocity each step until
+ * changed or a target is set. Static: InvalidArgument. */
+VP_API vpStatus vpColliderSetVelocity(vpColliderId collider, vpVec3 linear, vpVec3 angular);
+/* Kinematic only: the body reaches `target` at the end of the next step, moving with the
+ * constant velocity that gets it there (this is what deformables and fluids see). */
+VP_API vpStatus vpColliderSetKinematicTarget(vpColliderId collider, const vpTransform* target);
+VP_API vpStatus vpColliderGetBodyType(vpColliderId collider, vpBodyType* outType);
+VP_API vpStatus vpColliderGetUserData(vpColliderId collider, void** outUserData);
+/* Number of colliders and their ids, in slot order (stable while none is destroyed). */
+VP_API vpStatus vpWorldGetColliderCount(vpWorldId world, int32_t* outCount);
+VP_API vpStatus vpWorldGetColliders(vpWorldId world, vpColliderId* outIds, int32_t capacity, int32_t* outCount);
+/* Scene files may name colliders; finds the first one with that name. */
+VP_API vpStatus vpWorldFindCollider(vpWorldId world, const char* name, vpColliderId* outCollider);
+
+/* ---------------------------------------------------------------- build information */
+
+typedef struct vpBuildInfo {
+  int32_t cudaCompiled;    /* the CUDA path was compiled into this library */
+  int32_t cudaDeviceCount; /* CUDA devices usable now (0 without a GPU or driver) */
+  int32_t hardwareThreads;
+} vpBuildInfo;
+VP_API vpStatus vpGetBuildInfo(vpBuildInfo* outInfo);
+
+/* ---------------------------------------------------------------- version check */
+
+/* Returns vpStatus_Ok when this header matches the loaded library. Call once at start-up. */
+static inline vpStatus vpCheckVersion(void) {
+  return vpCheckHeaderVersion(VP_HEADER_VERSION, (uint32_t)sizeof(vpWorldDef));
+}
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* VOLPHYS_H */

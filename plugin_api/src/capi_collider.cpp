@@ -1,0 +1,256 @@
+// Rigid colliders: creation from vpColliderDef, pose/velocity access, kinematic targets.
+#include <cmath>
+#include <cstring>
+
+#include "capi_convert.h"
+#include "world_registry.h"
+
+using namespace vp;
+using namespace vp::capi;
+
+namespace {
+
+Status checkTransform(const char* field, const vpTransform& t) {
+  const float v[7] = {t.position.x, t.position.y, t.position.z, t.rotation.x, t.rotation.y, t.rotation.z, t.rotation.w};
+  for (float x : v)
+    if (!std::isfinite(x))
+      return fail(Status::InvalidArgument, "%s = ((%g, %g, %g), (%g, %g, %g, %g)): must be finite", field, v[0], v[1],
+                  v[2], v[3], v[4], v[5], v[6]);
+  const double n = std::sqrt(double(v[3]) * v[3] + double(v[4]) * v[4] + double(v[5]) * v[5] + double(v[6]) * v[6]);
+  if (std::abs(n - 1.0) > 1e-2)
+    return fail(Status::InvalidArgument, "%s.rotation = (%g, %g, %g, %g): must be a unit quaternion (norm %g)", field,
+                v[3], v[4], v[5], v[6], n);
+  return Status::Ok;
+}
+
+Status translateShape(const vpShapeDef& in, ShapeDesc* out) {
+  VP_TRY(checkStructSize("vpShapeDef", in.structSize, sizeof(vpShapeDef)));
+  out->type = static_cast<ShapeType>(in.type);
+  out->radius = in.radius;
+  out->halfHeight = in.halfHeight;
+  out->halfExtents = toVec3(in.halfExtents);
+  out->normal = toVec3(in.normal);
+  out->offset = in.offset;
+  out->meshScale = toVec3(in.meshScale);
+  const bool usesVertices = in.type == vpShapeType_ConvexHull || in.type == vpShapeType_TriangleMesh;
+  if (!usesVertices) return Status::Ok;
+  if (in.points) {
+    if (in.pointCount <= 0 || in.pointCount > (1 << 26))
+      return fail(Status::InvalidArgument, "shape.pointCount = %d: must be in [1, 2^26] when shape.points is set",
+                  in.pointCount);
+    out->points.resize(static_cast<size_t>(in.pointCount));
+    for (int32_t i = 0; i < in.pointCount; ++i)
+      out->points[i] = Vec3(in.points[3 * i], in.points[3 * i + 1], in.points[3 * i + 2]);
+  } else if (in.meshFile) {
+    out->meshFile = in.meshFile;
+  }
+  if (in.type == vpShapeType_TriangleMesh && in.points) {
+    if (!in.indices || in.triangleCount <= 0 || in.triangleCount > (1 << 26))
+      return fail(Status::InvalidArgument,
+                  "shape.indices/triangleCount = %p/%d: a triangle mesh from arrays needs indices and a count in [1, 2^26]",
+                  static_cast<const void*>(in.indices), in.triangleCount);
+    out->triangles.resize(static_cast<size_t>(in.triangleCount));
+    std::memcpy(out->triangles.data(), in.indices, sizeof(int32_t) * 3 * static_cast<size_t>(in.triangleCount));
+  }
+  return Status::Ok;
+}
+
+}  // namespace
+
+extern "C" {
+
+vpShapeDef vpDefaultShapeDef(void) {
+  vpShapeDef def{};
+  def.structSize = sizeof(vpShapeDef);
+  def.type = vpShapeType_Sphere;
+  def.radius = 0.5f;
+  def.halfHeight = 0.5f;
+  def.halfExtents = vpVec3{0.5f, 0.5f, 0.5f};
+  def.normal = vpVec3{0.0f, 1.0f, 0.0f};
+  def.meshScale = vpVec3{1.0f, 1.0f, 1.0f};
+  return def;
+}
+
+vpColliderDef vpDefaultColliderDef(void) {
+  vpColliderDef def{};
+  def.structSize = sizeof(vpColliderDef);
+  def.bodyType = vpBodyType_Static;
+  def.shape = vpDefaultShapeDef();
+  def.pose.rotation.w = 1.0f;
+  def.mass = 1.0f;
+  def.friction = 0.5f;
+  def.angularDamping = 0.05f;
+  return def;
+}
+
+vpStatus vpColliderCreate(vpWorldId worldId, const vpColliderDef* def, vpColliderId* outCollider) {
+  return guarded(__func__, [&] {
+    VP_REQUIRE_POINTER(def);
+    VP_REQUIRE_POINTER(outCollider);
+    World* world;
+    VP_TRY(resolveWorld(worldId, &world));
+    VP_TRY(checkStructSize("vpColliderDef", def->structSize, sizeof(vpColliderDef)));
+    ColliderDesc desc;
+    desc.bodyType = static_cast<BodyType>(def->bodyType);
+    VP_TRY(translateShape(def->shape, &desc.shape));
+    desc.pose = toPose(def->pose);
+    desc.linearVelocity = toVec3(def->linearVelocity);
+    desc.angularVelocity = toVec3(def->angularVelocity);
+    desc.mass = def->mass;
+    desc.friction = def->friction;
+    desc.restitution = def->restitution;
+    desc.linearDamping = def->linearDamping;
+    desc.angularDamping = def->angularDamping;
+    desc.userData = def->userData;
+    ColliderHandle h;
+    VP_TRY(world->createCollider(std::move(desc), &h));
+    *outCollider = makeColliderId(worldId, h);
+    return Status::Ok;
+  });
+}
+
+vpStatus vpColliderDestroy(vpColliderId id) {
+  return guarded(__func__, [&] {
+    World* w;
+    Collider* c;
+    VP_TRY(resolveCollider(id, &w, &c));
+    return w->destroyCollider(handleOf(id));
+  });
+}
+
+vpStatus vpColliderIsValid(vpColliderId id) {
+  return guarded(__func__, [&] {
+    World* w;
+    Collider* c;
+    return resolveCollider(id, &w, &c);
+  });
+}
+
+vpStatus vpColliderGetPose(vpColliderId id, vpTransform* outPose) {
+  return guarded(__func__, [&] {
+    VP_REQUIRE_POINTER(outPose);
+    World* w;
+    Collider* c;
+    VP_TRY(resolveCollider(id, &w, &c));
+    *outPose = toC(c->pose());
+    return Status::Ok;
+  });
+}
+
+vpStatus vpColliderSetPose(vpColliderId id, const vpTransform* pose) {
+  return guarded(__func__, [&] {
+    VP_REQUIRE_POINTER(pose);
+    World* w;
+    Collider* c;
+    VP_TRY(resolveCollider(id, &w, &c));
+    VP_TRY(checkTransform("pose", *pose));
+    Pose p = toPose(*pose);
+    p.rotation.normalize();
+    c->setPose(p);
+    return Status::Ok;
+  });
+}
+
+vpStatus vpColliderGetVelocity(vpColliderId id, vpVec3* outLinear, vpVec3* outAngular) {
+  return guarded(__func__, [&] {
+    World* w;
+    Collider* c;
+    VP_TRY(resolveCollider(id, &w, &c));
+    if (outLinear) *outLinear = toC(c->linearVelocity());
+    if (outAngular) *outAngular = toC(c->angularVelocity());
+    return Status::Ok;
+  });
+}
+
+vpStatus vpColliderSetVelocity(vpColliderId id, vpVec3 linear, vpVec3 angular) {
+  return guarded(__func__, [&] {
+    World* w;
+    Collider* c;
+    VP_TRY(resolveCollider(id, &w, &c));
+    VP_TRY(checkVec3("linear", linear));
+    VP_TRY(checkVec3("angular", angular));
+    if (c->bodyType() == BodyType::Static)
+      return fail(Status::InvalidArgument, "collider (%u, %u) is static: it has no velocity", id.index1, id.generation);
+    c->setVelocity(toVec3(linear), toVec3(angular));
+    return Status::Ok;
+  });
+}
+
+vpStatus vpColliderSetKinematicTarget(vpColliderId id, const vpTransform* target) {
+  return guarded(__func__, [&] {
+    VP_REQUIRE_POINTER(target);
+    World* w;
+    Collider* c;
+    VP_TRY(resolveCollider(id, &w, &c));
+    if (c->bodyType() != BodyType::Kinematic)
+      return fail(Status::InvalidArgument, "collider (%u, %u) is %s: only kinematic bodies take targets", id.index1,
+                  id.generation, bodyTypeName(c->bodyType()));
+    VP_TRY(checkTransform("target", *target));
+    Pose p = toPose(*target);
+    p.rotation.normalize();
+    c->setKinematicTarget(p);
+    return Status::Ok;
+  });
+}
+
+vpStatus vpColliderGetBodyType(vpColliderId id, vpBodyType* outType) {
+  return guarded(__func__, [&] {
+    VP_REQUIRE_POINTER(outType);
+    World* w;
+    Collider* c;
+    VP_TRY(resolveCollider(id, &w, &c));
+    *outType = static_cast<vpBodyType>(c->bodyType());
+    return Status::Ok;
+  });
+}
+
+vpStatus vpColliderGetUserData(vpColliderId id, void** outUserData) {
+  return guarded(__func__, [&] {
+    VP_REQUIRE_POINTER(outUserData);
+    World* w;
+    Collider* c;
+    VP_TRY(resolveCollider(id, &w, &c));
+    *outUserData = c->desc().userData;
+    return Status::Ok;
+  });
+}
+
+vpStatus vpWorldGetColliderCount(vpWorldId id, int32_t* outCount) {
+  return guarded(__func__, [&] {
+    VP_REQUIRE_POINTER(outCount);
+    World* w;
+    VP_TRY(resolveWorld(id, &w));
+    *outCount = static_cast<int32_t>(w->colliderCount());
+    return Status::Ok;
+  });
+}
+
+vpStatus vpWorldGetColliders(vpWorldId id, vpColliderId* outIds, int32_t capacity, int32_t* outCount) {
+  return guarded(__func__, [&] {
+    VP_REQUIRE_POINTER(outCount);
+    World* w;
+    VP_TRY(resolveWorld(id, &w));
+    if (capacity < 0) return fail(Status::InvalidArgument, "capacity = %d: must be >= 0", capacity);
+    if (capacity > 0 && !outIds) return fail(Status::InvalidArgument, "outIds is NULL with capacity = %d", capacity);
+    std::vector<ColliderHandle> handles = w->colliderHandles();
+    const int32_t n = static_cast<int32_t>(handles.size());
+    for (int32_t i = 0; i < n && i < capacity; ++i) outIds[i] = makeColliderId(id, handles[i]);
+    *outCount = n < capacity ? n : capacity;
+    return Status::Ok;
+  });
+}
+
+vpStatus vpWorldFindCollider(vpWorldId id, const char* name, vpColliderId* outCollider) {
+  return guarded(__func__, [&] {
+    VP_REQUIRE_POINTER(name);
+    VP_REQUIRE_POINTER(outCollider);
+    World* w;
+    VP_TRY(resolveWorld(id, &w));
+    ColliderHandle h;
+    if (!w->findCollider(name, &h)) return fail(Status::InvalidArgument, "name = \"%s\": no collider has this name", name);
+    *outCollider = makeColliderId(id, h);
+    return Status::Ok;
+  });
+}
+
+}  // extern "C"

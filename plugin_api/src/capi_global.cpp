@@ -1,0 +1,94 @@
+// Library-wide calls: version, errors, hooks, build information.
+#include <cmath>
+#include <thread>
+
+#include "capi_convert.h"
+#include "core/allocator.h"
+#include "core/log.h"
+#include "gpu_kernels/device_query.h"
+#include "world_registry.h"
+
+using namespace vp;
+using namespace vp::capi;
+
+namespace vp::capi {
+
+Status checkStructSize(const char* structName, uint32_t given, uint32_t expected) {
+  if (given != expected)
+    return fail(Status::VersionMismatch,
+                "%s.structSize = %u: expected %u (start from vpDefault%s(); is the header from another version?)",
+                structName, given, expected, structName + 2);
+  return Status::Ok;
+}
+
+Status checkVec3(const char* field, const vpVec3& v) {
+  if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
+    return fail(Status::InvalidArgument, "%s = (%g, %g, %g): must be finite", field, v.x, v.y, v.z);
+  return Status::Ok;
+}
+
+}  // namespace vp::capi
+
+extern "C" {
+
+vpVersion vpGetVersion(void) { return vpVersion{VP_VERSION_MAJOR, VP_VERSION_MINOR, VP_VERSION_PATCH}; }
+
+const char* vpGetLastError(void) { return lastError(); }
+
+const char* vpStatusName(vpStatus status) { return statusName(static_cast<Status>(status)); }
+
+vpStatus vpCheckHeaderVersion(uint32_t headerVersion, uint32_t worldDefSize) {
+  return guarded(__func__, [&] {
+    const uint32_t major = headerVersion >> 16, minor = (headerVersion >> 8) & 0xFF;
+    if (major != VP_VERSION_MAJOR || minor > VP_VERSION_MINOR)
+      return fail(Status::VersionMismatch, "header version %u.%u is not served by library version %d.%d.%d", major,
+                  minor, VP_VERSION_MAJOR, VP_VERSION_MINOR, VP_VERSION_PATCH);
+    return checkStructSize("vpWorldDef", worldDefSize, sizeof(vpWorldDef));
+  });
+}
+
+int vpWorldIdIsNull(vpWorldId id) { return id.index1 == 0; }
+int vpColliderIdIsNull(vpColliderId id) { return id.index1 == 0; }
+
+vpStatus vpSetAllocator(vpAllocFn* allocFn, vpFreeFn* freeFn, void* userContext) {
+  return guarded(__func__, [&] {
+    if ((allocFn == nullptr) != (freeFn == nullptr))
+      return fail(Status::InvalidArgument, "vpSetAllocator: allocFn and freeFn must both be set or both be NULL");
+    if (liveWorldCount() != 0)
+      return fail(Status::Busy, "vpSetAllocator: %zu world(s) exist; set the allocator before creating any",
+                  liveWorldCount());
+    setAllocator(allocFn, freeFn, userContext);
+    return Status::Ok;
+  });
+}
+
+vpStatus vpSetLogCallback(vpLogFn* logFn, void* userContext, vpLogLevel minLevel) {
+  return guarded(__func__, [&] {
+    if (minLevel < vpLogLevel_Debug || minLevel > vpLogLevel_Off)
+      return fail(Status::InvalidArgument, "minLevel = %d: must be a vpLogLevel", static_cast<int>(minLevel));
+    // The runtime's sink has its own level enum; adapt instead of casting function types.
+    static struct {
+      vpLogFn* fn;
+      void* context;
+    } host;
+    host.fn = logFn;
+    host.context = userContext;
+    auto forward = [](LogLevel level, const char* message, void*) {
+      host.fn(static_cast<vpLogLevel>(level), message, host.context);
+    };
+    setLogSink(logFn ? +forward : nullptr, nullptr, static_cast<LogLevel>(minLevel));
+    return Status::Ok;
+  });
+}
+
+vpStatus vpGetBuildInfo(vpBuildInfo* outInfo) {
+  return guarded(__func__, [&] {
+    VP_REQUIRE_POINTER(outInfo);
+    outInfo->cudaCompiled = gpu::cudaCompiled() ? 1 : 0;
+    outInfo->cudaDeviceCount = gpu::cudaDeviceCount();
+    outInfo->hardwareThreads = static_cast<int32_t>(std::thread::hardware_concurrency());
+    return Status::Ok;
+  });
+}
+
+}  // extern "C"

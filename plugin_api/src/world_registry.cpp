@@ -1,0 +1,77 @@
+#include "world_registry.h"
+
+#include <mutex>
+
+namespace vp::capi {
+namespace {
+
+struct Registry {
+  std::mutex mutex;
+  SlotMap<World> worlds;
+  Registry() { worlds.setGenerationLimit(0x10000); }  // vpWorldId.generation is 16 bits
+};
+
+Registry& registry() {
+  static Registry r;
+  return r;
+}
+
+}  // namespace
+
+Status registerWorld(std::unique_ptr<World> world, vpWorldId* out) {
+  Registry& r = registry();
+  std::lock_guard<std::mutex> lock(r.mutex);
+  if (r.worlds.capacity() >= 0xFFFF && r.worlds.size() == r.worlds.capacity())
+    return fail(Status::OutOfMemory, "too many worlds: at most 65535 may exist at once");
+  auto h = r.worlds.insert(std::move(world));
+  *out = vpWorldId{static_cast<uint16_t>(h.index1), static_cast<uint16_t>(h.generation)};
+  return Status::Ok;
+}
+
+Status unregisterWorld(vpWorldId id) {
+  Registry& r = registry();
+  std::unique_ptr<World> doomed;
+  {
+    std::lock_guard<std::mutex> lock(r.mutex);
+    World* w = r.worlds.get(id.index1, id.generation);
+    if (!w) return fail(Status::InvalidId, "world id (%u, %u) is stale or null", id.index1, id.generation);
+    if (w->stepping()) return fail(Status::Busy, "world id (%u, %u) is stepping on another thread", id.index1, id.generation);
+    doomed = r.worlds.remove(id.index1, id.generation);
+  }
+  // Destroyed outside the lock: joining its worker threads can take a moment.
+  doomed.reset();
+  return Status::Ok;
+}
+
+size_t liveWorldCount() {
+  Registry& r = registry();
+  std::lock_guard<std::mutex> lock(r.mutex);
+  return r.worlds.size();
+}
+
+Status resolveWorld(vpWorldId id, World** out) {
+  Registry& r = registry();
+  std::lock_guard<std::mutex> lock(r.mutex);
+  World* w = r.worlds.get(id.index1, id.generation);
+  if (!w) return fail(Status::InvalidId, "world id (%u, %u) is stale or null", id.index1, id.generation);
+  if (w->stepping()) return fail(Status::Busy, "world id (%u, %u) is stepping on another thread", id.index1, id.generation);
+  *out = w;
+  return Status::Ok;
+}
+
+Status resolveCollider(vpColliderId id, World** world, Collider** out) {
+  if (id.index1 == 0) return fail(Status::InvalidId, "collider id is null");
+  Status s = resolveWorld(id.world, world);
+  if (!ok(s)) {
+    if (s == Status::InvalidId)
+      return fail(Status::InvalidId, "collider id (%u, %u) belongs to world (%u, %u), which is stale or null", id.index1,
+                  id.generation, id.world.index1, id.world.generation);
+    return s;
+  }
+  Collider* c = (*world)->collider(handleOf(id));
+  if (!c) return fail(Status::InvalidId, "collider id (%u, %u) is stale or destroyed", id.index1, id.generation);
+  *out = c;
+  return Status::Ok;
+}
+
+}  // namespace vp::capi

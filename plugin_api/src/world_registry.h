@@ -1,0 +1,24 @@
+// The process-wide table of worlds behind vpWorldId, and the id <-> object translation every
+// shim uses. Ids from a destroyed world never resolve: the world slot's generation changes,
+// and child ids carry their world id.
+#pragma once
+
+#include <memory>
+
+#include "capi_convert.h"
+#include "world.h"
+
+namespace vp::capi {
+
+Status registerWorld(std::unique_ptr<World> world, vpWorldId* out);
+Status unregisterWorld(vpWorldId id);  // fails with Busy while it steps
+size_t liveWorldCount();
+
+// Resolve for an ordinary call: InvalidId if stale/null, Busy if stepping on another thread.
+Status resolveWorld(vpWorldId id, World** out);
+Status resolveCollider(vpColliderId id, World** world, Collider** out);
+
+inline vpColliderId makeColliderId(vpWorldId world, ColliderHandle h) { return vpColliderId{h.index1, h.generation, world}; }
+inline ColliderHandle handleOf(vpColliderId id) { return ColliderHandle{id.index1, id.generation}; }
+
+}  // namespace vp::capi

@@ -1,0 +1,133 @@
+#include "collide/collider.h"
+
+#include <btBulletDynamicsCommon.h>
+
+namespace vp {
+namespace {
+
+btVector3 bt(const Vec3& v) { return btVector3(btScalar(v.x()), btScalar(v.y()), btScalar(v.z())); }
+Vec3 toVec(const btVector3& v) { return Vec3(v.x(), v.y(), v.z()); }
+
+btTransform bt(const Pose& p) {
+  return btTransform(btQuaternion(btScalar(p.rotation.x()), btScalar(p.rotation.y()), btScalar(p.rotation.z()),
+                                  btScalar(p.rotation.w())),
+                     bt(p.position));
+}
+
+Pose toPose(const btTransform& t) {
+  btQuaternion q = t.getRotation();
+  Pose p;
+  p.position = toVec(t.getOrigin());
+  p.rotation = Quat(q.w(), q.x(), q.y(), q.z());
+  return p;
+}
+
+// Rotation by the rotation vector w (axis * angle), exact for constant angular velocity.
+Quat exponential(const Vec3& w) {
+  double angle = w.norm();
+  if (angle < 1e-12) return Quat::Identity();
+  return Quat(Eigen::AngleAxisd(angle, w / angle));
+}
+
+}  // namespace
+
+Collider::Collider(ColliderDesc desc) : desc_(std::move(desc)), shape_(buildBulletShape(desc_.shape)) {
+  const bool dynamic = desc_.bodyType == BodyType::Dynamic;
+  const btScalar mass = dynamic ? btScalar(desc_.mass) : btScalar(0);
+  btVector3 inertia(0, 0, 0);
+  if (dynamic) shape_.shape->calculateLocalInertia(mass, inertia);
+  motionState_ = std::make_unique<btDefaultMotionState>(bt(desc_.pose));
+  btRigidBody::btRigidBodyConstructionInfo info(mass, motionState_.get(), shape_.shape.get(), inertia);
+  info.m_friction = btScalar(desc_.friction);
+  info.m_restitution = btScalar(desc_.restitution);
+  info.m_linearDamping = btScalar(desc_.linearDamping);
+  info.m_angularDamping = btScalar(desc_.angularDamping);
+  body_ = std::make_unique<btRigidBody>(info);
+  body_->setUserPointer(this);
+  kinematicPose_ = desc_.pose;
+  if (desc_.bodyType == BodyType::Kinematic) {
+    body_->setCollisionFlags(body_->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+    body_->setActivationState(DISABLE_DEACTIVATION);
+    kinematicLinear_ = desc_.linearVelocity;
+    kinematicAngular_ = desc_.angularVelocity;
+  } else if (dynamic) {
+    body_->setLinearVelocity(bt(desc_.linearVelocity));
+    body_->setAngularVelocity(bt(desc_.angularVelocity));
+  }
+}
+
+Collider::~Collider() = default;
+
+Pose Collider::pose() const {
+  if (desc_.bodyType == BodyType::Kinematic) return kinematicPose_;
+  return toPose(body_->getWorldTransform());
+}
+
+void Collider::setPose(const Pose& pose) {
+  const btTransform t = bt(pose);
+  body_->setWorldTransform(t);
+  body_->setInterpolationWorldTransform(t);
+  motionState_->setWorldTransform(t);
+  kinematicPose_ = pose;
+  target_.reset();
+  targetActive_ = false;
+  if (desc_.bodyType == BodyType::Dynamic) body_->activate(true);
+}
+
+Vec3 Collider::linearVelocity() const {
+  if (desc_.bodyType == BodyType::Kinematic) return kinematicLinear_;
+  return toVec(body_->getLinearVelocity());
+}
+
+Vec3 Collider::angularVelocity() const {
+  if (desc_.bodyType == BodyType::Kinematic) return kinematicAngular_;
+  return toVec(body_->getAngularVelocity());
+}
+
+void Collider::setVelocity(const Vec3& linear, const Vec3& angular) {
+  if (desc_.bodyType == BodyType::Kinematic) {
+    kinematicLinear_ = linear;
+    kinematicAngular_ = angular;
+    target_.reset();
+    targetActive_ = false;
+    return;
+  }
+  body_->setLinearVelocity(bt(linear));
+  body_->setAngularVelocity(bt(angular));
+  body_->activate(true);
+}
+
+void Collider::setKinematicTarget(const Pose& target) { target_ = target; }
+
+void Collider::beginKinematicStep(double dt) {
+  if (!target_) {
+    // A target reached last step leaves the body at rest until the host moves it again.
+    if (targetActive_) kinematicLinear_.setZero(), kinematicAngular_.setZero();
+    targetActive_ = false;
+    return;
+  }
+  targetActive_ = true;
+  kinematicLinear_ = (target_->position - kinematicPose_.position) / dt;
+  Quat delta = target_->rotation * kinematicPose_.rotation.conjugate();
+  if (delta.w() < 0) delta.coeffs() = -delta.coeffs();  // shortest arc
+  Eigen::AngleAxisd aa(delta);
+  kinematicAngular_ = aa.axis() * (aa.angle() / dt);
+}
+
+void Collider::advanceKinematic(double h, bool last) {
+  if (last && targetActive_) {
+    kinematicPose_ = *target_;  // no drift from summing sub-steps
+  } else {
+    kinematicPose_.position += kinematicLinear_ * h;
+    kinematicPose_.rotation = (exponential(kinematicAngular_ * h) * kinematicPose_.rotation).normalized();
+  }
+  motionState_->setWorldTransform(bt(kinematicPose_));
+}
+
+void Collider::endKinematicStep() {
+  // Keep the step's velocity readable (fluids and deformables use it after the rigid phase);
+  // beginKinematicStep clears it next step if no new target came.
+  target_.reset();
+}
+
+}  // namespace vp

@@ -1,0 +1,52 @@
+// One rigid collider: its exact description (for fluid and deformable queries) and the Bullet
+// body that simulates it. Kinematic bodies are driven here, not by Bullet: each sub-step
+// advances them by their velocity (or towards the host's target) and hands Bullet the new
+// pose through the motion state, from which Bullet derives the velocity its contacts use.
+#pragma once
+
+#include <memory>
+#include <optional>
+
+#include "collide/bullet_shape_builder.h"
+#include "collide/collider_desc.h"
+
+class btRigidBody;
+class btDefaultMotionState;
+
+namespace vp {
+
+class Collider {
+ public:
+  explicit Collider(ColliderDesc desc);  // desc must be validated
+  ~Collider();
+  Collider(const Collider&) = delete;
+  Collider& operator=(const Collider&) = delete;
+
+  const ColliderDesc& desc() const { return desc_; }
+  btRigidBody* body() const { return body_.get(); }
+  BodyType bodyType() const { return desc_.bodyType; }
+
+  Pose pose() const;
+  void setPose(const Pose& pose);
+  Vec3 linearVelocity() const;
+  Vec3 angularVelocity() const;
+  void setVelocity(const Vec3& linear, const Vec3& angular);
+  void setKinematicTarget(const Pose& target);
+
+  // Kinematic driving, called by CollisionWorld around Bullet's sub-steps.
+  void beginKinematicStep(double dt);          // turns a target into a velocity for this step
+  void advanceKinematic(double h, bool last);  // moves by h; on the last sub-step snaps to target
+  void endKinematicStep();
+
+ private:
+  ColliderDesc desc_;
+  BulletShape shape_;
+  std::unique_ptr<btDefaultMotionState> motionState_;
+  std::unique_ptr<btRigidBody> body_;
+  Pose kinematicPose_;
+  Vec3 kinematicLinear_ = Vec3::Zero(), kinematicAngular_ = Vec3::Zero();
+  std::optional<Pose> target_;
+  bool targetActive_ = false;
+};
+
+}  // namespace vp

@@ -1,0 +1,36 @@
+#include "core/budget_clock.h"
+
+#include <algorithm>
+#include <chrono>
+
+namespace vp {
+
+double Clock::seconds() const {
+  if (now) return now(context);
+  using namespace std::chrono;
+  return duration<double>(steady_clock::now().time_since_epoch()).count();
+}
+
+Deadline::Deadline(const Clock& clock, double budgetMs) : clock_(clock), start_(clock.seconds()) {
+  end_ = budgetMs > 0.0 ? start_ + budgetMs * 1e-3 : std::numeric_limits<double>::infinity();
+}
+
+bool Deadline::expired() const { return !unlimited() && clock_.seconds() >= end_; }
+
+double Deadline::remainingMs() const {
+  if (unlimited()) return std::numeric_limits<double>::infinity();
+  return std::max(0.0, (end_ - clock_.seconds()) * 1e3);
+}
+
+double Deadline::elapsedMs() const { return (clock_.seconds() - start_) * 1e3; }
+
+Deadline Deadline::share(double fraction) const {
+  Deadline d = *this;
+  if (unlimited()) return d;
+  double now = clock_.seconds();
+  d.start_ = now;
+  d.end_ = now + std::max(0.0, end_ - now) * std::clamp(fraction, 0.0, 1.0);
+  return d;
+}
+
+}  // namespace vp

@@ -1,0 +1,42 @@
+// Strict, path-aware reading of JSON objects for scene files: every key must be known, every
+// value of the expected type, and an error names the JSON path ("$.colliders[2].shape.radius").
+#pragma once
+
+#include <initializer_list>
+#include <optional>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "core/math_types.h"
+#include "core/status.h"
+
+namespace vp {
+
+class JsonObject {
+ public:
+  JsonObject(const nlohmann::json& value, std::string path) : value_(value), path_(std::move(path)) {}
+
+  // Fails if the value is not an object or has a key outside `allowed`.
+  Status checkKeys(std::initializer_list<const char*> allowed) const;
+
+  bool has(const char* key) const { return value_.contains(key); }
+  std::string pathOf(const char* key) const { return path_ + "." + key; }
+  const std::string& path() const { return path_; }
+  const nlohmann::json& at(const char* key) const { return value_.at(key); }
+
+  // Optional fields: leave *out unchanged when the key is absent.
+  Status number(const char* key, double* out) const;
+  Status integer(const char* key, int* out) const;
+  Status boolean(const char* key, bool* out) const;
+  Status string(const char* key, std::string* out) const;
+  Status vec3(const char* key, Vec3* out) const;
+  Status object(const char* key, std::optional<JsonObject>* out, bool required) const;
+
+ private:
+  const nlohmann::json& value_;
+  std::string path_;
+};
+
+const char* jsonTypeName(const nlohmann::json& value);
+
+}  // namespace vp

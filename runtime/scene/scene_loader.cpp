@@ -1,0 +1,220 @@
+#include "scene/scene_loader.h"
+
+#include <cmath>
+#include <fstream>
+#include <optional>
+#include <sstream>
+
+#include "scene/json_fields.h"
+#include "world.h"
+
+namespace vp {
+namespace {
+
+using nlohmann::json;
+
+struct SceneWorldSettings {
+  std::optional<Vec3> gravity;
+  std::optional<double> frameBudgetMs;
+};
+
+struct Scene {
+  SceneWorldSettings world;
+  std::vector<ColliderDesc> colliders;
+};
+
+Status parseEnum(const JsonObject& obj, const char* key, std::initializer_list<const char*> names, int* out) {
+  std::string value;
+  VP_TRY(obj.string(key, &value));
+  if (!obj.has(key)) return Status::Ok;
+  int i = 0;
+  for (const char* name : names) {
+    if (value == name) {
+      *out = i;
+      return Status::Ok;
+    }
+    ++i;
+  }
+  std::string list;
+  for (const char* name : names) list += std::string(list.empty() ? "" : ", ") + name;
+  return fail(Status::ParseError, "%s = \"%s\": expected one of: %s", obj.pathOf(key).c_str(), value.c_str(),
+              list.c_str());
+}
+
+Status parsePointArray(const JsonObject& obj, const char* key, std::vector<Vec3>* out) {
+  if (!obj.has(key)) return Status::Ok;
+  const json& arr = obj.at(key);
+  if (!arr.is_array()) return fail(Status::ParseError, "%s: expected an array of [x, y, z]", obj.pathOf(key).c_str());
+  out->clear();
+  for (size_t i = 0; i < arr.size(); ++i) {
+    const json& p = arr[i];
+    if (!p.is_array() || p.size() != 3 || !p[0].is_number() || !p[1].is_number() || !p[2].is_number())
+      return fail(Status::ParseError, "%s[%zu]: expected [x, y, z] numbers, got %s", obj.pathOf(key).c_str(), i,
+                  p.dump().substr(0, 80).c_str());
+    out->emplace_back(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
+  }
+  return Status::Ok;
+}
+
+Status parseTriangles(const JsonObject& obj, const char* key, std::vector<std::array<int32_t, 3>>* out) {
+  if (!obj.has(key)) return Status::Ok;
+  const json& arr = obj.at(key);
+  if (!arr.is_array()) return fail(Status::ParseError, "%s: expected an array of [a, b, c]", obj.pathOf(key).c_str());
+  for (size_t i = 0; i < arr.size(); ++i) {
+    const json& t = arr[i];
+    if (!t.is_array() || t.size() != 3 || !t[0].is_number_integer() || !t[1].is_number_integer() ||
+        !t[2].is_number_integer())
+      return fail(Status::ParseError, "%s[%zu]: expected [a, b, c] integers, got %s", obj.pathOf(key).c_str(), i,
+                  t.dump().substr(0, 80).c_str());
+    out->push_back({t[0].get<int32_t>(), t[1].get<int32_t>(), t[2].get<int32_t>()});
+  }
+  return Status::Ok;
+}
+
+Status parseShape(const JsonObject& obj, const std::string& baseDirectory, ShapeDesc* shape) {
+  VP_TRY(obj.checkKeys({"type", "radius", "halfHeight", "halfExtents", "normal", "offset", "points", "triangles",
+                        "file", "scale"}));
+  if (!obj.has("type")) return fail(Status::ParseError, "%s: missing required key", obj.pathOf("type").c_str());
+  int type = 0;
+  VP_TRY(parseEnum(obj, "type", {"sphere", "box", "capsule", "cylinder", "plane", "convexHull", "triangleMesh"}, &type));
+  shape->type = static_cast<ShapeType>(type);
+  VP_TRY(obj.number("radius", &shape->radius));
+  VP_TRY(obj.number("halfHeight", &shape->halfHeight));
+  VP_TRY(obj.vec3("halfExtents", &shape->halfExtents));
+  VP_TRY(obj.vec3("normal", &shape->normal));
+  VP_TRY(obj.number("offset", &shape->offset));
+  VP_TRY(parsePointArray(obj, "points", &shape->points));
+  VP_TRY(parseTriangles(obj, "triangles", &shape->triangles));
+  VP_TRY(obj.string("file", &shape->meshFile));
+  if (!shape->meshFile.empty() && shape->meshFile[0] != '/') shape->meshFile = baseDirectory + "/" + shape->meshFile;
+  VP_TRY(obj.vec3("scale", &shape->meshScale));
+  return Status::Ok;
+}
+
+Status parseCollider(const JsonObject& obj, const std::string& baseDirectory, ColliderDesc* desc) {
+  VP_TRY(obj.checkKeys({"name", "bodyType", "shape", "position", "rotation", "axisAngle", "linearVelocity",
+                        "angularVelocity", "mass", "friction", "restitution", "linearDamping", "angularDamping"}));
+  VP_TRY(obj.string("name", &desc->name));
+  int body = 0;
+  VP_TRY(parseEnum(obj, "bodyType", {"static", "kinematic", "dynamic"}, &body));
+  desc->bodyType = static_cast<BodyType>(body);
+  std::optional<JsonObject> shape;
+  VP_TRY(obj.object("shape", &shape, true));
+  VP_TRY(parseShape(*shape, baseDirectory, &desc->shape));
+  VP_TRY(obj.vec3("position", &desc->pose.position));
+  if (obj.has("rotation") && obj.has("axisAngle"))
+    return fail(Status::ParseError, "%s: give either rotation or axisAngle, not both", obj.path().c_str());
+  if (obj.has("rotation")) {
+    const json& q = obj.at("rotation");
+    if (!q.is_array() || q.size() != 4 || !q[0].is_number() || !q[1].is_number() || !q[2].is_number() ||
+        !q[3].is_number())
+      return fail(Status::ParseError, "%s: expected a quaternion [x, y, z, w]", obj.pathOf("rotation").c_str());
+    desc->pose.rotation = Quat(q[3].get<double>(), q[0].get<double>(), q[1].get<double>(), q[2].get<double>());
+  }
+  if (obj.has("axisAngle")) {
+    const json& a = obj.at("axisAngle");
+    if (!a.is_array() || a.size() != 4 || !a[0].is_number() || !a[1].is_number() || !a[2].is_number() ||
+        !a[3].is_number())
+      return fail(Status::ParseError, "%s: expected [axisX, axisY, axisZ, degrees]", obj.pathOf("axisAngle").c_str());
+    Vec3 axis(a[0].get<double>(), a[1].get<double>(), a[2].get<double>());
+    double degrees = a[3].get<double>();
+    if (!axis.allFinite() || axis.norm() < 1e-9 || !std::isfinite(degrees))
+      return fail(Status::ParseError, "%s: the axis must be finite and non-zero, the angle finite",
+                  obj.pathOf("axisAngle").c_str());
+    desc->pose.rotation = Quat(Eigen::AngleAxisd(degrees * M_PI / 180.0, axis.normalized()));
+  }
+  VP_TRY(obj.vec3("linearVelocity", &desc->linearVelocity));
+  VP_TRY(obj.vec3("angularVelocity", &desc->angularVelocity));
+  VP_TRY(obj.number("mass", &desc->mass));
+  VP_TRY(obj.number("friction", &desc->friction));
+  VP_TRY(obj.number("restitution", &desc->restitution));
+  VP_TRY(obj.number("linearDamping", &desc->linearDamping));
+  VP_TRY(obj.number("angularDamping", &desc->angularDamping));
+  // Validate now (with the JSON path) so that applying the scene cannot fail half-way.
+  Status s = validateColliderDesc(*desc);
+  if (!ok(s)) return addErrorContext(s, obj.path());
+  return Status::Ok;
+}
+
+Status parseScene(const json& root, const std::string& baseDirectory, Scene* scene) {
+  JsonObject top(root, "$");
+  VP_TRY(top.checkKeys({"version", "world", "colliders"}));
+  int version = 1;
+  VP_TRY(top.integer("version", &version));
+  if (version != 1) return fail(Status::ParseError, "$.version = %d: this library reads version 1", version);
+  std::optional<JsonObject> world;
+  VP_TRY(top.object("world", &world, false));
+  if (world) {
+    VP_TRY(world->checkKeys({"gravity", "frameBudgetMs"}));
+    if (world->has("gravity")) {
+      Vec3 g;
+      VP_TRY(world->vec3("gravity", &g));
+      Status s = validateGravity(g);
+      if (!ok(s)) return addErrorContext(s, world->path());
+      scene->world.gravity = g;
+    }
+    if (world->has("frameBudgetMs")) {
+      double ms = 0;
+      VP_TRY(world->number("frameBudgetMs", &ms));
+      Status s = validateFrameBudget(ms);
+      if (!ok(s)) return addErrorContext(s, world->path());
+      scene->world.frameBudgetMs = ms;
+    }
+  }
+  if (top.has("colliders")) {
+    const json& list = root.at("colliders");
+    if (!list.is_array())
+      return fail(Status::ParseError, "$.colliders: expected an array, got %s", jsonTypeName(list));
+    for (size_t i = 0; i < list.size(); ++i) {
+      JsonObject obj(list[i], "$.colliders[" + std::to_string(i) + "]");
+      ColliderDesc desc;
+      VP_TRY(parseCollider(obj, baseDirectory, &desc));
+      scene->colliders.push_back(std::move(desc));
+    }
+  }
+  return Status::Ok;
+}
+
+}  // namespace
+
+Status loadSceneFromString(World& world, const std::string& text, const std::string& baseDirectory) {
+  json root;
+  try {
+    root = json::parse(text, nullptr, /*allow_exceptions=*/true, /*ignore_comments=*/true);
+  } catch (const json::exception& e) {
+    // nlohmann's message carries the byte position of the error.
+    return fail(Status::ParseError, "$: invalid JSON: %s", e.what());
+  }
+  Scene scene;
+  VP_TRY(parseScene(root, baseDirectory, &scene));
+
+  // Apply. Everything was validated; only allocation can fail from here, and then the
+  // colliders added so far are removed again.
+  std::vector<ColliderHandle> added;
+  for (ColliderDesc& desc : scene.colliders) {
+    ColliderHandle h;
+    Status s = world.createCollider(std::move(desc), &h);
+    if (!ok(s)) {
+      for (ColliderHandle a : added) world.destroyCollider(a);
+      return s;
+    }
+    added.push_back(h);
+  }
+  if (scene.world.gravity) world.setGravity(*scene.world.gravity);
+  if (scene.world.frameBudgetMs) world.setFrameBudget(*scene.world.frameBudgetMs);
+  return Status::Ok;
+}
+
+Status loadScene(World& world, const std::string& path) {
+  std::ifstream file(path);
+  if (!file) return fail(Status::IoError, "cannot open scene file '%s'", path.c_str());
+  std::stringstream text;
+  text << file.rdbuf();
+  const size_t slash = path.find_last_of('/');
+  const std::string base = slash == std::string::npos ? "." : path.substr(0, slash);
+  Status s = loadSceneFromString(world, text.str(), base);
+  if (!ok(s)) return addErrorContext(s, "scene '" + path + "'");
+  return Status::Ok;
+}
+
+}  // namespace vp

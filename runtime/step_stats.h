@@ -1,0 +1,46 @@
+// What one world step reports: per actor, per phase timings, solver iterations, residuals
+// and whether the budget cut a phase short. Mirrors vpStepStats/vpActorStats.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace vp {
+
+enum class Phase : int {
+  Rigid = 0, Corotate, Assemble, Contacts, Solve, Embed, Advect, Forces, Fractions, Pressure, Surface, Count
+};
+constexpr int kPhaseCount = static_cast<int>(Phase::Count);
+
+enum class ActorKind : int { Rigid = 0, Deformable = 1, Fluid = 2 };
+
+struct PhaseStats {
+  double ms = 0.0;
+  int iterations = 0;
+  double residual = 0.0;
+  bool budgetCut = false;
+};
+
+struct ActorStats {
+  ActorKind kind = ActorKind::Rigid;
+  uint32_t index1 = 0;
+  double totalMs = 0.0;
+  std::array<PhaseStats, kPhaseCount> phases{};
+
+  PhaseStats& phase(Phase p) { return phases[static_cast<int>(p)]; }
+  const PhaseStats& phase(Phase p) const { return phases[static_cast<int>(p)]; }
+};
+
+struct StepStats {
+  uint64_t stepIndex = 0;
+  double dt = 0.0;
+  double totalMs = 0.0;
+  double budgetMs = 0.0;
+  bool budgetCut = false;
+  int colliderCount = 0;
+  int rigidSubsteps = 0;
+  std::vector<ActorStats> actors;  // [0] is the rigid pseudo-actor
+};
+
+}  // namespace vp

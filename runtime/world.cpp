@@ -1,0 +1,124 @@
+#include "world.h"
+
+#include <cmath>
+
+namespace vp {
+
+Status validateGravity(const Vec3& g) {
+  if (!g.allFinite() || g.norm() > 1e4)
+    return fail(Status::InvalidArgument, "gravity = (%g, %g, %g): must be finite with magnitude <= 1e4", g.x(), g.y(),
+                g.z());
+  return Status::Ok;
+}
+
+Status validateFrameBudget(double ms) {
+  if (!(ms >= 0.0 && ms <= 1e4))
+    return fail(Status::InvalidArgument, "frameBudgetMs = %g: must be in [0, 1e4] (0 = unlimited)", ms);
+  return Status::Ok;
+}
+
+Status validateWorldConfig(const WorldConfig& c) {
+  VP_TRY(validateGravity(c.gravity));
+  VP_TRY(validateFrameBudget(c.frameBudgetMs));
+  if (c.workerCount < 1 || c.workerCount > 64)
+    return fail(Status::InvalidArgument, "workerCount = %d: must be in [1, 64]", c.workerCount);
+  if (!(c.rigidMaxSubstep >= 1e-5 && c.rigidMaxSubstep <= 1.0))
+    return fail(Status::InvalidArgument, "rigidMaxSubstep = %g: must be in [1e-5, 1] seconds", c.rigidMaxSubstep);
+  if ((c.tasks.enqueue == nullptr) != (c.tasks.finish == nullptr))
+    return fail(Status::InvalidArgument, "enqueueTask and finishTask: set both or neither");
+  return Status::Ok;
+}
+
+World::World(const WorldConfig& config)
+    : config_(config), tasks_(TaskSystem::create(config.tasks, config.workerCount)), collision_(config.gravity) {}
+
+Status World::create(const WorldConfig& config, std::unique_ptr<World>* out) {
+  VP_TRY(validateWorldConfig(config));
+  out->reset(new World(config));
+  return Status::Ok;
+}
+
+World::~World() {
+  colliders_.forEach([this](ColliderHandle, Collider& c) { collision_.remove(c); });
+}
+
+Status World::createCollider(ColliderDesc desc, ColliderHandle* out) {
+  VP_TRY(validateColliderDesc(desc));
+  auto collider = std::make_unique<Collider>(std::move(desc));
+  collision_.add(*collider);
+  *out = colliders_.insert(std::move(collider));
+  return Status::Ok;
+}
+
+Status World::destroyCollider(ColliderHandle handle) {
+  std::unique_ptr<Collider> c = colliders_.remove(handle.index1, handle.generation);
+  if (!c) return fail(Status::InvalidId, "collider id (%u, %u) is stale or null", handle.index1, handle.generation);
+  collision_.remove(*c);
+  return Status::Ok;
+}
+
+std::vector<ColliderHandle> World::colliderHandles() const {
+  std::vector<ColliderHandle> handles;
+  handles.reserve(colliders_.size());
+  colliders_.forEach([&](ColliderHandle h, const Collider&) { handles.push_back(h); });
+  return handles;
+}
+
+bool World::findCollider(const std::string& name, ColliderHandle* out) const {
+  bool found = false;
+  colliders_.forEach([&](ColliderHandle h, const Collider& c) {
+    if (!found && c.desc().name == name) *out = h, found = true;
+  });
+  return found;
+}
+
+Status World::setGravity(const Vec3& gravity) {
+  VP_TRY(validateGravity(gravity));
+  config_.gravity = gravity;
+  collision_.setGravity(gravity);
+  return Status::Ok;
+}
+
+Status World::setFrameBudget(double frameBudgetMs) {
+  VP_TRY(validateFrameBudget(frameBudgetMs));
+  config_.frameBudgetMs = frameBudgetMs;
+  return Status::Ok;
+}
+
+Status World::step(double dt) {
+  if (!(dt > 0.0 && dt <= 1.0)) return fail(Status::InvalidArgument, "dt = %g: must be in (0, 1] seconds", dt);
+  stepping_.store(true, std::memory_order_release);
+  const Deadline frame(config_.clock, config_.frameBudgetMs);
+
+  StepStats stats;
+  stats.stepIndex = stats_.stepIndex + 1;
+  stats.dt = dt;
+  stats.budgetMs = config_.frameBudgetMs;
+  stats.colliderCount = static_cast<int>(colliders_.size());
+
+  // Phase 1: rigid bodies. Bullet's step is not budgeted (it is cheap and must stay
+  // consistent); the budget is spent by the iterative solvers of the actors that follow.
+  ActorStats rigid;
+  rigid.kind = ActorKind::Rigid;
+  {
+    const double start = frame.elapsedMs();
+    std::vector<Collider*> kinematics;
+    colliders_.forEach([&](ColliderHandle, Collider& c) {
+      if (c.bodyType() == BodyType::Kinematic) kinematics.push_back(&c);
+    });
+    stats.rigidSubsteps =
+        collision_.step(dt, config_.rigidMaxSubstep, kinematics.data(), static_cast<int>(kinematics.size()));
+    rigid.phase(Phase::Rigid).ms = frame.elapsedMs() - start;
+    rigid.totalMs = rigid.phase(Phase::Rigid).ms;
+  }
+  stats.actors.push_back(rigid);
+
+  stats.totalMs = frame.elapsedMs();
+  for (const ActorStats& a : stats.actors)
+    for (const PhaseStats& p : a.phases) stats.budgetCut = stats.budgetCut || p.budgetCut;
+  stats_ = std::move(stats);
+  stepping_.store(false, std::memory_order_release);
+  return Status::Ok;
+}
+
+}  // namespace vp

@@ -1,0 +1,74 @@
+// A VolPhys world: rigid colliders (Bullet) and, later, deformable and fluid actors, stepped
+// together under one per-frame budget. Owned by the C ABI's world registry.
+#pragma once
+
+#include <atomic>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "collide/collider.h"
+#include "collide/collision_world.h"
+#include "core/budget_clock.h"
+#include "core/slot_map.h"
+#include "core/task_system.h"
+#include "step_stats.h"
+
+namespace vp {
+
+struct WorldConfig {
+  Vec3 gravity{0.0, -9.81, 0.0};
+  int workerCount = 1;
+  double frameBudgetMs = 16.0;
+  double rigidMaxSubstep = 1.0 / 120.0;
+  TaskHooks tasks;
+  Clock clock;
+  void* userData = nullptr;
+};
+
+// Messages name the vpWorldDef field.
+Status validateWorldConfig(const WorldConfig& config);
+Status validateFrameBudget(double frameBudgetMs);
+Status validateGravity(const Vec3& gravity);
+
+using ColliderHandle = SlotMap<Collider>::Handle;
+
+class World {
+ public:
+  static Status create(const WorldConfig& config, std::unique_ptr<World>* out);
+  ~World();
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  Status step(double dt);
+  const StepStats& lastStats() const { return stats_; }
+
+  // Validates (and may load a mesh file); on failure nothing changes.
+  Status createCollider(ColliderDesc desc, ColliderHandle* out);
+  Status destroyCollider(ColliderHandle handle);
+  Collider* collider(ColliderHandle handle) const { return colliders_.get(handle.index1, handle.generation); }
+  std::vector<ColliderHandle> colliderHandles() const;  // slot order
+  size_t colliderCount() const { return colliders_.size(); }
+  bool findCollider(const std::string& name, ColliderHandle* out) const;
+
+  Status setGravity(const Vec3& gravity);
+  const Vec3& gravity() const { return config_.gravity; }
+  Status setFrameBudget(double frameBudgetMs);
+  const WorldConfig& config() const { return config_; }
+  TaskSystem& tasks() { return *tasks_; }
+
+  // True while step() runs; lets the C ABI answer Busy to overlapping calls from other threads.
+  bool stepping() const { return stepping_.load(std::memory_order_acquire); }
+
+ private:
+  explicit World(const WorldConfig& config);
+
+  WorldConfig config_;
+  std::unique_ptr<TaskSystem> tasks_;
+  CollisionWorld collision_;
+  SlotMap<Collider> colliders_;
+  StepStats stats_;
+  std::atomic<bool> stepping_{false};
+};
+
+}  // namespace vp

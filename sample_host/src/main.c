@@ -1,0 +1,212 @@
+/* VolPhys sample host: loads a scene through the C ABI, steps it headless, prints one line of
+ * stats per frame and a summary, and writes its outputs (per-frame stats CSV, final collider
+ * poses CSV) to an output folder. Uses nothing but volphys.h. */
+#define _POSIX_C_SOURCE 200809L
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+
+#include "frame_stats.h"
+#include "volphys/volphys.h"
+
+typedef struct Options {
+  const char* scene;
+  const char* outDir;
+  int frames;
+  double dt;
+  int workers;
+  double budgetMs; /* < 0: keep the scene's */
+  int quiet;
+} Options;
+
+static void usage(FILE* f) {
+  fprintf(f,
+          "usage: volphys_host [--scene FILE] [--frames N] [--dt SECONDS] [--workers N]\n"
+          "                    [--budget MS] [--out DIR] [--quiet]\n"
+          "Steps the scene headless, prints per-frame stats, writes DIR/stats.csv and DIR/poses.csv.\n"
+          "Defaults: the bundled default scene, 300 frames, dt 1/60, 2 workers, out/sample.\n");
+}
+
+static int parseInt(const char* flag, const char* text, int lo, int hi, int* out) {
+  char* end;
+  long v;
+  errno = 0;
+  v = strtol(text, &end, 10);
+  if (errno || *end || v < lo || v > hi) {
+    fprintf(stderr, "volphys_host: %s = '%s': expected an integer in [%d, %d]\n", flag, text, lo, hi);
+    return 0;
+  }
+  *out = (int)v;
+  return 1;
+}
+
+static int parseDouble(const char* flag, const char* text, double lo, double hi, double* out) {
+  char* end;
+  double v;
+  errno = 0;
+  v = strtod(text, &end);
+  if (errno || *end || !(v >= lo && v <= hi)) {
+    fprintf(stderr, "volphys_host: %s = '%s': expected a number in [%g, %g]\n", flag, text, lo, hi);
+    return 0;
+  }
+  *out = v;
+  return 1;
+}
+
+static int parseOptions(int argc, char** argv, Options* o) {
+  int i;
+  o->scene = VP_DEFAULT_SCENE;
+  o->outDir = "out/sample";
+  o->frames = 300;
+  o->dt = 1.0 / 60.0;
+  o->workers = 2;
+  o->budgetMs = -1.0;
+  o->quiet = 0;
+  for (i = 1; i < argc; ++i) {
+    const char* a = argv[i];
+    const char* v = i + 1 < argc ? argv[i + 1] : NULL;
+    if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+      usage(stdout);
+      exit(0);
+    } else if (!strcmp(a, "--quiet")) {
+      o->quiet = 1;
+      continue;
+    }
+    if (!v) {
+      fprintf(stderr, "volphys_host: %s needs a value\n", a);
+      return 0;
+    }
+    ++i;
+    if (!strcmp(a, "--scene")) o->scene = v;
+    else if (!strcmp(a, "--out")) o->outDir = v;
+    else if (!strcmp(a, "--frames")) { if (!parseInt(a, v, 1, 10000000, &o->frames)) return 0; }
+    else if (!strcmp(a, "--dt")) { if (!parseDouble(a, v, 1e-5, 1.0, &o->dt)) return 0; }
+    else if (!strcmp(a, "--workers")) { if (!parseInt(a, v, 1, 64, &o->workers)) return 0; }
+    else if (!strcmp(a, "--budget")) { if (!parseDouble(a, v, 0.0, 1e4, &o->budgetMs)) return 0; }
+    else {
+      fprintf(stderr, "volphys_host: unknown option '%s'\n", a);
+      usage(stderr);
+      return 0;
+    }
+  }
+  return 1;
+}
+
+static double wallMs(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+/* mkdir -p */
+static int makeDirectories(const char* path) {
+  char buffer[4096];
+  size_t n = strlen(path), i;
+  if (n == 0 || n >= sizeof buffer) return 0;
+  memcpy(buffer, path, n + 1);
+  for (i = 1; i <= n; ++i) {
+    if (buffer[i] == '/' || buffer[i] == '\0') {
+      char saved = buffer[i];
+      buffer[i] = '\0';
+      if (mkdir(buffer, 0755) != 0 && errno != EEXIST) return 0;
+      buffer[i] = saved;
+    }
+  }
+  return 1;
+}
+
+static FILE* openOutput(const char* dir, const char* name) {
+  char path[4096];
+  FILE* f;
+  snprintf(path, sizeof path, "%s/%s", dir, name);
+  f = fopen(path, "w");
+  if (!f) fprintf(stderr, "volphys_host: cannot write '%s': %s\n", path, strerror(errno));
+  return f;
+}
+
+static int fail(const char* what, vpStatus status) {
+  fprintf(stderr, "volphys_host: %s failed (%s): %s\n", what, vpStatusName(status), vpGetLastError());
+  return 1;
+}
+
+static int writePoses(vpWorldId world, const char* outDir) {
+  int32_t count = 0, i;
+  vpColliderId* ids;
+  FILE* f = openOutput(outDir, "poses.csv");
+  if (!f) return 0;
+  vpWorldGetColliderCount(world, &count);
+  ids = (vpColliderId*)calloc((size_t)(count > 0 ? count : 1), sizeof *ids);
+  vpWorldGetColliders(world, ids, count, &count);
+  fprintf(f, "collider,px,py,pz,qx,qy,qz,qw\n");
+  for (i = 0; i < count; ++i) {
+    vpTransform t;
+    if (vpColliderGetPose(ids[i], &t) != vpStatus_Ok) continue;
+    fprintf(f, "%d,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f\n", i, t.position.x, t.position.y, t.position.z,
+            t.rotation.x, t.rotation.y, t.rotation.z, t.rotation.w);
+  }
+  free(ids);
+  fclose(f);
+  return 1;
+}
+
+int main(int argc, char** argv) {
+  Options o;
+  vpWorldDef def;
+  vpWorldId world;
+  vpStatus s;
+  FrameTimes times;
+  FILE* csv;
+  int frame, cutFrames = 0;
+  vpStepStats stats = vpDefaultStepStats();
+
+  if (!parseOptions(argc, argv, &o)) return 2;
+  if ((s = vpCheckVersion()) != vpStatus_Ok) return fail("version check", s);
+
+  def = vpDefaultWorldDef();
+  def.workerCount = o.workers;
+  if ((s = vpWorldCreate(&def, &world)) != vpStatus_Ok) return fail("vpWorldCreate", s);
+  if ((s = vpWorldLoadScene(world, o.scene)) != vpStatus_Ok) {
+    vpWorldDestroy(world);
+    return fail("vpWorldLoadScene", s);
+  }
+  if (o.budgetMs >= 0.0 && (s = vpWorldSetFrameBudget(world, (float)o.budgetMs)) != vpStatus_Ok)
+    return fail("vpWorldSetFrameBudget", s);
+  if (!makeDirectories(o.outDir)) {
+    fprintf(stderr, "volphys_host: cannot create output folder '%s': %s\n", o.outDir, strerror(errno));
+    return 1;
+  }
+  csv = openOutput(o.outDir, "stats.csv");
+  if (!csv || !frameTimesInit(&times, o.frames)) return 1;
+  fprintf(csv, "frame,step_ms,wall_ms,budget_ms,budget_cut,rigid_ms,rigid_substeps,colliders,actors\n");
+
+  printf("volphys_host: scene %s, %d frames, dt %.5f s, %d workers\n", o.scene, o.frames, o.dt, o.workers);
+  for (frame = 0; frame < o.frames; ++frame) {
+    vpActorStats rigid;
+    double t0 = wallMs(), wall;
+    if ((s = vpWorldStep(world, (float)o.dt)) != vpStatus_Ok) return fail("vpWorldStep", s);
+    wall = wallMs() - t0;
+    vpWorldGetStepStats(world, &stats);
+    vpWorldGetActorStats(world, 0, &rigid);
+    frameTimesAdd(&times, wall);
+    cutFrames += stats.budgetCut;
+    fprintf(csv, "%d,%.4f,%.4f,%.2f,%d,%.4f,%d,%d,%d\n", frame, stats.totalMs, wall, stats.budgetMs, stats.budgetCut,
+            rigid.phases[vpPhase_Rigid].ms, stats.rigidSubsteps, stats.colliderCount, stats.actorCount);
+    if (!o.quiet)
+      printf("frame %4d  step %7.3f ms  (budget %5.1f ms%s)  rigid %7.3f ms x%d  colliders %d\n", frame,
+             stats.totalMs, stats.budgetMs, stats.budgetCut ? ", CUT" : "", rigid.phases[vpPhase_Rigid].ms,
+             stats.rigidSubsteps, stats.colliderCount);
+  }
+  fclose(csv);
+  if (!writePoses(world, o.outDir)) return 1;
+  printf("summary: %d frames, mean %.3f ms, p50 %.3f ms, p95 %.3f ms, max %.3f ms, budget-cut frames %d\n",
+         times.count, frameTimesMean(&times), frameTimesPercentile(&times, 0.5), frameTimesPercentile(&times, 0.95),
+         frameTimesPercentile(&times, 1.0), cutFrames);
+  printf("wrote %s/stats.csv and %s/poses.csv\n", o.outDir, o.outDir);
+  frameTimesFree(&times);
+  vpWorldDestroy(world);
+  return 0;
+}

@@ -1,0 +1,32 @@
+// Helpers for the C ABI tests.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "volphys/volphys.h"
+
+#define EXPECT_VP_OK(call) EXPECT_EQ((call), vpStatus_Ok) << vpGetLastError()
+#define ASSERT_VP_OK(call) ASSERT_EQ((call), vpStatus_Ok) << vpGetLastError()
+
+inline bool lastErrorContains(const std::string& part) {
+  return std::string(vpGetLastError()).find(part) != std::string::npos;
+}
+
+// A world that is destroyed at the end of the test.
+struct ScopedWorld {
+  vpWorldId id{};
+  explicit ScopedWorld(vpWorldDef def = vpDefaultWorldDef()) { EXPECT_VP_OK(vpWorldCreate(&def, &id)); }
+  ~ScopedWorld() {
+    if (vpWorldIsValid(id) == vpStatus_Ok) vpWorldDestroy(id);
+  }
+};
+
+inline vpColliderDef dynamicBall(float y, float radius = 0.5f) {
+  vpColliderDef def = vpDefaultColliderDef();
+  def.bodyType = vpBodyType_Dynamic;
+  def.shape.radius = radius;
+  def.pose.position.y = y;
+  return def;
+}

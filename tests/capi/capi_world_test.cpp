@@ -1,0 +1,163 @@
+#include <cmath>
+
+#include "capi_test_support.h"
+
+namespace {
+
+TEST(CApiWorld, VersionAndHeaderCheck) {
+  vpVersion v = vpGetVersion();
+  EXPECT_EQ(v.major, VP_VERSION_MAJOR);
+  EXPECT_EQ(v.minor, VP_VERSION_MINOR);
+  EXPECT_VP_OK(vpCheckVersion());
+  EXPECT_EQ(vpCheckHeaderVersion(((VP_VERSION_MAJOR + 1) << 16), sizeof(vpWorldDef)), vpStatus_VersionMismatch);
+  EXPECT_TRUE(lastErrorContains("header version"));
+  EXPECT_EQ(vpCheckHeaderVersion(VP_HEADER_VERSION, sizeof(vpWorldDef) - 4), vpStatus_VersionMismatch);
+  EXPECT_TRUE(lastErrorContains("vpWorldDef.structSize"));
+}
+
+TEST(CApiWorld, CreateStepDestroy) {
+  vpWorldDef def = vpDefaultWorldDef();
+  vpWorldId world{};
+  ASSERT_VP_OK(vpWorldCreate(&def, &world));
+  EXPECT_FALSE(vpWorldIdIsNull(world));
+  vpColliderDef ground = vpDefaultColliderDef();
+  ground.shape.type = vpShapeType_Plane;
+  vpColliderId groundId, ballId;
+  ASSERT_VP_OK(vpColliderCreate(world, &ground, &groundId));
+  vpColliderDef ball = dynamicBall(3.0f);
+  ASSERT_VP_OK(vpColliderCreate(world, &ball, &ballId));
+  for (int i = 0; i < 180; ++i) ASSERT_VP_OK(vpWorldStep(world, 1.0f / 60.0f));
+  vpTransform pose;
+  ASSERT_VP_OK(vpColliderGetPose(ballId, &pose));
+  EXPECT_NEAR(pose.position.y, 0.5f, 5e-3f);
+  vpStepStats stats = vpDefaultStepStats();
+  ASSERT_VP_OK(vpWorldGetStepStats(world, &stats));
+  EXPECT_EQ(stats.stepIndex, 180u);
+  EXPECT_EQ(stats.colliderCount, 2);
+  EXPECT_EQ(stats.actorCount, 1);
+  EXPECT_EQ(stats.rigidSubsteps, 2);
+  EXPECT_GE(stats.totalMs, 0.0f);
+  vpActorStats rigid;
+  ASSERT_VP_OK(vpWorldGetActorStats(world, 0, &rigid));
+  EXPECT_EQ(rigid.kind, vpActorKind_Rigid);
+  EXPECT_GE(rigid.phases[vpPhase_Rigid].ms, 0.0f);
+  EXPECT_EQ(vpWorldGetActorStats(world, 1, &rigid), vpStatus_InvalidArgument);
+  EXPECT_TRUE(lastErrorContains("actorIndex = 1"));
+  ASSERT_VP_OK(vpWorldDestroy(world));
+  EXPECT_EQ(vpWorldIsValid(world), vpStatus_InvalidId);
+}
+
+TEST(CApiWorld, StepWithNothingInIt) {
+  ScopedWorld w;
+  for (int i = 0; i < 10; ++i) ASSERT_VP_OK(vpWorldStep(w.id, 0.01f));
+  vpStepStats stats = vpDefaultStepStats();
+  ASSERT_VP_OK(vpWorldGetStepStats(w.id, &stats));
+  EXPECT_EQ(stats.stepIndex, 10u);
+  EXPECT_EQ(stats.colliderCount, 0);
+  EXPECT_EQ(stats.budgetCut, 0);
+}
+
+TEST(CApiWorld, GravityAndBudgetSetters) {
+  ScopedWorld w;
+  vpVec3 g;
+  ASSERT_VP_OK(vpWorldGetGravity(w.id, &g));
+  EXPECT_FLOAT_EQ(g.y, -9.81f);
+  ASSERT_VP_OK(vpWorldSetGravity(w.id, vpVec3{0, -1.62f, 0}));
+  ASSERT_VP_OK(vpWorldGetGravity(w.id, &g));
+  EXPECT_FLOAT_EQ(g.y, -1.62f);
+  EXPECT_EQ(vpWorldSetGravity(w.id, vpVec3{0, NAN, 0}), vpStatus_InvalidArgument);
+  EXPECT_TRUE(lastErrorContains("gravity"));
+  ASSERT_VP_OK(vpWorldGetGravity(w.id, &g));
+  EXPECT_FLOAT_EQ(g.y, -1.62f);  // unchanged
+  ASSERT_VP_OK(vpWorldSetFrameBudget(w.id, 8.0f));
+  EXPECT_EQ(vpWorldSetFrameBudget(w.id, -1.0f), vpStatus_InvalidArgument);
+  EXPECT_TRUE(lastErrorContains("frameBudgetMs = -1"));
+  ASSERT_VP_OK(vpWorldStep(w.id, 0.01f));
+  vpStepStats stats = vpDefaultStepStats();
+  ASSERT_VP_OK(vpWorldGetStepStats(w.id, &stats));
+  EXPECT_FLOAT_EQ(stats.budgetMs, 8.0f);
+}
+
+TEST(CApiWorld, StepRejectsBadTimeSteps) {
+  ScopedWorld w;
+  for (float dt : {0.0f, -0.01f, NAN, INFINITY, 2.0f}) {
+    EXPECT_EQ(vpWorldStep(w.id, dt), vpStatus_InvalidArgument) << dt;
+    EXPECT_TRUE(lastErrorContains("dt = "));
+  }
+  vpStepStats stats = vpDefaultStepStats();
+  ASSERT_VP_OK(vpWorldGetStepStats(w.id, &stats));
+  EXPECT_EQ(stats.stepIndex, 0u);
+}
+
+TEST(CApiWorld, WorldDefRejectsBadValues) {
+  struct Case {
+    const char* field;
+    void (*mutate)(vpWorldDef&);
+    vpStatus status;
+  } cases[] = {
+      {"gravity", [](vpWorldDef& d) { d.gravity.x = NAN; }, vpStatus_InvalidArgument},
+      {"workerCount = 0", [](vpWorldDef& d) { d.workerCount = 0; }, vpStatus_InvalidArgument},
+      {"workerCount = 65", [](vpWorldDef& d) { d.workerCount = 65; }, vpStatus_InvalidArgument},
+      {"frameBudgetMs = -2", [](vpWorldDef& d) { d.frameBudgetMs = -2; }, vpStatus_InvalidArgument},
+      {"frameBudgetMs = nan", [](vpWorldDef& d) { d.frameBudgetMs = NAN; }, vpStatus_InvalidArgument},
+      {"rigidMaxSubstep = 0", [](vpWorldDef& d) { d.rigidMaxSubstep = 0; }, vpStatus_InvalidArgument},
+      {"vpWorldDef.structSize = 3", [](vpWorldDef& d) { d.structSize = 3; }, vpStatus_VersionMismatch},
+      {"enqueueTask and finishTask", [](vpWorldDef& d) { d.finishTask = [](void*, void*) {}; }, vpStatus_InvalidArgument},
+  };
+  for (const Case& c : cases) {
+    vpWorldDef def = vpDefaultWorldDef();
+    c.mutate(def);
+    vpWorldId id{77, 77};
+    EXPECT_EQ(vpWorldCreate(&def, &id), c.status) << c.field;
+    EXPECT_TRUE(lastErrorContains(c.field)) << vpGetLastError() << " / " << c.field;
+    EXPECT_EQ(id.index1, 77);  // output untouched on failure
+  }
+  EXPECT_EQ(vpWorldCreate(nullptr, nullptr), vpStatus_InvalidArgument);
+  EXPECT_TRUE(lastErrorContains("def is NULL"));
+}
+
+TEST(CApiWorld, LoadSceneAndFindColliders) {
+  ScopedWorld w;
+  ASSERT_VP_OK(vpWorldLoadScene(w.id, VP_TEST_DATA_DIR "/scenes/stack.json"));
+  int32_t count = 0;
+  ASSERT_VP_OK(vpWorldGetColliderCount(w.id, &count));
+  EXPECT_EQ(count, 8);
+  vpColliderId ids[16];
+  int32_t written = 0;
+  ASSERT_VP_OK(vpWorldGetColliders(w.id, ids, 3, &written));
+  EXPECT_EQ(written, 3);
+  vpColliderId spinner;
+  ASSERT_VP_OK(vpWorldFindCollider(w.id, "spinner", &spinner));
+  vpBodyType type;
+  ASSERT_VP_OK(vpColliderGetBodyType(spinner, &type));
+  EXPECT_EQ(type, vpBodyType_Kinematic);
+  EXPECT_EQ(vpWorldFindCollider(w.id, "nobody", &spinner), vpStatus_InvalidArgument);
+  EXPECT_TRUE(lastErrorContains("\"nobody\""));
+}
+
+TEST(CApiWorld, BrokenSceneChangesNothing) {
+  ScopedWorld w;
+  const std::string path = ::testing::TempDir() + "/broken_scene.json";
+  FILE* f = fopen(path.c_str(), "w");
+  ASSERT_NE(f, nullptr);
+  fputs(R"({"world": {"frameBudgetMs": 1}, "colliders": [{"shape": {"type": "plane"}}, {"shape": {"type": "box", "halfExtents": [1, -1, 1]}}]})", f);
+  fclose(f);
+  EXPECT_EQ(vpWorldLoadScene(w.id, path.c_str()), vpStatus_InvalidArgument);
+  EXPECT_TRUE(lastErrorContains("$.colliders[1]: shape.halfExtents.y = -1"));
+  int32_t count = -1;
+  ASSERT_VP_OK(vpWorldGetColliderCount(w.id, &count));
+  EXPECT_EQ(count, 0);
+  EXPECT_EQ(vpWorldLoadScene(w.id, nullptr), vpStatus_InvalidArgument);
+}
+
+TEST(CApiWorld, BuildInfoAnswersWithoutAGpu) {
+  vpBuildInfo info;
+  ASSERT_VP_OK(vpGetBuildInfo(&info));
+  EXPECT_GE(info.cudaDeviceCount, 0);
+  EXPECT_GE(info.hardwareThreads, 1);
+  if (!info.cudaCompiled) {
+    EXPECT_EQ(info.cudaDeviceCount, 0);
+  }
+}
+
+}  // namespace

@@ -1,0 +1,109 @@
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstring>
+#include <thread>
+#include <vector>
+
+#include "core/parallel_for.h"
+
+namespace vp {
+namespace {
+
+// A sum whose rounding depends on the association order: if chunking changed with the worker
+// count, the bits would differ.
+double chaoticSum(TaskSystem& tasks, const std::vector<double>& values) {
+  return parallelReduce<double>(tasks, static_cast<int64_t>(values.size()), 97, [&](int64_t b, int64_t e) {
+    double s = 0.0;
+    for (int64_t i = b; i < e; ++i) s += values[static_cast<size_t>(i)];
+    return s;
+  });
+}
+
+std::vector<double> makeValues() {
+  std::vector<double> v(100000);
+  for (size_t i = 0; i < v.size(); ++i) v[i] = std::sin(double(i) * 0.37) * std::pow(10.0, double(i % 17) - 8.0);
+  return v;
+}
+
+TEST(ParallelFor, CoversEveryIndexExactlyOnce) {
+  for (int workers : {1, 2, 3, 8}) {
+    auto tasks = TaskSystem::create(TaskHooks{}, workers);
+    std::vector<std::atomic<int>> hits(10007);
+    parallelFor(*tasks, 10007, 64, [&](int64_t b, int64_t e) {
+      for (int64_t i = b; i < e; ++i) hits[static_cast<size_t>(i)]++;
+    });
+    for (auto& h : hits) ASSERT_EQ(h.load(), 1) << "workers " << workers;
+  }
+}
+
+TEST(ParallelFor, ReductionIsBitwiseIdenticalForAnyWorkerCount) {
+  const std::vector<double> values = makeValues();
+  auto serial = TaskSystem::create(TaskHooks{}, 1);
+  const double reference = chaoticSum(*serial, values);
+  for (int workers : {2, 3, 4, 7, 16}) {
+    auto tasks = TaskSystem::create(TaskHooks{}, workers);
+    for (int repeat = 0; repeat < 5; ++repeat) {
+      const double s = chaoticSum(*tasks, values);
+      ASSERT_EQ(std::memcmp(&s, &reference, sizeof s), 0) << "workers " << workers;
+    }
+  }
+}
+
+// A host task system that runs each enqueued task on fresh threads, split into two halves.
+struct HostPool {
+  int enqueued = 0;
+};
+
+void* enqueueOnThreads(TaskFn task, int32_t count, int32_t minRange, void* taskContext, void* user) {
+  static_cast<HostPool*>(user)->enqueued++;
+  int32_t mid = count / 2;
+  if (mid < minRange) {
+    task(0, count, 0, taskContext);
+    return nullptr;  // ran inline
+  }
+  auto* threads = new std::vector<std::thread>();
+  threads->emplace_back([=] { task(0, mid, 0, taskContext); });
+  threads->emplace_back([=] { task(mid, count, 1, taskContext); });
+  return threads;
+}
+
+void finishThreads(void* handle, void*) {
+  auto* threads = static_cast<std::vector<std::thread>*>(handle);
+  for (auto& t : *threads) t.join();
+  delete threads;
+}
+
+TEST(ParallelFor, HostTaskHooksGiveTheSameResult) {
+  const std::vector<double> values = makeValues();
+  auto serial = TaskSystem::create(TaskHooks{}, 1);
+  const double reference = chaoticSum(*serial, values);
+  HostPool pool;
+  TaskHooks hooks{&enqueueOnThreads, &finishThreads, &pool};
+  auto tasks = TaskSystem::create(hooks, 2);
+  const double s = chaoticSum(*tasks, values);
+  EXPECT_EQ(std::memcmp(&s, &reference, sizeof s), 0);
+  EXPECT_GE(pool.enqueued, 1);
+}
+
+TEST(ParallelFor, NestedLoopsRunInline) {
+  auto tasks = TaskSystem::create(TaskHooks{}, 4);
+  std::atomic<int64_t> total{0};
+  parallelFor(*tasks, 16, 1, [&](int64_t b, int64_t e) {
+    for (int64_t i = b; i < e; ++i)
+      parallelFor(*tasks, 100, 10, [&](int64_t b2, int64_t e2) { total += e2 - b2; });
+  });
+  EXPECT_EQ(total.load(), 1600);
+}
+
+TEST(ParallelFor, EmptyRangeDoesNothing) {
+  auto tasks = TaskSystem::create(TaskHooks{}, 2);
+  bool called = false;
+  parallelFor(*tasks, 0, 8, [&](int64_t, int64_t) { called = true; });
+  EXPECT_FALSE(called);
+  EXPECT_EQ(parallelReduce<double>(*tasks, 0, 8, [](int64_t, int64_t) { return 1.0; }), 0.0);
+}
+
+}  // namespace
+}  // namespace vp

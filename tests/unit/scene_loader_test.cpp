@@ -1,0 +1,131 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include "scene/scene_loader.h"
+#include "world.h"
+
+namespace vp {
+namespace {
+
+std::unique_ptr<World> makeWorld() {
+  std::unique_ptr<World> world;
+  EXPECT_EQ(World::create(WorldConfig{}, &world), Status::Ok);
+  return world;
+}
+
+TEST(SceneLoader, LoadsAValidSceneFile) {
+  auto world = makeWorld();
+  ASSERT_EQ(loadScene(*world, VP_TEST_DATA_DIR "/scenes/stack.json"), Status::Ok) << lastError();
+  EXPECT_EQ(world->colliderCount(), 8u);
+  EXPECT_DOUBLE_EQ(world->config().frameBudgetMs, 10.0);
+  ColliderHandle h;
+  ASSERT_TRUE(world->findCollider("ramp", &h));
+  const Collider* ramp = world->collider(h);
+  EXPECT_EQ(ramp->desc().shape.type, ShapeType::Box);
+  EXPECT_NEAR(ramp->pose().rotation.angularDistance(Quat(Eigen::AngleAxisd(20 * M_PI / 180, Vec3::UnitZ()))), 0.0,
+              1e-6);
+  ASSERT_TRUE(world->findCollider("spinner", &h));
+  EXPECT_EQ(world->collider(h)->bodyType(), BodyType::Kinematic);
+  EXPECT_NEAR(world->collider(h)->angularVelocity().y(), 2.0, 1e-12);
+  for (int i = 0; i < 30; ++i) ASSERT_EQ(world->step(1.0 / 60.0), Status::Ok);
+}
+
+TEST(SceneLoader, TriangleMeshFromAFileRelativeToTheScene) {
+  const std::string dir = ::testing::TempDir();
+  {
+    std::ofstream obj(dir + "/floor.obj");
+    obj << "v -3 0 -3\nv 3 0 -3\nv -3 0 3\nv 3 0 3\nf 1 3 2\nf 2 3 4\n";
+    std::ofstream scene(dir + "/mesh_scene.json");
+    scene << R"({"colliders": [
+      {"name": "floor", "shape": {"type": "triangleMesh", "file": "floor.obj", "scale": [2, 1, 2]}},
+      {"bodyType": "dynamic", "shape": {"type": "sphere", "radius": 0.25}, "position": [4, 1, 0]}]})";
+  }
+  auto world = makeWorld();
+  ASSERT_EQ(loadScene(*world, dir + "/mesh_scene.json"), Status::Ok) << lastError();
+  ColliderHandle h;
+  ASSERT_TRUE(world->findCollider("floor", &h));
+  EXPECT_EQ(world->collider(h)->desc().shape.triangles.size(), 2u);
+  double maxX = -1e9;  // assimp may reorder vertices; the extent shows the scale
+  for (const Vec3& p : world->collider(h)->desc().shape.points) maxX = std::max(maxX, p.x());
+  EXPECT_DOUBLE_EQ(maxX, 6.0);
+  for (int i = 0; i < 120; ++i) world->step(1.0 / 60.0);
+  // The ball at x = 4 lands on the scaled floor (it would fall past the unscaled one).
+  auto handles = world->colliderHandles();
+  EXPECT_NEAR(world->collider(handles[1])->pose().position.y(), 0.25, 5e-3);
+}
+
+struct BadScene {
+  const char* json;
+  Status status;
+  const char* messagePart;
+};
+
+class SceneLoaderRejects : public ::testing::TestWithParam<BadScene> {};
+
+TEST_P(SceneLoaderRejects, WithThePathAndChangesNothing) {
+  const BadScene& bad = GetParam();
+  auto world = makeWorld();
+  const double budgetBefore = world->config().frameBudgetMs;
+  Status s = loadSceneFromString(*world, bad.json, ".");
+  EXPECT_EQ(s, bad.status) << lastError();
+  EXPECT_NE(std::string(lastError()).find(bad.messagePart), std::string::npos)
+      << "message: " << lastError() << "\nexpected to contain: " << bad.messagePart;
+  EXPECT_EQ(world->colliderCount(), 0u);
+  EXPECT_EQ(world->config().frameBudgetMs, budgetBefore);
+}
+
+// Every scene below has a valid first collider and a "world" block, so a loader that applied
+// anything before failing would be caught by the unchanged-world checks.
+#define GOOD_PREFIX R"({"world": {"frameBudgetMs": 3}, "colliders": [{"shape": {"type": "plane"}}, )"
+
+INSTANTIATE_TEST_SUITE_P(
+    Malformed, SceneLoaderRejects,
+    ::testing::Values(
+        BadScene{"{ not json", Status::ParseError, "$: invalid JSON"},
+        BadScene{"[1, 2]", Status::ParseError, "$: expected an object"},
+        BadScene{R"({"colliderz": []})", Status::ParseError, "$.colliderz: unknown key"},
+        BadScene{R"({"version": 2})", Status::ParseError, "$.version = 2"},
+        BadScene{R"({"colliders": {}})", Status::ParseError, "$.colliders: expected an array"},
+        BadScene{R"({"world": {"gravity": [0, "down", 0]}})", Status::ParseError, "$.world.gravity: expected an array of 3 numbers"},
+        BadScene{R"({"world": {"frameBudgetMs": -5}})", Status::InvalidArgument, "$.world: frameBudgetMs = -5"},
+        BadScene{R"({"world": {"gravity": [0, 1e9, 0]}})", Status::InvalidArgument, "$.world: gravity"},
+        BadScene{GOOD_PREFIX R"({"shape": {"type": "sphere", "radius": -1}}]})", Status::InvalidArgument,
+                 "$.colliders[1]: shape.radius = -1"},
+        BadScene{GOOD_PREFIX R"({"shape": {"type": "sphere", "radius": "big"}}]})", Status::ParseError,
+                 "$.colliders[1].shape.radius: expected a number, got string"},
+        BadScene{GOOD_PREFIX R"({"shape": {"type": "sphere", "radiuss": 1}}]})", Status::ParseError,
+                 "$.colliders[1].shape.radiuss: unknown key"},
+        BadScene{GOOD_PREFIX R"({"shape": {"type": "blob"}}]})", Status::ParseError,
+                 "$.colliders[1].shape.type = \"blob\": expected one of"},
+        BadScene{GOOD_PREFIX R"({"shape": {"radius": 1}}]})", Status::ParseError, "$.colliders[1].shape.type: missing"},
+        BadScene{GOOD_PREFIX R"({"bodyType": "floaty", "shape": {"type": "sphere"}}]})", Status::ParseError,
+                 "$.colliders[1].bodyType = \"floaty\""},
+        BadScene{GOOD_PREFIX R"({"bodyType": "dynamic"}]})", Status::ParseError, "$.colliders[1].shape: missing"},
+        BadScene{GOOD_PREFIX R"({"bodyType": "dynamic", "mass": -2, "shape": {"type": "box"}}]})",
+                 Status::InvalidArgument, "$.colliders[1]: mass = -2"},
+        BadScene{GOOD_PREFIX R"({"shape": {"type": "box"}, "rotation": [0, 0, 0]}]})", Status::ParseError,
+                 "$.colliders[1].rotation: expected a quaternion"},
+        BadScene{GOOD_PREFIX R"({"shape": {"type": "box"}, "rotation": [0, 0, 0, 3]}]})", Status::InvalidArgument,
+                 "$.colliders[1]: pose.rotation"},
+        BadScene{GOOD_PREFIX R"({"shape": {"type": "box"}, "axisAngle": [0, 0, 0, 30]}]})", Status::ParseError,
+                 "$.colliders[1].axisAngle: the axis must be"},
+        BadScene{GOOD_PREFIX R"({"shape": {"type": "convexHull", "points": [[0, 0, 0], [1, 0]]}}]})",
+                 Status::ParseError, "$.colliders[1].shape.points[1]: expected [x, y, z]"},
+        BadScene{GOOD_PREFIX R"({"shape": {"type": "triangleMesh", "points": [[0,0,0],[1,0,0],[0,0,1]], "triangles": [[0, 1, 5]]}}]})",
+                 Status::InvalidArgument, "$.colliders[1]: shape.indices[2] = 5"},
+        BadScene{GOOD_PREFIX R"({"shape": {"type": "triangleMesh", "file": "missing.obj"}}]})", Status::IoError,
+                 "$.colliders[1]: shape.meshFile: cannot open mesh file './missing.obj'"},
+        BadScene{GOOD_PREFIX R"(7]})", Status::ParseError, "$.colliders[1]: expected an object, got number"}));
+
+TEST(SceneLoader, MissingFileIsAnIoError) {
+  auto world = makeWorld();
+  EXPECT_EQ(loadScene(*world, "/does/not/exist.json"), Status::IoError);
+  EXPECT_NE(std::string(lastError()).find("/does/not/exist.json"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace vp
