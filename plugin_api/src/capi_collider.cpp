@@ -25,14 +25,15 @@ Status checkTransform(const char* field, const vpTransform& t) {
 
 Status translateShape(const vpShapeDef& in, ShapeDesc* out) {
   VP_TRY(checkStructSize("vpShapeDef", in.structSize, sizeof(vpShapeDef)));
-  out->type = static_cast<ShapeType>(in.type);
+  out->type = static_cast<ShapeType>(rawEnum(in.type));
   out->radius = in.radius;
   out->halfHeight = in.halfHeight;
   out->halfExtents = toVec3(in.halfExtents);
   out->normal = toVec3(in.normal);
   out->offset = in.offset;
   out->meshScale = toVec3(in.meshScale);
-  const bool usesVertices = in.type == vpShapeType_ConvexHull || in.type == vpShapeType_TriangleMesh;
+  const int type = rawEnum(in.type);
+  const bool usesVertices = type == vpShapeType_ConvexHull || type == vpShapeType_TriangleMesh;
   if (!usesVertices) return Status::Ok;
   if (in.points) {
     if (in.pointCount <= 0 || in.pointCount > (1 << 26))
@@ -44,7 +45,7 @@ Status translateShape(const vpShapeDef& in, ShapeDesc* out) {
   } else if (in.meshFile) {
     out->meshFile = in.meshFile;
   }
-  if (in.type == vpShapeType_TriangleMesh && in.points) {
+  if (type == vpShapeType_TriangleMesh && in.points) {
     if (!in.indices || in.triangleCount <= 0 || in.triangleCount > (1 << 26))
       return fail(Status::InvalidArgument,
                   "shape.indices/triangleCount = %p/%d: a triangle mesh from arrays needs indices and a count in [1, 2^26]",
@@ -91,7 +92,7 @@ vpStatus vpColliderCreate(vpWorldId worldId, const vpColliderDef* def, vpCollide
     VP_TRY(resolveWorld(worldId, &world));
     VP_TRY(checkStructSize("vpColliderDef", def->structSize, sizeof(vpColliderDef)));
     ColliderDesc desc;
-    desc.bodyType = static_cast<BodyType>(def->bodyType);
+    desc.bodyType = static_cast<BodyType>(rawEnum(def->bodyType));
     VP_TRY(translateShape(def->shape, &desc.shape));
     desc.pose = toPose(def->pose);
     desc.linearVelocity = toVec3(def->linearVelocity);

@@ -2,7 +2,9 @@
 // runtime statuses and C++ exceptions into vpStatus at the boundary.
 #pragma once
 
+#include <cstring>
 #include <exception>
+#include <type_traits>
 #include <new>
 
 #include "core/math_types.h"
@@ -20,6 +22,16 @@ inline vpTransform toC(const Pose& p) { return vpTransform{toC(p.position), toC(
 
 static_assert(static_cast<int>(Status::Internal) == vpStatus_Internal, "vp::Status and vpStatus must match");
 inline vpStatus toC(Status s) { return static_cast<vpStatus>(s); }
+
+// A C enum field may hold any int the host wrote; in C++ loading an out-of-range value as the
+// enum type is undefined, so enum fields are read through their bits.
+template <class Enum>
+int rawEnum(const Enum& field) {
+  static_assert(sizeof(Enum) == sizeof(int), "C enums are int-sized here");
+  int value;
+  std::memcpy(&value, &field, sizeof value);
+  return value;
+}
 
 // Runs `body` (returning vp::Status); no exception crosses the C boundary.
 template <class Body>

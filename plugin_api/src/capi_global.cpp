@@ -64,8 +64,9 @@ vpStatus vpSetAllocator(vpAllocFn* allocFn, vpFreeFn* freeFn, void* userContext)
 
 vpStatus vpSetLogCallback(vpLogFn* logFn, void* userContext, vpLogLevel minLevel) {
   return guarded(__func__, [&] {
-    if (minLevel < vpLogLevel_Debug || minLevel > vpLogLevel_Off)
-      return fail(Status::InvalidArgument, "minLevel = %d: must be a vpLogLevel", static_cast<int>(minLevel));
+    const int level = rawEnum(minLevel);
+    if (level < vpLogLevel_Debug || level > vpLogLevel_Off)
+      return fail(Status::InvalidArgument, "minLevel = %d: must be a vpLogLevel", level);
     // The runtime's sink has its own level enum; adapt instead of casting function types.
     static struct {
       vpLogFn* fn;
@@ -73,10 +74,10 @@ vpStatus vpSetLogCallback(vpLogFn* logFn, void* userContext, vpLogLevel minLevel
     } host;
     host.fn = logFn;
     host.context = userContext;
-    auto forward = [](LogLevel level, const char* message, void*) {
-      host.fn(static_cast<vpLogLevel>(level), message, host.context);
+    auto forward = [](LogLevel messageLevel, const char* message, void*) {
+      host.fn(static_cast<vpLogLevel>(messageLevel), message, host.context);
     };
-    setLogSink(logFn ? +forward : nullptr, nullptr, static_cast<LogLevel>(minLevel));
+    setLogSink(logFn ? +forward : nullptr, nullptr, static_cast<LogLevel>(level));
     return Status::Ok;
   });
 }

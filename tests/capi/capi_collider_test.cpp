@@ -21,8 +21,8 @@ TEST(CApiCollider, DefRejectsBadValuesAndAddsNothing) {
   } cases[] = {
       {"vpColliderDef.structSize", vpStatus_VersionMismatch, [](vpColliderDef& d) { d.structSize = 0; }},
       {"vpShapeDef.structSize", vpStatus_VersionMismatch, [](vpColliderDef& d) { d.shape.structSize = 1; }},
-      {"bodyType = 9", vpStatus_InvalidArgument, [](vpColliderDef& d) { d.bodyType = (vpBodyType)9; }},
-      {"shape.type = 42", vpStatus_InvalidArgument, [](vpColliderDef& d) { d.shape.type = (vpShapeType)42; }},
+      {"bodyType = 9", vpStatus_InvalidArgument, [](vpColliderDef& d) { setRawEnum(d.bodyType, 9); }},
+      {"shape.type = 42", vpStatus_InvalidArgument, [](vpColliderDef& d) { setRawEnum(d.shape.type, 42); }},
       {"shape.radius = -1", vpStatus_InvalidArgument, [](vpColliderDef& d) { d.shape.radius = -1; }},
       {"shape.radius = nan", vpStatus_InvalidArgument, [](vpColliderDef& d) { d.shape.radius = NAN; }},
       {"shape.radius = inf", vpStatus_InvalidArgument, [](vpColliderDef& d) { d.shape.radius = INFINITY; }},

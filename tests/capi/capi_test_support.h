@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <string>
 
 #include "volphys/volphys.h"
@@ -29,4 +30,11 @@ inline vpColliderDef dynamicBall(float y, float radius = 0.5f) {
   def.shape.radius = radius;
   def.pose.position.y = y;
   return def;
+}
+
+// Writes an arbitrary int into a C enum field, as a C host could (a C++ cast to an
+// out-of-range enum value would itself be undefined).
+template <class Enum>
+void setRawEnum(Enum& field, int value) {
+  std::memcpy(&field, &value, sizeof value);
 }

@@ -139,7 +139,9 @@ TEST(CApiHooks, AllocatorRoutesBulletAllocations) {
 }
 
 TEST(CApiHooks, LogCallbackIsValidated) {
-  EXPECT_EQ(vpSetLogCallback(nullptr, nullptr, (vpLogLevel)17), vpStatus_InvalidArgument);
+  vpLogLevel bogus;
+  setRawEnum(bogus, 17);
+  EXPECT_EQ(vpSetLogCallback(nullptr, nullptr, bogus), vpStatus_InvalidArgument);
   EXPECT_TRUE(lastErrorContains("minLevel = 17"));
   static std::atomic<int> calls{0};
   auto sink = [](vpLogLevel, const char*, void*) { calls++; };

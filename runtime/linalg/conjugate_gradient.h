@@ -1,0 +1,51 @@
+// Preconditioned conjugate gradients that respects the frame budget.
+//
+// The solve stops at the tolerance, at maxIterations, or when the deadline passes; it then
+// keeps its last iterate, which is the best one it has: CG minimizes the A-norm of the error
+// over a growing subspace, so each iterate is at least as good as the one before (the
+// residual norm may wobble, the energy error does not). The caller warm-starts the next
+// frame from it.
+//
+// Constraints use the filtered CG of Baraff & Witkin 1998: `filter` projects a vector onto
+// the allowed subspace (zero on pinned degrees of freedom, tangential on contacts), applied
+// to the residual and to every search direction, so constrained components of x keep
+// whatever value the caller put there.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+
+#include "core/allocator.h"
+#include "core/budget_clock.h"
+#include "core/task_system.h"
+
+namespace vp {
+
+struct CgSettings {
+  double relativeTolerance = 1e-4;  // on |r| / |filtered b|
+  int maxIterations = 200;
+};
+
+struct CgResult {
+  int iterations = 0;
+  double relativeResidual = 0.0;
+  bool converged = false;
+  bool budgetCut = false;
+};
+
+struct LinearSystem {
+  int64_t size = 0;                                        // number of scalars
+  std::function<void(const double* x, double* y)> apply;   // y = A x
+  std::function<void(const double* r, double* z)> precondition;  // z = P^-1 r; empty: identity
+  std::function<void(double* v)> filter;                   // in place; empty: none
+};
+
+// Scratch vectors live in the workspace so a solver reused every frame does not allocate.
+struct CgWorkspace {
+  Array<double> r, z, p, q;
+};
+
+CgResult solveConjugateGradient(TaskSystem& tasks, const LinearSystem& system, const double* b, double* x,
+                                const CgSettings& settings, const Deadline& deadline, CgWorkspace& work);
+
+}  // namespace vp
