@@ -1,23 +1,31 @@
-// Triangle surface meshes, and loading them from any file format assimp reads.
+// A triangle surface mesh: render meshes and the input of the voxel tetrahedralizer.
 #pragma once
+
+#include "core/status.h"
+
+#include <Eigen/Core>
 
 #include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
 
-#include "core/math_types.h"
-#include "core/status.h"
-
 namespace vp {
 
 struct SurfaceMesh {
-  std::vector<Vec3> vertices;
-  std::vector<std::array<int32_t, 3>> triangles;
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<std::array<int32_t, 3>> triangles;  // counter-clockwise seen from outside
 };
 
-// Loads every mesh of the file's scene, with node transforms applied, triangulated and with
-// identical vertices joined. IoError if unreadable, ParseError if it holds no triangles.
+// Loads any format assimp reads (OBJ, PLY, STL, glTF, FBX ...). Polygons are triangulated,
+// identical vertices joined within each assimp mesh, and all meshes of the scene merged
+// into one with their node transforms applied (a mesh instanced by several nodes appears
+// once per instance). Points and lines are dropped.
+// Errors: IoError (missing/unreadable file), ParseError (assimp could not import it, or no
+// triangles, or a non-finite coordinate). `*out` is unchanged on error.
 Status loadSurfaceMesh(const std::string& path, SurfaceMesh* out);
+
+// Writes a Wavefront OBJ (used by tests and tools to hand generated surfaces to assimp).
+Status writeSurfaceMeshObj(const SurfaceMesh& mesh, const std::string& path);
 
 }  // namespace vp
