@@ -1,0 +1,56 @@
+// Shared fixtures of the deform unit tests: reproducible random tets and matrices.
+#pragma once
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <random>
+
+namespace vp::deform_test {
+
+// A random, non-degenerate, positively oriented tet: a jittered reference tet, scaled,
+// rotated and moved, so tests never rely on axis-aligned edges or unit size.
+inline void randomTet(std::mt19937& rng, double corners[12]) {
+  std::uniform_real_distribution<double> jitter(-0.25, 0.25);
+  std::uniform_real_distribution<double> scale(0.3, 3.0);
+  std::uniform_real_distribution<double> offset(-5.0, 5.0);
+  const double ref[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+  Eigen::Quaterniond q(std::normal_distribution<double>()(rng),
+                       std::normal_distribution<double>()(rng),
+                       std::normal_distribution<double>()(rng),
+                       std::normal_distribution<double>()(rng));
+  q.normalize();
+  const Eigen::Matrix3d rot = q.toRotationMatrix();
+  const double s = scale(rng);
+  const Eigen::Vector3d t(offset(rng), offset(rng), offset(rng));
+  for (int i = 0; i < 4; ++i) {
+    Eigen::Vector3d p(ref[3 * i] + jitter(rng), ref[3 * i + 1] + jitter(rng),
+                      ref[3 * i + 2] + jitter(rng));
+    p = rot * (s * p) + t;
+    for (int a = 0; a < 3; ++a) corners[3 * i + a] = p[a];
+  }
+}
+
+inline Eigen::Matrix3d randomRotation(std::mt19937& rng) {
+  std::normal_distribution<double> n;
+  Eigen::Quaterniond q(n(rng), n(rng), n(rng), n(rng));
+  q.normalize();
+  return q.toRotationMatrix();
+}
+
+inline Eigen::Matrix3d randomMatrix(std::mt19937& rng, double lo = -1.0, double hi = 1.0) {
+  std::uniform_real_distribution<double> u(lo, hi);
+  Eigen::Matrix3d m;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) m(i, j) = u(rng);
+  return m;
+}
+
+// Random barycentric coordinates, uniform on the tet (sorted-uniform spacing).
+inline void randomBary(std::mt19937& rng, double bary[4]) {
+  std::exponential_distribution<double> e(1.0);
+  double s = 0.0;
+  for (int i = 0; i < 4; ++i) s += (bary[i] = e(rng));
+  for (int i = 0; i < 4; ++i) bary[i] /= s;
+}
+
+}  // namespace vp::deform_test
