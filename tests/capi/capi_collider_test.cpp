@@ -78,7 +78,7 @@ TEST(CApiCollider, DefRejectsBadValuesAndAddsNothing) {
          d.shape.indices = idx;
          d.shape.triangleCount = 1;
        }},
-      {"cannot open mesh file", vpStatus_IoError,
+      {"shape.meshFile: file '/no/such/file.obj': cannot be opened", vpStatus_IoError,
        [](vpColliderDef& d) { d.shape.type = vpShapeType_TriangleMesh; d.shape.meshFile = "/no/such/file.obj"; }},
   };
   for (const Case& c : cases) {

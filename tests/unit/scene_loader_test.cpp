@@ -118,7 +118,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{GOOD_PREFIX R"({"shape": {"type": "triangleMesh", "points": [[0,0,0],[1,0,0],[0,0,1]], "triangles": [[0, 1, 5]]}}]})",
                  Status::InvalidArgument, "$.colliders[1]: shape.indices[2] = 5"},
         BadScene{GOOD_PREFIX R"({"shape": {"type": "triangleMesh", "file": "missing.obj"}}]})", Status::IoError,
-                 "$.colliders[1]: shape.meshFile: cannot open mesh file './missing.obj'"},
+                 "$.colliders[1]: shape.meshFile: file './missing.obj': cannot be opened"},
         BadScene{GOOD_PREFIX R"(7]})", Status::ParseError, "$.colliders[1]: expected an object, got number"}));
 
 TEST(SceneLoader, MissingFileIsAnIoError) {
