@@ -1,0 +1,84 @@
+// Dispatch of face coverage per shape kind, the conservative reject test and the signed
+// distance bounds shared by the reject test and the union path.
+#include "fluid/face_coverage_detail.h"
+
+#include <limits>
+
+namespace vp {
+
+double signedDistanceBound(const PreparedCollider& c, const Eigen::Vector3d& x) {
+  const ColliderShape& s = c.shape;
+  switch (s.kind) {
+    case ShapeKind::Sphere:
+      return (x - c.translation).norm() - s.radius;
+    case ShapeKind::Plane:
+    case ShapeKind::ConvexHull: {
+      double d = -std::numeric_limits<double>::infinity();
+      for (const auto& p : c.worldPlanes) d = std::max(d, p.head<3>().dot(x) - p.w());
+      return d;
+    }
+    case ShapeKind::Box: {
+      const Eigen::Vector3d q =
+          (c.rotation.transpose() * (x - c.translation)).cwiseAbs() - s.halfExtents;
+      return q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0);
+    }
+    case ShapeKind::Capsule: {
+      Eigen::Vector3d p = c.rotation.transpose() * (x - c.translation);
+      p.y() -= std::min(s.halfHeight, std::max(-s.halfHeight, p.y()));
+      return p.norm() - s.radius;
+    }
+    case ShapeKind::Cylinder: {
+      const Eigen::Vector3d p = c.rotation.transpose() * (x - c.translation);
+      const double qx = std::hypot(p.x(), p.z()) - s.radius;
+      const double qy = std::fabs(p.y()) - s.halfHeight;
+      return std::min(std::max(qx, qy), 0.0) +
+             std::hypot(std::max(qx, 0.0), std::max(qy, 0.0));
+    }
+    case ShapeKind::TriangleMesh: {
+      const double d = detail::meshUnsignedDistance(c, x);
+      return detail::meshContains(c, x) ? -d : d;
+    }
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
+int classifyFace(const PreparedCollider& c, const AxisFace& face) {
+  if (!c.bounds.overlaps(faceBounds(face))) return -1;
+  const double halfDiag = 0.70710678118654757 * face.h;
+  if (c.shape.kind != ShapeKind::Plane &&
+      (face.centre - c.boundCentre).norm() >= c.boundRadius + halfDiag)
+    return -1;
+  if (c.shape.kind == ShapeKind::TriangleMesh) return 0;  // the exact path is cheaper
+  const double d = signedDistanceBound(c, face.centre);
+  if (d >= halfDiag) return -1;
+  if (d <= -halfDiag) return 1;
+  return 0;
+}
+
+double coveredFraction(const PreparedCollider& c, const AxisFace& face) {
+  const int cls = classifyFace(c, face);
+  if (cls != 0) return cls > 0 ? 1.0 : 0.0;
+  const detail::FaceFrame fr = detail::makeFrame(face);
+  double area = 0.0;
+  switch (c.shape.kind) {
+    case ShapeKind::Sphere: area = detail::coveredAreaSphere(c, fr); break;
+    case ShapeKind::Box:
+    case ShapeKind::Plane:
+    case ShapeKind::ConvexHull:
+      area = detail::coveredAreaHalfSpaces(c.worldPlanes.data(),
+                                           static_cast<int>(c.worldPlanes.size()), fr);
+      break;
+    case ShapeKind::Capsule:
+    case ShapeKind::Cylinder: area = detail::coveredAreaCapsuleOrCylinder(c, fr); break;
+    case ShapeKind::TriangleMesh: area = detail::coveredAreaMesh(c, fr); break;
+  }
+  return std::min(1.0, std::max(0.0, area / fr.area()));
+}
+
+double coveredFraction(const ColliderShape& shape, const AxisFace& face) {
+  PreparedCollider c;
+  if (!ok(prepareCollider(shape, &c))) return std::numeric_limits<double>::quiet_NaN();
+  return coveredFraction(c, face);
+}
+
+}  // namespace vp

@@ -1,0 +1,93 @@
+// Face coverage by a closed triangle mesh: exact, via Green's theorem on the cross-section.
+//
+// The mesh ∩ face plane is a set of closed, consistently oriented polygons made of one segment
+// per crossing triangle. For a region R with counter-clockwise boundary (interior on the left,
+// in the face's right-handed (u, v) frame) and the rectangle [u0,u1]x[v0,v1],
+//   area(R ∩ rect) = - ∮_{∂R} (clamp(v, v0, v1) - v0) du,  u restricted to [u0, u1],
+// because along every line u = const the boundary crossings pair up into the inside
+// intervals and the clamp clips them to [v0, v1]. Each segment contributes a piecewise-linear
+// integral, split where v crosses v0 and v1: exact.
+//
+// Needed segments are those whose u-range meets [u0, u1] and that reach above v0 (segments
+// above the face contribute (v1 - v0) du), found by a BVH box query over that column.
+// Consistency: a vertex exactly on the plane counts as above it (symbolic perturbation), the
+// crossing point of an edge is computed from its endpoints in index order (so both triangles
+// sharing the edge get bit-identical points) and a segment's direction follows from the
+// triangle's vertex order, not from a rounding-sensitive normal.
+#include "fluid/face_coverage_detail.h"
+
+namespace vp {
+namespace detail {
+namespace {
+
+// ∫_{lo}^{hi} (clamp(va + k (u - ua), v0, v1) - v0) du for a line v(u); exact.
+double clampedIntegral(double ua, double va, double ub, double vb, double lo, double hi,
+                       double v0, double v1) {
+  const double k = (vb - va) / (ub - ua);
+  auto vAt = [&](double u) { return va + k * (u - ua); };
+  double knots[4];
+  int n = 0;
+  knots[n++] = lo;
+  if (k != 0.0) {
+    for (double level : {v0, v1}) {
+      const double u = ua + (level - va) / k;
+      if (u > lo && u < hi) knots[n++] = u;
+    }
+  }
+  knots[n++] = hi;
+  if (n == 4 && knots[1] > knots[2]) std::swap(knots[1], knots[2]);
+  double s = 0.0;
+  for (int i = 0; i + 1 < n; ++i) {
+    const double a = knots[i], b = knots[i + 1];
+    if (b <= a) continue;
+    const double vm = vAt(0.5 * (a + b));
+    if (vm <= v0) continue;
+    if (vm >= v1) { s += (v1 - v0) * (b - a); continue; }
+    s += 0.5 * (vAt(a) + vAt(b) - 2.0 * v0) * (b - a);
+  }
+  return s;
+}
+
+}  // namespace
+
+double coveredAreaMesh(const PreparedCollider& c, const FaceFrame& fr) {
+  Eigen::Vector3d lo, hi;
+  lo[fr.a] = hi[fr.a] = fr.c0;
+  lo[fr.a1] = fr.u0;
+  hi[fr.a1] = fr.u1;
+  lo[fr.a2] = fr.v0;
+  hi[fr.a2] = c.bounds.hi[fr.a2];
+  if (hi[fr.a2] < lo[fr.a2]) return 0.0;
+  const std::vector<Eigen::Vector3d>& V = c.worldVertices;
+  double area = 0.0;
+  bvhQueryBox(c.bvh, lo, hi, [&](int t) {
+    const Eigen::Vector3i& tri = c.triangles[t];
+    bool above[3];
+    for (int k = 0; k < 3; ++k) above[k] = V[tri[k]][fr.a] >= fr.c0;
+    if (above[0] == above[1] && above[1] == above[2]) return;
+    int lone = 0;  // the vertex on its own side
+    if (above[1] != above[0] && above[1] != above[2]) lone = 1;
+    if (above[2] != above[0] && above[2] != above[1]) lone = 2;
+    auto cross = [&](int i, int j, double* u, double* v) {
+      int p = tri[i], q = tri[j];
+      if (p > q) std::swap(p, q);
+      const double s = (fr.c0 - V[p][fr.a]) / (V[q][fr.a] - V[p][fr.a]);
+      *u = V[p][fr.a1] + s * (V[q][fr.a1] - V[p][fr.a1]);
+      *v = V[p][fr.a2] + s * (V[q][fr.a2] - V[p][fr.a2]);
+    };
+    double pu, pv, qu, qv;
+    cross(lone, (lone + 1) % 3, &pu, &pv);
+    cross((lone + 2) % 3, lone, &qu, &qv);
+    // Lone vertex above: the boundary runs P -> Q; below: Q -> P.
+    if (!above[lone]) { std::swap(pu, qu); std::swap(pv, qv); }
+    if (pu == qu) return;
+    const double l = std::max(std::min(pu, qu), fr.u0), h = std::min(std::max(pu, qu), fr.u1);
+    if (h <= l) return;
+    const double integral = clampedIntegral(pu, pv, qu, qv, l, h, fr.v0, fr.v1);
+    area -= (qu > pu) ? integral : -integral;
+  });
+  return std::min(fr.area(), std::max(0.0, area));
+}
+
+}  // namespace detail
+}  // namespace vp

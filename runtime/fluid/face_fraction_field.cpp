@@ -1,0 +1,178 @@
+// Face open fractions and solid velocities over a MAC grid (layout in face_fraction_field.h).
+#include "fluid/face_fraction_field.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace vp {
+namespace {
+
+constexpr int kMaxCollidersPerFace = 64;
+
+Status checkArgs(const PreparedCollider* const* colliders, int count,
+                 const FaceFractionField* field) {
+  if (field == nullptr) return fail(Status::InvalidArgument, "face fractions: field is null");
+  if (count < 0 || (count > 0 && colliders == nullptr))
+    return fail(Status::InvalidArgument, "face fractions: colliders null or count %d < 0", count);
+  for (int i = 0; i < count; ++i)
+    if (colliders[i] == nullptr)
+      return fail(Status::InvalidArgument, "face fractions: colliders[%d] is null", i);
+  for (int a = 0; a < 3; ++a) {
+    const Eigen::Vector3i d = field->faceDims(a);
+    const size_t n = static_cast<size_t>(d.x()) * d.y() * d.z();
+    if (field->open[a].size() != n || field->solidVelocity[a].size() != n)
+      return fail(Status::InvalidArgument,
+                  "face fractions: field arrays of axis %d not sized for the grid "
+                  "(call initFaceFractionField)", a);
+  }
+  return Status::Ok;
+}
+
+// Normal velocity of one collider over its covered part of `face` (covered fraction `a`).
+double colliderNormalVelocity(const PreparedCollider& c, const AxisFace& face, double a) {
+  const ColliderShape& s = c.shape;
+  Eigen::Vector3d x = face.centre;
+  if (s.angularVelocity.squaredNorm() > 0.0 && a < 1.0) {
+    const int a1 = (face.axis + 1) % 3, a2 = (face.axis + 2) % 3;
+    double wsum = 0.0;
+    Eigen::Vector3d acc = Eigen::Vector3d::Zero();
+    for (int q = 0; q < 4; ++q) {
+      AxisFace sub = face;
+      sub.h = 0.5 * face.h;
+      sub.centre[a1] += (q & 1 ? 0.25 : -0.25) * face.h;
+      sub.centre[a2] += (q & 2 ? 0.25 : -0.25) * face.h;
+      const double w = coveredFraction(c, sub);
+      wsum += w;
+      acc += w * sub.centre;
+    }
+    if (wsum > 0.0) x = acc / wsum;
+  }
+  const Eigen::Vector3d v = s.linearVelocity + s.angularVelocity.cross(x - c.translation);
+  return v[face.axis];
+}
+
+void recomputeFace(const PreparedCollider* const* colliders, int count, int axis, int i, int j,
+                   int k, FaceFractionField* field) {
+  const AxisFace face = field->face(axis, i, j, k);
+  const Aabb fb = faceBounds(face);
+  const PreparedCollider* near[kMaxCollidersPerFace];
+  int n = 0;
+  for (int c = 0; c < count && n < kMaxCollidersPerFace; ++c)
+    if (colliders[c]->bounds.overlaps(fb)) near[n++] = colliders[c];
+  double covered = 0.0, velocity = 0.0;
+  if (n == 1) {
+    covered = coveredFraction(*near[0], face);
+    if (covered > 0.0) velocity = colliderNormalVelocity(*near[0], face, covered);
+  } else if (n > 1) {
+    covered = coveredFractionUnion(near, n, face);
+    if (covered > 0.0) {
+      double wsum = 0.0, vsum = 0.0;
+      for (int c = 0; c < n; ++c) {
+        const double ac = coveredFraction(*near[c], face);
+        if (ac > 0.0) {
+          wsum += ac;
+          vsum += ac * colliderNormalVelocity(*near[c], face, ac);
+        }
+      }
+      velocity = wsum > 0.0 ? vsum / wsum : 0.0;
+    }
+  }
+  const size_t f = field->faceIndex(axis, i, j, k);
+  field->open[axis][f] = 1.0 - covered;
+  field->solidVelocity[axis][f] = velocity;
+}
+
+// Clamps a real index bound into [lo, hi].
+int clampIndex(double x, int lo, int hi) {
+  if (!(x > lo)) return lo;  // also NaN
+  if (x > hi) return hi;
+  return static_cast<int>(x);
+}
+
+void recomputeBox(const PreparedCollider* const* colliders, int count, const Aabb& box,
+                  FaceFractionField* field) {
+  if (box.empty()) return;
+  const MacGridSpec& g = field->grid;
+  const Eigen::Vector3d lo = (box.lo - g.origin) / g.h, hi = (box.hi - g.origin) / g.h;
+  for (int a = 0; a < 3; ++a) {
+    const Eigen::Vector3i dims = field->faceDims(a);
+    int r0[3], r1[3];
+    for (int d = 0; d < 3; ++d) {
+      // Faces of axis a sit at integer coordinates along a, span [j, j+1] across; one extra
+      // face each side keeps the range conservative under rounding.
+      const double l = (d == a) ? std::ceil(lo[d]) - 1.0 : std::ceil(lo[d]) - 2.0;
+      const double u = std::floor(hi[d]) + 1.0;
+      r0[d] = clampIndex(l, 0, dims[d] - 1);
+      r1[d] = clampIndex(u, 0, dims[d] - 1);
+    }
+    for (int k = r0[2]; k <= r1[2]; ++k)
+      for (int j = r0[1]; j <= r1[1]; ++j)
+        for (int i = r0[0]; i <= r1[0]; ++i) recomputeFace(colliders, count, a, i, j, k, field);
+  }
+}
+
+}  // namespace
+
+Eigen::Vector3i FaceFractionField::faceDims(int axis) const {
+  return Eigen::Vector3i(grid.nx + (axis == 0), grid.ny + (axis == 1), grid.nz + (axis == 2));
+}
+
+size_t FaceFractionField::faceIndex(int axis, int i, int j, int k) const {
+  const Eigen::Vector3i d = faceDims(axis);
+  return static_cast<size_t>(i) + static_cast<size_t>(d.x()) * (j + static_cast<size_t>(d.y()) * k);
+}
+
+AxisFace FaceFractionField::face(int axis, int i, int j, int k) const {
+  AxisFace f;
+  f.axis = axis;
+  f.h = grid.h;
+  Eigen::Vector3d c(i + 0.5, j + 0.5, k + 0.5);
+  c[axis] -= 0.5;
+  f.centre = grid.origin + grid.h * c;
+  return f;
+}
+
+Status initFaceFractionField(const MacGridSpec& grid, FaceFractionField* field) {
+  if (field == nullptr) return fail(Status::InvalidArgument, "initFaceFractionField: field is null");
+  if (!grid.origin.allFinite())
+    return fail(Status::InvalidArgument, "MacGridSpec.origin is not finite");
+  if (!std::isfinite(grid.h) || !(grid.h > 0.0))
+    return fail(Status::InvalidArgument, "MacGridSpec.h must be > 0, got %g", grid.h);
+  if (grid.nx <= 0 || grid.ny <= 0 || grid.nz <= 0)
+    return fail(Status::InvalidArgument, "MacGridSpec nx, ny, nz must be > 0, got %d, %d, %d",
+                grid.nx, grid.ny, grid.nz);
+  const double cells = static_cast<double>(grid.nx + 1) * (grid.ny + 1) * (grid.nz + 1);
+  if (cells > 2e9)
+    return fail(Status::InvalidArgument, "MacGridSpec: %d x %d x %d cells is too large",
+                grid.nx, grid.ny, grid.nz);
+  field->grid = grid;
+  for (int a = 0; a < 3; ++a) {
+    const Eigen::Vector3i d = field->faceDims(a);
+    const size_t n = static_cast<size_t>(d.x()) * d.y() * d.z();
+    field->open[a].assign(n, 1.0);
+    field->solidVelocity[a].assign(n, 0.0);
+  }
+  return Status::Ok;
+}
+
+Status computeFaceFractions(const PreparedCollider* const* colliders, int count,
+                            FaceFractionField* field) {
+  VP_TRY(checkArgs(colliders, count, field));
+  for (int a = 0; a < 3; ++a) {
+    std::fill(field->open[a].begin(), field->open[a].end(), 1.0);
+    std::fill(field->solidVelocity[a].begin(), field->solidVelocity[a].end(), 0.0);
+  }
+  for (int c = 0; c < count; ++c) recomputeBox(colliders, count, colliders[c]->bounds, field);
+  return Status::Ok;
+}
+
+Status updateFaceFractions(const PreparedCollider* const* colliders, int count,
+                           const Aabb& oldBounds, const Aabb& newBounds,
+                           FaceFractionField* field) {
+  VP_TRY(checkArgs(colliders, count, field));
+  recomputeBox(colliders, count, oldBounds, field);
+  recomputeBox(colliders, count, newBounds, field);
+  return Status::Ok;
+}
+
+}  // namespace vp

@@ -1,0 +1,63 @@
+// Open fractions and solid normal velocities of all MAC faces of a grid, from colliders.
+//
+// Grid: cell (i, j, k), 0 <= i < nx, ..., spans origin + h * [i, i+1] x [j, j+1] x [k, k+1].
+// Face arrays (structure of arrays, one per normal axis):
+//   axis 0 (u-faces): (nx+1) * ny * nz, face (i, j, k) at x = origin.x + i h,
+//                     index i + (nx+1) * (j + ny * k)
+//   axis 1 (v-faces): nx * (ny+1) * nz, face at y = origin.y + j h,
+//                     index i + nx * (j + (ny+1) * k)
+//   axis 2 (w-faces): nx * ny * (nz+1), face at z = origin.z + k h,
+//                     index i + nx * (j + ny * k)
+// i.e. always i + dimX * (j + dimY * k) with the face-count dimensions of that axis.
+//
+// open[a][f]          in [0, 1]: the part of face f not inside any collider.
+// solidVelocity[a][f] the area-weighted normal (component a) velocity of the colliders over the
+//                     covered part, 0 where the face is fully open. The rigid velocity
+//                     v + w x (x - c) is linear in x, so its mean over the covered part is its
+//                     value at the covered part's centroid; that centroid is approximated from
+//                     the coverage of the face's four quadrants (exact for faces covered
+//                     uniformly per quadrant; error <= |w| h / 2), and skipped (any point is
+//                     exact) when w = 0. Faces covered by several colliders average the
+//                     colliders' values weighted by their individual coverage.
+#pragma once
+
+#include "core/status.h"
+#include "fluid/face_coverage.h"
+
+#include <vector>
+
+namespace vp {
+
+struct MacGridSpec {
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  double h = 1.0;
+  int nx = 0, ny = 0, nz = 0;
+};
+
+struct FaceFractionField {
+  MacGridSpec grid;
+  std::vector<double> open[3];
+  std::vector<double> solidVelocity[3];
+
+  // Face-count dimensions of axis a: (nx + (a == 0), ny + (a == 1), nz + (a == 2)).
+  Eigen::Vector3i faceDims(int axis) const;
+  size_t faceIndex(int axis, int i, int j, int k) const;
+  AxisFace face(int axis, int i, int j, int k) const;
+};
+
+// Sizes the arrays for `grid` and sets every face open (1) with zero solid velocity.
+Status initFaceFractionField(const MacGridSpec& grid, FaceFractionField* field);
+
+// Full recompute: faces outside every collider's bounding box are set open; faces inside
+// some box are computed from all colliders.
+Status computeFaceFractions(const PreparedCollider* const* colliders, int count,
+                            FaceFractionField* field);
+
+// Incremental update after colliders moved: recomputes (from all current colliders) only the
+// faces touching `oldBounds` or `newBounds` (e.g. the moved collider's boxes before and after
+// the move). Gives the same result as computeFaceFractions when every change lies in them.
+Status updateFaceFractions(const PreparedCollider* const* colliders, int count,
+                           const Aabb& oldBounds, const Aabb& newBounds,
+                           FaceFractionField* field);
+
+}  // namespace vp
