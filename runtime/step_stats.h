@@ -26,6 +26,7 @@ struct ActorStats {
   ActorKind kind = ActorKind::Rigid;
   uint32_t index1 = 0;
   double totalMs = 0.0;
+  bool diverged = false;  // the step blew up and the actor was restored to its previous state
   std::array<PhaseStats, kPhaseCount> phases{};
 
   PhaseStats& phase(Phase p) { return phases[static_cast<int>(p)]; }

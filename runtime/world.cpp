@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "core/log.h"
+
 namespace vp {
 
 Status validateGravity(const Vec3& g) {
@@ -54,7 +56,35 @@ Status World::destroyCollider(ColliderHandle handle) {
   std::unique_ptr<Collider> c = colliders_.remove(handle.index1, handle.generation);
   if (!c) return fail(Status::InvalidId, "collider id (%u, %u) is stale or null", handle.index1, handle.generation);
   collision_.remove(*c);
+  deformables_.forEach([&](DeformableHandle, DeformableBody& d) { d.detachAll(handle.index1, handle.generation); });
   return Status::Ok;
+}
+
+Status World::createDeformable(DeformableDesc desc, DeformableHandle* out) {
+  std::unique_ptr<DeformableBody> body;
+  VP_TRY(DeformableBody::create(std::move(desc), &body));
+  *out = deformables_.insert(std::move(body));
+  return Status::Ok;
+}
+
+Status World::destroyDeformable(DeformableHandle handle) {
+  if (!deformables_.remove(handle.index1, handle.generation))
+    return fail(Status::InvalidId, "deformable id (%u, %u) is stale or null", handle.index1, handle.generation);
+  return Status::Ok;
+}
+
+std::vector<DeformableHandle> World::deformableHandles() const {
+  std::vector<DeformableHandle> handles;
+  deformables_.forEach([&](DeformableHandle h, const DeformableBody&) { handles.push_back(h); });
+  return handles;
+}
+
+bool World::findDeformable(const std::string& name, DeformableHandle* out) const {
+  bool found = false;
+  deformables_.forEach([&](DeformableHandle h, const DeformableBody& d) {
+    if (!found && d.desc().name == name) *out = h, found = true;
+  });
+  return found;
 }
 
 std::vector<ColliderHandle> World::colliderHandles() const {
@@ -112,6 +142,29 @@ Status World::step(double dt) {
     rigid.totalMs = rigid.phase(Phase::Rigid).ms;
   }
   stats.actors.push_back(rigid);
+
+  // Phase 3: deformables. Budget policy: the actors run in a fixed order and each gets an
+  // equal share of what is left of the frame when its turn comes, so time one actor does
+  // not use passes on to the next.
+  int remaining = static_cast<int>(deformables_.size());
+  deformables_.forEach([&](DeformableHandle h, DeformableBody& body) {
+    ActorStats a;
+    a.kind = ActorKind::Deformable;
+    a.index1 = h.index1;
+    DeformableStepInput input;
+    input.dt = dt;
+    input.gravity = config_.gravity;
+    input.deadline = frame.share(1.0 / remaining--);
+    input.tasks = tasks_.get();
+    input.collider = [this](uint32_t index1, uint32_t generation) -> const Collider* {
+      return colliders_.get(index1, generation);
+    };
+    const double start = frame.elapsedMs();
+    body.step(input, &a);
+    a.totalMs = frame.elapsedMs() - start;
+    if (a.diverged) log(LogLevel::Warning, "deformable (%u, %u) diverged; restored its previous state", h.index1, h.generation);
+    stats.actors.push_back(a);
+  });
 
   stats.totalMs = frame.elapsedMs();
   for (const ActorStats& a : stats.actors)

@@ -12,6 +12,7 @@
 #include "core/budget_clock.h"
 #include "core/slot_map.h"
 #include "core/task_system.h"
+#include "deform/deformable_body.h"
 #include "step_stats.h"
 
 namespace vp {
@@ -32,6 +33,7 @@ Status validateFrameBudget(double frameBudgetMs);
 Status validateGravity(const Vec3& gravity);
 
 using ColliderHandle = SlotMap<Collider>::Handle;
+using DeformableHandle = SlotMap<DeformableBody>::Handle;
 
 class World {
  public:
@@ -51,6 +53,13 @@ class World {
   size_t colliderCount() const { return colliders_.size(); }
   bool findCollider(const std::string& name, ColliderHandle* out) const;
 
+  Status createDeformable(DeformableDesc desc, DeformableHandle* out);
+  Status destroyDeformable(DeformableHandle handle);
+  DeformableBody* deformable(DeformableHandle h) const { return deformables_.get(h.index1, h.generation); }
+  std::vector<DeformableHandle> deformableHandles() const;
+  size_t deformableCount() const { return deformables_.size(); }
+  bool findDeformable(const std::string& name, DeformableHandle* out) const;
+
   Status setGravity(const Vec3& gravity);
   const Vec3& gravity() const { return config_.gravity; }
   Status setFrameBudget(double frameBudgetMs);
@@ -67,6 +76,7 @@ class World {
   std::unique_ptr<TaskSystem> tasks_;
   CollisionWorld collision_;
   SlotMap<Collider> colliders_;
+  SlotMap<DeformableBody> deformables_;
   StepStats stats_;
   std::atomic<bool> stepping_{false};
 };

@@ -1,0 +1,325 @@
+#include "deform/deformable_body.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "core/parallel_for.h"
+#include "deform/bb_element_matrices.h"
+#include "deform/deformation_gradient.h"
+#include "deform/polar_decomposition.h"
+#include "deform/linear_tet_corotation.h"
+
+namespace vp {
+namespace {
+
+// Speeds beyond this are treated as divergence: far above anything a game scene produces,
+// far below where doubles lose all meaning.
+constexpr double kMaxSpeed = 1e4;
+
+}  // namespace
+
+Status DeformableBody::create(DeformableDesc desc, std::unique_ptr<DeformableBody>* out) {
+  VP_TRY(validateDeformableDesc(desc));
+  std::unique_ptr<DeformableBody> body(new DeformableBody());
+  DeformableBody& b = *body;
+  const TetMesh& mesh = desc.mesh;
+  b.nodeCount_ = static_cast<int32_t>(mesh.vertices.size());
+  const int64_t elements = static_cast<int64_t>(mesh.tets.size());
+  b.lambda_ = desc.material.lameLambda();
+  b.mu_ = desc.material.lameMu();
+
+  b.restX_.resize(3 * static_cast<size_t>(b.nodeCount_));
+  b.x_.resize(b.restX_.size());
+  b.v_.resize(b.restX_.size());
+  for (int32_t i = 0; i < b.nodeCount_; ++i) {
+    const Vec3& X = mesh.vertices[i];
+    const Vec3 x = desc.pose.apply(X);
+    for (int k = 0; k < 3; ++k) {
+      b.restX_[3 * i + k] = X[k];
+      b.x_[3 * i + k] = x[k];
+      b.v_[3 * i + k] = desc.linearVelocity[k];
+    }
+  }
+  b.elementNodes_.resize(4 * static_cast<size_t>(elements));
+  b.restGradients_.resize(12 * static_cast<size_t>(elements));
+  b.restVolume_.resize(static_cast<size_t>(elements));
+  b.rotations_.resize(4 * static_cast<size_t>(elements));
+  b.mass_.assign(static_cast<size_t>(b.nodeCount_), 0.0);
+  for (int64_t e = 0; e < elements; ++e) {
+    double corners[12];
+    for (int a = 0; a < 4; ++a) {
+      const int32_t node = mesh.tets[e][a];
+      b.elementNodes_[4 * e + a] = node;
+      for (int k = 0; k < 3; ++k) corners[3 * a + k] = mesh.vertices[node][k];
+    }
+    Status s = bbBarycentricGradients(corners, &b.restGradients_[12 * e], &b.restVolume_[e]);
+    if (!ok(s)) return addErrorContext(s, "mesh tet " + std::to_string(e));
+    const double nodeMass = desc.material.density * b.restVolume_[e] / 4.0;
+    for (int a = 0; a < 4; ++a) b.mass_[mesh.tets[e][a]] += nodeMass;
+    const Quat& q = desc.pose.rotation;
+    double* r = &b.rotations_[4 * e];
+    r[0] = q.w(), r[1] = q.x(), r[2] = q.y(), r[3] = q.z();
+  }
+  VP_TRY(colorElements(b.nodeCount_, b.elementNodes_.data(), elements, 4, &b.coloring_));
+  buildElementPattern(b.nodeCount_, b.elementNodes_.data(), elements, 4, &b.matrix_, &b.scatter_);
+  const size_t n3 = b.restX_.size();
+  b.externalForce_.assign(n3, 0.0);
+  b.force_.resize(n3);
+  b.rhs_.resize(n3);
+  b.vNext_.resize(n3);
+  b.diagInverse_.resize(9 * static_cast<size_t>(b.nodeCount_));
+  b.pinned_.assign(static_cast<size_t>(b.nodeCount_), 0);
+  b.constrained_.assign(static_cast<size_t>(b.nodeCount_), 0);
+  b.desc_ = std::move(desc);
+  *out = std::move(body);
+  return Status::Ok;
+}
+
+Status DeformableBody::checkNode(const char* what, int32_t node) const {
+  if (node < 0 || node >= nodeCount_)
+    return fail(Status::InvalidArgument, "%s = %d: out of range [0, %d)", what, node, nodeCount_);
+  return Status::Ok;
+}
+
+Status DeformableBody::setVelocities(const double* velocities, int64_t count) {
+  if (count != 3 * static_cast<int64_t>(nodeCount_))
+    return fail(Status::InvalidArgument, "count = %lld: must be 3 * nodeCount = %d", static_cast<long long>(count),
+                3 * nodeCount_);
+  for (int64_t i = 0; i < count; ++i)
+    if (!std::isfinite(velocities[i]) || std::abs(velocities[i]) > kMaxSpeed)
+      return fail(Status::InvalidArgument, "velocities[%lld] = %g: must be finite and below %g m/s",
+                  static_cast<long long>(i), velocities[i], kMaxSpeed);
+  std::copy(velocities, velocities + count, v_.begin());
+  return Status::Ok;
+}
+
+Status DeformableBody::setPositions(const double* positions, int64_t count) {
+  if (count != 3 * static_cast<int64_t>(nodeCount_))
+    return fail(Status::InvalidArgument, "count = %lld: must be 3 * nodeCount = %d", static_cast<long long>(count),
+                3 * nodeCount_);
+  for (int64_t i = 0; i < count; ++i)
+    if (!std::isfinite(positions[i]) || std::abs(positions[i]) > 1e6)
+      return fail(Status::InvalidArgument, "positions[%lld] = %g: must be finite and within 1e6 m",
+                  static_cast<long long>(i), positions[i]);
+  std::copy(positions, positions + count, x_.begin());
+  return Status::Ok;
+}
+
+Status DeformableBody::applyForce(int32_t node, const Vec3& force) {
+  VP_TRY(checkNode("node", node));
+  if (!force.allFinite())
+    return fail(Status::InvalidArgument, "force = (%g, %g, %g): must be finite", force.x(), force.y(), force.z());
+  for (int k = 0; k < 3; ++k) externalForce_[3 * node + k] += force[k];
+  return Status::Ok;
+}
+
+Status DeformableBody::applyImpulse(int32_t node, const Vec3& impulse) {
+  VP_TRY(checkNode("node", node));
+  if (!impulse.allFinite())
+    return fail(Status::InvalidArgument, "impulse = (%g, %g, %g): must be finite", impulse.x(), impulse.y(),
+                impulse.z());
+  for (int k = 0; k < 3; ++k) v_[3 * node + k] += impulse[k] / mass_[node];
+  return Status::Ok;
+}
+
+Status DeformableBody::setPinned(const int32_t* nodes, int64_t count, bool pin) {
+  for (int64_t i = 0; i < count; ++i) {
+    char field[48];
+    std::snprintf(field, sizeof field, "nodes[%lld]", static_cast<long long>(i));
+    VP_TRY(checkNode(field, nodes[i]));
+  }
+  for (int64_t i = 0; i < count; ++i) {
+    pinned_[nodes[i]] = pin ? 1 : 0;
+    if (pin)
+      for (int k = 0; k < 3; ++k) v_[3 * nodes[i] + k] = 0.0;
+  }
+  return Status::Ok;
+}
+
+Status DeformableBody::attach(const int32_t* nodes, int64_t count, uint32_t index1, uint32_t generation,
+                              const Collider& collider) {
+  for (int64_t i = 0; i < count; ++i) {
+    char field[48];
+    std::snprintf(field, sizeof field, "nodes[%lld]", static_cast<long long>(i));
+    VP_TRY(checkNode(field, nodes[i]));
+  }
+  const Pose pose = collider.pose();
+  for (int64_t i = 0; i < count; ++i) {
+    const int32_t n = nodes[i];
+    const Vec3 x(x_[3 * n], x_[3 * n + 1], x_[3 * n + 2]);
+    attachments_.push_back(Attachment{n, index1, generation, pose.rotation.conjugate() * (x - pose.position)});
+  }
+  return Status::Ok;
+}
+
+void DeformableBody::detachAll(uint32_t index1, uint32_t generation) {
+  attachments_.erase(std::remove_if(attachments_.begin(), attachments_.end(),
+                                    [&](const Attachment& a) { return a.index1 == index1 && a.generation == generation; }),
+                     attachments_.end());
+}
+
+double DeformableBody::kineticEnergy() const {
+  double e = 0.0;
+  for (int32_t i = 0; i < nodeCount_; ++i)
+    e += 0.5 * mass_[i] * (v_[3 * i] * v_[3 * i] + v_[3 * i + 1] * v_[3 * i + 1] + v_[3 * i + 2] * v_[3 * i + 2]);
+  return e;
+}
+
+double DeformableBody::elasticEnergy() const {
+  double energy = 0.0;
+  for (int64_t e = 0; e < elementCount(); ++e) {
+    double x[12], F[9], R[9];
+    for (int a = 0; a < 4; ++a)
+      for (int i = 0; i < 3; ++i) x[3 * a + i] = x_[3 * elementNodes_[4 * e + a] + i];
+    bbAverageDeformationGradient(1, x, &restGradients_[12 * e], F);
+    polarRotationSvd(F, R);
+    double eps[9];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        double sij = 0.0, sji = 0.0;
+        for (int k = 0; k < 3; ++k) sij += R[3 * k + i] * F[3 * k + j], sji += R[3 * k + j] * F[3 * k + i];
+        eps[3 * i + j] = 0.5 * (sij + sji) - (i == j ? 1.0 : 0.0);
+      }
+    double epsEps = 0.0;
+    for (double v : eps) epsEps += v * v;
+    const double trace = eps[0] + eps[4] + eps[8];
+    energy += restVolume_[e] * (mu_ * epsEps + 0.5 * lambda_ * trace * trace);
+  }
+  return energy;
+}
+
+void DeformableBody::elasticForces(TaskSystem& tasks, Array<double>* out) {
+  corotateAndAssemble(tasks, 1.0);
+  out->assign(force_.begin(), force_.end());
+}
+
+void DeformableBody::corotateAndAssemble(TaskSystem& tasks, double stiffnessScale) {
+  matrix_.setZero();
+  std::fill(force_.begin(), force_.end(), 0.0);
+  for (int c = 0; c < coloring_.colorCount(); ++c) {
+    const int64_t begin = coloring_.colorStart[c], end = coloring_.colorStart[c + 1];
+    parallelFor(tasks, end - begin, 256, [&](int64_t first, int64_t last) {
+      for (int64_t k = begin + first; k < begin + last; ++k) {
+        const int64_t e = coloring_.order[k];
+        const int32_t* nodes = &elementNodes_[4 * e];
+        double x[12], f[12], blocks[144];
+        for (int a = 0; a < 4; ++a)
+          for (int i = 0; i < 3; ++i) x[3 * a + i] = x_[3 * nodes[a] + i];
+        corotateLinearTet(x, &restGradients_[12 * e], restVolume_[e], lambda_, mu_, &rotations_[4 * e], f, blocks);
+        for (int a = 0; a < 4; ++a)
+          for (int i = 0; i < 3; ++i) force_[3 * nodes[a] + i] += f[3 * a + i];
+        const int32_t* blockIndex = &scatter_[16 * e];
+        for (int ab = 0; ab < 16; ++ab) {
+          double* dst = &matrix_.values[9 * static_cast<int64_t>(blockIndex[ab])];
+          for (int i = 0; i < 9; ++i) dst[i] += stiffnessScale * blocks[9 * ab + i];
+        }
+      }
+    });
+  }
+}
+
+void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
+  TaskSystem& tasks = *in.tasks;
+  const double h = in.dt;
+  const DeformableMaterial& mat = desc_.material;
+  const int64_t n3 = 3 * static_cast<int64_t>(nodeCount_);
+  const Deadline& clock = in.deadline;
+  double mark = clock.elapsedMs();
+  auto lap = [&](Phase p) {
+    const double now = clock.elapsedMs();
+    stats->phase(p).ms += now - mark;
+    mark = now;
+  };
+  backupX_.assign(x_.begin(), x_.end());
+  backupV_.assign(v_.begin(), v_.end());
+
+  // Constraints: pinned nodes keep zero velocity, attached ones the velocity that brings
+  // them to their collider-carried target by the end of the step.
+  std::fill(constrained_.begin(), constrained_.end(), 0);
+  vNext_.assign(v_.begin(), v_.end());  // warm start
+  for (int32_t i = 0; i < nodeCount_; ++i)
+    if (pinned_[i]) {
+      constrained_[i] = 1;
+      for (int k = 0; k < 3; ++k) vNext_[3 * i + k] = 0.0;
+    }
+  attachments_.erase(std::remove_if(attachments_.begin(), attachments_.end(),
+                                    [&](const Attachment& a) { return !in.collider || !in.collider(a.index1, a.generation); }),
+                     attachments_.end());
+  for (const Attachment& a : attachments_) {
+    const Pose pose = in.collider(a.index1, a.generation)->pose();
+    const Vec3 target = pose.apply(a.localOffset);
+    constrained_[a.node] = 1;
+    for (int k = 0; k < 3; ++k) vNext_[3 * a.node + k] = (target[k] - x_[3 * a.node + k]) / h;
+  }
+
+  corotateAndAssemble(tasks, h * mat.stiffnessDamping + h * h);
+  lap(Phase::Corotate);
+
+  const double massScale = 1.0 + h * mat.massDamping;
+  parallelFor(tasks, nodeCount_, 1024, [&](int64_t begin, int64_t end) {
+    for (int64_t i = begin; i < end; ++i) {
+      double* diag = &matrix_.values[9 * static_cast<int64_t>(matrix_.diagonal[i])];
+      const double m = mass_[i];
+      for (int k = 0; k < 3; ++k) diag[4 * k] += massScale * m;
+      for (int k = 0; k < 3; ++k)
+        rhs_[3 * i + k] = m * v_[3 * i + k] + h * (force_[3 * i + k] + m * in.gravity[k] + externalForce_[3 * i + k]);
+      Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> inv(&diagInverse_[9 * i]);
+      inv = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(diag).inverse();
+    }
+  });
+  lap(Phase::Assemble);
+
+  LinearSystem system;
+  system.size = n3;
+  system.apply = [&](const double* x, double* y) { matrix_.multiply(tasks, x, y); };
+  system.precondition = [&](const double* r, double* z) {
+    parallelFor(tasks, nodeCount_, 1024, [&](int64_t begin, int64_t end) {
+      for (int64_t i = begin; i < end; ++i) {
+        const double* m = &diagInverse_[9 * i];
+        const double* ri = r + 3 * i;
+        for (int k = 0; k < 3; ++k) z[3 * i + k] = m[3 * k] * ri[0] + m[3 * k + 1] * ri[1] + m[3 * k + 2] * ri[2];
+      }
+    });
+  };
+  system.filter = [&](double* vec) {
+    parallelFor(tasks, nodeCount_, 1024, [&](int64_t begin, int64_t end) {
+      for (int64_t i = begin; i < end; ++i)
+        if (constrained_[i]) vec[3 * i] = vec[3 * i + 1] = vec[3 * i + 2] = 0.0;
+    });
+  };
+  CgSettings settings{desc_.solver.tolerance, desc_.solver.maxIterations};
+  const CgResult cg = solveConjugateGradient(tasks, system, rhs_.data(), vNext_.data(), settings, in.deadline, cg_);
+  PhaseStats& solve = stats->phase(Phase::Solve);
+  solve.iterations = cg.iterations;
+  solve.residual = cg.relativeResidual;
+  solve.budgetCut = cg.budgetCut;
+  lap(Phase::Solve);
+
+  // Integrate, then guard: a non-finite or absurd velocity restores the step's start state.
+  bool diverged = false;
+  for (int64_t i = 0; i < n3; ++i) {
+    const double v = vNext_[i];
+    if (!std::isfinite(v) || std::abs(v) > kMaxSpeed) {
+      diverged = true;
+      break;
+    }
+    v_[i] = v;
+    x_[i] += h * v;
+  }
+  if (diverged) {
+    x_.assign(backupX_.begin(), backupX_.end());
+    v_.assign(backupV_.begin(), backupV_.end());
+    // Rotations warm starts may be garbage now; restart them from identity.
+    for (int64_t e = 0; e < elementCount(); ++e) {
+      double* r = &rotations_[4 * e];
+      r[0] = 1, r[1] = r[2] = r[3] = 0;
+    }
+  }
+  stats->diverged = diverged;
+  std::fill(externalForce_.begin(), externalForce_.end(), 0.0);
+  lap(Phase::Embed);
+}
+
+}  // namespace vp

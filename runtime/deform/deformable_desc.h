@@ -1,0 +1,51 @@
+// Everything needed to create a deformable volume actor: the simulation mesh, the material,
+// damping and solver settings. The C ABI and scene files both fill this in; the mesh is
+// already loaded (arrays, tet files or a voxelized surface) by then.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "core/math_types.h"
+#include "core/status.h"
+#include "geometry/surface_mesh.h"
+#include "geometry/tet_mesh.h"
+
+namespace vp {
+
+struct DeformableMaterial {
+  double youngsModulus = 1e6;   // Pa
+  double poissonRatio = 0.3;    // (-1, 0.5)
+  double density = 1000.0;      // kg/m^3
+  double massDamping = 0.0;     // Rayleigh alpha, 1/s
+  double stiffnessDamping = 0.01;  // Rayleigh beta, s: damps fast modes, keeps slow ones
+  double friction = 0.5;        // Coulomb coefficient against colliders
+
+  double lameMu() const { return youngsModulus / (2.0 * (1.0 + poissonRatio)); }
+  double lameLambda() const {
+    return youngsModulus * poissonRatio / ((1.0 + poissonRatio) * (1.0 - 2.0 * poissonRatio));
+  }
+};
+
+struct DeformableSolverSettings {
+  double tolerance = 1e-3;  // relative residual of the implicit solve
+  int maxIterations = 200;
+};
+
+struct DeformableDesc {
+  std::string name;
+  int degree = 1;
+  TetMesh mesh;                            // rest shape, in the actor's local frame
+  std::optional<SurfaceMesh> renderMesh;   // embedded in the tets; same frame as `mesh`
+  Pose pose;                               // places the rest shape in the world
+  Vec3 linearVelocity = Vec3::Zero();
+  DeformableMaterial material;
+  DeformableSolverSettings solver;
+  void* userData = nullptr;
+};
+
+// Field names in messages follow vpDeformableDef. Repairs the mesh orientation and drops
+// unused vertices (see validateAndRepairTetMesh). On failure `desc` is unchanged.
+Status validateDeformableDesc(DeformableDesc& desc);
+
+}  // namespace vp

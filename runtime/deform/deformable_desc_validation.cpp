@@ -1,0 +1,69 @@
+#include <cmath>
+
+#include "deform/deformable_desc.h"
+#include "geometry/tet_mesh_validation.h"
+
+namespace vp {
+namespace {
+
+Status checkPositive(const char* field, double value, double maxValue) {
+  if (!(value > 0.0 && value <= maxValue))
+    return fail(Status::InvalidArgument, "%s = %g: must be in (0, %g]", field, value, maxValue);
+  return Status::Ok;
+}
+
+Status checkNonNegative(const char* field, double value, double maxValue) {
+  if (!(value >= 0.0 && value <= maxValue))
+    return fail(Status::InvalidArgument, "%s = %g: must be in [0, %g]", field, value, maxValue);
+  return Status::Ok;
+}
+
+}  // namespace
+
+Status validateDeformableDesc(DeformableDesc& in) {
+  if (in.degree < 1 || in.degree > 3)
+    return fail(Status::InvalidArgument, "degree = %d: must be 1, 2 or 3", in.degree);
+  if (in.degree != 1)
+    return fail(Status::Unsupported, "degree = %d: quadratic and cubic elements are not available yet", in.degree);
+  const DeformableMaterial& m = in.material;
+  VP_TRY(checkPositive("youngsModulus", m.youngsModulus, 1e13));
+  // ν = 0.5 makes λ infinite; stop just short of it (near-incompressible needs degree > 1).
+  if (!(m.poissonRatio > -0.999 && m.poissonRatio < 0.4999))
+    return fail(Status::InvalidArgument, "poissonRatio = %g: must be in (-0.999, 0.4999)", m.poissonRatio);
+  VP_TRY(checkPositive("density", m.density, 1e6));
+  VP_TRY(checkNonNegative("massDamping", m.massDamping, 1e3));
+  VP_TRY(checkNonNegative("stiffnessDamping", m.stiffnessDamping, 10.0));
+  VP_TRY(checkNonNegative("friction", m.friction, 1e3));
+  if (!(in.solver.tolerance > 0.0 && in.solver.tolerance < 1.0))
+    return fail(Status::InvalidArgument, "solverTolerance = %g: must be in (0, 1)", in.solver.tolerance);
+  if (in.solver.maxIterations < 1 || in.solver.maxIterations > 100000)
+    return fail(Status::InvalidArgument, "solverMaxIterations = %d: must be in [1, 100000]", in.solver.maxIterations);
+  if (!in.pose.position.allFinite())
+    return fail(Status::InvalidArgument, "pose.position = (%g, %g, %g): must be finite", in.pose.position.x(),
+                in.pose.position.y(), in.pose.position.z());
+  const double qn = in.pose.rotation.norm();
+  if (!std::isfinite(qn) || std::abs(qn - 1.0) > 1e-2)
+    return fail(Status::InvalidArgument, "pose.rotation: must be a unit quaternion (norm %g)", qn);
+  if (!in.linearVelocity.allFinite())
+    return fail(Status::InvalidArgument, "linearVelocity = (%g, %g, %g): must be finite", in.linearVelocity.x(),
+                in.linearVelocity.y(), in.linearVelocity.z());
+  if (in.renderMesh) {
+    const SurfaceMesh& r = *in.renderMesh;
+    const int32_t n = static_cast<int32_t>(r.vertices.size());
+    for (size_t i = 0; i < r.vertices.size(); ++i)
+      if (!r.vertices[i].allFinite()) return fail(Status::InvalidArgument, "renderVertices[%zu]: not finite", i);
+    for (size_t t = 0; t < r.triangles.size(); ++t)
+      for (int k = 0; k < 3; ++k)
+        if (r.triangles[t][k] < 0 || r.triangles[t][k] >= n)
+          return fail(Status::InvalidArgument, "renderTriangles[%zu] = %d: out of range [0, %d)", 3 * t + k,
+                      r.triangles[t][k], n);
+  }
+  TetMesh mesh = in.mesh;  // the repair works on a copy so a failure leaves `in` unchanged
+  Status s = validateAndRepairTetMesh(mesh, nullptr);
+  if (!ok(s)) return addErrorContext(s, "mesh");
+  in.mesh = std::move(mesh);
+  in.pose.rotation.normalize();
+  return Status::Ok;
+}
+
+}  // namespace vp
