@@ -10,6 +10,7 @@
 #include <Eigen/Geometry>
 
 #include <chrono>
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -124,9 +125,8 @@ TEST(GeometryEmbedding, PointTetDistance) {
 
 TEST(GeometryEmbedding, RenderMeshFollowsRigidMotion) {
   const SphereMesh s = voxelSphere(9);
-  // The render mesh: the icosphere pushed out by 2% so that some vertices poke out of the
-  // hull? No: the hull covers the surface, so push a copy far enough to leave it and
-  // exercise extrapolated coordinates too.
+  // The render mesh: the icosphere, with every third vertex pushed out to 1.5 x radius so
+  // that some points lie outside the voxel hull and use extrapolated coordinates.
   SurfaceMesh render = s.surface;
   for (size_t v = 0; v < render.vertices.size(); v += 3) render.vertices[v] *= 1.5;
   std::vector<EmbeddedPoint> embedding;
