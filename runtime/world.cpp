@@ -37,6 +37,8 @@ World::World(const WorldConfig& config)
 Status World::create(const WorldConfig& config, std::unique_ptr<World>* out) {
   VP_TRY(validateWorldConfig(config));
   out->reset(new World(config));
+  log(LogLevel::Info, "world created: %d worker(s)%s, frame budget %g ms", config.workerCount,
+      config.tasks.enqueue ? " (host task system)" : "", config.frameBudgetMs);
   return Status::Ok;
 }
 

@@ -1,6 +1,7 @@
 /* Compiled as strict C99 (-pedantic-errors -Werror): proves the public header is C-clean,
  * and exercises the basic lifecycle through the C ABI only. */
 #include <stdio.h>
+#include <string.h>
 
 #include "volphys/volphys.h"
 
@@ -37,6 +38,13 @@ int main(void) {
   ball.mass = -1.0f;
   if (vpColliderCreate(world, &ball, &ballId) != vpStatus_InvalidArgument) return 9;
   printf("c99 smoke: %s\n", vpGetLastError());
+  /* C may pass any int as an enum: out-of-range values are rejected by name. */
+  if (vpSetLogCallback(NULL, NULL, (vpLogLevel)17) != vpStatus_InvalidArgument) return 12;
+  if (!strstr(vpGetLastError(), "minLevel = 17")) return 13;
+  ball.mass = 1.0f;
+  ball.bodyType = (vpBodyType)9;
+  if (vpColliderCreate(world, &ball, &ballId) != vpStatus_InvalidArgument) return 14;
+  if (!strstr(vpGetLastError(), "bodyType = 9")) return 15;
   if (vpWorldDestroy(world) != vpStatus_Ok) return 10;
   if (vpColliderGetPose(ballId, &pose) != vpStatus_InvalidId) return 11;
   return 0;
