@@ -25,6 +25,7 @@ struct PhaseStats {
 struct ActorStats {
   ActorKind kind = ActorKind::Rigid;
   uint32_t index1 = 0;
+  uint32_t generation = 0;
   double totalMs = 0.0;
   bool diverged = false;  // the step blew up and the actor was restored to its previous state
   std::array<PhaseStats, kPhaseCount> phases{};

@@ -153,6 +153,7 @@ Status World::step(double dt) {
     ActorStats a;
     a.kind = ActorKind::Deformable;
     a.index1 = h.index1;
+    a.generation = h.generation;
     DeformableStepInput input;
     input.dt = dt;
     input.gravity = config_.gravity;

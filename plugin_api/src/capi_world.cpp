@@ -8,16 +8,6 @@
 using namespace vp;
 using namespace vp::capi;
 
-namespace {
-
-void fillPhase(const PhaseStats& in, vpPhaseStats* out) {
-  out->ms = static_cast<float>(in.ms);
-  out->iterations = in.iterations;
-  out->residual = static_cast<float>(in.residual);
-  out->budgetCut = in.budgetCut ? 1 : 0;
-}
-
-}  // namespace
 
 extern "C" {
 
@@ -143,13 +133,7 @@ vpStatus vpWorldGetActorStats(vpWorldId id, int32_t actorIndex, vpActorStats* ou
     const StepStats& s = w->lastStats();
     if (actorIndex < 0 || actorIndex >= static_cast<int32_t>(s.actors.size()))
       return fail(Status::InvalidArgument, "actorIndex = %d: must be in [0, %zu)", actorIndex, s.actors.size());
-    const ActorStats& a = s.actors[static_cast<size_t>(actorIndex)];
-    *out = vpActorStats{};
-    out->kind = static_cast<vpActorKind>(a.kind);
-    out->index1 = a.index1;
-    out->totalMs = static_cast<float>(a.totalMs);
-    static_assert(kPhaseCount == vpPhase_Count && kPhaseCount <= VP_MAX_PHASES, "phase tables must match");
-    for (int p = 0; p < kPhaseCount; ++p) fillPhase(a.phases[p], &out->phases[p]);
+    fillActorStats(s.actors[static_cast<size_t>(actorIndex)], out);
     return Status::Ok;
   });
 }

@@ -74,4 +74,33 @@ Status resolveCollider(vpColliderId id, World** world, Collider** out) {
   return Status::Ok;
 }
 
+Status resolveDeformable(vpDeformableId id, World** world, DeformableBody** out) {
+  if (id.index1 == 0) return fail(Status::InvalidId, "deformable id is null");
+  Status s = resolveWorld(id.world, world);
+  if (!ok(s)) {
+    if (s == Status::InvalidId)
+      return fail(Status::InvalidId, "deformable id (%u, %u) belongs to world (%u, %u), which is stale or null",
+                  id.index1, id.generation, id.world.index1, id.world.generation);
+    return s;
+  }
+  DeformableBody* d = (*world)->deformable(handleOf(id));
+  if (!d) return fail(Status::InvalidId, "deformable id (%u, %u) is stale or destroyed", id.index1, id.generation);
+  *out = d;
+  return Status::Ok;
+}
+
+void fillActorStats(const ActorStats& in, vpActorStats* out) {
+  *out = vpActorStats{};
+  out->kind = static_cast<vpActorKind>(in.kind);
+  out->index1 = in.index1;
+  out->totalMs = static_cast<float>(in.totalMs);
+  out->diverged = in.diverged ? 1 : 0;
+  static_assert(kPhaseCount == vpPhase_Count && kPhaseCount <= VP_MAX_PHASES, "phase tables must match");
+  for (int p = 0; p < kPhaseCount; ++p) {
+    const PhaseStats& ph = in.phases[p];
+    out->phases[p] = vpPhaseStats{static_cast<float>(ph.ms), ph.iterations, static_cast<float>(ph.residual),
+                                  ph.budgetCut ? 1 : 0};
+  }
+}
+
 }  // namespace vp::capi

@@ -18,7 +18,15 @@ size_t liveWorldCount();
 Status resolveWorld(vpWorldId id, World** out);
 Status resolveCollider(vpColliderId id, World** world, Collider** out);
 
+Status resolveDeformable(vpDeformableId id, World** world, DeformableBody** out);
+
 inline vpColliderId makeColliderId(vpWorldId world, ColliderHandle h) { return vpColliderId{h.index1, h.generation, world}; }
 inline ColliderHandle handleOf(vpColliderId id) { return ColliderHandle{id.index1, id.generation}; }
+inline vpDeformableId makeDeformableId(vpWorldId world, DeformableHandle h) {
+  return vpDeformableId{h.index1, h.generation, world};
+}
+inline DeformableHandle handleOf(vpDeformableId id) { return DeformableHandle{id.index1, id.generation}; }
+
+void fillActorStats(const ActorStats& in, vpActorStats* out);
 
 }  // namespace vp::capi

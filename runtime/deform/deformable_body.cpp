@@ -9,6 +9,7 @@
 #include "deform/bb_element_matrices.h"
 #include "deform/deformation_gradient.h"
 #include "deform/polar_decomposition.h"
+#include "geometry/tet_mesh_boundary.h"
 #include "deform/linear_tet_corotation.h"
 
 namespace vp {
@@ -72,7 +73,12 @@ Status DeformableBody::create(DeformableDesc desc, std::unique_ptr<DeformableBod
   b.diagInverse_.resize(9 * static_cast<size_t>(b.nodeCount_));
   b.pinned_.assign(static_cast<size_t>(b.nodeCount_), 0);
   b.constrained_.assign(static_cast<size_t>(b.nodeCount_), 0);
+  b.renderRest_ = desc.renderMesh ? *desc.renderMesh : tetMeshBoundary(mesh);
+  Status embedded = embedPoints(mesh, b.renderRest_.vertices, &b.embedding_);
+  if (!ok(embedded)) return addErrorContext(embedded, "render mesh");
   b.desc_ = std::move(desc);
+  b.desc_.renderMesh.reset();  // kept once, in renderRest_
+  b.updateRenderMesh(*TaskSystem::create(TaskHooks{}, 1));
   *out = std::move(body);
   return Status::Ok;
 }
@@ -193,6 +199,22 @@ double DeformableBody::elasticEnergy() const {
 void DeformableBody::elasticForces(TaskSystem& tasks, Array<double>* out) {
   corotateAndAssemble(tasks, 1.0);
   out->assign(force_.begin(), force_.end());
+}
+
+void DeformableBody::updateRenderMesh(TaskSystem& tasks) {
+  renderPositions_.resize(embedding_.size());
+  parallelFor(tasks, static_cast<int64_t>(embedding_.size()), 2048, [&](int64_t begin, int64_t end) {
+    for (int64_t p = begin; p < end; ++p) {
+      const EmbeddedPoint& e = embedding_[p];
+      Vec3 pos = Vec3::Zero();
+      for (int a = 0; a < 4; ++a) {
+        const int32_t node = elementNodes_[4 * static_cast<int64_t>(e.tet) + a];
+        pos += e.barycentric[a] * Vec3(x_[3 * node], x_[3 * node + 1], x_[3 * node + 2]);
+      }
+      renderPositions_[p] = pos;
+    }
+  });
+  computeVertexNormals(renderPositions_, renderRest_.triangles, &renderNormals_);
 }
 
 void DeformableBody::corotateAndAssemble(TaskSystem& tasks, double stiffnessScale) {
@@ -319,6 +341,7 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
   }
   stats->diverged = diverged;
   std::fill(externalForce_.begin(), externalForce_.end(), 0.0);
+  updateRenderMesh(tasks);
   lap(Phase::Embed);
 }
 

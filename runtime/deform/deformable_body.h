@@ -18,6 +18,7 @@
 #include "core/task_system.h"
 #include "deform/deformable_desc.h"
 #include "deform/element_coloring.h"
+#include "geometry/embedding.h"
 #include "linalg/block_sparse_matrix.h"
 #include "linalg/conjugate_gradient.h"
 #include "step_stats.h"
@@ -63,6 +64,12 @@ class DeformableBody {
   void detachAll(uint32_t colliderIndex1, uint32_t colliderGeneration);
   int64_t attachmentCount() const { return static_cast<int64_t>(attachments_.size()); }
 
+  // The render mesh: the desc's, else the tet mesh's boundary; embedded in the tets and
+  // moved with them each step. Positions and normals are in the world frame.
+  const SurfaceMesh& renderMeshRest() const { return renderRest_; }
+  const std::vector<Vec3>& renderPositions() const { return renderPositions_; }
+  const std::vector<Vec3>& renderNormals() const { return renderNormals_; }
+
   double kineticEnergy() const;
   // Corotated strain energy Σ V (μ ε:ε + λ/2 tr(ε)²) at the current positions.
   double elasticEnergy() const;
@@ -74,6 +81,7 @@ class DeformableBody {
  private:
   DeformableBody() = default;
   void corotateAndAssemble(TaskSystem& tasks, double stiffnessScale);
+  void updateRenderMesh(TaskSystem& tasks);
   Status checkNode(const char* what, int32_t node) const;
 
   struct Attachment {
@@ -95,6 +103,9 @@ class DeformableBody {
   ElementColoring coloring_;
   BlockSparseMatrix<double> matrix_;
   Array<int32_t> scatter_;          // 16 block indices per element
+  SurfaceMesh renderRest_;
+  std::vector<EmbeddedPoint> embedding_;
+  std::vector<Vec3> renderPositions_, renderNormals_;
   // Per-step scratch kept to avoid allocation in the hot path.
   Array<double> force_, rhs_, vNext_, diagInverse_, backupX_, backupV_;
   Array<uint8_t> constrained_;

@@ -150,8 +150,15 @@ typedef struct vpColliderId {
   vpWorldId world;
 } vpColliderId;
 
+typedef struct vpDeformableId {
+  uint32_t index1; /* slot + 1; 0 = null */
+  uint32_t generation;
+  vpWorldId world;
+} vpDeformableId;
+
 VP_API int vpWorldIdIsNull(vpWorldId id);
 VP_API int vpColliderIdIsNull(vpColliderId id);
+VP_API int vpDeformableIdIsNull(vpDeformableId id);
 
 /* ---------------------------------------------------------------- world */
 
@@ -221,6 +228,7 @@ typedef struct vpActorStats {
   vpActorKind kind;
   uint32_t index1;    /* the actor id's index1 (0 for the rigid pseudo-actor) */
   float totalMs;
+  int32_t diverged;   /* the step blew up; the actor was restored to its previous state */
   vpPhaseStats phases[VP_MAX_PHASES]; /* indexed by vpPhase */
 } vpActorStats;
 
@@ -314,6 +322,69 @@ VP_API vpStatus vpWorldGetColliderCount(vpWorldId world, int32_t* outCount);
 VP_API vpStatus vpWorldGetColliders(vpWorldId world, vpColliderId* outIds, int32_t capacity, int32_t* outCount);
 /* Scene files may name colliders; finds the first one with that name. */
 VP_API vpStatus vpWorldFindCollider(vpWorldId world, const char* name, vpColliderId* outCollider);
+
+/* ---------------------------------------------------------------- deformables */
+
+/* A deformable volume: corotational linear elasticity on a tetrahedral mesh, implicit
+ * (backward Euler), solved by preconditioned CG within the frame budget. Give exactly one
+ * mesh source: vertices + tets, tetFile, or surfaceFile. Meshes are in the actor's local
+ * frame; `pose` places them. The render mesh is renderVertices/renderTriangles if given, the
+ * surface file's own mesh for surfaceFile, else the boundary of the tet mesh; it is embedded
+ * in the tets and follows them. */
+typedef struct vpDeformableDef {
+  uint32_t structSize;
+  int32_t degree;               /* element degree; 1 (2 and 3: vpStatus_Unsupported for now) */
+  const float* vertices;        /* xyz per node, vertexCount of them (copied) */
+  int32_t vertexCount;
+  const int32_t* tets;          /* 4 node indices per tet, tetCount of them (copied) */
+  int32_t tetCount;
+  const char* tetFile;          /* Gmsh .msh (2.2 / 4.1 ASCII), TetGen .node/.ele, legacy VTK */
+  const char* surfaceFile;      /* closed surface, any format assimp reads: voxel-tetrahedralized */
+  int32_t voxelResolution;      /* for surfaceFile: cells along the longest axis; default 12 */
+  const float* renderVertices;  /* optional explicit render mesh (copied) */
+  int32_t renderVertexCount;
+  const int32_t* renderTriangles;
+  int32_t renderTriangleCount;
+  vpTransform pose;
+  vpVec3 linearVelocity;
+  float youngsModulus;          /* Pa, default 1e6 */
+  float poissonRatio;           /* (-0.999, 0.4999), default 0.3 */
+  float density;                /* kg/m^3, default 1000 */
+  float massDamping;            /* Rayleigh alpha (1/s), default 0 */
+  float stiffnessDamping;       /* Rayleigh beta (s), default 0.01 */
+  float friction;               /* Coulomb coefficient against colliders, default 0.5 */
+  float solverTolerance;        /* relative residual, default 1e-3 */
+  int32_t solverMaxIterations;  /* default 200 */
+  void* userData;
+} vpDeformableDef;
+
+VP_API vpDeformableDef vpDefaultDeformableDef(void);
+VP_API vpStatus vpDeformableCreate(vpWorldId world, const vpDeformableDef* def, vpDeformableId* outDeformable);
+VP_API vpStatus vpDeformableDestroy(vpDeformableId deformable);
+VP_API vpStatus vpDeformableIsValid(vpDeformableId deformable); /* Ok or InvalidId */
+VP_API vpStatus vpDeformableGetNodeCount(vpDeformableId deformable, int32_t* outCount);
+/* Node positions / velocities, xyz per node, into a host array of capacity nodes. */
+VP_API vpStatus vpDeformableGetPositions(vpDeformableId deformable, float* outXyz, int32_t capacity);
+VP_API vpStatus vpDeformableGetVelocities(vpDeformableId deformable, float* outXyz, int32_t capacity);
+VP_API vpStatus vpDeformableSetVelocities(vpDeformableId deformable, const float* xyz, int32_t nodeCount);
+/* A force acts during the next step only; an impulse changes the velocity now. */
+VP_API vpStatus vpDeformableApplyForce(vpDeformableId deformable, int32_t node, vpVec3 force);
+VP_API vpStatus vpDeformableApplyImpulse(vpDeformableId deformable, int32_t node, vpVec3 impulse);
+/* Pinned nodes stay where they are (zero velocity) until unpinned. All-or-nothing. */
+VP_API vpStatus vpDeformablePin(vpDeformableId deformable, const int32_t* nodes, int32_t count);
+VP_API vpStatus vpDeformableUnpin(vpDeformableId deformable, const int32_t* nodes, int32_t count);
+/* The nodes follow the collider rigidly from their current offset in its frame (until the
+ * collider is destroyed). The collider must belong to the same world. */
+VP_API vpStatus vpDeformableAttach(vpDeformableId deformable, const int32_t* nodes, int32_t count,
+                                   vpColliderId collider);
+VP_API vpStatus vpDeformableGetRenderMeshSize(vpDeformableId deformable, int32_t* outVertexCount,
+                                              int32_t* outTriangleCount);
+/* Any output may be NULL. Capacities are in vertices and triangles. */
+VP_API vpStatus vpDeformableGetRenderMesh(vpDeformableId deformable, float* outPositions, float* outNormals,
+                                          int32_t vertexCapacity, int32_t* outTriangles, int32_t triangleCapacity);
+/* Statistics of this actor in the last step (zeros before the first). */
+VP_API vpStatus vpDeformableGetStats(vpDeformableId deformable, vpActorStats* outStats);
+VP_API vpStatus vpWorldFindDeformable(vpWorldId world, const char* name, vpDeformableId* outDeformable);
 
 /* ---------------------------------------------------------------- build information */
 

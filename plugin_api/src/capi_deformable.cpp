@@ -1,0 +1,300 @@
+// Deformable volume actors: creation from vpDeformableDef, state access, constraints.
+#include <cmath>
+
+#include "capi_convert.h"
+#include "deform/deformable_mesh_source.h"
+#include "world_registry.h"
+
+using namespace vp;
+using namespace vp::capi;
+
+namespace {
+
+Status copyPoints(const char* field, const float* xyz, int32_t count, std::vector<Vec3>* out) {
+  if (count <= 0 || count > (1 << 26))
+    return fail(Status::InvalidArgument, "%sCount = %d: must be in [1, 2^26]", field, count);
+  out->resize(static_cast<size_t>(count));
+  for (int32_t i = 0; i < count; ++i) (*out)[i] = Vec3(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+  return Status::Ok;
+}
+
+Status translateMeshSource(const vpDeformableDef& d, DeformableMeshSource* src) {
+  if (d.vertices || d.tets) {
+    if (!d.vertices || !d.tets)
+      return fail(Status::InvalidArgument, "vertices/tets: both arrays are needed (got %p and %p)",
+                  static_cast<const void*>(d.vertices), static_cast<const void*>(d.tets));
+    TetMesh mesh;
+    VP_TRY(copyPoints("vertex", d.vertices, d.vertexCount, &mesh.vertices));
+    if (d.tetCount <= 0 || d.tetCount > (1 << 26))
+      return fail(Status::InvalidArgument, "tetCount = %d: must be in [1, 2^26]", d.tetCount);
+    mesh.tets.resize(static_cast<size_t>(d.tetCount));
+    std::memcpy(mesh.tets.data(), d.tets, sizeof(int32_t) * 4 * static_cast<size_t>(d.tetCount));
+    src->tets = std::move(mesh);
+  }
+  if (d.tetFile) src->tetFile = d.tetFile;
+  if (d.surfaceFile) src->surfaceFile = d.surfaceFile;
+  src->voxelResolution = d.voxelResolution;
+  if (d.renderVertices || d.renderTriangles) {
+    if (!d.renderVertices || !d.renderTriangles)
+      return fail(Status::InvalidArgument, "renderVertices/renderTriangles: both arrays are needed");
+    SurfaceMesh render;
+    VP_TRY(copyPoints("renderVertex", d.renderVertices, d.renderVertexCount, &render.vertices));
+    if (d.renderTriangleCount <= 0 || d.renderTriangleCount > (1 << 26))
+      return fail(Status::InvalidArgument, "renderTriangleCount = %d: must be in [1, 2^26]", d.renderTriangleCount);
+    render.triangles.resize(static_cast<size_t>(d.renderTriangleCount));
+    std::memcpy(render.triangles.data(), d.renderTriangles, sizeof(int32_t) * 3 * size_t(d.renderTriangleCount));
+    src->renderMesh = std::move(render);
+  }
+  return Status::Ok;
+}
+
+Status checkNodeArray(const int32_t* nodes, int32_t count) {
+  if (count < 0) return fail(Status::InvalidArgument, "count = %d: must be >= 0", count);
+  if (count > 0 && !nodes) return fail(Status::InvalidArgument, "nodes is NULL with count = %d", count);
+  return Status::Ok;
+}
+
+}  // namespace
+
+extern "C" {
+
+int vpDeformableIdIsNull(vpDeformableId id) { return id.index1 == 0; }
+
+vpDeformableDef vpDefaultDeformableDef(void) {
+  const DeformableDesc defaults;
+  vpDeformableDef d{};
+  d.structSize = sizeof(vpDeformableDef);
+  d.degree = 1;
+  d.voxelResolution = 12;
+  d.pose.rotation.w = 1.0f;
+  d.youngsModulus = static_cast<float>(defaults.material.youngsModulus);
+  d.poissonRatio = static_cast<float>(defaults.material.poissonRatio);
+  d.density = static_cast<float>(defaults.material.density);
+  d.massDamping = static_cast<float>(defaults.material.massDamping);
+  d.stiffnessDamping = static_cast<float>(defaults.material.stiffnessDamping);
+  d.friction = static_cast<float>(defaults.material.friction);
+  d.solverTolerance = static_cast<float>(defaults.solver.tolerance);
+  d.solverMaxIterations = defaults.solver.maxIterations;
+  return d;
+}
+
+vpStatus vpDeformableCreate(vpWorldId worldId, const vpDeformableDef* def, vpDeformableId* out) {
+  return guarded(__func__, [&] {
+    VP_REQUIRE_POINTER(def);
+    VP_REQUIRE_POINTER(out);
+    World* world;
+    VP_TRY(resolveWorld(worldId, &world));
+    VP_TRY(checkStructSize("vpDeformableDef", def->structSize, sizeof(vpDeformableDef)));
+    DeformableMeshSource source;
+    VP_TRY(translateMeshSource(*def, &source));
+    DeformableDesc desc;
+    VP_TRY(resolveDeformableMesh(source, &desc));
+    desc.degree = def->degree;
+    desc.pose = toPose(def->pose);
+    desc.linearVelocity = toVec3(def->linearVelocity);
+    desc.material.youngsModulus = def->youngsModulus;
+    desc.material.poissonRatio = def->poissonRatio;
+    desc.material.density = def->density;
+    desc.material.massDamping = def->massDamping;
+    desc.material.stiffnessDamping = def->stiffnessDamping;
+    desc.material.friction = def->friction;
+    desc.solver.tolerance = def->solverTolerance;
+    desc.solver.maxIterations = def->solverMaxIterations;
+    desc.userData = def->userData;
+    DeformableHandle h;
+    VP_TRY(world->createDeformable(std::move(desc), &h));
+    *out = makeDeformableId(worldId, h);
+    return Status::Ok;
+  });
+}
+
+vpStatus vpDeformableDestroy(vpDeformableId id) {
+  return guarded(__func__, [&] {
+    World* w;
+    DeformableBody* d;
+    VP_TRY(resolveDeformable(id, &w, &d));
+    return w->destroyDeformable(handleOf(id));
+  });
+}
+
+vpStatus vpDeformableIsValid(vpDeformableId id) {
+  return guarded(__func__, [&] {
+    World* w;
+    DeformableBody* d;
+    return resolveDeformable(id, &w, &d);
+  });
+}
+
+vpStatus vpDeformableGetNodeCount(vpDeformableId id, int32_t* outCount) {
+  return guarded(__func__, [&] {
+    VP_REQUIRE_POINTER(outCount);
+    World* w;
+    DeformableBody* d;
+    VP_TRY(resolveDeformable(id, &w, &d));
+    *outCount = d->nodeCount();
+    return Status::Ok;
+  });
+}
+
+static Status copyOut(const Array<double>& values, int32_t nodes, float* out, int32_t capacity) {
+  if (!out) return fail(Status::InvalidArgument, "outXyz is NULL");
+  if (capacity < nodes)
+    return fail(Status::InvalidArgument, "capacity = %d: the actor has %d nodes", capacity, nodes);
+  for (int64_t i = 0; i < 3 * static_cast<int64_t>(nodes); ++i) out[i] = static_cast<float>(values[i]);
+  return Status::Ok;
+}
+
+vpStatus vpDeformableGetPositions(vpDeformableId id, float* outXyz, int32_t capacity) {
+  return guarded(__func__, [&] {
+    World* w;
+    DeformableBody* d;
+    VP_TRY(resolveDeformable(id, &w, &d));
+    return copyOut(d->positions(), d->nodeCount(), outXyz, capacity);
+  });
+}
+
+vpStatus vpDeformableGetVelocities(vpDeformableId id, float* outXyz, int32_t capacity) {
+  return guarded(__func__, [&] {
+    World* w;
+    DeformableBody* d;
+    VP_TRY(resolveDeformable(id, &w, &d));
+    return copyOut(d->velocities(), d->nodeCount(), outXyz, capacity);
+  });
+}
+
+vpStatus vpDeformableSetVelocities(vpDeformableId id, const float* xyz, int32_t nodeCount) {
+  return guarded(__func__, [&] {
+    VP_REQUIRE_POINTER(xyz);
+    World* w;
+    DeformableBody* d;
+    VP_TRY(resolveDeformable(id, &w, &d));
+    if (nodeCount != d->nodeCount())
+      return fail(Status::InvalidArgument, "nodeCount = %d: the actor has %d nodes", nodeCount, d->nodeCount());
+    std::vector<double> v(3 * static_cast<size_t>(nodeCount));
+    for (size_t i = 0; i < v.size(); ++i) v[i] = xyz[i];
+    return d->setVelocities(v.data(), static_cast<int64_t>(v.size()));
+  });
+}
+
+vpStatus vpDeformableApplyForce(vpDeformableId id, int32_t node, vpVec3 force) {
+  return guarded(__func__, [&] {
+    World* w;
+    DeformableBody* d;
+    VP_TRY(resolveDeformable(id, &w, &d));
+    return d->applyForce(node, toVec3(force));
+  });
+}
+
+vpStatus vpDeformableApplyImpulse(vpDeformableId id, int32_t node, vpVec3 impulse) {
+  return guarded(__func__, [&] {
+    World* w;
+    DeformableBody* d;
+    VP_TRY(resolveDeformable(id, &w, &d));
+    return d->applyImpulse(node, toVec3(impulse));
+  });
+}
+
+vpStatus vpDeformablePin(vpDeformableId id, const int32_t* nodes, int32_t count) {
+  return guarded(__func__, [&] {
+    World* w;
+    DeformableBody* d;
+    VP_TRY(resolveDeformable(id, &w, &d));
+    VP_TRY(checkNodeArray(nodes, count));
+    return d->setPinned(nodes, count, true);
+  });
+}
+
+vpStatus vpDeformableUnpin(vpDeformableId id, const int32_t* nodes, int32_t count) {
+  return guarded(__func__, [&] {
+    World* w;
+    DeformableBody* d;
+    VP_TRY(resolveDeformable(id, &w, &d));
+    VP_TRY(checkNodeArray(nodes, count));
+    return d->setPinned(nodes, count, false);
+  });
+}
+
+vpStatus vpDeformableAttach(vpDeformableId id, const int32_t* nodes, int32_t count, vpColliderId colliderId) {
+  return guarded(__func__, [&] {
+    World* w;
+    DeformableBody* d;
+    VP_TRY(resolveDeformable(id, &w, &d));
+    VP_TRY(checkNodeArray(nodes, count));
+    if (colliderId.world.index1 != id.world.index1 || colliderId.world.generation != id.world.generation)
+      return fail(Status::InvalidId, "collider (%u, %u) belongs to world (%u, %u), the deformable to world (%u, %u)",
+                  colliderId.index1, colliderId.generation, colliderId.world.index1, colliderId.world.generation,
+                  id.world.index1, id.world.generation);
+    World* cw;
+    Collider* c;
+    VP_TRY(resolveCollider(colliderId, &cw, &c));
+    return d->attach(nodes, count, colliderId.index1, colliderId.generation, *c);
+  });
+}
+
+vpStatus vpDeformableGetRenderMeshSize(vpDeformableId id, int32_t* outVertexCount, int32_t* outTriangleCount) {
+  return guarded(__func__, [&] {
+    World* w;
+    DeformableBody* d;
+    VP_TRY(resolveDeformable(id, &w, &d));
+    if (outVertexCount) *outVertexCount = static_cast<int32_t>(d->renderPositions().size());
+    if (outTriangleCount) *outTriangleCount = static_cast<int32_t>(d->renderMeshRest().triangles.size());
+    return Status::Ok;
+  });
+}
+
+vpStatus vpDeformableGetRenderMesh(vpDeformableId id, float* outPositions, float* outNormals, int32_t vertexCapacity,
+                                   int32_t* outTriangles, int32_t triangleCapacity) {
+  return guarded(__func__, [&] {
+    World* w;
+    DeformableBody* d;
+    VP_TRY(resolveDeformable(id, &w, &d));
+    const auto& pos = d->renderPositions();
+    const auto& nrm = d->renderNormals();
+    const auto& tris = d->renderMeshRest().triangles;
+    const int32_t nv = static_cast<int32_t>(pos.size()), nt = static_cast<int32_t>(tris.size());
+    if ((outPositions || outNormals) && vertexCapacity < nv)
+      return fail(Status::InvalidArgument, "vertexCapacity = %d: the render mesh has %d vertices", vertexCapacity, nv);
+    if (outTriangles && triangleCapacity < nt)
+      return fail(Status::InvalidArgument, "triangleCapacity = %d: the render mesh has %d triangles",
+                  triangleCapacity, nt);
+    for (int32_t i = 0; i < nv; ++i)
+      for (int k = 0; k < 3; ++k) {
+        if (outPositions) outPositions[3 * i + k] = static_cast<float>(pos[i][k]);
+        if (outNormals) outNormals[3 * i + k] = static_cast<float>(nrm[i][k]);
+      }
+    if (outTriangles) std::memcpy(outTriangles, tris.data(), sizeof(int32_t) * 3 * static_cast<size_t>(nt));
+    return Status::Ok;
+  });
+}
+
+vpStatus vpDeformableGetStats(vpDeformableId id, vpActorStats* outStats) {
+  return guarded(__func__, [&] {
+    VP_REQUIRE_POINTER(outStats);
+    World* w;
+    DeformableBody* d;
+    VP_TRY(resolveDeformable(id, &w, &d));
+    *outStats = vpActorStats{};
+    outStats->kind = vpActorKind_Deformable;
+    outStats->index1 = id.index1;
+    for (const ActorStats& a : w->lastStats().actors)
+      if (a.kind == ActorKind::Deformable && a.index1 == id.index1 && a.generation == id.generation)
+        fillActorStats(a, outStats);
+    return Status::Ok;
+  });
+}
+
+vpStatus vpWorldFindDeformable(vpWorldId id, const char* name, vpDeformableId* out) {
+  return guarded(__func__, [&] {
+    VP_REQUIRE_POINTER(name);
+    VP_REQUIRE_POINTER(out);
+    World* w;
+    VP_TRY(resolveWorld(id, &w));
+    DeformableHandle h;
+    if (!w->findDeformable(name, &h))
+      return fail(Status::InvalidArgument, "name = \"%s\": no deformable has this name", name);
+    *out = makeDeformableId(id, h);
+    return Status::Ok;
+  });
+}
+
+}  // extern "C"

@@ -1,0 +1,55 @@
+#include "deform/deformable_mesh_source.h"
+
+#include "geometry/box_tet_mesh.h"
+#include "geometry/tet_mesh_boundary.h"
+#include "geometry/tet_mesh_file.h"
+#include "geometry/voxel_tetrahedralizer.h"
+
+namespace vp {
+
+Status resolveDeformableMesh(const DeformableMeshSource& source, DeformableDesc* desc) {
+  const int sources = int(source.tets.has_value()) + int(!source.tetFile.empty()) + int(!source.surfaceFile.empty()) +
+                      int(source.boxCells.has_value());
+  if (sources != 1)
+    return fail(Status::InvalidArgument,
+                "mesh source: give exactly one of vertices/tets, tetFile, surfaceFile or box (got %d)", sources);
+  TetMesh mesh;
+  std::optional<SurfaceMesh> render = source.renderMesh;
+  if (source.tets) {
+    mesh = *source.tets;
+  } else if (!source.tetFile.empty()) {
+    Status s = readTetMeshFile(source.tetFile, &mesh);
+    if (!ok(s)) return addErrorContext(s, "tetFile");
+  } else if (!source.surfaceFile.empty()) {
+    if (source.voxelResolution < 1 || source.voxelResolution > 256)
+      return fail(Status::InvalidArgument, "voxelResolution = %d: must be in [1, 256]", source.voxelResolution);
+    SurfaceMesh surface;
+    Status s = loadSurfaceMesh(source.surfaceFile, &surface);
+    if (!ok(s)) return addErrorContext(s, "surfaceFile");
+    s = tetrahedralizeVoxels(surface, source.voxelResolution, &mesh);
+    if (!ok(s)) return addErrorContext(s, "surfaceFile");
+    if (!render) render = std::move(surface);
+  } else {
+    const auto& c = *source.boxCells;
+    for (int k = 0; k < 3; ++k)
+      if (c[k] < 1 || c[k] > 512)
+        return fail(Status::InvalidArgument, "box.cells[%d] = %d: must be in [1, 512]", k, c[k]);
+    for (int k = 0; k < 3; ++k)
+      if (!(source.boxSize[k] > 0.0 && source.boxSize[k] <= 1e4))
+        return fail(Status::InvalidArgument, "box.size[%d] = %g: must be in (0, 1e4]", k, source.boxSize[k]);
+    mesh = makeBoxTetMesh(c, source.boxSize, -0.5 * source.boxSize);  // centred on the origin
+  }
+  if (!source.renderFile.empty()) {
+    if (source.renderMesh)
+      return fail(Status::InvalidArgument, "renderFile: give either render arrays or renderFile, not both");
+    SurfaceMesh loaded;
+    Status s = loadSurfaceMesh(source.renderFile, &loaded);
+    if (!ok(s)) return addErrorContext(s, "renderFile");
+    render = std::move(loaded);
+  }
+  desc->mesh = std::move(mesh);
+  desc->renderMesh = std::move(render);  // empty: the body uses the tet boundary
+  return Status::Ok;
+}
+
+}  // namespace vp

@@ -1,0 +1,207 @@
+// Deformable actors through the C ABI.
+#include <cmath>
+#include <fstream>
+#include <vector>
+
+#include "capi_test_support.h"
+
+namespace {
+
+// A 2x1x1 box of 2 cubes (12 tets) as plain arrays.
+struct BoxArrays {
+  std::vector<float> vertices;
+  std::vector<int32_t> tets;
+  BoxArrays() {
+    for (int k = 0; k < 2; ++k)
+      for (int j = 0; j < 2; ++j)
+        for (int i = 0; i < 3; ++i) vertices.insert(vertices.end(), {float(i), float(j), float(k)});
+    auto v = [](int i, int j, int k) { return i + 3 * (j + 2 * k); };
+    const int orders[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+    for (int cube = 0; cube < 2; ++cube)
+      for (const auto& o : orders) {
+        int c[3] = {cube, 0, 0};
+        int32_t t[4];
+        t[0] = v(c[0], c[1], c[2]);
+        for (int s = 0; s < 3; ++s) c[o[s]]++, t[s + 1] = v(c[0], c[1], c[2]);
+        tets.insert(tets.end(), t, t + 4);  // orientation repaired by the library if needed
+      }
+  }
+  vpDeformableDef def() const {
+    vpDeformableDef d = vpDefaultDeformableDef();
+    d.vertices = vertices.data();
+    d.vertexCount = static_cast<int32_t>(vertices.size() / 3);
+    d.tets = tets.data();
+    d.tetCount = static_cast<int32_t>(tets.size() / 4);
+    return d;
+  }
+};
+
+TEST(CApiDeformable, CreateStepReadAndDestroy) {
+  ScopedWorld w;
+  BoxArrays box;
+  vpDeformableDef def = box.def();
+  def.pose.position = vpVec3{0, 5, 0};
+  vpDeformableId id{};
+  ASSERT_VP_OK(vpDeformableCreate(w.id, &def, &id));
+  int32_t nodes = 0;
+  ASSERT_VP_OK(vpDeformableGetNodeCount(id, &nodes));
+  EXPECT_EQ(nodes, 12);
+  for (int i = 0; i < 30; ++i) ASSERT_VP_OK(vpWorldStep(w.id, 1.0f / 60.0f));
+  std::vector<float> x(3 * nodes), v(3 * nodes);
+  ASSERT_VP_OK(vpDeformableGetPositions(id, x.data(), nodes));
+  ASSERT_VP_OK(vpDeformableGetVelocities(id, v.data(), nodes));
+  // Free fall for 0.5 s: backward Euler gives v = -g t exactly for a rigidly falling body.
+  for (int i = 0; i < nodes; ++i) EXPECT_NEAR(v[3 * i + 1], -9.81f * 0.5f, 1e-3f);
+  EXPECT_LT(x[1], 5.0f - 1.0f);
+  vpActorStats stats;
+  ASSERT_VP_OK(vpDeformableGetStats(id, &stats));
+  EXPECT_EQ(stats.kind, vpActorKind_Deformable);
+  EXPECT_GE(stats.phases[vpPhase_Solve].iterations, 0);
+  EXPECT_EQ(stats.diverged, 0);
+  vpStepStats step = vpDefaultStepStats();
+  ASSERT_VP_OK(vpWorldGetStepStats(w.id, &step));
+  EXPECT_EQ(step.actorCount, 2);  // rigid pseudo-actor + this deformable
+  // Render mesh: the boundary of the box (all 12 nodes, 2 triangles per outer square).
+  int32_t rv = 0, rt = 0;
+  ASSERT_VP_OK(vpDeformableGetRenderMeshSize(id, &rv, &rt));
+  EXPECT_EQ(rv, 12);
+  EXPECT_EQ(rt, 2 * (2 + 2 + 2 + 2 + 1 + 1));
+  std::vector<float> rp(3 * rv), rn(3 * rv);
+  std::vector<int32_t> tris(3 * rt);
+  ASSERT_VP_OK(vpDeformableGetRenderMesh(id, rp.data(), rn.data(), rv, tris.data(), rt));
+  for (int i = 0; i < rv; ++i) EXPECT_NEAR(std::sqrt(rn[3 * i] * rn[3 * i] + rn[3 * i + 1] * rn[3 * i + 1] +
+                                                      rn[3 * i + 2] * rn[3 * i + 2]), 1.0f, 1e-5f);
+  EXPECT_EQ(vpDeformableGetRenderMesh(id, rp.data(), nullptr, rv - 1, nullptr, 0), vpStatus_InvalidArgument);
+  EXPECT_TRUE(lastErrorContains("vertexCapacity"));
+  ASSERT_VP_OK(vpDeformableDestroy(id));
+  EXPECT_EQ(vpDeformableIsValid(id), vpStatus_InvalidId);
+  EXPECT_EQ(vpDeformableGetPositions(id, x.data(), nodes), vpStatus_InvalidId);
+}
+
+TEST(CApiDeformable, PinAndAttach) {
+  ScopedWorld w;
+  BoxArrays box;
+  vpDeformableDef def = box.def();
+  def.youngsModulus = 1e7f;
+  vpDeformableId id;
+  ASSERT_VP_OK(vpDeformableCreate(w.id, &def, &id));
+  // Pin the x = 0 end; attach the x = 2 end to a kinematic collider that moves up 0.1 m.
+  const int32_t left[] = {0, 3, 6, 9}, right[] = {2, 5, 8, 11};
+  ASSERT_VP_OK(vpDeformablePin(id, left, 4));
+  vpColliderDef handle = vpDefaultColliderDef();
+  handle.bodyType = vpBodyType_Kinematic;
+  handle.shape.radius = 0.1f;
+  handle.pose.position = vpVec3{2, 0.5f, 0.5f};
+  vpColliderId handleId;
+  ASSERT_VP_OK(vpColliderCreate(w.id, &handle, &handleId));
+  ASSERT_VP_OK(vpDeformableAttach(id, right, 4, handleId));
+  vpTransform target = {{2, 0.6f, 0.5f}, {0, 0, 0, 1}};
+  ASSERT_VP_OK(vpColliderSetKinematicTarget(handleId, &target));
+  ASSERT_VP_OK(vpWorldStep(w.id, 1.0f / 60.0f));
+  std::vector<float> x(36);
+  ASSERT_VP_OK(vpDeformableGetPositions(id, x.data(), 12));
+  EXPECT_FLOAT_EQ(x[0], 0.0f);
+  EXPECT_FLOAT_EQ(x[1], 0.0f);
+  EXPECT_NEAR(x[3 * 2 + 1], 0.1f, 1e-5f);  // node 2 rode up with the collider
+  EXPECT_NEAR(x[3 * 11 + 1], 1.1f, 1e-5f);
+  // Bad node lists are rejected whole.
+  const int32_t bad[] = {1, 12};
+  EXPECT_EQ(vpDeformablePin(id, bad, 2), vpStatus_InvalidArgument);
+  EXPECT_TRUE(lastErrorContains("nodes[1] = 12"));
+  EXPECT_EQ(vpDeformablePin(id, nullptr, 3), vpStatus_InvalidArgument);
+  // Destroying the collider releases the attachment; stepping stays fine.
+  ASSERT_VP_OK(vpColliderDestroy(handleId));
+  ASSERT_VP_OK(vpWorldStep(w.id, 1.0f / 60.0f));
+}
+
+TEST(CApiDeformable, AttachToAColliderOfAnotherWorldIsRejected) {
+  ScopedWorld a, b;
+  BoxArrays box;
+  vpDeformableDef def = box.def();
+  vpDeformableId id;
+  ASSERT_VP_OK(vpDeformableCreate(a.id, &def, &id));
+  vpColliderDef c = vpDefaultColliderDef();
+  vpColliderId foreign;
+  ASSERT_VP_OK(vpColliderCreate(b.id, &c, &foreign));
+  const int32_t nodes[] = {0};
+  EXPECT_EQ(vpDeformableAttach(id, nodes, 1, foreign), vpStatus_InvalidId);
+  EXPECT_TRUE(lastErrorContains("belongs to world"));
+}
+
+TEST(CApiDeformable, DefRejectsBadValuesAndAddsNothing) {
+  ScopedWorld w;
+  BoxArrays box;
+  struct Case {
+    const char* message;
+    vpStatus status;
+    void (*mutate)(vpDeformableDef&);
+  } cases[] = {
+      {"vpDeformableDef.structSize", vpStatus_VersionMismatch, [](vpDeformableDef& d) { d.structSize = 8; }},
+      {"youngsModulus = 0", vpStatus_InvalidArgument, [](vpDeformableDef& d) { d.youngsModulus = 0; }},
+      {"poissonRatio = 0.6", vpStatus_InvalidArgument, [](vpDeformableDef& d) { d.poissonRatio = 0.6f; }},
+      {"density = -1", vpStatus_InvalidArgument, [](vpDeformableDef& d) { d.density = -1; }},
+      {"solverTolerance = nan", vpStatus_InvalidArgument, [](vpDeformableDef& d) { d.solverTolerance = NAN; }},
+      {"solverMaxIterations = -3", vpStatus_InvalidArgument, [](vpDeformableDef& d) { d.solverMaxIterations = -3; }},
+      {"degree = 3", vpStatus_Unsupported, [](vpDeformableDef& d) { d.degree = 3; }},
+      {"degree = 0", vpStatus_InvalidArgument, [](vpDeformableDef& d) { d.degree = 0; }},
+      {"vertexCount = 0", vpStatus_InvalidArgument, [](vpDeformableDef& d) { d.vertexCount = 0; }},
+      {"tetCount = -1", vpStatus_InvalidArgument, [](vpDeformableDef& d) { d.tetCount = -1; }},
+      {"both arrays", vpStatus_InvalidArgument, [](vpDeformableDef& d) { d.tets = nullptr; }},
+      {"exactly one of", vpStatus_InvalidArgument, [](vpDeformableDef& d) { d.tetFile = "x.msh"; }},
+      {"exactly one of", vpStatus_InvalidArgument,
+       [](vpDeformableDef& d) { d.vertices = nullptr, d.tets = nullptr; }},
+      {"tetFile", vpStatus_IoError,
+       [](vpDeformableDef& d) { d.vertices = nullptr, d.tets = nullptr, d.tetFile = "/nope/beam.msh"; }},
+      {"surfaceFile", vpStatus_IoError,
+       [](vpDeformableDef& d) { d.vertices = nullptr, d.tets = nullptr, d.surfaceFile = "/nope/duck.obj"; }},
+      {"pose.position", vpStatus_InvalidArgument, [](vpDeformableDef& d) { d.pose.position.x = INFINITY; }},
+  };
+  for (const Case& c : cases) {
+    vpDeformableDef def = box.def();
+    c.mutate(def);
+    vpDeformableId id{};
+    EXPECT_EQ(vpDeformableCreate(w.id, &def, &id), c.status) << c.message << ": " << vpGetLastError();
+    EXPECT_TRUE(lastErrorContains(c.message)) << "'" << vpGetLastError() << "' lacks '" << c.message << "'";
+    EXPECT_TRUE(vpDeformableIdIsNull(id));
+  }
+  // A tet index out of range, an inverted-and-degenerate tet: the mesh validator names them.
+  std::vector<int32_t> badTets = box.tets;
+  badTets[5] = 40;
+  vpDeformableDef def = box.def();
+  def.tets = badTets.data();
+  vpDeformableId id{};
+  EXPECT_EQ(vpDeformableCreate(w.id, &def, &id), vpStatus_InvalidArgument);
+  EXPECT_TRUE(lastErrorContains("mesh")) << vpGetLastError();
+  vpStepStats stats = vpDefaultStepStats();
+  ASSERT_VP_OK(vpWorldStep(w.id, 0.01f));
+  ASSERT_VP_OK(vpWorldGetStepStats(w.id, &stats));
+  EXPECT_EQ(stats.actorCount, 1);  // only the rigid pseudo-actor: nothing was added
+}
+
+TEST(CApiDeformable, FromATetFileAndFromASurfaceFile) {
+  ScopedWorld w;
+  vpDeformableDef def = vpDefaultDeformableDef();
+  def.tetFile = VP_TEST_DATA_DIR "/geometry/cube_v41.msh";
+  vpDeformableId fromTets;
+  ASSERT_VP_OK(vpDeformableCreate(w.id, &def, &fromTets)) << def.tetFile;
+  // A closed cube surface, voxelized at resolution 4: render mesh is the surface itself.
+  const std::string obj = ::testing::TempDir() + "/vp_cube_surface.obj";
+  {
+    std::ofstream f(obj);
+    f << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+         "f 1 4 3\nf 1 3 2\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 4 8 7\nf 4 7 3\nf 1 5 8\nf 1 8 4\nf 2 3 7\nf 2 7 6\n";
+  }
+  def = vpDefaultDeformableDef();
+  def.surfaceFile = obj.c_str();
+  def.voxelResolution = 4;
+  vpDeformableId fromSurface;
+  ASSERT_VP_OK(vpDeformableCreate(w.id, &def, &fromSurface));
+  int32_t nodes = 0, rv = 0, rt = 0;
+  ASSERT_VP_OK(vpDeformableGetNodeCount(fromSurface, &nodes));
+  ASSERT_VP_OK(vpDeformableGetRenderMeshSize(fromSurface, &rv, &rt));
+  EXPECT_GE(nodes, 125);  // at least the 5x5x5 lattice of the kept cells
+  EXPECT_EQ(rv, 8);
+  EXPECT_EQ(rt, 12);
+}
+
+}  // namespace
