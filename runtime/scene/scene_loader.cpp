@@ -5,6 +5,7 @@
 #include <optional>
 #include <sstream>
 
+#include "deform/deformable_mesh_source.h"
 #include "scene/json_fields.h"
 #include "world.h"
 
@@ -18,9 +19,21 @@ struct SceneWorldSettings {
   std::optional<double> frameBudgetMs;
 };
 
+struct SceneAttachment {
+  std::string collider;
+  std::vector<int32_t> nodes;
+};
+
+struct SceneDeformable {
+  DeformableDesc desc;
+  std::vector<int32_t> pinnedNodes;
+  std::vector<SceneAttachment> attachments;
+};
+
 struct Scene {
   SceneWorldSettings world;
   std::vector<ColliderDesc> colliders;
+  std::vector<SceneDeformable> deformables;
 };
 
 Status parseEnum(const JsonObject& obj, const char* key, std::initializer_list<const char*> names, int* out) {
@@ -91,17 +104,8 @@ Status parseShape(const JsonObject& obj, const std::string& baseDirectory, Shape
   return Status::Ok;
 }
 
-Status parseCollider(const JsonObject& obj, const std::string& baseDirectory, ColliderDesc* desc) {
-  VP_TRY(obj.checkKeys({"name", "bodyType", "shape", "position", "rotation", "axisAngle", "linearVelocity",
-                        "angularVelocity", "mass", "friction", "restitution", "linearDamping", "angularDamping"}));
-  VP_TRY(obj.string("name", &desc->name));
-  int body = 0;
-  VP_TRY(parseEnum(obj, "bodyType", {"static", "kinematic", "dynamic"}, &body));
-  desc->bodyType = static_cast<BodyType>(body);
-  std::optional<JsonObject> shape;
-  VP_TRY(obj.object("shape", &shape, true));
-  VP_TRY(parseShape(*shape, baseDirectory, &desc->shape));
-  VP_TRY(obj.vec3("position", &desc->pose.position));
+Status parsePose(const JsonObject& obj, Pose* pose) {
+  VP_TRY(obj.vec3("position", &pose->position));
   if (obj.has("rotation") && obj.has("axisAngle"))
     return fail(Status::ParseError, "%s: give either rotation or axisAngle, not both", obj.path().c_str());
   if (obj.has("rotation")) {
@@ -109,7 +113,7 @@ Status parseCollider(const JsonObject& obj, const std::string& baseDirectory, Co
     if (!q.is_array() || q.size() != 4 || !q[0].is_number() || !q[1].is_number() || !q[2].is_number() ||
         !q[3].is_number())
       return fail(Status::ParseError, "%s: expected a quaternion [x, y, z, w]", obj.pathOf("rotation").c_str());
-    desc->pose.rotation = Quat(q[3].get<double>(), q[0].get<double>(), q[1].get<double>(), q[2].get<double>());
+    pose->rotation = Quat(q[3].get<double>(), q[0].get<double>(), q[1].get<double>(), q[2].get<double>());
   }
   if (obj.has("axisAngle")) {
     const json& a = obj.at("axisAngle");
@@ -121,8 +125,22 @@ Status parseCollider(const JsonObject& obj, const std::string& baseDirectory, Co
     if (!axis.allFinite() || axis.norm() < 1e-9 || !std::isfinite(degrees))
       return fail(Status::ParseError, "%s: the axis must be finite and non-zero, the angle finite",
                   obj.pathOf("axisAngle").c_str());
-    desc->pose.rotation = Quat(Eigen::AngleAxisd(degrees * M_PI / 180.0, axis.normalized()));
+    pose->rotation = Quat(Eigen::AngleAxisd(degrees * M_PI / 180.0, axis.normalized()));
   }
+  return Status::Ok;
+}
+
+Status parseCollider(const JsonObject& obj, const std::string& baseDirectory, ColliderDesc* desc) {
+  VP_TRY(obj.checkKeys({"name", "bodyType", "shape", "position", "rotation", "axisAngle", "linearVelocity",
+                        "angularVelocity", "mass", "friction", "restitution", "linearDamping", "angularDamping"}));
+  VP_TRY(obj.string("name", &desc->name));
+  int body = 0;
+  VP_TRY(parseEnum(obj, "bodyType", {"static", "kinematic", "dynamic"}, &body));
+  desc->bodyType = static_cast<BodyType>(body);
+  std::optional<JsonObject> shape;
+  VP_TRY(obj.object("shape", &shape, true));
+  VP_TRY(parseShape(*shape, baseDirectory, &desc->shape));
+  VP_TRY(parsePose(obj, &desc->pose));
   VP_TRY(obj.vec3("linearVelocity", &desc->linearVelocity));
   VP_TRY(obj.vec3("angularVelocity", &desc->angularVelocity));
   VP_TRY(obj.number("mass", &desc->mass));
@@ -136,9 +154,93 @@ Status parseCollider(const JsonObject& obj, const std::string& baseDirectory, Co
   return Status::Ok;
 }
 
+// Nodes whose world position (rest shape placed by the pose) lies in the box {min, max}.
+Status parseNodeBox(const JsonObject& parent, const char* key, const DeformableDesc& desc,
+                    std::vector<int32_t>* nodes) {
+  std::optional<JsonObject> box;
+  VP_TRY(parent.object(key, &box, true));
+  VP_TRY(box->checkKeys({"min", "max"}));
+  Vec3 lo(NAN, NAN, NAN), hi(NAN, NAN, NAN);
+  VP_TRY(box->vec3("min", &lo));
+  VP_TRY(box->vec3("max", &hi));
+  if (!lo.allFinite() || !hi.allFinite() || (hi - lo).minCoeff() < 0.0)
+    return fail(Status::ParseError, "%s: needs finite min and max with min <= max", box->path().c_str());
+  for (size_t i = 0; i < desc.mesh.vertices.size(); ++i) {
+    const Vec3 x = desc.pose.apply(desc.mesh.vertices[i]);
+    if ((x - lo).minCoeff() >= 0.0 && (hi - x).minCoeff() >= 0.0) nodes->push_back(static_cast<int32_t>(i));
+  }
+  if (nodes->empty()) return fail(Status::ParseError, "%s: selects no node of the mesh", box->path().c_str());
+  return Status::Ok;
+}
+
+std::string resolvePath(const std::string& path, const std::string& baseDirectory) {
+  return path.empty() || path[0] == '/' ? path : baseDirectory + "/" + path;
+}
+
+Status parseDeformable(const JsonObject& obj, const std::string& baseDirectory, SceneDeformable* out) {
+  VP_TRY(obj.checkKeys({"name", "degree", "box", "tetFile", "surfaceFile", "voxelResolution", "renderFile", "position",
+                        "rotation", "axisAngle", "linearVelocity", "youngsModulus", "poissonRatio", "density",
+                        "massDamping", "stiffnessDamping", "friction", "solverTolerance", "solverMaxIterations",
+                        "pinBox", "attach"}));
+  DeformableDesc& desc = out->desc;
+  DeformableMeshSource source;
+  VP_TRY(obj.string("name", &desc.name));
+  VP_TRY(obj.integer("degree", &desc.degree));
+  if (obj.has("box")) {
+    std::optional<JsonObject> box;
+    VP_TRY(obj.object("box", &box, true));
+    VP_TRY(box->checkKeys({"cells", "size"}));
+    Vec3 cells(4, 4, 4);
+    VP_TRY(box->vec3("cells", &cells));
+    for (int k = 0; k < 3; ++k)
+      if (cells[k] != std::floor(cells[k]) || cells[k] < 1 || cells[k] > 512)
+        return fail(Status::ParseError, "%s.cells: expected 3 integers in [1, 512]", box->path().c_str());
+    source.boxCells = std::array<int, 3>{int(cells[0]), int(cells[1]), int(cells[2])};
+    VP_TRY(box->vec3("size", &source.boxSize));
+  }
+  VP_TRY(obj.string("tetFile", &source.tetFile));
+  VP_TRY(obj.string("surfaceFile", &source.surfaceFile));
+  VP_TRY(obj.integer("voxelResolution", &source.voxelResolution));
+  VP_TRY(obj.string("renderFile", &source.renderFile));
+  source.tetFile = resolvePath(source.tetFile, baseDirectory);
+  source.surfaceFile = resolvePath(source.surfaceFile, baseDirectory);
+  source.renderFile = resolvePath(source.renderFile, baseDirectory);
+  VP_TRY(parsePose(obj, &desc.pose));
+  VP_TRY(obj.vec3("linearVelocity", &desc.linearVelocity));
+  VP_TRY(obj.number("youngsModulus", &desc.material.youngsModulus));
+  VP_TRY(obj.number("poissonRatio", &desc.material.poissonRatio));
+  VP_TRY(obj.number("density", &desc.material.density));
+  VP_TRY(obj.number("massDamping", &desc.material.massDamping));
+  VP_TRY(obj.number("stiffnessDamping", &desc.material.stiffnessDamping));
+  VP_TRY(obj.number("friction", &desc.material.friction));
+  VP_TRY(obj.number("solverTolerance", &desc.solver.tolerance));
+  VP_TRY(obj.integer("solverMaxIterations", &desc.solver.maxIterations));
+  // Resolve and validate now so that applying the scene cannot fail half-way.
+  Status s = resolveDeformableMesh(source, &desc);
+  if (!ok(s)) return addErrorContext(s, obj.path());
+  s = validateDeformableDesc(desc);
+  if (!ok(s)) return addErrorContext(s, obj.path());
+  if (obj.has("pinBox")) VP_TRY(parseNodeBox(obj, "pinBox", desc, &out->pinnedNodes));
+  if (obj.has("attach")) {
+    const json& list = obj.at("attach");
+    if (!list.is_array()) return fail(Status::ParseError, "%s: expected an array", obj.pathOf("attach").c_str());
+    for (size_t i = 0; i < list.size(); ++i) {
+      JsonObject a(list[i], obj.pathOf("attach") + "[" + std::to_string(i) + "]");
+      VP_TRY(a.checkKeys({"collider", "box"}));
+      SceneAttachment attachment;
+      VP_TRY(a.string("collider", &attachment.collider));
+      if (attachment.collider.empty())
+        return fail(Status::ParseError, "%s: missing required key", a.pathOf("collider").c_str());
+      VP_TRY(parseNodeBox(a, "box", desc, &attachment.nodes));
+      out->attachments.push_back(std::move(attachment));
+    }
+  }
+  return Status::Ok;
+}
+
 Status parseScene(const json& root, const std::string& baseDirectory, Scene* scene) {
   JsonObject top(root, "$");
-  VP_TRY(top.checkKeys({"version", "world", "colliders"}));
+  VP_TRY(top.checkKeys({"version", "world", "colliders", "deformables"}));
   int version = 1;
   VP_TRY(top.integer("version", &version));
   if (version != 1) return fail(Status::ParseError, "$.version = %d: this library reads version 1", version);
@@ -172,6 +274,32 @@ Status parseScene(const json& root, const std::string& baseDirectory, Scene* sce
       scene->colliders.push_back(std::move(desc));
     }
   }
+  if (top.has("deformables")) {
+    const json& list = root.at("deformables");
+    if (!list.is_array())
+      return fail(Status::ParseError, "$.deformables: expected an array, got %s", jsonTypeName(list));
+    for (size_t i = 0; i < list.size(); ++i) {
+      JsonObject obj(list[i], "$.deformables[" + std::to_string(i) + "]");
+      SceneDeformable d;
+      VP_TRY(parseDeformable(obj, baseDirectory, &d));
+      scene->deformables.push_back(std::move(d));
+    }
+  }
+  return Status::Ok;
+}
+
+// Attachments name colliders of this scene or ones already in the world.
+Status checkAttachmentTargets(const Scene& scene, const World& world) {
+  for (size_t d = 0; d < scene.deformables.size(); ++d)
+    for (size_t a = 0; a < scene.deformables[d].attachments.size(); ++a) {
+      const std::string& name = scene.deformables[d].attachments[a].collider;
+      bool found = false;
+      for (const ColliderDesc& c : scene.colliders) found = found || c.name == name;
+      ColliderHandle h;
+      if (!found && !world.findCollider(name, &h))
+        return fail(Status::ParseError, "$.deformables[%zu].attach[%zu].collider = \"%s\": no collider has this name",
+                    d, a, name.c_str());
+    }
   return Status::Ok;
 }
 
@@ -187,18 +315,37 @@ Status loadSceneFromString(World& world, const std::string& text, const std::str
   }
   Scene scene;
   VP_TRY(parseScene(root, baseDirectory, &scene));
+  VP_TRY(checkAttachmentTargets(scene, world));
 
-  // Apply. Everything was validated; only allocation can fail from here, and then the
-  // colliders added so far are removed again.
-  std::vector<ColliderHandle> added;
+  // Apply. Everything was validated; only allocation can fail from here, and then what was
+  // added so far is removed again.
+  std::vector<ColliderHandle> addedColliders;
+  std::vector<DeformableHandle> addedDeformables;
+  auto rollBack = [&](Status s) {
+    for (DeformableHandle d : addedDeformables) world.destroyDeformable(d);
+    for (ColliderHandle c : addedColliders) world.destroyCollider(c);
+    return s;
+  };
   for (ColliderDesc& desc : scene.colliders) {
     ColliderHandle h;
     Status s = world.createCollider(std::move(desc), &h);
-    if (!ok(s)) {
-      for (ColliderHandle a : added) world.destroyCollider(a);
-      return s;
+    if (!ok(s)) return rollBack(s);
+    addedColliders.push_back(h);
+  }
+  for (SceneDeformable& d : scene.deformables) {
+    DeformableHandle h;
+    Status s = world.createDeformable(std::move(d.desc), &h);
+    if (!ok(s)) return rollBack(s);
+    addedDeformables.push_back(h);
+    DeformableBody* body = world.deformable(h);
+    s = body->setPinned(d.pinnedNodes.data(), static_cast<int64_t>(d.pinnedNodes.size()), true);
+    for (const SceneAttachment& a : d.attachments) {
+      ColliderHandle c{};
+      world.findCollider(a.collider, &c);
+      if (ok(s)) s = body->attach(a.nodes.data(), static_cast<int64_t>(a.nodes.size()), c.index1, c.generation,
+                                  *world.collider(c));
     }
-    added.push_back(h);
+    if (!ok(s)) return rollBack(s);
   }
   if (scene.world.gravity) world.setGravity(*scene.world.gravity);
   if (scene.world.frameBudgetMs) world.setFrameBudget(*scene.world.frameBudgetMs);

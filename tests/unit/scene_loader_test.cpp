@@ -75,6 +75,7 @@ TEST_P(SceneLoaderRejects, WithThePathAndChangesNothing) {
   EXPECT_NE(std::string(lastError()).find(bad.messagePart), std::string::npos)
       << "message: " << lastError() << "\nexpected to contain: " << bad.messagePart;
   EXPECT_EQ(world->colliderCount(), 0u);
+  EXPECT_EQ(world->deformableCount(), 0u);
   EXPECT_EQ(world->config().frameBudgetMs, budgetBefore);
 }
 
@@ -119,7 +120,44 @@ INSTANTIATE_TEST_SUITE_P(
                  Status::InvalidArgument, "$.colliders[1]: shape.indices[2] = 5"},
         BadScene{GOOD_PREFIX R"({"shape": {"type": "triangleMesh", "file": "missing.obj"}}]})", Status::IoError,
                  "$.colliders[1]: shape.meshFile: file './missing.obj': cannot be opened"},
-        BadScene{GOOD_PREFIX R"(7]})", Status::ParseError, "$.colliders[1]: expected an object, got number"}));
+        BadScene{GOOD_PREFIX R"(7]})", Status::ParseError, "$.colliders[1]: expected an object, got number"},
+        BadScene{R"({"colliders": [{"shape": {"type": "plane"}}], "deformables": [{"box": {}, "stiff": 1}]})",
+                 Status::ParseError, "$.deformables[0].stiff: unknown key"},
+        BadScene{R"({"colliders": [{"shape": {"type": "plane"}}], "deformables": [{"box": {"cells": [2, 0, 2]}}]})",
+                 Status::ParseError, "$.deformables[0].box.cells: expected 3 integers"},
+        BadScene{R"({"colliders": [{"shape": {"type": "plane"}}], "deformables": [{}]})", Status::InvalidArgument,
+                 "$.deformables[0]: mesh source: give exactly one of"},
+        BadScene{R"({"colliders": [{"shape": {"type": "plane"}}], "deformables": [{"box": {}, "youngsModulus": -1}]})",
+                 Status::InvalidArgument, "$.deformables[0]: youngsModulus = -1"},
+        BadScene{R"({"colliders": [{"shape": {"type": "plane"}}], "deformables": [{"tetFile": "none.msh"}]})",
+                 Status::IoError, "$.deformables[0]: tetFile"},
+        BadScene{R"({"colliders": [{"shape": {"type": "plane"}}],
+                     "deformables": [{"box": {}, "pinBox": {"min": [5, 5, 5], "max": [6, 6, 6]}}]})",
+                 Status::ParseError, "$.deformables[0].pinBox: selects no node"},
+        BadScene{R"({"colliders": [{"shape": {"type": "plane"}}],
+                     "deformables": [{"box": {}, "attach": [{"collider": "ghost", "box": {"min": [-1, -1, -1], "max": [1, 1, 1]}}]}]})",
+                 Status::ParseError, "$.deformables[0].attach[0].collider = \"ghost\": no collider"}));
+
+TEST(SceneLoader, DeformableWithPinsAndAnAttachment) {
+  auto world = makeWorld();
+  ASSERT_EQ(loadScene(*world, VP_TEST_DATA_DIR "/scenes/jelly_bridge.json"), Status::Ok) << lastError();
+  ASSERT_EQ(world->deformableCount(), 1u);
+  DeformableHandle h;
+  ASSERT_TRUE(world->findDeformable("bridge", &h));
+  DeformableBody* bridge = world->deformable(h);
+  EXPECT_EQ(bridge->nodeCount(), 9 * 3 * 3);
+  EXPECT_EQ(bridge->attachmentCount(), 9);
+  int pinned = 0;
+  for (int32_t i = 0; i < bridge->nodeCount(); ++i) pinned += bridge->pinned(i);
+  EXPECT_EQ(pinned, 9);
+  EXPECT_DOUBLE_EQ(bridge->desc().material.youngsModulus, 2e5);
+  for (int i = 0; i < 60; ++i) ASSERT_EQ(world->step(1.0 / 60.0), Status::Ok);
+  // Held at both ends, the bridge sags in the middle but stays up.
+  double minY = 1e9;
+  for (int32_t i = 0; i < bridge->nodeCount(); ++i) minY = std::min(minY, bridge->positions()[3 * i + 1]);
+  EXPECT_LT(minY, 1.0 - 0.125 - 1e-3);
+  EXPECT_GT(minY, 0.0);
+}
 
 TEST(SceneLoader, MissingFileIsAnIoError) {
   auto world = makeWorld();
