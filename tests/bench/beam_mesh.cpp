@@ -1,5 +1,7 @@
 #include "beam_mesh.h"
 
+#include "geometry/box_tet_mesh.h"
+
 #include <array>
 #include <cmath>
 #include <sstream>
@@ -9,50 +11,14 @@ namespace vp::bench {
 BeamMesh makeBeamMesh(int cellsX, int cellsY, int cellsZ, double lengthX, double sizeY, double sizeZ) {
   BeamMesh mesh;
   if (cellsX < 1 || cellsY < 1 || cellsZ < 1) return mesh;
-  const int pointsX = cellsX + 1, pointsY = cellsY + 1, pointsZ = cellsZ + 1;
-  // X is the slowest index so the clamped face (i == 0) is one contiguous block of vertices.
-  auto vertexIndex = [&](int i, int j, int k) { return static_cast<int32_t>((i * pointsY + j) * pointsZ + k); };
-
-  mesh.vertices.reserve(size_t(3) * pointsX * pointsY * pointsZ);
-  for (int i = 0; i < pointsX; ++i)
-    for (int j = 0; j < pointsY; ++j)
-      for (int k = 0; k < pointsZ; ++k) {
-        // Multiply before dividing so the end faces land exactly on 0 and the given sizes.
-        mesh.vertices.push_back(lengthX * i / cellsX);
-        mesh.vertices.push_back(sizeY * j / cellsY);
-        mesh.vertices.push_back(sizeZ * k / cellsZ);
-        if (i == 0) mesh.fixedVertices.push_back(vertexIndex(i, j, k));
-      }
-  mesh.tipVertex = vertexIndex(cellsX, cellsY / 2, cellsZ / 2);
-
-  // The six tets of a cube are the monotone paths from corner 000 to corner 111: one per order
-  // (a, b, c) in which the axes are stepped. The tet (000, e_a, e_a + e_b, 111) has the sign of
-  // det[e_a, e_b, e_c], i.e. of the permutation, so odd orders swap their last two corners.
-  struct AxisOrder {
-    std::array<int, 3> axes;
-    bool odd;
-  };
-  const std::array<AxisOrder, 6> orders = {{{{0, 1, 2}, false},
-                                            {{1, 2, 0}, false},
-                                            {{2, 0, 1}, false},
-                                            {{0, 2, 1}, true},
-                                            {{1, 0, 2}, true},
-                                            {{2, 1, 0}, true}}};
-  mesh.tets.reserve(size_t(24) * cellsX * cellsY * cellsZ);
-  for (int i = 0; i < cellsX; ++i)
-    for (int j = 0; j < cellsY; ++j)
-      for (int k = 0; k < cellsZ; ++k)
-        for (const AxisOrder& order : orders) {
-          std::array<int, 3> corner = {i, j, k};
-          std::array<int32_t, 4> tet{};
-          tet[0] = vertexIndex(corner[0], corner[1], corner[2]);
-          for (int step = 0; step < 3; ++step) {
-            ++corner[order.axes[step]];
-            tet[step + 1] = vertexIndex(corner[0], corner[1], corner[2]);
-          }
-          if (order.odd) std::swap(tet[2], tet[3]);
-          mesh.tets.insert(mesh.tets.end(), tet.begin(), tet.end());
-        }
+  // The runtime's box mesher (same Kuhn split the voxel tetrahedralizer and scenes use).
+  const TetMesh box = makeBoxTetMesh({cellsX, cellsY, cellsZ}, Vec3(lengthX, sizeY, sizeZ), Vec3::Zero());
+  for (const Vec3& v : box.vertices) mesh.vertices.insert(mesh.vertices.end(), {v.x(), v.y(), v.z()});
+  for (const auto& t : box.tets) mesh.tets.insert(mesh.tets.end(), t.begin(), t.end());
+  for (int32_t i = 0; i < static_cast<int32_t>(box.vertices.size()); ++i)
+    if (box.vertices[i].x() == 0.0) mesh.fixedVertices.push_back(i);
+  // Lattice order is x fastest: vertex (i, j, k) = i + (cx + 1) (j + (cy + 1) k).
+  mesh.tipVertex = cellsX + (cellsX + 1) * (cellsY / 2 + (cellsY + 1) * (cellsZ / 2));
   return mesh;
 }
 
@@ -68,15 +34,9 @@ bool beamCellsForTetCount(int64_t tetCount, BeamCells* cells) {
 }
 
 double signedTetVolume(const BeamMesh& mesh, int32_t tet) {
-  const double* p[4];
-  for (int c = 0; c < 4; ++c) p[c] = &mesh.vertices[size_t(3) * mesh.tets[size_t(4) * tet + c]];
-  double e[3][3];
-  for (int c = 0; c < 3; ++c)
-    for (int d = 0; d < 3; ++d) e[c][d] = p[c + 1][d] - p[0][d];
-  const double tripleProduct = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
-                               e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
-                               e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
-  return tripleProduct / 6.0;
+  Vec3 p[4];
+  for (int c = 0; c < 4; ++c) p[c] = Eigen::Map<const Vec3>(&mesh.vertices[size_t(3) * mesh.tets[size_t(4) * tet + c]]);
+  return vp::signedTetVolume(p[0], p[1], p[2], p[3]);
 }
 
 std::string findBeamMeshDefect(const BeamMesh& mesh, double expectedVolume) {

@@ -1,0 +1,88 @@
+// VolPhys' linear deformable on the cantilever beam: 4 m x 1 m x 1 m, x = 0 face
+// clamped, E = 1e8 Pa, nu = 0.3, rho = 1000, gravity, dt = 1/60 s, 60 steps, 2 threads.
+// BM_DeformLinearBeam uses the actor's default solver tolerance (what a game runs);
+// BM_DeformLinearBeamReference solves to 1e-8 to measure how far the default's tip_dy is
+// from a converged run. The mesh is the one the Bullet comparison uses (beam_mesh.h).
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+
+#include "beam_mesh.h"
+#include "core/task_system.h"
+#include "deform/deformable_body.h"
+
+namespace vp::bench {
+namespace {
+
+struct BeamRun {
+  double seconds = 0.0, tipDy = 0.0, cgIterations = 0.0;
+  bool ok = false;
+};
+
+BeamRun runBeam(int64_t tets, double tolerance, int maxIterations, int workers) {
+  BeamRun run;
+  BeamCells cells;
+  if (!beamCellsForTetCount(tets, &cells)) return run;
+  const BeamMesh beam = makeBeamMesh(cells.x, cells.y, cells.z, 4.0, 1.0, 1.0);
+  if (!findBeamMeshDefect(beam, 4.0).empty()) return run;
+  DeformableDesc desc;
+  for (int32_t i = 0; i < beam.vertexCount(); ++i)
+    desc.mesh.vertices.emplace_back(beam.vertices[3 * i], beam.vertices[3 * i + 1], beam.vertices[3 * i + 2]);
+  for (int32_t t = 0; t < beam.tetCount(); ++t)
+    desc.mesh.tets.push_back({beam.tets[4 * t], beam.tets[4 * t + 1], beam.tets[4 * t + 2], beam.tets[4 * t + 3]});
+  desc.material.youngsModulus = 1e8;
+  desc.material.poissonRatio = 0.3;
+  desc.material.density = 1000.0;
+  desc.solver.tolerance = tolerance;
+  desc.solver.maxIterations = maxIterations;
+  std::unique_ptr<DeformableBody> body;
+  if (!ok(DeformableBody::create(std::move(desc), &body))) return run;
+  body->setPinned(beam.fixedVertices.data(), static_cast<int64_t>(beam.fixedVertices.size()), true);
+  auto tasks = TaskSystem::create(TaskHooks{}, workers);
+  DeformableStepInput in;
+  in.dt = 1.0 / 60.0;
+  in.gravity = Vec3(0, -9.81, 0);
+  in.tasks = tasks.get();
+  const double y0 = body->positions()[3 * beam.tipVertex + 1];
+  const auto start = std::chrono::steady_clock::now();
+  int iterations = 0;
+  for (int step = 0; step < 60; ++step) {
+    ActorStats stats;
+    body->step(in, &stats);
+    iterations += stats.phase(Phase::Solve).iterations;
+  }
+  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  run.tipDy = body->positions()[3 * beam.tipVertex + 1] - y0;
+  run.cgIterations = iterations / 60.0;
+  run.ok = true;
+  return run;
+}
+
+void report(benchmark::State& state, const BeamRun& run) {
+  state.SetIterationTime(run.seconds);
+  state.counters["hz"] = 60.0 / run.seconds;
+  state.counters["cg_iters"] = run.cgIterations;
+  state.counters["tip_dy"] = run.tipDy;
+}
+
+void BM_DeformLinearBeam(benchmark::State& state) {
+  for (auto _ : state) {
+    const BeamRun run = runBeam(state.range(0), DeformableSolverSettings{}.tolerance,
+                                DeformableSolverSettings{}.maxIterations, 2);
+    if (!run.ok) return state.SkipWithError("beam setup failed");
+    report(state, run);
+  }
+}
+BENCHMARK(BM_DeformLinearBeam)->Arg(12288)->Arg(98304)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(1);
+
+void BM_DeformLinearBeamReference(benchmark::State& state) {
+  for (auto _ : state) {
+    const BeamRun run = runBeam(state.range(0), 1e-8, 100000, 2);
+    if (!run.ok) return state.SkipWithError("beam setup failed");
+    report(state, run);
+  }
+}
+BENCHMARK(BM_DeformLinearBeamReference)->Arg(12288)->Arg(98304)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(1);
+
+}  // namespace
+}  // namespace vp::bench
