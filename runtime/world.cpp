@@ -144,6 +144,11 @@ Status World::step(double dt) {
     rigid.totalMs = rigid.phase(Phase::Rigid).ms;
   }
   stats.actors.push_back(rigid);
+  colliders_.forEach([](ColliderHandle, Collider& c) { c.syncGeometry(); });
+  std::vector<ContactCollider> contactColliders;
+  colliders_.forEach([&](ColliderHandle, const Collider& c) {
+    if (c.geometry()) contactColliders.push_back(ContactCollider{c.geometry(), c.desc().friction});
+  });
 
   // Phase 3: deformables. Budget policy: the actors run in a fixed order and each gets an
   // equal share of what is left of the frame when its turn comes, so time one actor does
@@ -159,6 +164,7 @@ Status World::step(double dt) {
     input.gravity = config_.gravity;
     input.deadline = frame.share(1.0 / remaining--);
     input.tasks = tasks_.get();
+    input.colliders = contactColliders;
     input.collider = [this](uint32_t index1, uint32_t generation) -> const Collider* {
       return colliders_.get(index1, generation);
     };

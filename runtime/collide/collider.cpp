@@ -2,6 +2,8 @@
 
 #include <btBulletDynamicsCommon.h>
 
+#include "core/log.h"
+
 namespace vp {
 namespace {
 
@@ -20,6 +22,28 @@ Pose toPose(const btTransform& t) {
   p.position = toVec(t.getOrigin());
   p.rotation = Quat(q.w(), q.x(), q.y(), q.z());
   return p;
+}
+
+static_assert(static_cast<int>(ShapeKind::TriangleMesh) == static_cast<int>(ShapeType::TriangleMesh) &&
+                  static_cast<int>(ShapeKind::Plane) == static_cast<int>(ShapeType::Plane),
+              "ShapeKind and ShapeType list the shapes in the same order");
+
+ColliderShape exactShapeOf(const ColliderDesc& d) {
+  ColliderShape s;
+  s.kind = static_cast<ShapeKind>(d.shape.type);  // same order by construction
+  s.radius = d.shape.radius;
+  s.halfExtents = d.shape.halfExtents;
+  s.halfHeight = d.shape.halfHeight;
+  s.planeNormal = d.shape.normal;
+  s.planeOffset = d.shape.offset;
+  if (d.shape.type == ShapeType::ConvexHull) s.hullPoints = d.shape.points;
+  if (d.shape.type == ShapeType::TriangleMesh) {
+    s.meshVertices = d.shape.points;
+    for (const auto& t : d.shape.triangles) s.meshTriangles.emplace_back(t[0], t[1], t[2]);
+  }
+  s.rotation = d.pose.rotation;
+  s.translation = d.pose.position;
+  return s;
 }
 
 // Rotation by the rotation vector w (axis * angle), exact for constant angular velocity.
@@ -45,6 +69,14 @@ Collider::Collider(ColliderDesc desc) : desc_(std::move(desc)), shape_(buildBull
   body_ = std::make_unique<btRigidBody>(info);
   body_->setUserPointer(this);
   kinematicPose_ = desc_.pose;
+  // Open meshes (a floor of two triangles) are fine for Bullet but have no inside, so
+  // deformables and fluids cannot use them; that is logged, not an error.
+  PreparedCollider prepared;
+  if (ok(prepareCollider(exactShapeOf(desc_), &prepared)))
+    geometry_ = std::move(prepared);
+  else
+    log(LogLevel::Warning, "collider '%s' (%s): no exact geometry for deformables and fluids: %s",
+        desc_.name.c_str(), shapeTypeName(desc_.shape.type), lastError());
   if (desc_.bodyType == BodyType::Kinematic) {
     body_->setCollisionFlags(body_->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
     body_->setActivationState(DISABLE_DEACTIVATION);
@@ -57,6 +89,15 @@ Collider::Collider(ColliderDesc desc) : desc_(std::move(desc)), shape_(buildBull
 }
 
 Collider::~Collider() = default;
+
+
+void Collider::syncGeometry() {
+  if (!geometry_) return;
+  const Pose p = pose();
+  if (desc_.bodyType != BodyType::Static) setColliderPose(&*geometry_, p.rotation, p.position);
+  geometry_->shape.linearVelocity = linearVelocity();
+  geometry_->shape.angularVelocity = angularVelocity();
+}
 
 Pose Collider::pose() const {
   if (desc_.bodyType == BodyType::Kinematic) return kinematicPose_;

@@ -9,6 +9,7 @@
 
 #include "collide/bullet_shape_builder.h"
 #include "collide/collider_desc.h"
+#include "collide/face_coverage.h"
 
 class btRigidBody;
 class btDefaultMotionState;
@@ -33,6 +34,12 @@ class Collider {
   void setVelocity(const Vec3& linear, const Vec3& angular);
   void setKinematicTarget(const Pose& target);
 
+  // Exact geometry for deformable contacts and fluid face fractions, at the pose and
+  // velocity of the last step; nullptr when the shape has none (an open triangle mesh).
+  const PreparedCollider* geometry() const { return geometry_ ? &*geometry_ : nullptr; }
+  // Brings the geometry to the body's current pose and velocity (after each rigid step).
+  void syncGeometry();
+
   // Kinematic driving, called by CollisionWorld around Bullet's sub-steps.
   void beginKinematicStep(double dt);          // turns a target into a velocity for this step
   void advanceKinematic(double h, bool last);  // moves by h; on the last sub-step snaps to target
@@ -46,6 +53,7 @@ class Collider {
   Pose kinematicPose_;
   Vec3 kinematicLinear_ = Vec3::Zero(), kinematicAngular_ = Vec3::Zero();
   std::optional<Pose> target_;
+  std::optional<PreparedCollider> geometry_;
   bool targetActive_ = false;
 };
 

@@ -17,6 +17,7 @@
 #include "core/slot_map.h"
 #include "core/task_system.h"
 #include "deform/deformable_desc.h"
+#include "deform/deformable_contacts.h"
 #include "deform/element_coloring.h"
 #include "geometry/embedding.h"
 #include "linalg/block_sparse_matrix.h"
@@ -33,6 +34,7 @@ struct DeformableStepInput {
   Deadline deadline;
   TaskSystem* tasks = nullptr;
   ColliderLookup collider;  // resolves attachment targets; attachments to vanished colliders are dropped
+  std::vector<ContactCollider> colliders;  // what the surface collides with this step
 };
 
 class DeformableBody {
@@ -63,6 +65,8 @@ class DeformableBody {
                 const Collider& collider);
   void detachAll(uint32_t colliderIndex1, uint32_t colliderGeneration);
   int64_t attachmentCount() const { return static_cast<int64_t>(attachments_.size()); }
+  // Contacts active at the end of the last step (after lift-off releases).
+  const std::vector<NodeContact>& contacts() const { return contacts_; }
 
   // The render mesh: the desc's, else the tet mesh's boundary; embedded in the tets and
   // moved with them each step. Positions and normals are in the world frame.
@@ -82,6 +86,8 @@ class DeformableBody {
   DeformableBody() = default;
   void corotateAndAssemble(TaskSystem& tasks, double stiffnessScale);
   void updateRenderMesh(TaskSystem& tasks);
+  // Constraint impulse of each contact from the solved velocities: A v' − b at its node.
+  void contactImpulses(TaskSystem& tasks, std::vector<Vec3>* impulses);
   Status checkNode(const char* what, int32_t node) const;
 
   struct Attachment {
@@ -108,7 +114,17 @@ class DeformableBody {
   std::vector<Vec3> renderPositions_, renderNormals_;
   // Per-step scratch kept to avoid allocation in the hot path.
   Array<double> force_, rhs_, vNext_, diagInverse_, backupX_, backupV_;
+  enum : uint8_t { kFree = 0, kFixed = 1, kContact = 2 };
   Array<uint8_t> constrained_;
+  Array<double> contactNormal_;     // 3 per node, valid where constrained_ == kContact
+  std::vector<int32_t> surfaceNodes_;
+  std::vector<NodeContact> contacts_;
+  // Contact state carried between steps: a node that slid keeps sliding (kinetic friction
+  // from its last normal impulse) until its slip stops; otherwise contacts start sticking.
+  Array<uint8_t> sliding_;
+  Array<double> lastNormalImpulse_;
+  double contactMargin_ = 0.0;
+  std::vector<Vec3> slideFriction_;  // kinetic friction impulse of each contact this step
   CgWorkspace cg_;
 };
 

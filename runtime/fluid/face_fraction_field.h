@@ -22,7 +22,7 @@
 #pragma once
 
 #include "core/status.h"
-#include "fluid/face_coverage.h"
+#include "collide/face_coverage.h"
 
 #include <vector>
 

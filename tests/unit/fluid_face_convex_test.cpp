@@ -2,7 +2,7 @@
 // Hand-computed areas: tolerance 1e-12 (round-off). Against supersampling on an n x n midpoint
 // grid: tolerance 1e-3 of the face area as required; the sampling error itself is about
 // sqrt(#boundary samples)/n^2 (~1e-5 at n = 2000) so this leaves the path's own error visible.
-#include "fluid/face_coverage.h"
+#include "collide/face_coverage.h"
 #include "fluid_face_test_util.h"
 
 #include <gtest/gtest.h>

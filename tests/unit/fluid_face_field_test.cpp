@@ -1,5 +1,5 @@
 // Face fraction field over a MAC grid, and the multi-collider (union) policy.
-#include "fluid/face_coverage.h"
+#include "collide/face_coverage.h"
 #include "fluid/face_fraction_field.h"
 #include "fluid_face_test_util.h"
 

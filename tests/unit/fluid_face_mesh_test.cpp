@@ -2,7 +2,7 @@
 // agree with the exact hull/box paths to round-off; an icosphere must be sandwiched between
 // its inner and outer spheres (exact sphere path) on every face; a 20K-triangle mesh must be
 // fast enough to fill a grid.
-#include "fluid/face_coverage.h"
+#include "collide/face_coverage.h"
 #include "fluid/face_fraction_field.h"
 #include "fluid_face_test_util.h"
 

@@ -1,7 +1,7 @@
 // Capsule and cylinder face coverage (bounded adaptive path, guaranteed error
 // <= 0.9e-3 of the face area) against analytic cases and supersampling for random poses.
 // The supersampling (800^2 midpoint) error is ~1e-5, so 1e-3 checks the path's own bound.
-#include "fluid/face_coverage.h"
+#include "collide/face_coverage.h"
 #include "fluid_face_test_util.h"
 
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
 // Sphere face coverage against analytic disc-rectangle areas.
 // Exact path, so tolerances are round-off (1e-12) for hand-computed areas.
-#include "fluid/face_coverage.h"
-#include "fluid/face_coverage_detail.h"
+#include "collide/face_coverage.h"
+#include "collide/face_coverage_detail.h"
 #include "fluid_face_test_util.h"
 
 #include <gtest/gtest.h>

@@ -3,7 +3,7 @@
 // supersampled reference coverage.
 #pragma once
 
-#include "fluid/face_coverage.h"
+#include "collide/face_coverage.h"
 
 #include <Eigen/Geometry>
 #include <cmath>

@@ -17,7 +17,7 @@
 //    kCoverageTolerance * face area, so the result is within the tolerance whenever the
 //    loop ends by the bound (it always does for boundaries of finite length at depth 11
 //    in practice; the cap keeps the cost finite for pathological inputs).
-#include "fluid/face_coverage_detail.h"
+#include "collide/face_coverage_detail.h"
 
 namespace vp {
 namespace {

@@ -4,7 +4,7 @@
 // { n[a1] u + n[a2] v <= d - n[a] c0 }; clipping the face square by each of them
 // (Sutherland-Hodgman) leaves exactly (square ∩ cross-section), whose area is the shoelace sum.
 // A half-space whose normal is parallel to the face normal keeps all or nothing of the face.
-#include "fluid/face_coverage_detail.h"
+#include "collide/face_coverage_detail.h"
 
 namespace vp {
 namespace detail {

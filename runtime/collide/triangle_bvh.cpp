@@ -1,7 +1,7 @@
 // Per-mesh acceleration for the triangle-mesh collider: a median-split AABB tree over the
 // world-space triangles, with box queries (face cross-sections), nearest distance and a
 // ray-parity inside test (used only by the union path's signed distance).
-#include "fluid/face_coverage_detail.h"
+#include "collide/face_coverage_detail.h"
 
 #include <algorithm>
 #include <limits>

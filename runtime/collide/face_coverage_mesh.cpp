@@ -14,7 +14,7 @@
 // crossing point of an edge is computed from its endpoints in index order (so both triangles
 // sharing the edge get bit-identical points) and a segment's direction follows from the
 // triangle's vertex order, not from a rounding-sensitive normal.
-#include "fluid/face_coverage_detail.h"
+#include "collide/face_coverage_detail.h"
 
 namespace vp {
 namespace detail {

@@ -6,7 +6,7 @@
 // ±sqrt(R^2 - y1^2)} each bound of the chord is either a rectangle side (constant) or the
 // circle (±s(x)), so every piece integrates exactly with the primitive of s:
 // P(x) = (x s(x) + R^2 asin(x/R)) / 2 (the circular-segment formula). At most 7 pieces.
-#include "fluid/face_coverage_detail.h"
+#include "collide/face_coverage_detail.h"
 
 namespace vp {
 namespace detail {

@@ -17,7 +17,7 @@
 //     skipped, the others are treated recursively; a cell whose area is below the tolerance
 //     returns 0 (S fits in it, so the error is at most that area).
 // Total error <= tol = 0.9 * kCoverageTolerance * (face area).
-#include "fluid/face_coverage_detail.h"
+#include "collide/face_coverage_detail.h"
 
 namespace vp {
 namespace detail {

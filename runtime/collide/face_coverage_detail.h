@@ -1,7 +1,7 @@
 // Internal helpers shared by the face_coverage_*.cpp files (not part of the fluid API).
 #pragma once
 
-#include "fluid/face_coverage.h"
+#include "collide/face_coverage.h"
 
 #include <algorithm>
 #include <cmath>

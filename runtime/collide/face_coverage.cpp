@@ -1,6 +1,6 @@
 // Dispatch of face coverage per shape kind, the conservative reject test and the signed
 // distance bounds shared by the reject test and the union path.
-#include "fluid/face_coverage_detail.h"
+#include "collide/face_coverage_detail.h"
 
 #include <limits>
 

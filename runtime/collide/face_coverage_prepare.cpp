@@ -1,5 +1,5 @@
 // Validation of a ColliderShape and its world-space preparation (planes, mesh BVH, bounds).
-#include "fluid/face_coverage_detail.h"
+#include "collide/face_coverage_detail.h"
 
 #include <algorithm>
 #include <limits>

@@ -11,7 +11,7 @@
 // their horizon. Points within eps (1e-10 of the bounding diagonal) of the hull are ignored,
 // so the hull is exact up to that distance; the result is checked to contain every input point
 // within 1e-8 of the diagonal. Near-duplicate planes (coplanar triangles) are merged.
-#include "fluid/face_coverage_detail.h"
+#include "collide/face_coverage_detail.h"
 
 #include <algorithm>
 #include <utility>

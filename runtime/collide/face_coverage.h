@@ -21,7 +21,7 @@
 #pragma once
 
 #include "core/status.h"
-#include "fluid/collider_shape.h"
+#include "collide/collider_shape.h"
 
 #include <Eigen/Core>
 #include <vector>
