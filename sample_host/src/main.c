@@ -133,6 +133,26 @@ static int fail(const char* what, vpStatus status) {
   return 1;
 }
 
+/* Totals over the deformable actors of the last step. */
+typedef struct DeformSummary {
+  double ms, solveMs, maxResidual;
+  int iterations, diverged;
+} DeformSummary;
+
+static void summarizeDeformables(vpWorldId world, int actorCount, DeformSummary* out) {
+  int a;
+  memset(out, 0, sizeof *out);
+  for (a = 1; a < actorCount; ++a) {
+    vpActorStats s;
+    if (vpWorldGetActorStats(world, a, &s) != vpStatus_Ok || s.kind != vpActorKind_Deformable) continue;
+    out->ms += s.totalMs;
+    out->solveMs += s.phases[vpPhase_Solve].ms;
+    out->iterations += s.phases[vpPhase_Solve].iterations;
+    if (s.phases[vpPhase_Solve].residual > out->maxResidual) out->maxResidual = s.phases[vpPhase_Solve].residual;
+    out->diverged += s.diverged;
+  }
+}
+
 static int writePoses(vpWorldId world, const char* outDir) {
   int32_t count = 0, i;
   vpColliderId* ids;
@@ -181,24 +201,31 @@ int main(int argc, char** argv) {
   }
   csv = openOutput(o.outDir, "stats.csv");
   if (!csv || !frameTimesInit(&times, o.frames)) return 1;
-  fprintf(csv, "frame,step_ms,wall_ms,budget_ms,budget_cut,rigid_ms,rigid_substeps,colliders,actors\n");
+  fprintf(csv,
+          "frame,step_ms,wall_ms,budget_ms,budget_cut,rigid_ms,rigid_substeps,colliders,actors,"
+          "deform_ms,deform_solve_ms,deform_iters,deform_max_residual,diverged\n");
 
   printf("volphys_host: scene %s, %d frames, dt %.5f s, %d workers\n", o.scene, o.frames, o.dt, o.workers);
   for (frame = 0; frame < o.frames; ++frame) {
     vpActorStats rigid;
+    DeformSummary deform;
     double t0 = wallMs(), wall;
     if ((s = vpWorldStep(world, (float)o.dt)) != vpStatus_Ok) return fail("vpWorldStep", s);
     wall = wallMs() - t0;
     vpWorldGetStepStats(world, &stats);
     vpWorldGetActorStats(world, 0, &rigid);
+    summarizeDeformables(world, stats.actorCount, &deform);
     frameTimesAdd(&times, wall);
     cutFrames += stats.budgetCut;
-    fprintf(csv, "%d,%.4f,%.4f,%.2f,%d,%.4f,%d,%d,%d\n", frame, stats.totalMs, wall, stats.budgetMs, stats.budgetCut,
-            rigid.phases[vpPhase_Rigid].ms, stats.rigidSubsteps, stats.colliderCount, stats.actorCount);
+    fprintf(csv, "%d,%.4f,%.4f,%.2f,%d,%.4f,%d,%d,%d,%.4f,%.4f,%d,%.3e,%d\n", frame, stats.totalMs, wall,
+            stats.budgetMs, stats.budgetCut, rigid.phases[vpPhase_Rigid].ms, stats.rigidSubsteps, stats.colliderCount,
+            stats.actorCount, deform.ms, deform.solveMs, deform.iterations, deform.maxResidual, deform.diverged);
     if (!o.quiet)
-      printf("frame %4d  step %7.3f ms  (budget %5.1f ms%s)  rigid %7.3f ms x%d  colliders %d\n", frame,
-             stats.totalMs, stats.budgetMs, stats.budgetCut ? ", CUT" : "", rigid.phases[vpPhase_Rigid].ms,
-             stats.rigidSubsteps, stats.colliderCount);
+      printf("frame %4d  step %7.3f ms  (budget %5.1f ms%s)  rigid %6.3f ms x%d  deform %7.3f ms, %3d CG its, "
+             "res %.1e%s\n",
+             frame, stats.totalMs, stats.budgetMs, stats.budgetCut ? ", CUT" : "", rigid.phases[vpPhase_Rigid].ms,
+             stats.rigidSubsteps, deform.ms, deform.iterations, deform.maxResidual,
+             deform.diverged ? "  DIVERGED" : "");
   }
   fclose(csv);
   if (!writePoses(world, o.outDir)) return 1;
