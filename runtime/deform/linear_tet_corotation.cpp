@@ -11,7 +11,7 @@ void corotateLinearTet(const double x[12], const double grad[12], double volume,
   bbAverageDeformationGradient(1, x, grad, F);
   // Warm-started from last step's rotation this converges in 2-3 iterations (inverted F
   // falls back to the SVD inside).
-  if (polarRotationIterative(F, quat, R, 20, 1e-10) < 0) {
+  if (polarRotationIterative(F, quat, R, 20, 1e-6) < 0) {
     for (int i = 0; i < 9; ++i) R[i] = (i % 4 == 0) ? 1.0 : 0.0;  // non-finite F: the divergence guard reports it
   }
   // Unrotated deformation S = Rᵀ F, strain ε = sym(S) − I, stress σ = λ tr(ε) I + 2μ ε.
