@@ -72,6 +72,12 @@ Status DeformableBody::create(DeformableDesc desc, std::unique_ptr<DeformableBod
   }
   VP_TRY(colorElements(b.nodeCount_, b.elementNodes_.data(), elements, 4, &b.coloring_));
   buildElementPattern(b.nodeCount_, b.elementNodes_.data(), elements, 4, &b.matrix_, &b.scatter_);
+  const Preconditioner pc = desc.solver.preconditioner;
+  b.useMultigrid_ = pc == Preconditioner::Multigrid || (pc == Preconditioner::Auto && b.nodeCount_ >= kMultigridMinNodes);
+  if (b.useMultigrid_) {
+    b.multigrid_.build(b.matrix_);
+    b.nodeFilters_.assign(9 * static_cast<size_t>(b.nodeCount_), 0.0);
+  }
   const size_t n3 = b.restX_.size();
   b.externalForce_.assign(n3, 0.0);
   b.force_.resize(n3);
@@ -348,7 +354,20 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
   LinearSystem system;
   system.size = n3;
   system.apply = [&](const double* x, double* y) { matrix_.multiply(tasks, x, y); };
+  if (useMultigrid_) {
+    parallelFor(tasks, nodeCount_, 1024, [&](int64_t begin, int64_t end) {
+      for (int64_t i = begin; i < end; ++i) {
+        Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> F(&nodeFilters_[9 * i]);
+        if (constrained_[i] == kFixed) F.setZero();
+        else if (constrained_[i] == kContact) F = Mat3::Identity() - Eigen::Map<const Vec3>(&contactNormal_[3 * i]) *
+                                                                      Eigen::Map<const Vec3>(&contactNormal_[3 * i]).transpose();
+        else F.setIdentity();
+      }
+    });
+    multigrid_.update(tasks, matrix_, x_.data(), nodeFilters_.data());
+  }
   system.precondition = [&](const double* r, double* z) {
+    if (useMultigrid_) return multigrid_.apply(tasks, r, z);
     parallelFor(tasks, nodeCount_, 1024, [&](int64_t begin, int64_t end) {
       for (int64_t i = begin; i < end; ++i) {
         const double* m = &diagInverse_[9 * i];

@@ -20,6 +20,7 @@
 #include "deform/deformable_contacts.h"
 #include "deform/element_coloring.h"
 #include "geometry/embedding.h"
+#include "linalg/aggregation_multigrid.h"
 #include "linalg/block_sparse_matrix.h"
 #include "linalg/conjugate_gradient.h"
 #include "step_stats.h"
@@ -126,6 +127,9 @@ class DeformableBody {
   double contactMargin_ = 0.0;
   std::vector<Vec3> slideFriction_;  // kinetic friction impulse of each contact this step
   CgWorkspace cg_;
+  bool useMultigrid_ = false;
+  AggregationMultigrid multigrid_;
+  Array<double> nodeFilters_;  // 9 per node: the CG filter as a 3x3 projector, for the multigrid
 };
 
 }  // namespace vp

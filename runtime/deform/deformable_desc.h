@@ -27,9 +27,19 @@ struct DeformableMaterial {
   }
 };
 
+enum class Preconditioner : int {
+  Auto = 0,         // multigrid above kMultigridMinNodes nodes, block-Jacobi below
+  BlockJacobi = 1,
+  Multigrid = 2,    // aggregation multigrid with rigid-body modes (linalg/aggregation_multigrid.h)
+};
+
+// Below this many nodes the multigrid's setup costs more than the CG iterations it saves.
+constexpr int kMultigridMinNodes = 400;
+
 struct DeformableSolverSettings {
   double tolerance = 1e-3;  // relative residual of the implicit solve
   int maxIterations = 200;
+  Preconditioner preconditioner = Preconditioner::Auto;
 };
 
 struct DeformableDesc {
