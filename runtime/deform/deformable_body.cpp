@@ -70,7 +70,17 @@ Status DeformableBody::create(DeformableDesc desc, std::unique_ptr<DeformableBod
     double* r = &b.rotations_[4 * e];
     r[0] = q.w(), r[1] = q.x(), r[2] = q.y(), r[3] = q.z();
   }
-  VP_TRY(colorElements(b.nodeCount_, b.elementNodes_.data(), elements, 4, &b.coloring_));
+  // Node -> (element, corner) incidence, in element order, for the gather assembly.
+  b.incidenceStart_.assign(static_cast<size_t>(b.nodeCount_) + 1, 0);
+  for (int64_t k = 0; k < 4 * elements; ++k) b.incidenceStart_[b.elementNodes_[k] + 1]++;
+  for (int32_t i = 0; i < b.nodeCount_; ++i) b.incidenceStart_[i + 1] += b.incidenceStart_[i];
+  b.incidence_.resize(static_cast<size_t>(4 * elements));
+  {
+    std::vector<int32_t> fill(b.incidenceStart_.begin(), b.incidenceStart_.end() - 1);
+    for (int64_t k = 0; k < 4 * elements; ++k) b.incidence_[fill[b.elementNodes_[k]]++] = static_cast<int32_t>(k);
+  }
+  b.elementForce_.resize(12 * static_cast<size_t>(elements));
+  b.rotatedGradients_.resize(12 * static_cast<size_t>(elements));
   buildElementPattern(b.nodeCount_, b.elementNodes_.data(), elements, 4, &b.matrix_, &b.scatter_);
   const Preconditioner pc = desc.solver.preconditioner;
   b.useMultigrid_ = pc == Preconditioner::Multigrid || (pc == Preconditioner::Auto && b.nodeCount_ >= kMultigridMinNodes);
@@ -249,28 +259,39 @@ void DeformableBody::contactImpulses(TaskSystem& tasks, std::vector<Vec3>* impul
 }
 
 void DeformableBody::corotateAndAssemble(TaskSystem& tasks, double stiffnessScale) {
-  matrix_.setZero();
-  std::fill(force_.begin(), force_.end(), 0.0);
-  for (int c = 0; c < coloring_.colorCount(); ++c) {
-    const int64_t begin = coloring_.colorStart[c], end = coloring_.colorStart[c + 1];
-    parallelFor(tasks, end - begin, 256, [&](int64_t first, int64_t last) {
-      for (int64_t k = begin + first; k < begin + last; ++k) {
-        const int64_t e = coloring_.order[k];
-        const int32_t* nodes = &elementNodes_[4 * e];
-        double x[12], f[12], blocks[144];
-        for (int a = 0; a < 4; ++a)
-          for (int i = 0; i < 3; ++i) x[3 * a + i] = x_[3 * nodes[a] + i];
-        corotateLinearTet(x, &restGradients_[12 * e], restVolume_[e], lambda_, mu_, &rotations_[4 * e], f, blocks);
-        for (int a = 0; a < 4; ++a)
-          for (int i = 0; i < 3; ++i) force_[3 * nodes[a] + i] += f[3 * a + i];
-        const int32_t* blockIndex = &scatter_[16 * e];
-        for (int ab = 0; ab < 16; ++ab) {
-          double* dst = &matrix_.values[9 * static_cast<int64_t>(blockIndex[ab])];
-          for (int i = 0; i < 9; ++i) dst[i] += stiffnessScale * blocks[9 * ab + i];
-        }
+  // Pass 1, per element: rotation, force and rotated gradients into element buffers.
+  parallelFor(tasks, elementCount(), 512, [&](int64_t begin, int64_t end) {
+    for (int64_t e = begin; e < end; ++e) {
+      const int32_t* nodes = &elementNodes_[4 * e];
+      double x[12];
+      for (int a = 0; a < 4; ++a)
+        for (int i = 0; i < 3; ++i) x[3 * a + i] = x_[3 * nodes[a] + i];
+      corotateLinearTet(x, &restGradients_[12 * e], restVolume_[e], lambda_, mu_, &rotations_[4 * e],
+                        &elementForce_[12 * e], &rotatedGradients_[12 * e]);
+    }
+  });
+  // Pass 2, per node (one matrix block row each, so no two tasks write the same memory and
+  // the sum order is fixed: deterministic for any worker count): gather the forces and the
+  // rotated stiffness blocks of the incident elements. Gathering keeps the writes in matrix
+  // order; scattering element by element touched the 20 MB matrix at random.
+  parallelFor(tasks, nodeCount_, 256, [&](int64_t begin, int64_t end) {
+    for (int64_t i = begin; i < end; ++i) {
+      double f[3] = {0.0, 0.0, 0.0};
+      for (int32_t k = matrix_.rowStart[i]; k < matrix_.rowStart[i + 1]; ++k)
+        std::fill_n(&matrix_.values[9 * static_cast<int64_t>(k)], 9, 0.0);
+      for (int32_t k = incidenceStart_[i]; k < incidenceStart_[i + 1]; ++k) {
+        const int64_t e = incidence_[k] >> 2;
+        const int a = incidence_[k] & 3;
+        for (int c = 0; c < 3; ++c) f[c] += elementForce_[12 * e + 3 * a + c];
+        const double* h = &rotatedGradients_[12 * e];
+        const double* g = &restGradients_[12 * e];
+        for (int b = 0; b < 4; ++b)
+          addLinearTetBlock(h, g, a, b, restVolume_[e], lambda_, mu_, stiffnessScale,
+                            &matrix_.values[9 * static_cast<int64_t>(scatter_[16 * e + 4 * a + b])]);
       }
-    });
-  }
+      for (int c = 0; c < 3; ++c) force_[3 * i + c] = f[c];
+    }
+  });
 }
 
 void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
@@ -365,6 +386,7 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
       }
     });
     multigrid_.update(tasks, matrix_, x_.data(), nodeFilters_.data());
+    lap(Phase::Assemble);  // the preconditioner's setup is part of building the system
   }
   system.precondition = [&](const double* r, double* z) {
     if (useMultigrid_) return multigrid_.apply(tasks, r, z);

@@ -2,9 +2,9 @@
 // backward Euler and one linear solve per step,
 //   (M + h D + h² K) v' = M v + h (f(x) + f_ext),   D = αM + βK,   x' = x + h v',
 // where f(x) is the corotated elastic force and K its (rotated) stiffness at x. The matrix is
-// assembled in 3x3 blocks through an element colouring (parallel, deterministic) and solved
-// by block-Jacobi-preconditioned CG, warm-started from the current velocity, within the
-// actor's share of the frame budget. Pinned and attached nodes are velocity constraints
+// assembled in 3x3 blocks, element pass then node gather (parallel, deterministic), and
+// solved by CG preconditioned with aggregation multigrid (block-Jacobi on small meshes),
+// warm-started from the current velocity, within the actor's share of the frame budget. Pinned and attached nodes are velocity constraints
 // handled inside CG by filtering (Baraff & Witkin 1998), not by penalties.
 #pragma once
 
@@ -18,7 +18,6 @@
 #include "core/task_system.h"
 #include "deform/deformable_desc.h"
 #include "deform/deformable_contacts.h"
-#include "deform/element_coloring.h"
 #include "geometry/embedding.h"
 #include "linalg/aggregation_multigrid.h"
 #include "linalg/block_sparse_matrix.h"
@@ -107,7 +106,10 @@ class DeformableBody {
   Array<double> rotations_;         // 4 per element, quaternion (w,x,y,z) warm start
   Array<uint8_t> pinned_;
   std::vector<Attachment> attachments_;
-  ElementColoring coloring_;
+  Array<int32_t> incidenceStart_;   // per node, into incidence_
+  Array<int32_t> incidence_;        // 4 * element + corner, grouped by node
+  Array<double> elementForce_;      // 12 per element, this step
+  Array<double> rotatedGradients_;  // 12 per element, this step
   BlockSparseMatrix<double> matrix_;
   Array<int32_t> scatter_;          // 16 block indices per element
   SurfaceMesh renderRest_;

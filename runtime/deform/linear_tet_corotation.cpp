@@ -6,7 +6,7 @@
 namespace vp {
 
 void corotateLinearTet(const double x[12], const double grad[12], double volume, double lambda, double mu,
-                       double quat[4], double force[12], double blocks[144]) {
+                       double quat[4], double force[12], double rotatedGrad[12]) {
   double F[9], R[9];
   bbAverageDeformationGradient(1, x, grad, F);
   // Warm-started from last step's rotation this converges in 2-3 iterations (inverted F
@@ -25,7 +25,7 @@ void corotateLinearTet(const double x[12], const double grad[12], double volume,
   double sigma[9];
   for (int i = 0; i < 9; ++i) sigma[i] = 2.0 * mu * eps[i] + (i % 4 == 0 ? lambda * trace : 0.0);
   // Rotated gradients h_a = R g_a, and forces f_a = −V R σ g_a.
-  double h[12];
+  double* h = rotatedGrad;
   for (int a = 0; a < 4; ++a) {
     const double* g = grad + 3 * a;
     double sg[3];
@@ -36,18 +36,6 @@ void corotateLinearTet(const double x[12], const double grad[12], double volume,
     for (int i = 0; i < 3; ++i)
       force[3 * a + i] = -volume * (R[3 * i] * sg[0] + R[3 * i + 1] * sg[1] + R[3 * i + 2] * sg[2]);
   }
-  for (int a = 0; a < 4; ++a)
-    for (int b = 0; b < 4; ++b) {
-      const double* ha = h + 3 * a;
-      const double* hb = h + 3 * b;
-      const double* ga = grad + 3 * a;
-      const double* gb = grad + 3 * b;
-      const double shear = mu * (ga[0] * gb[0] + ga[1] * gb[1] + ga[2] * gb[2]);
-      double* K = blocks + 9 * (4 * a + b);
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-          K[3 * i + j] = volume * (lambda * ha[i] * hb[j] + mu * hb[i] * ha[j] + (i == j ? shear : 0.0));
-    }
 }
 
 }  // namespace vp

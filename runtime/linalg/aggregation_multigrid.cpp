@@ -18,10 +18,20 @@ Mat3R skew(const Eigen::Vector3d& r) {
   return s;
 }
 
-// Pseudo-inverse of a symmetric block: directions with (numerically) zero stiffness are
-// constraint-filtered or inert, and must get zero correction rather than a huge one.
+// Inverse of a symmetric positive semi-definite block. Directions with (numerically) zero
+// stiffness are constraint-filtered or inert and must get zero correction, not a huge one:
+// Cholesky when the block is safely definite (the common case, cheap), otherwise an
+// eigen-decomposition pseudo-inverse.
 template <int N>
 Eigen::Matrix<double, N, N, Eigen::RowMajor> symmetricPseudoInverse(const Eigen::Matrix<double, N, N, Eigen::RowMajor>& m) {
+  Eigen::LLT<Eigen::Matrix<double, N, N>> llt(m);
+  if (llt.info() == Eigen::Success) {
+    const auto& L = llt.matrixL();
+    double lo = L(0, 0), hi = L(0, 0);
+    for (int k = 1; k < N; ++k) lo = std::min(lo, L(k, k)), hi = std::max(hi, L(k, k));
+    // Pivots squared bound the eigenvalues' spread well enough to spot near-singular blocks.
+    if (lo * lo > 1e-9 * hi * hi) return llt.solve(Eigen::Matrix<double, N, N>::Identity());
+  }
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, N, N>> eig(m);
   const auto& values = eig.eigenvalues();
   const double cutoff = 1e-10 * std::max(values.cwiseAbs().maxCoeff(), 1e-300);
