@@ -42,6 +42,7 @@ Eigen::Matrix<double, N, N, Eigen::RowMajor> symmetricPseudoInverse(const Eigen:
 
 constexpr int64_t kRowGrain = 256;
 constexpr int kPowerIterations = 6;
+constexpr uint64_t kDampingRefresh = 8;
 
 }  // namespace
 
@@ -78,6 +79,7 @@ void AggregationMultigrid::aggregate(int32_t nodes, const std::vector<int32_t>& 
 
 void AggregationMultigrid::build(const BlockSparseMatrix<double>& fine, int maxCoarsestNodes) {
   levels_.clear();
+  updates_ = 0;
   std::vector<int32_t> rowStart(fine.rowStart.begin(), fine.rowStart.end());
   std::vector<int32_t> columns(fine.columns.begin(), fine.columns.end());
   int32_t nodes = fine.blockRows;
@@ -194,6 +196,11 @@ void AggregationMultigrid::update(TaskSystem& tasks, const BlockSparseMatrix<dou
         }
       }
     });
+    // Nodes whose filter is the identity (most of them) take the cheap product below.
+    std::vector<uint8_t> unfiltered(static_cast<size_t>(L.fineNodes), 0);
+    if (l == 0)
+      for (int32_t i = 0; i < L.fineNodes; ++i)
+        unfiltered[i] = !filters || Eigen::Map<const Mat3R>(filters + 9 * static_cast<int64_t>(i)).isIdentity(0.0);
     // Galerkin product, one coarse row at a time (each row owned by one task: no races).
     const double* fineValues = l == 0 ? fine.values.data() : levels_[l - 1].values.data();
     const int32_t* fineRowStart = l == 0 ? fine.rowStart.data() : levels_[l - 1].rowStart.data();
@@ -211,7 +218,18 @@ void AggregationMultigrid::update(TaskSystem& tasks, const BlockSparseMatrix<dou
               const Eigen::Map<const Mat36> Pi(&L.prolongation[18 * static_cast<int64_t>(i)]);
               const Eigen::Map<const Mat36> Pj(&L.prolongation[18 * static_cast<int64_t>(j)]);
               const Eigen::Map<const Mat3R> A(fineValues + 9 * static_cast<int64_t>(k));
-              target.noalias() += Pi.transpose() * (A * Pj);
+              if (unfiltered[i] && unfiltered[j]) {
+                // P = [I | −[r]×] for free nodes: the product needs three 3x3 products, not
+                // the 6x3·3x3·3x6 of the general case.
+                const Mat3R AH = A * Pj.rightCols<3>();
+                const Mat3R HtA = Pi.rightCols<3>().transpose() * A;
+                target.topLeftCorner<3, 3>() += A;
+                target.topRightCorner<3, 3>() += AH;
+                target.bottomLeftCorner<3, 3>() += HtA;
+                target.bottomRightCorner<3, 3>().noalias() += Pi.rightCols<3>().transpose() * AH;
+              } else {
+                target.noalias() += Pi.transpose() * (A * Pj);
+              }
             } else {
               const Eigen::Map<const Mat6R> Pi(&L.prolongation[36 * static_cast<int64_t>(i)]);
               const Eigen::Map<const Mat6R> Pj(&L.prolongation[36 * static_cast<int64_t>(j)]);
@@ -227,8 +245,10 @@ void AggregationMultigrid::update(TaskSystem& tasks, const BlockSparseMatrix<dou
   }
   // Smoother damping 4/(3 λmax(D⁻¹A)) per level: the choice that damps the upper two
   // thirds of the spectrum best for Jacobi; λmax by power iteration from a fixed vector.
-  for (size_t level = 0; level <= levels_.size(); ++level) {
-    if (level == levels_.size()) break;  // the coarsest level is solved directly
+  // The corotated matrix changes little from step to step, so λmax is refreshed every
+  // kDampingRefresh updates rather than each time (it cost a third of the setup).
+  const bool refreshDamping = updates_++ % kDampingRefresh == 0;
+  for (size_t level = 0; refreshDamping && level < levels_.size(); ++level) {
     const int64_t n = level == 0 ? 3 * static_cast<int64_t>(fine.blockRows) : 6 * levels_[level - 1].aggregates;
     std::vector<double> v(static_cast<size_t>(n)), w(static_cast<size_t>(n));
     for (int64_t i = 0; i < n; ++i) v[i] = 1.0 + 0.01 * static_cast<double>(i % 7);

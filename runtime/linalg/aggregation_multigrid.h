@@ -35,7 +35,7 @@ namespace vp {
 class AggregationMultigrid {
  public:
   // Builds aggregates and coarse patterns from the fine matrix's pattern.
-  void build(const BlockSparseMatrix<double>& fine, int maxCoarsestNodes = 48);
+  void build(const BlockSparseMatrix<double>& fine, int maxCoarsestNodes = 48);  // resets the hierarchy
 
   // Recomputes prolongations, coarse operators, smoothers and the coarsest factorization.
   // positions: 3 per fine node; filters: 9 per fine node (row-major 3x3 projector, the same
@@ -87,6 +87,7 @@ class AggregationMultigrid {
   Array<double> fineResidual_, fineScratch_;
   // Coarsest level: dense Cholesky.
   Eigen::LDLT<Eigen::MatrixXd> coarsest_;
+  uint64_t updates_ = 0;
   int64_t coarsestSize_ = 0;
 };
 
