@@ -2,6 +2,7 @@
 // world-space triangles, with box queries (face cross-sections), nearest distance and a
 // ray-parity inside test (used only by the union path's signed distance).
 #include "collide/face_coverage_detail.h"
+#include "geometry/closest_point_on_triangle.h"
 
 #include <algorithm>
 #include <limits>
@@ -43,27 +44,6 @@ int buildNode(const std::vector<Eigen::Vector3d>& v, const std::vector<Eigen::Ve
   return id;
 }
 
-Eigen::Vector3d closestOnTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
-                                  const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-  const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return a;
-  const Eigen::Vector3d bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return b;
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + (d1 / (d1 - d3)) * ab;
-  const Eigen::Vector3d cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return c;
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + (d2 / (d2 - d6)) * ac;
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
-    return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
-  const double denom = 1.0 / (va + vb + vc);
-  return a + ab * (vb * denom) + ac * (vc * denom);
-}
 
 double boxDistance2(const Eigen::Vector3d& p, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
   const Eigen::Vector3d d = (lo - p).cwiseMax(p - hi).cwiseMax(0.0);
@@ -97,7 +77,7 @@ double meshUnsignedDistance(const PreparedCollider& c, const Eigen::Vector3d& x)
     if (nd.count > 0) {
       for (int i = 0; i < nd.count; ++i) {
         const Eigen::Vector3i& t = c.triangles[bvh.order[nd.first + i]];
-        const Eigen::Vector3d q = closestOnTriangle(x, c.worldVertices[t[0]],
+        const Eigen::Vector3d q = closestPointOnTriangle(x, c.worldVertices[t[0]],
                                                     c.worldVertices[t[1]], c.worldVertices[t[2]]);
         best2 = std::min(best2, (q - x).squaredNorm());
       }

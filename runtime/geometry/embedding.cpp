@@ -1,5 +1,7 @@
 #include "geometry/embedding.h"
 
+#include "geometry/closest_point_on_triangle.h"
+
 #include "geometry/tet_spatial_grid.h"
 
 #include <Eigen/LU>
@@ -30,34 +32,13 @@ struct TetFrame {
 
 double minCoordinate(const std::array<double, 4>& l) { return std::min({l[0], l[1], l[2], l[3]}); }
 
-// Closest point on triangle (a, b, c) to p (Ericson, Real-Time Collision Detection 5.1.5).
-Eigen::Vector3d closestOnTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                  const Eigen::Vector3d& c) {
-  const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return a;
-  const Eigen::Vector3d bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return b;
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + (d1 / (d1 - d3)) * ab;
-  const Eigen::Vector3d cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return c;
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + (d2 / (d2 - d6)) * ac;
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
-  const double denom = 1.0 / (va + vb + vc);
-  return a + ab * (vb * denom) + ac * (vc * denom);
-}
 
 // Distance from p to the boundary of tet t: the distance to the tet when p is outside.
 double boundaryDistance(const TetMesh& mesh, int32_t t, const Eigen::Vector3d& p) {
   const auto& tet = mesh.tets[t];
   double best = std::numeric_limits<double>::infinity();
   for (const auto& face : kTetFaces) {
-    const Eigen::Vector3d q = closestOnTriangle(p, mesh.vertices[tet[face[0]]], mesh.vertices[tet[face[1]]],
+    const Eigen::Vector3d q = closestPointOnTriangle(p, mesh.vertices[tet[face[0]]], mesh.vertices[tet[face[1]]],
                                                 mesh.vertices[tet[face[2]]]);
     best = std::min(best, (q - p).squaredNorm());
   }

@@ -277,15 +277,7 @@ Status parse(TextScanner& s, TetMesh* out) {
 
 Status readGmsh(const std::string& path, TetMesh* out) {
   if (out == nullptr) return fail(Status::InvalidArgument, "readGmsh: out is null");
-  try {
-    TextScanner scanner;
-    VP_TRY(scanner.open(path));
-    return parse(scanner, out);
-  } catch (const std::bad_alloc&) {
-    return fail(Status::OutOfMemory, "file '%s': out of memory", path.c_str());
-  } catch (const std::exception& e) {
-    return fail(Status::Internal, "file '%s': %s", path.c_str(), e.what());
-  }
+  return scanFile(path, 0, [&](TextScanner& scanner) { return parse(scanner, out); });
 }
 
 }  // namespace vp

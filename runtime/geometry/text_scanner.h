@@ -13,6 +13,8 @@
 #include "core/status.h"
 
 #include <cstddef>
+#include <exception>
+#include <new>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -81,5 +83,20 @@ class TextScanner {
 
 bool parseInt64(std::string_view token, int64_t* value);
 bool parseDouble(std::string_view token, double* value);
+
+// Opens `path` and runs parse(scanner) on it; an exception escaping the parser (only the
+// standard library's: out of memory, or a bug) becomes a status that names the file.
+template <class Parse>
+Status scanFile(const std::string& path, char commentChar, Parse&& parse) {
+  try {
+    TextScanner scanner;
+    VP_TRY(scanner.open(path, commentChar));
+    return parse(scanner);
+  } catch (const std::bad_alloc&) {
+    return fail(Status::OutOfMemory, "file '%s': out of memory", path.c_str());
+  } catch (const std::exception& e) {
+    return fail(Status::Internal, "file '%s': %s", path.c_str(), e.what());
+  }
+}
 
 }  // namespace vp
