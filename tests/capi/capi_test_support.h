@@ -16,9 +16,17 @@ inline bool lastErrorContains(const std::string& part) {
 }
 
 // A world that is destroyed at the end of the test.
+// No frame budget by default: physics assertions must not depend on how fast the (possibly
+// sanitizer-instrumented, shared) machine is. Budget behaviour has tests of its own.
+inline vpWorldDef unbudgetedWorldDef() {
+  vpWorldDef def = vpDefaultWorldDef();
+  def.frameBudgetMs = 0.0f;
+  return def;
+}
+
 struct ScopedWorld {
   vpWorldId id{};
-  explicit ScopedWorld(vpWorldDef def = vpDefaultWorldDef()) { EXPECT_VP_OK(vpWorldCreate(&def, &id)); }
+  explicit ScopedWorld(vpWorldDef def = unbudgetedWorldDef()) { EXPECT_VP_OK(vpWorldCreate(&def, &id)); }
   ~ScopedWorld() {
     if (vpWorldIsValid(id) == vpStatus_Ok) vpWorldDestroy(id);
   }

@@ -141,6 +141,7 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(SceneLoader, DeformableWithPinsAndAnAttachment) {
   auto world = makeWorld();
   ASSERT_EQ(loadScene(*world, VP_TEST_DATA_DIR "/scenes/jelly_bridge.json"), Status::Ok) << lastError();
+  world->setFrameBudget(0.0);  // physics checked below must not depend on the machine's speed
   ASSERT_EQ(world->deformableCount(), 1u);
   DeformableHandle h;
   ASSERT_TRUE(world->findDeformable("bridge", &h));
