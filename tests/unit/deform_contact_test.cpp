@@ -134,6 +134,26 @@ TEST(DeformableContact, KinematicPaddlePushesTheCube) {
   EXPECT_GT(s.minY(), -0.005);
 }
 
+// Dynamic colliders are contact geometry too (their pose is synced after each rigid step).
+// Coupling is one-way: the box is heavy enough that ignoring the cube's weight on it is moot.
+TEST(DeformableContact, HeldUpByADynamicBodyRestingOnTheGround) {
+  Scene s;
+  s.addGround();
+  ColliderDesc box;
+  box.bodyType = BodyType::Dynamic;
+  box.mass = 500.0;
+  box.shape.type = ShapeType::Box;
+  box.shape.halfExtents = Vec3(0.6, 0.2, 0.6);
+  box.pose.position = Vec3(0, 0.25, 0);  // drops 5 cm onto the plane, then rests
+  ColliderHandle h = s.addCollider(box);
+  s.addCube(0.3, Vec3(0, 0.9, 0), 0.8);
+  s.run(120);
+  const double boxTop = s.world->collider(h)->pose().position.y() + 0.2;
+  EXPECT_NEAR(boxTop, 0.4, 0.01);
+  EXPECT_GT(s.minY(), boxTop - 0.005);
+  EXPECT_LT(s.minY(), boxTop + 0.01);
+}
+
 class DeformableContactShapes : public ::testing::TestWithParam<ShapeType> {};
 
 // A soft cube dropped on each kind of collider is held up by it.
