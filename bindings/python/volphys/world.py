@@ -5,7 +5,7 @@ from ctypes import c_int32
 from . import _arrays
 from . import _types as T
 from ._api import call, encode_path, lib
-from .collider import Collider, IDENTITY_ROTATION
+from .collider import Collider
 from .deformable import Deformable
 from .stats import ActorStats, StepStats
 
