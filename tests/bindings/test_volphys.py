@@ -95,6 +95,20 @@ class WorldLifecycle(unittest.TestCase):
         self.assertGreaterEqual(info["hardware_threads"], 1)
 
 
+class Logging(unittest.TestCase):
+    def test_log_callback_receives_world_created(self):
+        got = []
+        volphys.set_log_callback(lambda level, msg: got.append((level, msg)), volphys.LogLevel.Info)
+        try:
+            volphys.World(workers=1).destroy()
+        finally:
+            volphys.set_log_callback(None)
+        self.assertTrue(any(level == volphys.LogLevel.Info and "world created" in msg for level, msg in got), got)
+        got.clear()
+        volphys.World().destroy()
+        self.assertEqual(got, [], "None must restore the default logger")
+
+
 class Rigid(unittest.TestCase):
     def test_ball_dropped_on_plane_rests_at_its_radius(self):
         with volphys.World() as w:

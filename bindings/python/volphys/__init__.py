@@ -13,6 +13,7 @@ from ._arrays import HAVE_NUMPY
 from ._types import ActorKind, BodyType, LogLevel, Phase, ShapeType, Status
 from .collider import Collider, Transform
 from .deformable import Deformable
+from .log import set_log_callback
 from .errors import (BusyError, DivergedError, InternalError, InvalidArgumentError, InvalidIdError, IoError,
                      OutOfMemoryError, ParseError, UnsupportedError, VersionMismatchError, VolPhysError)
 from .shapes import Box, Capsule, ConvexHull, Cylinder, Plane, Shape, Sphere, TriangleMesh
@@ -50,5 +51,5 @@ __all__ = [
     "ActorKind", "Phase", "LogLevel", "VolPhysError", "InvalidArgumentError", "InvalidIdError",
     "OutOfMemoryError", "UnsupportedError", "IoError", "ParseError", "BusyError", "DivergedError",
     "VersionMismatchError", "InternalError", "library_version", "library_path", "build_info", "status_name",
-    "HAVE_NUMPY",
+    "HAVE_NUMPY", "set_log_callback",
 ]
