@@ -223,6 +223,10 @@ class Deformables(unittest.TestCase):
             self.assertIn(str(len(verts)), cm.exception.message)
             with self.assertRaises(ValueError):
                 d.set_velocities(np.zeros((len(verts), 2)))
+            with self.assertRaises(ValueError):
+                d.pin(np.array([0.5]))
+            with self.assertRaises(ValueError):
+                d.pin(np.array([2 ** 32], dtype=np.int64))
 
 
 class Errors(unittest.TestCase):

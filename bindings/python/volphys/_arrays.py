@@ -30,7 +30,14 @@ def _input(data, width, ctype, np_dtype, what):
     if data is None:
         return None, 0, None
     if HAVE_NUMPY:
-        a = np.ascontiguousarray(data, dtype=np_dtype)
+        src = np.asarray(data)
+        if np_dtype is np.int32 and src.size:
+            # Index arrays: refuse what a cast would silently change (1.5 -> 1, 2**32 -> 0).
+            if src.dtype.kind not in "iu":
+                raise ValueError("%s: expected integer indices, got dtype %s" % (what, src.dtype))
+            if src.min() < np.iinfo(np.int32).min or src.max() > np.iinfo(np.int32).max:
+                raise ValueError("%s: index out of int32 range" % what)
+        a = np.ascontiguousarray(src, dtype=np_dtype)
         if a.ndim == 1:
             if a.size % width:
                 raise ValueError("%s: %d values is not a multiple of %d" % (what, a.size, width))
@@ -59,7 +66,7 @@ def index_list(nodes, what):
     """A single index or a sequence of them -> (pointer, count, keepalive)."""
     if isinstance(nodes, int):
         nodes = [nodes]
-    return ints(nodes if not HAVE_NUMPY else np.asarray(nodes, dtype=np.int32).reshape(-1, 1), 1, what)
+    return ints(nodes if not HAVE_NUMPY else np.asarray(nodes).reshape(-1, 1), 1, what)
 
 
 class OutBuffer:
