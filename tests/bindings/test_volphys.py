@@ -303,6 +303,25 @@ class Scenes(unittest.TestCase):
                 w.find_collider("no-such-collider")
 
 
+class Example(unittest.TestCase):
+    def test_run_scene_example_prints_every_frame(self):
+        script = os.path.join(REPO, "bindings", "python", "examples", "run_scene.py")
+        r = subprocess.run([sys.executable, script, DEFAULT_SCENE, "--frames", "3", "--budget-ms", "0"],
+                           capture_output=True, text=True, timeout=120)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        rows = [line.split() for line in r.stdout.splitlines() if line[:5].strip().isdigit()]
+        self.assertEqual([int(row[0]) for row in rows], [1, 2, 3])
+        self.assertTrue(all(float(row[2]) == 0.0 for row in rows), "--budget-ms 0 must reach the world")
+        self.assertIn("summary: 3 frames", r.stdout)
+
+    def test_run_scene_example_reports_a_missing_scene(self):
+        script = os.path.join(REPO, "bindings", "python", "examples", "run_scene.py")
+        r = subprocess.run([sys.executable, script, "/nonexistent.json", "--frames", "1"],
+                           capture_output=True, text=True, timeout=120)
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("IoError", r.stderr)
+
+
 class ImportChecks(unittest.TestCase):
     def test_struct_sizes_match_library(self):
         lib = volphys._lib
