@@ -7,6 +7,7 @@ packages=(
   g++ cmake ninja-build pkg-config binutils
   libeigen3-dev libbullet-dev libassimp-dev nlohmann-json3-dev
   googletest libgtest-dev libgmock-dev libbenchmark-dev
+  python3-numpy
 )
 
 missing=()

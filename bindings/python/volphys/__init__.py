@@ -1,0 +1,55 @@
+"""volphys: Python bindings (ctypes) over the VolPhys C ABI in libvolphys.so.
+
+The library is found through $VOLPHYS_LIBRARY, a libvolphys.so beside the package, or the
+system library path. Import fails with ImportError if the library's struct layouts differ
+from these bindings. Every failing call raises a VolPhysError subclass carrying the status
+and the library's message. Arrays come back as numpy arrays when numpy is importable.
+"""
+import ctypes
+
+from . import _types as _T
+from ._api import call as _call, lib as _lib
+from ._arrays import HAVE_NUMPY
+from ._types import ActorKind, BodyType, LogLevel, Phase, ShapeType, Status
+from .collider import Collider, Transform
+from .deformable import Deformable
+from .log import set_log_callback
+from .errors import (BusyError, DivergedError, InternalError, InvalidArgumentError, InvalidIdError, IoError,
+                     OutOfMemoryError, ParseError, UnsupportedError, VersionMismatchError, VolPhysError)
+from .shapes import Box, Capsule, ConvexHull, Cylinder, Plane, Shape, Sphere, TriangleMesh
+from .stats import ActorStats, PhaseStats, StepStats
+from .world import World
+
+__version__ = "%d.%d.%d" % (_T.VP_VERSION_MAJOR, _T.VP_VERSION_MINOR, _T.VP_VERSION_PATCH)
+
+
+def library_version():
+    """(major, minor, patch) of the loaded library."""
+    v = _lib.vpGetVersion()
+    return (v.major, v.minor, v.patch)
+
+
+def library_path():
+    return _lib._name
+
+
+def build_info():
+    """dict with cuda_compiled, cuda_device_count, hardware_threads."""
+    b = _T.vpBuildInfo()
+    _call("vpGetBuildInfo", ctypes.byref(b))
+    return {"cuda_compiled": bool(b.cudaCompiled), "cuda_device_count": b.cudaDeviceCount,
+            "hardware_threads": b.hardwareThreads}
+
+
+def status_name(status):
+    return _lib.vpStatusName(int(status)).decode()
+
+
+__all__ = [
+    "World", "Collider", "Deformable", "Transform", "Shape", "Sphere", "Box", "Capsule", "Cylinder", "Plane",
+    "ConvexHull", "TriangleMesh", "StepStats", "ActorStats", "PhaseStats", "Status", "BodyType", "ShapeType",
+    "ActorKind", "Phase", "LogLevel", "VolPhysError", "InvalidArgumentError", "InvalidIdError",
+    "OutOfMemoryError", "UnsupportedError", "IoError", "ParseError", "BusyError", "DivergedError",
+    "VersionMismatchError", "InternalError", "library_version", "library_path", "build_info", "status_name",
+    "HAVE_NUMPY", "set_log_callback",
+]

@@ -1,0 +1,228 @@
+"""ctypes mirrors of every struct, enum and callback type in volphys.h.
+
+Field order and types must match the header exactly; volphys._api checks the sizes the
+library reports (structSize defaults, vpCheckHeaderVersion) at import.
+"""
+import ctypes
+import enum
+from ctypes import c_float, c_int32, c_uint16, c_uint32, c_uint64, c_void_p, c_char_p, c_double, c_size_t, POINTER
+
+VP_VERSION_MAJOR = 0
+VP_VERSION_MINOR = 1
+VP_VERSION_PATCH = 0
+VP_HEADER_VERSION = (VP_VERSION_MAJOR << 16) | (VP_VERSION_MINOR << 8) | VP_VERSION_PATCH
+VP_MAX_PHASES = 16
+
+# C enums are ints with this compiler/ABI; ctypes sees them as c_int.
+c_enum = ctypes.c_int
+
+
+class Status(enum.IntEnum):
+    Ok = 0
+    InvalidArgument = 1
+    InvalidId = 2
+    OutOfMemory = 3
+    Unsupported = 4
+    IoError = 5
+    ParseError = 6
+    Busy = 7
+    Diverged = 8
+    VersionMismatch = 9
+    Internal = 10
+
+
+class LogLevel(enum.IntEnum):
+    Debug = 0
+    Info = 1
+    Warning = 2
+    Error = 3
+    Off = 4
+
+
+class Phase(enum.IntEnum):
+    Rigid = 0
+    Corotate = 1
+    Assemble = 2
+    Contacts = 3
+    Solve = 4
+    Embed = 5
+    Advect = 6
+    Forces = 7
+    Fractions = 8
+    Pressure = 9
+    Surface = 10
+
+
+PHASE_COUNT = 11
+
+
+class ActorKind(enum.IntEnum):
+    Rigid = 0
+    Deformable = 1
+    Fluid = 2
+
+
+class BodyType(enum.IntEnum):
+    Static = 0
+    Kinematic = 1
+    Dynamic = 2
+
+
+class ShapeType(enum.IntEnum):
+    Sphere = 0
+    Box = 1
+    Capsule = 2
+    Cylinder = 3
+    Plane = 4
+    ConvexHull = 5
+    TriangleMesh = 6
+
+
+class vpVersion(ctypes.Structure):
+    _fields_ = [("major", c_int32), ("minor", c_int32), ("patch", c_int32)]
+
+
+class vpVec3(ctypes.Structure):
+    _fields_ = [("x", c_float), ("y", c_float), ("z", c_float)]
+
+
+class vpQuat(ctypes.Structure):
+    _fields_ = [("x", c_float), ("y", c_float), ("z", c_float), ("w", c_float)]
+
+
+class vpTransform(ctypes.Structure):
+    _fields_ = [("position", vpVec3), ("rotation", vpQuat)]
+
+
+# Callback types. CFUNCTYPE(restype, *argtypes).
+vpAllocFn = ctypes.CFUNCTYPE(c_void_p, c_size_t, c_size_t, c_void_p)
+vpFreeFn = ctypes.CFUNCTYPE(None, c_void_p, c_void_p)
+vpLogFn = ctypes.CFUNCTYPE(None, c_enum, c_char_p, c_void_p)
+vpTaskFn = ctypes.CFUNCTYPE(None, c_int32, c_int32, c_uint32, c_void_p)
+vpEnqueueTaskFn = ctypes.CFUNCTYPE(c_void_p, vpTaskFn, c_int32, c_int32, c_void_p, c_void_p)
+vpFinishTaskFn = ctypes.CFUNCTYPE(None, c_void_p, c_void_p)
+vpClockFn = ctypes.CFUNCTYPE(c_double, c_void_p)
+
+
+class vpWorldId(ctypes.Structure):
+    _fields_ = [("index1", c_uint16), ("generation", c_uint16)]
+
+
+class vpColliderId(ctypes.Structure):
+    _fields_ = [("index1", c_uint32), ("generation", c_uint32), ("world", vpWorldId)]
+
+
+class vpDeformableId(ctypes.Structure):
+    _fields_ = [("index1", c_uint32), ("generation", c_uint32), ("world", vpWorldId)]
+
+
+class vpWorldDef(ctypes.Structure):
+    _fields_ = [
+        ("structSize", c_uint32),
+        ("gravity", vpVec3),
+        ("workerCount", c_int32),
+        ("frameBudgetMs", c_float),
+        ("rigidMaxSubstep", c_float),
+        ("enqueueTask", vpEnqueueTaskFn),
+        ("finishTask", vpFinishTaskFn),
+        ("userTaskContext", c_void_p),
+        ("clock", vpClockFn),
+        ("clockContext", c_void_p),
+        ("userData", c_void_p),
+    ]
+
+
+class vpPhaseStats(ctypes.Structure):
+    _fields_ = [("ms", c_float), ("iterations", c_int32), ("residual", c_float), ("budgetCut", c_int32)]
+
+
+class vpActorStats(ctypes.Structure):
+    _fields_ = [
+        ("kind", c_enum),
+        ("index1", c_uint32),
+        ("totalMs", c_float),
+        ("diverged", c_int32),
+        ("phases", vpPhaseStats * VP_MAX_PHASES),
+    ]
+
+
+class vpStepStats(ctypes.Structure):
+    _fields_ = [
+        ("structSize", c_uint32),
+        ("stepIndex", c_uint64),
+        ("dt", c_float),
+        ("totalMs", c_float),
+        ("budgetMs", c_float),
+        ("budgetCut", c_int32),
+        ("actorCount", c_int32),
+        ("colliderCount", c_int32),
+        ("rigidSubsteps", c_int32),
+    ]
+
+
+class vpShapeDef(ctypes.Structure):
+    _fields_ = [
+        ("structSize", c_uint32),
+        ("type", c_enum),
+        ("radius", c_float),
+        ("halfHeight", c_float),
+        ("halfExtents", vpVec3),
+        ("normal", vpVec3),
+        ("offset", c_float),
+        ("points", POINTER(c_float)),
+        ("pointCount", c_int32),
+        ("indices", POINTER(c_int32)),
+        ("triangleCount", c_int32),
+        ("meshFile", c_char_p),
+        ("meshScale", vpVec3),
+    ]
+
+
+class vpColliderDef(ctypes.Structure):
+    _fields_ = [
+        ("structSize", c_uint32),
+        ("bodyType", c_enum),
+        ("shape", vpShapeDef),
+        ("pose", vpTransform),
+        ("linearVelocity", vpVec3),
+        ("angularVelocity", vpVec3),
+        ("mass", c_float),
+        ("friction", c_float),
+        ("restitution", c_float),
+        ("linearDamping", c_float),
+        ("angularDamping", c_float),
+        ("userData", c_void_p),
+    ]
+
+
+class vpDeformableDef(ctypes.Structure):
+    _fields_ = [
+        ("structSize", c_uint32),
+        ("degree", c_int32),
+        ("vertices", POINTER(c_float)),
+        ("vertexCount", c_int32),
+        ("tets", POINTER(c_int32)),
+        ("tetCount", c_int32),
+        ("tetFile", c_char_p),
+        ("surfaceFile", c_char_p),
+        ("voxelResolution", c_int32),
+        ("renderVertices", POINTER(c_float)),
+        ("renderVertexCount", c_int32),
+        ("renderTriangles", POINTER(c_int32)),
+        ("renderTriangleCount", c_int32),
+        ("pose", vpTransform),
+        ("linearVelocity", vpVec3),
+        ("youngsModulus", c_float),
+        ("poissonRatio", c_float),
+        ("density", c_float),
+        ("massDamping", c_float),
+        ("stiffnessDamping", c_float),
+        ("friction", c_float),
+        ("solverTolerance", c_float),
+        ("solverMaxIterations", c_int32),
+        ("userData", c_void_p),
+    ]
+
+
+class vpBuildInfo(ctypes.Structure):
+    _fields_ = [("cudaCompiled", c_int32), ("cudaDeviceCount", c_int32), ("hardwareThreads", c_int32)]

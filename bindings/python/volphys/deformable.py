@@ -1,0 +1,104 @@
+"""Deformable: a handle (vpDeformableId) to a tetrahedral FEM volume of a World."""
+import ctypes
+from ctypes import c_float, c_int32
+
+from . import _arrays
+from . import _types as T
+from ._api import call, lib
+from .stats import ActorStats
+
+
+class Deformable:
+    def __init__(self, world, did):
+        self.world = world
+        self._id = did
+
+    def __repr__(self):
+        return "Deformable(index1=%d, generation=%d)" % (self._id.index1, self._id.generation)
+
+    def __eq__(self, other):
+        return isinstance(other, Deformable) and bytes(self._id) == bytes(other._id)
+
+    def __hash__(self):
+        return hash(bytes(self._id))
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.destroy()
+
+    @property
+    def id(self):
+        return self._id
+
+    @property
+    def is_valid(self):
+        return lib.vpDeformableIsValid(self._id) == 0
+
+    def destroy(self):
+        call("vpDeformableDestroy", self._id)
+
+    @property
+    def node_count(self):
+        n = c_int32()
+        call("vpDeformableGetNodeCount", self._id, ctypes.byref(n))
+        return n.value
+
+    def _get_nodes(self, fn):
+        n = self.node_count
+        out = _arrays.OutBuffer(n, 3, c_float)
+        call(fn, self._id, out.ptr, n)
+        return out.result()
+
+    def positions(self):
+        """Node positions, (n, 3) float32 (world frame)."""
+        return self._get_nodes("vpDeformableGetPositions")
+
+    def velocities(self):
+        return self._get_nodes("vpDeformableGetVelocities")
+
+    def set_velocities(self, velocities):
+        ptr, n, keep = _arrays.floats3(velocities, "velocities")
+        call("vpDeformableSetVelocities", self._id, ptr, n)
+        del keep  # held until here: C copied it
+
+    def apply_force(self, node, force):
+        """Acts during the next step only."""
+        call("vpDeformableApplyForce", self._id, int(node), _arrays.vec3(force))
+
+    def apply_impulse(self, node, impulse):
+        """Changes the node's velocity now."""
+        call("vpDeformableApplyImpulse", self._id, int(node), _arrays.vec3(impulse))
+
+    def pin(self, nodes):
+        """Pinned nodes stay put until unpinned. All-or-nothing."""
+        ptr, n, keep = _arrays.index_list(nodes, "nodes")
+        call("vpDeformablePin", self._id, ptr, n)
+        del keep
+
+    def unpin(self, nodes):
+        ptr, n, keep = _arrays.index_list(nodes, "nodes")
+        call("vpDeformableUnpin", self._id, ptr, n)
+        del keep
+
+    def attach(self, nodes, collider):
+        """The nodes follow `collider` rigidly from their current offset in its frame."""
+        ptr, n, keep = _arrays.index_list(nodes, "nodes")
+        call("vpDeformableAttach", self._id, ptr, n, collider.id)
+        del keep
+
+    def render_mesh(self):
+        """(positions (v,3) float32, normals (v,3) float32, triangles (t,3) int32)."""
+        nv, nt = c_int32(), c_int32()
+        call("vpDeformableGetRenderMeshSize", self._id, ctypes.byref(nv), ctypes.byref(nt))
+        pos = _arrays.OutBuffer(nv.value, 3, c_float)
+        nrm = _arrays.OutBuffer(nv.value, 3, c_float)
+        tri = _arrays.OutBuffer(nt.value, 3, c_int32)
+        call("vpDeformableGetRenderMesh", self._id, pos.ptr, nrm.ptr, nv.value, tri.ptr, nt.value)
+        return pos.result(), nrm.result(), tri.result()
+
+    def stats(self):
+        s = T.vpActorStats()
+        call("vpDeformableGetStats", self._id, ctypes.byref(s))
+        return ActorStats._from_c(s)

@@ -1,0 +1,211 @@
+"""World: owns colliders and deformables; steps them under a frame budget."""
+import ctypes
+from ctypes import c_int32
+
+from . import _arrays
+from . import _types as T
+from ._api import call, encode_path, lib
+from .collider import Collider
+from .deformable import Deformable
+from .stats import ActorStats, StepStats
+
+# Python keyword -> vpColliderDef field, for the plain float fields.
+_COLLIDER_SCALARS = {
+    "mass": "mass", "friction": "friction", "restitution": "restitution",
+    "linear_damping": "linearDamping", "angular_damping": "angularDamping",
+}
+_DEFORMABLE_SCALARS = {
+    "degree": "degree", "voxel_resolution": "voxelResolution", "youngs_modulus": "youngsModulus",
+    "poisson_ratio": "poissonRatio", "density": "density", "mass_damping": "massDamping",
+    "stiffness_damping": "stiffnessDamping", "friction": "friction", "solver_tolerance": "solverTolerance",
+    "solver_max_iterations": "solverMaxIterations",
+}
+
+
+def _body_type(value):
+    if isinstance(value, str):
+        try:
+            return T.BodyType[value.capitalize()]
+        except KeyError:
+            raise ValueError("body_type %r: expected 'static', 'kinematic' or 'dynamic'" % value) from None
+    return T.BodyType(value)
+
+
+def _set_scalars(d, table, kwargs):
+    for key, value in kwargs.items():
+        if key not in table:
+            raise TypeError("unexpected keyword argument %r" % key)
+        if value is not None:
+            setattr(d, table[key], value)
+
+
+def _set_pose(d, position, rotation):
+    if position is not None:
+        d.pose.position = _arrays.vec3(position)
+    if rotation is not None:
+        d.pose.rotation = _arrays.quat(rotation)
+
+
+class World:
+    """A simulation world. Destroy it with destroy() or by leaving a `with` block; ids of its
+    colliders and deformables go stale then (using them raises InvalidIdError).
+
+    Arguments left as None keep vpDefaultWorldDef()'s values (gravity (0,-9.81,0), 1 worker,
+    16 ms budget, 1/120 s rigid sub-step)."""
+
+    def __init__(self, gravity=None, workers=None, frame_budget_ms=None, rigid_max_substep=None):
+        d = lib.vpDefaultWorldDef()
+        if gravity is not None:
+            d.gravity = _arrays.vec3(gravity)
+        if workers is not None:
+            d.workerCount = workers
+        if frame_budget_ms is not None:
+            d.frameBudgetMs = frame_budget_ms
+        if rigid_max_substep is not None:
+            d.rigidMaxSubstep = rigid_max_substep
+        self._id = T.vpWorldId()
+        call("vpWorldCreate", ctypes.byref(d), ctypes.byref(self._id))
+        self._destroyed = False
+
+    def __repr__(self):
+        return "World(index1=%d, generation=%d%s)" % (self._id.index1, self._id.generation,
+                                                       ", destroyed" if self._destroyed else "")
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.destroy()
+
+    @property
+    def id(self):
+        return self._id
+
+    @property
+    def is_valid(self):
+        return lib.vpWorldIsValid(self._id) == 0
+
+    def destroy(self):
+        """Destroys the world and everything in it. A second call does nothing (like
+        file.close()); every other method raises InvalidIdError afterwards."""
+        if self._destroyed:
+            return
+        call("vpWorldDestroy", self._id)
+        self._destroyed = True
+
+    # -------------------------------------------------------------- settings
+    @property
+    def gravity(self):
+        g = T.vpVec3()
+        call("vpWorldGetGravity", self._id, ctypes.byref(g))
+        return (g.x, g.y, g.z)
+
+    @gravity.setter
+    def gravity(self, value):
+        call("vpWorldSetGravity", self._id, _arrays.vec3(value))
+
+    def set_frame_budget(self, ms):
+        """0 = unlimited."""
+        call("vpWorldSetFrameBudget", self._id, ms)
+
+    # -------------------------------------------------------------- stepping
+    def step(self, dt):
+        """Advances by dt seconds (0 < dt <= 1) and returns the step's StepStats."""
+        call("vpWorldStep", self._id, dt)
+        return self.stats()
+
+    def load_scene(self, path):
+        """Adds a JSON scene's colliders and actors. All-or-nothing."""
+        call("vpWorldLoadScene", self._id, encode_path(path))
+
+    def stats(self):
+        s = lib.vpDefaultStepStats()
+        call("vpWorldGetStepStats", self._id, ctypes.byref(s))
+        return StepStats._from_c(s)
+
+    def actor_stats(self):
+        """Per-actor stats of the last step; entry 0 is the rigid pseudo-actor."""
+        n = self.stats().actor_count
+        out = []
+        for i in range(n):
+            s = T.vpActorStats()
+            call("vpWorldGetActorStats", self._id, i, ctypes.byref(s))
+            out.append(ActorStats._from_c(s))
+        return out
+
+    # -------------------------------------------------------------- colliders
+    def colliders(self):
+        n = c_int32()
+        call("vpWorldGetColliderCount", self._id, ctypes.byref(n))
+        ids = (T.vpColliderId * max(n.value, 1))()
+        got = c_int32()
+        call("vpWorldGetColliders", self._id, ids, n.value, ctypes.byref(got))
+        return [Collider(self, T.vpColliderId.from_buffer_copy(ids[i])) for i in range(got.value)]
+
+    def find_collider(self, name):
+        """The first collider the scene named `name`; InvalidArgumentError if none."""
+        cid = T.vpColliderId()
+        call("vpWorldFindCollider", self._id, name.encode("utf-8"), ctypes.byref(cid))
+        return Collider(self, cid)
+
+    def create_collider(self, shape, body_type=T.BodyType.Dynamic, position=None, rotation=None,
+                        linear_velocity=None, angular_velocity=None, **scalars):
+        """shape: a volphys.Shape (Sphere(...), Box(...), Plane(...), ...). body_type: BodyType
+        or 'static' / 'kinematic' / 'dynamic'. Further keywords: mass, friction, restitution,
+        linear_damping, angular_damping. Anything not given keeps vpDefaultColliderDef()'s value."""
+        d = lib.vpDefaultColliderDef()
+        d.bodyType = int(_body_type(body_type))
+        keep = shape._fill(d.shape)
+        _set_pose(d, position, rotation)
+        if linear_velocity is not None:
+            d.linearVelocity = _arrays.vec3(linear_velocity)
+        if angular_velocity is not None:
+            d.angularVelocity = _arrays.vec3(angular_velocity)
+        _set_scalars(d, _COLLIDER_SCALARS, scalars)
+        cid = T.vpColliderId()
+        call("vpColliderCreate", self._id, ctypes.byref(d), ctypes.byref(cid))
+        del keep  # the arrays d pointed into lived until the library copied them
+        return Collider(self, cid)
+
+    # -------------------------------------------------------------- deformables
+    def find_deformable(self, name):
+        did = T.vpDeformableId()
+        call("vpWorldFindDeformable", self._id, name.encode("utf-8"), ctypes.byref(did))
+        return Deformable(self, did)
+
+    def create_deformable(self, vertices=None, tets=None, tet_file=None, surface_file=None,
+                          render_vertices=None, render_triangles=None, position=None, rotation=None,
+                          linear_velocity=None, **scalars):
+        """Exactly one mesh source: vertices (n,3) + tets (m,4), tet_file, or surface_file.
+        Further keywords: degree, voxel_resolution, youngs_modulus, poisson_ratio, density,
+        mass_damping, stiffness_damping, friction, solver_tolerance, solver_max_iterations."""
+        d = lib.vpDefaultDeformableDef()
+        keep = []
+        if vertices is not None:
+            d.vertices, d.vertexCount, k = _arrays.floats3(vertices, "vertices")
+            keep.append(k)
+        if tets is not None:
+            d.tets, d.tetCount, k = _arrays.ints(tets, 4, "tets")
+            keep.append(k)
+        if tet_file is not None:
+            b = encode_path(tet_file)
+            d.tetFile = b
+            keep.append(b)
+        if surface_file is not None:
+            b = encode_path(surface_file)
+            d.surfaceFile = b
+            keep.append(b)
+        if render_vertices is not None:
+            d.renderVertices, d.renderVertexCount, k = _arrays.floats3(render_vertices, "render_vertices")
+            keep.append(k)
+        if render_triangles is not None:
+            d.renderTriangles, d.renderTriangleCount, k = _arrays.ints(render_triangles, 3, "render_triangles")
+            keep.append(k)
+        _set_pose(d, position, rotation)
+        if linear_velocity is not None:
+            d.linearVelocity = _arrays.vec3(linear_velocity)
+        _set_scalars(d, _DEFORMABLE_SCALARS, scalars)
+        did = T.vpDeformableId()
+        call("vpDeformableCreate", self._id, ctypes.byref(d), ctypes.byref(did))
+        del keep
+        return Deformable(self, did)

@@ -1,0 +1,386 @@
+"""Tests of the Python bindings against the real libvolphys.so (found via $VOLPHYS_LIBRARY).
+
+Run: VOLPHYS_LIBRARY=build/release/plugin_api/libvolphys.so PYTHONPATH=bindings/python \
+     /usr/bin/python3 -m unittest discover -s tests/bindings -v
+"""
+import ctypes
+import os
+import subprocess
+import sys
+import unittest
+
+import volphys
+from volphys import _types as T
+
+try:
+    import numpy as np
+except ImportError:
+    np = None
+
+REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+DEFAULT_SCENE = os.path.join(REPO, "sample_host", "scenes", "default.json")
+DT = 1.0 / 60.0
+
+
+def box_tet_mesh(n, size):
+    """An n^3-cell cube of edge `size` centred at the origin, 6 tets per cell (Kuhn split
+    along the main diagonal, so neighbouring cells share faces). Returns (vertices, tets)
+    as numpy arrays, float32 (v,3) and int32 (t,4)."""
+    h = size / n
+    verts = [((i * h - size / 2), (j * h - size / 2), (k * h - size / 2))
+             for k in range(n + 1) for j in range(n + 1) for i in range(n + 1)]
+
+    def vid(i, j, k):
+        return i + (n + 1) * (j + (n + 1) * k)
+
+    tets = []
+    # Paths from corner (0,0,0) to (1,1,1) stepping one axis at a time: 6 axis orders.
+    orders = [(0, 1, 2), (0, 2, 1), (1, 0, 2), (1, 2, 0), (2, 0, 1), (2, 1, 0)]
+    for k in range(n):
+        for j in range(n):
+            for i in range(n):
+                for order in orders:
+                    c = [i, j, k]
+                    path = [vid(*c)]
+                    for axis in order:
+                        c[axis] += 1
+                        path.append(vid(*c))
+                    a, b, cc, d = path
+                    # Make the signed volume positive so the test does not lean on the
+                    # library's repair of inverted tets.
+                    pa, pb, pc, pd = (verts[x] for x in path)
+                    u = [pb[m] - pa[m] for m in range(3)]
+                    v = [pc[m] - pa[m] for m in range(3)]
+                    w = [pd[m] - pa[m] for m in range(3)]
+                    det = (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0])
+                           + u[2] * (v[0] * w[1] - v[1] * w[0]))
+                    tets.append((a, b, d, cc) if det < 0 else (a, b, cc, d))
+    return np.array(verts, dtype=np.float32), np.array(tets, dtype=np.int32)
+
+
+class WorldLifecycle(unittest.TestCase):
+    def test_create_step_destroy(self):
+        w = volphys.World(gravity=(0, -9.81, 0), workers=2, frame_budget_ms=0)
+        self.assertTrue(w.is_valid)
+        self.assertEqual(w.gravity, (0.0, -9.8100004196167, 0.0))
+        s = w.step(DT)
+        self.assertEqual(s.step_index, 1)
+        self.assertAlmostEqual(s.dt, DT, places=6)
+        self.assertEqual(s.budget_ms, 0.0)
+        w.step(DT)
+        self.assertEqual(w.stats().step_index, 2)
+        w.destroy()
+        self.assertFalse(w.is_valid)
+        w.destroy()  # idempotent, like file.close()
+
+    def test_context_manager_destroys_world_and_its_objects(self):
+        with volphys.World() as w:
+            c = w.create_collider(volphys.Sphere(0.5), position=(0, 1, 0))
+            self.assertTrue(c.is_valid)
+        self.assertFalse(w.is_valid)
+        self.assertFalse(c.is_valid)
+        with self.assertRaises(volphys.InvalidIdError):
+            c.pose
+
+    def test_collider_context_manager(self):
+        with volphys.World() as w:
+            with w.create_collider(volphys.Box((0.5, 0.5, 0.5)), body_type="static") as c:
+                self.assertEqual(len(w.colliders()), 1)
+            self.assertFalse(c.is_valid)
+            self.assertEqual(w.colliders(), [])
+
+    def test_version_and_build_info(self):
+        self.assertEqual(volphys.library_version()[0], T.VP_VERSION_MAJOR)
+        info = volphys.build_info()
+        self.assertGreaterEqual(info["hardware_threads"], 1)
+
+
+class Logging(unittest.TestCase):
+    def test_log_callback_receives_world_created(self):
+        got = []
+        volphys.set_log_callback(lambda level, msg: got.append((level, msg)), volphys.LogLevel.Info)
+        try:
+            volphys.World(workers=1).destroy()
+        finally:
+            volphys.set_log_callback(None)
+        self.assertTrue(any(level == volphys.LogLevel.Info and "world created" in msg for level, msg in got), got)
+        got.clear()
+        volphys.World().destroy()
+        self.assertEqual(got, [], "None must restore the default logger")
+
+
+class Rigid(unittest.TestCase):
+    def test_ball_dropped_on_plane_rests_at_its_radius(self):
+        with volphys.World() as w:
+            w.create_collider(volphys.Plane((0, 1, 0), 0.0), body_type=volphys.BodyType.Static)
+            ball = w.create_collider(volphys.Sphere(radius=0.3), position=(0, 2, 0), mass=1.0)
+            self.assertEqual(ball.body_type, volphys.BodyType.Dynamic)
+            for _ in range(180):
+                w.step(DT)
+            (x, y, z), rot = ball.pose
+            self.assertAlmostEqual(y, 0.3, delta=0.02)
+            lin, _ = ball.velocity
+            self.assertLess(max(abs(v) for v in lin), 0.05)
+
+    def test_velocity_and_kinematic_target(self):
+        with volphys.World(gravity=(0, 0, 0)) as w:
+            body = w.create_collider(volphys.Sphere(0.2), linear_velocity=(1, 0, 0))
+            self.assertAlmostEqual(body.velocity[0][0], 1.0, places=5)
+            body.set_velocity((0, 2, 0))
+            self.assertAlmostEqual(body.velocity[0][1], 2.0, places=5)
+            kin = w.create_collider(volphys.Box((0.5, 0.1, 0.5)), body_type="kinematic")
+            kin.set_kinematic_target((0.5, 0.25, 0))
+            w.step(DT)
+            px, py, pz = kin.position
+            self.assertAlmostEqual(px, 0.5, places=4)
+            self.assertAlmostEqual(py, 0.25, places=4)
+            kin.pose = ((1, 1, 1), (0, 0, 0, 1))
+            self.assertAlmostEqual(kin.position[2], 1.0, places=5)
+
+
+@unittest.skipIf(np is None, "numpy is not importable")
+class Deformables(unittest.TestCase):
+    def make(self, w, **kw):
+        verts, tets = box_tet_mesh(2, 0.4)
+        return w.create_deformable(vertices=verts, tets=tets, position=(0, 2, 0), **kw), verts
+
+    def test_box_from_numpy_falls(self):
+        with volphys.World(frame_budget_ms=0) as w:
+            d, verts = self.make(w)
+            self.assertEqual(d.node_count, len(verts))
+            p0 = d.positions()
+            self.assertEqual(p0.dtype, np.float32)
+            self.assertEqual(p0.shape, (len(verts), 3))
+            self.assertAlmostEqual(float(p0[:, 1].mean()), 2.0, places=4)
+            n = 30
+            for _ in range(n):
+                w.step(DT)
+            drop = 2.0 - float(d.positions()[:, 1].mean())
+            # Backward Euler free fall: sum_{k=1..n} k g dt^2 = g dt^2 n(n+1)/2 (1.27 m).
+            expected = 9.81 * DT * DT * n * (n + 1) / 2
+            self.assertAlmostEqual(drop, expected, delta=0.05 * expected)
+            self.assertLess(float(d.velocities()[:, 1].mean()), -4.0)
+            st = d.stats()
+            self.assertEqual(st.kind, volphys.ActorKind.Deformable)
+            self.assertGreater(st.phases[volphys.Phase.Solve].iterations, 0)
+            kinds = [a.kind for a in w.actor_stats()]
+            self.assertEqual(kinds[0], volphys.ActorKind.Rigid)
+            self.assertIn(volphys.ActorKind.Deformable, kinds)
+
+    def test_pin_keeps_nodes_fixed_and_unpin_releases_them(self):
+        with volphys.World() as w:
+            d, _ = self.make(w)
+            p0 = d.positions()
+            top = np.nonzero(p0[:, 1] > p0[:, 1].max() - 1e-4)[0].astype(np.int32)
+            self.assertEqual(len(top), 9)
+            d.pin(top)
+            for _ in range(20):
+                w.step(DT)
+            p1 = d.positions()
+            np.testing.assert_allclose(p1[top], p0[top], atol=1e-6)
+            bottom = p0[:, 1] < p0[:, 1].min() + 1e-4
+            # The free end hangs from the pinned one: it must have sagged (so the step ran).
+            self.assertLess(float((p1[bottom, 1] - p0[bottom, 1]).max()), -1e-4)
+            d.unpin(top)
+            for _ in range(10):
+                w.step(DT)
+            self.assertLess(float(d.positions()[top, 1].max()), float(p0[top, 1].max()) - 0.01)
+
+    def test_impulse_set_velocities_and_render_mesh(self):
+        with volphys.World(gravity=(0, 0, 0)) as w:
+            d, verts = self.make(w)
+            d.apply_impulse(0, (0.0, 0.0, 1.0))
+            v = d.velocities()
+            self.assertGreater(v[0, 2], 0.0)
+            self.assertEqual(float(np.abs(v[1:]).max()), 0.0)
+            d.set_velocities(np.zeros_like(verts))
+            self.assertEqual(float(np.abs(d.velocities()).max()), 0.0)
+            pos, nrm, tri = d.render_mesh()
+            self.assertEqual(pos.shape, nrm.shape)
+            self.assertEqual(tri.dtype, np.int32)
+            self.assertEqual(tri.shape[1], 3)
+            # Boundary of a 2x2x2-cell cube: 6 faces x 4 squares x 2 triangles.
+            self.assertEqual(len(tri), 48)
+            self.assertLess(int(tri.max()), len(pos))
+            np.testing.assert_allclose(np.linalg.norm(nrm, axis=1), 1.0, atol=1e-4)
+
+    def test_attach_to_kinematic_collider_follows_it(self):
+        with volphys.World(gravity=(0, 0, 0)) as w:
+            d, _ = self.make(w)
+            paddle = w.create_collider(volphys.Box((0.1, 0.1, 0.1)), body_type="kinematic", position=(0, 2, 0))
+            d.attach([0, 1, 2], paddle)
+            before = d.positions()[[0, 1, 2]].copy()
+            paddle.set_kinematic_target((0.0, 2.5, 0.0))
+            w.step(DT)
+            after = d.positions()[[0, 1, 2]]
+            np.testing.assert_allclose(after - before, [[0, 0.5, 0]] * 3, atol=1e-3)
+
+    def test_bad_node_index_raises_and_names_it(self):
+        with volphys.World() as w:
+            d, verts = self.make(w)
+            with self.assertRaises(volphys.InvalidArgumentError) as cm:
+                d.pin([0, len(verts)])
+            self.assertIn(str(len(verts)), cm.exception.message)
+            with self.assertRaises(ValueError):
+                d.set_velocities(np.zeros((len(verts), 2)))
+            with self.assertRaises(ValueError):
+                d.pin(np.array([0.5]))
+            with self.assertRaises(ValueError):
+                d.pin(np.array([2 ** 32], dtype=np.int64))
+
+
+class Errors(unittest.TestCase):
+    def test_negative_radius_names_the_field(self):
+        with volphys.World() as w:
+            with self.assertRaises(volphys.InvalidArgumentError) as cm:
+                w.create_collider(volphys.Sphere(-1.0))
+            e = cm.exception
+            self.assertIsInstance(e, volphys.VolPhysError)
+            self.assertEqual(e.status, volphys.Status.InvalidArgument)
+            self.assertIn("shape.radius", e.message)
+            self.assertIn("shape.radius", str(e))
+            self.assertEqual(w.colliders(), [], "a failing call changes nothing")
+
+    def test_bad_step_and_unknown_keyword(self):
+        with volphys.World() as w:
+            with self.assertRaises(volphys.InvalidArgumentError) as cm:
+                w.step(-1.0)
+            self.assertIn("dt", cm.exception.message)
+            with self.assertRaises(TypeError):
+                w.create_collider(volphys.Sphere(1.0), bounciness=2)
+
+    def test_stale_ids_raise_invalid_id(self):
+        w = volphys.World()
+        c = w.create_collider(volphys.Sphere(0.5))
+        c.destroy()
+        with self.assertRaises(volphys.InvalidIdError):
+            c.pose
+        with self.assertRaises(volphys.InvalidIdError):
+            c.destroy()
+        w.destroy()
+        with self.assertRaises(volphys.InvalidIdError) as cm:
+            w.step(DT)
+        self.assertEqual(cm.exception.status, volphys.Status.InvalidId)
+        with self.assertRaises(volphys.InvalidIdError):
+            w.create_collider(volphys.Sphere(0.5))
+
+    def test_missing_scene_is_io_error(self):
+        with volphys.World() as w:
+            with self.assertRaises(volphys.IoError) as cm:
+                w.load_scene("/nonexistent/scene.json")
+            self.assertIn("/nonexistent/scene.json", cm.exception.message)
+
+    def test_malformed_scene_is_parse_error(self):
+        import tempfile
+        with tempfile.NamedTemporaryFile("w", suffix=".json", delete=False) as f:
+            f.write('{"version": 1, "colliders": [{"shape": {"type": "sphere", "radius": "big"}}]}')
+        try:
+            with volphys.World() as w:
+                with self.assertRaises(volphys.ParseError) as cm:
+                    w.load_scene(f.name)
+                self.assertIn("radius", cm.exception.message)
+        finally:
+            os.unlink(f.name)
+
+
+class Scenes(unittest.TestCase):
+    def test_default_scene_loads_and_runs(self):
+        with volphys.World() as w:
+            w.load_scene(DEFAULT_SCENE)
+            names = ["ground", "paddle", "crate", "ball", "pill", "can", "gem"]
+            self.assertEqual(len(w.colliders()), len(names))
+            ball = w.find_collider("ball")
+            self.assertIn(ball, w.colliders())
+            y0 = ball.position[1]
+            jelly = w.find_deformable("jelly")
+            self.assertGreater(jelly.node_count, 0)
+            for _ in range(10):
+                s = w.step(DT)
+            self.assertEqual(s.collider_count, len(names))
+            self.assertGreaterEqual(s.actor_count, 2)
+            self.assertLess(ball.position[1], y0)
+            with self.assertRaises(volphys.InvalidArgumentError):
+                w.find_collider("no-such-collider")
+
+
+class Example(unittest.TestCase):
+    def test_run_scene_example_prints_every_frame(self):
+        script = os.path.join(REPO, "bindings", "python", "examples", "run_scene.py")
+        r = subprocess.run([sys.executable, script, DEFAULT_SCENE, "--frames", "3", "--budget-ms", "0"],
+                           capture_output=True, text=True, timeout=120)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        rows = [line.split() for line in r.stdout.splitlines() if line[:5].strip().isdigit()]
+        self.assertEqual([int(row[0]) for row in rows], [1, 2, 3])
+        self.assertTrue(all(float(row[2]) == 0.0 for row in rows), "--budget-ms 0 must reach the world")
+        self.assertIn("summary: 3 frames", r.stdout)
+
+    def test_run_scene_example_reports_a_missing_scene(self):
+        script = os.path.join(REPO, "bindings", "python", "examples", "run_scene.py")
+        r = subprocess.run([sys.executable, script, "/nonexistent.json", "--frames", "1"],
+                           capture_output=True, text=True, timeout=120)
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("IoError", r.stderr)
+
+
+class ImportChecks(unittest.TestCase):
+    def test_struct_sizes_match_library(self):
+        lib = volphys._lib
+        for fn, st in (("vpDefaultWorldDef", T.vpWorldDef), ("vpDefaultStepStats", T.vpStepStats),
+                       ("vpDefaultShapeDef", T.vpShapeDef), ("vpDefaultColliderDef", T.vpColliderDef),
+                       ("vpDefaultDeformableDef", T.vpDeformableDef)):
+            self.assertEqual(getattr(lib, fn)().structSize, ctypes.sizeof(st), st.__name__)
+
+    def test_layout_mismatch_is_an_import_error(self):
+        # The import-time check must be able to fail: give it a ShapeDef with an extra field.
+        from volphys import _api
+        real = T.vpShapeDef
+
+        class Grown(ctypes.Structure):
+            _fields_ = real._fields_ + [("extra", ctypes.c_int64)]
+
+        T.vpShapeDef = Grown
+        try:
+            with self.assertRaises(ImportError) as cm:
+                _api._check_struct_sizes()
+            self.assertIn("Grown", str(cm.exception))
+        finally:
+            T.vpShapeDef = real
+        _api._check_struct_sizes()
+
+    def _python(self, code, env_extra):
+        env = dict(os.environ, **env_extra)
+        return subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=120)
+
+    def test_bad_library_path_names_every_place_tried(self):
+        r = self._python("import volphys", {"VOLPHYS_LIBRARY": "/nonexistent/libvolphys.so"})
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn("ImportError", r.stderr)
+        self.assertIn("/nonexistent/libvolphys.so", r.stderr)
+        self.assertIn("VOLPHYS_LIBRARY", r.stderr)
+
+    def test_works_without_numpy(self):
+        # Block numpy in a child interpreter: outputs must come back as lists of tuples.
+        code = (
+            "import sys; sys.modules['numpy'] = None\n"
+            "import volphys\n"
+            "assert not volphys.HAVE_NUMPY\n"
+            "w = volphys.World(gravity=(0, -10, 0))\n"
+            "v = [(0,0,0), (1,0,0), (0,1,0), (0,0,1)]\n"
+            "d = w.create_deformable(vertices=v, tets=[(0,1,2,3)], position=(0, 1, 0))\n"
+            "d.pin([0])\n"
+            "w.step(1/60)\n"
+            "p = d.positions()\n"
+            "assert isinstance(p, list) and len(p) == 4 and len(p[0]) == 3, p\n"
+            "assert p[0] == (0.0, 1.0, 0.0), p[0]\n"
+            "assert p[3][1] < 1.0, p\n"
+            "pos, nrm, tri = d.render_mesh()\n"
+            "assert len(tri) == 4 and len(tri[0]) == 3, tri\n"
+            "w.destroy()\n"
+            "print('ok')\n")
+        r = self._python(code, {})
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(r.stdout.strip(), "ok")
+
+
+if __name__ == "__main__":
+    unittest.main()
