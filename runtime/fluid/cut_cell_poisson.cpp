@@ -30,7 +30,8 @@ bool inside(const MacGridSpec& g, int i, int j, int k) {
 double effectiveOpenFraction(const MacGrid& grid, const FaceFractionField& fractions, int axis, int i,
                              int j, int k) {
   if (grid.isWallFace(axis, i, j, k)) return 0.0;
-  return fractions.open[axis][grid.faceIndex(axis, i, j, k)];
+  const double open = fractions.open[axis][grid.faceIndex(axis, i, j, k)];
+  return open < kMinOpenFraction ? 0.0 : open;
 }
 
 Status buildCutCellPoisson(TaskSystem& tasks, const MacGrid& grid, const FaceFractionField& fractions,
@@ -60,8 +61,7 @@ Status buildCutCellPoisson(TaskSystem& tasks, const MacGrid& grid, const FaceFra
         for (int i = 0; i < d.x(); ++i) {
           const int along = a == 0 ? i : a == 1 ? j : k;
           if (along == 0 || along == d[a] - 1) continue;
-          const size_t f = grid.faceIndex(a, i, j, k);
-          c[f] = fractions.open[a][f];
+          c[grid.faceIndex(a, i, j, k)] = effectiveOpenFraction(grid, fractions, a, i, j, k);
         }
       }
     });
@@ -190,7 +190,7 @@ void computeNetOutflow(TaskSystem& tasks, const MacGrid& grid, const FaceFractio
       forEachFace(i, j, k, [&](int a, bool high, int fi, int fj, int fk, int, int, int) {
         if (grid.isWallFace(a, fi, fj, fk)) return;
         const size_t f = grid.faceIndex(a, fi, fj, fk);
-        const double open = fractions.open[a][f];
+        const double open = effectiveOpenFraction(grid, fractions, a, fi, fj, fk);
         const double flux = open * grid.velocity[a][f] + (1.0 - open) * fractions.solidVelocity[a][f];
         sum += high ? flux : -flux;
       });

@@ -51,8 +51,15 @@ struct CutCellPoisson {
   bool isFluid(size_t cell) const { return region[cell] >= 0; }
 };
 
-// The fraction the operator uses for a face: the collider open fraction, forced to 0 on
-// domain Wall faces.
+// Open fractions below this count as closed. The exact coverage paths leave round-off
+// (~1e-15) on faces deep inside a solid; taken literally those make cells inside the solid
+// "fluid" with diagonals ~1e-15, which the CG cannot resolve (their pressure and the velocity
+// of their faces become garbage). 1e-6 of a face is far above any round-off and far below
+// any opening that carries a meaningful flux.
+constexpr double kMinOpenFraction = 1e-6;
+
+// The fraction the operator, the right-hand side and the velocity update use for a face: the
+// collider open fraction, forced to 0 on domain Wall faces and below kMinOpenFraction.
 double effectiveOpenFraction(const MacGrid& grid, const FaceFractionField& fractions, int axis, int i,
                              int j, int k);
 

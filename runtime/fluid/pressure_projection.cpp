@@ -67,8 +67,7 @@ Status projectVelocity(TaskSystem& tasks, MacGrid& grid, const FaceFractionField
             u[f] = 0.0;
             continue;
           }
-          const double open = fractions.open[a][f];
-          if (!(open > 0.0)) {
+          if (!(effectiveOpenFraction(grid, fractions, a, i, j, k) > 0.0)) {
             u[f] = fractions.solidVelocity[a][f];
             continue;
           }

@@ -6,7 +6,7 @@
 //   2. L p = b by MIC(0)-preconditioned filtered CG, warm-started from the last pressure,
 //      stopping at the tolerance, maxIterations or the deadline (best iterate kept)
 //   3. open faces (A_f > 0):  u_f -= dt / (rho h) * (p_high - p_low)   (p = 0 outside Open sides)
-//      closed faces (A_f = 0): u_f = solid normal velocity
+//      closed faces (A_f = 0, or below kMinOpenFraction): u_f = solid normal velocity
 //      Wall faces:             u_f = 0
 // After a converged solve, |netOutflow_c| <= tolerance * |netOutflow(u*)|_2 on every cell,
 // since netOutflow(u) = (dt / (rho h)) * (L p - b) cell by cell.

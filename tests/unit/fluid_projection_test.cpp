@@ -178,12 +178,18 @@ TEST(FluidProjection, DivergenceFreeAroundMovingBox) {
   expectDivergenceFree(*tasks, scene, 1e-8);
   // Closed faces carry the solid's velocity.
   int closed = 0;
-  for (int a = 0; a < 3; ++a)
-    for (size_t f = 0; f < scene.fractions.open[a].size(); ++f)
-      if (scene.fractions.open[a][f] == 0.0) {
-        EXPECT_EQ(scene.grid.velocity[a][f], scene.fractions.solidVelocity[a][f]);
-        ++closed;
-      }
+  for (int a = 0; a < 3; ++a) {
+    const Eigen::Vector3i d = scene.grid.faceDims(a);
+    for (int k = 0; k < d.z(); ++k)
+      for (int j = 0; j < d.y(); ++j)
+        for (int i = 0; i < d.x(); ++i) {
+          const size_t f = scene.grid.faceIndex(a, i, j, k);
+          if (scene.grid.isWallFace(a, i, j, k) || effectiveOpenFraction(scene.grid, scene.fractions, a, i, j, k) > 0.0)
+            continue;
+          EXPECT_EQ(scene.grid.velocity[a][f], scene.fractions.solidVelocity[a][f]);
+          ++closed;
+        }
+  }
   EXPECT_GT(closed, 0);
 }
 
@@ -283,7 +289,7 @@ ManufacturedError manufacturedSphereError(TaskSystem& tasks, int n) {
           for (int high = 0; high < 2; ++high) {
             Eigen::Vector3i f(i, j, k);
             f[a] += high;
-            const double covered = 1.0 - scene.fractions.open[a][grid.faceIndex(a, f.x(), f.y(), f.z())];
+            const double covered = 1.0 - effectiveOpenFraction(grid, scene.fractions, a, f.x(), f.y(), f.z());
             const double flux = covered * gradient(a, grid.faceCentre(a, f.x(), f.y(), f.z()));
             sum += high ? flux : -flux;
           }
@@ -317,6 +323,9 @@ ManufacturedError manufacturedSphereError(TaskSystem& tasks, int n) {
   for (size_t c = 0; c < cells; ++c) {
     if (!op.isFluid(c)) continue;
     const double e = error[c] - meanError;
+    if (std::fabs(e) > result.maxNorm) {
+      std::printf("      worst so far cell %zu diag %.3e err %.3e\n", c, op.diagonal[c], e);
+    }
     result.maxNorm = std::max(result.maxNorm, std::fabs(e));
     sumSquares += e * e;
   }
@@ -383,7 +392,9 @@ TEST(FluidProjection, HydrostaticRestWithTiltedBoxInClosedContainer) {
         const size_t c = grid.cellIndex(i, j, k);
         if (!state.poisson.isFluid(c)) continue;
         const double exact = rho * g * (1.0 - grid.cellCentre(i, j, k).y()) - meanExact;
-        worst = std::max(worst, std::fabs(state.pressure[c] - meanP - exact));
+        const double e = std::fabs(state.pressure[c] - meanP - exact);
+        if (e > 1.0) std::printf("cell %d %d %d diag %.3e err %.3e region %d\n", i, j, k, state.poisson.diagonal[c], e, state.poisson.region[c]);
+        worst = std::max(worst, e);
       }
   std::printf("    iterations %d, residual %.2e, max |u| %.2e, max pressure error %.2e Pa\n", stats.iterations,
               stats.relativeResidual, maxSpeed, worst);
