@@ -1,4 +1,5 @@
-// A staggered (MAC) velocity grid: cell-centred pressure, face-centred normal velocities.
+// A staggered (MAC) velocity grid: face-centred normal velocities; cell-centred scalars
+// (pressure, densities) are plain arrays in cell order that its helpers index and sample.
 //
 // Cells and faces use exactly the layout of FaceFractionField (face_fraction_field.h), so a
 // face's velocity and its open fraction share one index:
@@ -66,6 +67,9 @@ struct MacGrid {
   // what semi-Lagrangian advection wants for back-traced points that leave the domain.
   double sampleComponent(int axis, const Eigen::Vector3d& point) const;
   Eigen::Vector3d sampleVelocity(const Eigen::Vector3d& point) const;
+  // The same for a cell-centred scalar (cellCount() values in cell order: pressure, smoke
+  // density, temperature ...).
+  double sampleCellCentred(const double* values, const Eigen::Vector3d& point) const;
 };
 
 // Validates the spec (h > 0 and finite, positive cell counts, finite origin) and sizes the

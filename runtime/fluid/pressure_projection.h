@@ -40,7 +40,8 @@ struct PressureSolveStats {
 };
 
 // What persists between steps: the pressure (warm start; physical units, so valid across dt
-// changes) and the solver's buffers, so a projection every frame does not allocate.
+// changes) and the solver's cell-sized buffers, so a projection every frame does not
+// reallocate them.
 struct PressureState {
   std::vector<double> pressure;  // per cell; reset to 0 when the grid's cell count changes
   CutCellPoisson poisson;

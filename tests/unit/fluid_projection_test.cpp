@@ -150,6 +150,15 @@ TEST(FluidMacGrid, IndexingAndTrilinearSamplingOfLinearFields) {
     const Eigen::Vector3d v = grid.sampleVelocity(x);
     for (int a = 0; a < 3; ++a) EXPECT_NEAR(v[a], field(a, x), 1e-12);
   }
+  std::vector<double> scalar(static_cast<size_t>(grid.cellCount()));
+  for (int k = 0; k < spec.nz; ++k)
+    for (int j = 0; j < spec.ny; ++j)
+      for (int i = 0; i < spec.nx; ++i) scalar[grid.cellIndex(i, j, k)] = field(0, grid.cellCentre(i, j, k));
+  const Eigen::Vector3d mid = spec.origin + spec.h * Eigen::Vector3d(1.7, 2.2, 1.1);
+  EXPECT_NEAR(grid.sampleCellCentred(scalar.data(), mid), field(0, mid), 1e-12);
+  // Outside the sample grid the value is clamped to the nearest boundary sample.
+  const Eigen::Vector3d far = spec.origin + Eigen::Vector3d(-5.0, 0.5 * spec.h, 0.5 * spec.h);
+  EXPECT_NEAR(grid.sampleCellCentred(scalar.data(), far), scalar[grid.cellIndex(0, 0, 0)], 1e-12);
   spec.h = 0.0;
   EXPECT_EQ(initMacGrid(spec, kClosed, &grid), Status::InvalidArgument);
   EXPECT_NE(std::string(lastError()).find("h"), std::string::npos);
