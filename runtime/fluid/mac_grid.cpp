@@ -41,7 +41,9 @@ double trilinear(const double* values, const Eigen::Vector3i& dims, Eigen::Vecto
   int base[3];
   double weight[3];
   for (int d = 0; d < 3; ++d) {
-    g[d] = std::clamp(g[d], 0.0, static_cast<double>(dims[d] - 1));
+    // `!(g >= 0)` also catches NaN, whose conversion to int would be undefined.
+    if (!(g[d] >= 0.0)) g[d] = 0.0;
+    g[d] = std::min(g[d], static_cast<double>(dims[d] - 1));
     const int b = std::min(static_cast<int>(std::floor(g[d])), std::max(dims[d] - 2, 0));
     base[d] = b;
     weight[d] = dims[d] > 1 ? g[d] - b : 0.0;
