@@ -1,0 +1,202 @@
+// Implicit cut-cell pressure operator (see cut_cell_poisson.h).
+#include "fluid/cut_cell_poisson.h"
+
+#include <cmath>
+
+#include "core/parallel_for.h"
+
+namespace vp {
+namespace {
+
+constexpr int64_t kCellGrain = 4096;
+
+// Calls visit(axis, highSide, i, j, k of the face, i, j, k of the neighbour cell) for the six faces.
+template <class Visit>
+void forEachFace(int i, int j, int k, const Visit& visit) {
+  visit(0, false, i, j, k, i - 1, j, k);
+  visit(0, true, i + 1, j, k, i + 1, j, k);
+  visit(1, false, i, j, k, i, j - 1, k);
+  visit(1, true, i, j + 1, k, i, j + 1, k);
+  visit(2, false, i, j, k, i, j, k - 1);
+  visit(2, true, i, j, k + 1, i, j, k + 1);
+}
+
+bool inside(const MacGridSpec& g, int i, int j, int k) {
+  return i >= 0 && j >= 0 && k >= 0 && i < g.nx && j < g.ny && k < g.nz;
+}
+
+}  // namespace
+
+double effectiveOpenFraction(const MacGrid& grid, const FaceFractionField& fractions, int axis, int i,
+                             int j, int k) {
+  if (grid.isWallFace(axis, i, j, k)) return 0.0;
+  const double open = fractions.open[axis][grid.faceIndex(axis, i, j, k)];
+  return open < kMinOpenFraction ? 0.0 : open;
+}
+
+Status buildCutCellPoisson(TaskSystem& tasks, const MacGrid& grid, const FaceFractionField& fractions,
+                           CutCellPoisson* op) {
+  if (op == nullptr) return fail(Status::InvalidArgument, "cut-cell poisson: op is null");
+  if (!sameGrid(grid.spec, fractions.grid))
+    return fail(Status::InvalidArgument,
+                "cut-cell poisson: face fractions grid (%d, %d, %d, h %g) differs from the MAC grid "
+                "(%d, %d, %d, h %g)", fractions.grid.nx, fractions.grid.ny, fractions.grid.nz,
+                fractions.grid.h, grid.spec.nx, grid.spec.ny, grid.spec.nz, grid.spec.h);
+  for (int a = 0; a < 3; ++a) {
+    if (fractions.open[a].size() != grid.velocity[a].size() ||
+        fractions.solidVelocity[a].size() != grid.velocity[a].size())
+      return fail(Status::InvalidArgument, "cut-cell poisson: face arrays of axis %d have %zu entries, "
+                  "expected %zu", a, fractions.open[a].size(), grid.velocity[a].size());
+  }
+  const MacGridSpec& g = grid.spec;
+  op->grid = g;
+  for (int a = 0; a < 3; ++a) {
+    const Eigen::Vector3i d = grid.faceDims(a);
+    std::vector<double>& c = op->coupling[a];
+    c.assign(grid.velocity[a].size(), 0.0);
+    // Interior faces only: index 1 .. cells-1 along the axis.
+    parallelFor(tasks, static_cast<int64_t>(d.z()) * d.y(), 16, [&](int64_t begin, int64_t end) {
+      for (int64_t row = begin; row < end; ++row) {
+        const int j = static_cast<int>(row % d.y()), k = static_cast<int>(row / d.y());
+        for (int i = 0; i < d.x(); ++i) {
+          const int along = a == 0 ? i : a == 1 ? j : k;
+          if (along == 0 || along == d[a] - 1) continue;
+          c[grid.faceIndex(a, i, j, k)] = effectiveOpenFraction(grid, fractions, a, i, j, k);
+        }
+      }
+    });
+  }
+  const int64_t cells = grid.cellCount();
+  op->diagonal.assign(static_cast<size_t>(cells), 0.0);
+  parallelFor(tasks, cells, kCellGrain, [&](int64_t begin, int64_t end) {
+    for (int64_t c = begin; c < end; ++c) {
+      const int i = static_cast<int>(c % g.nx), j = static_cast<int>((c / g.nx) % g.ny),
+                k = static_cast<int>(c / (static_cast<int64_t>(g.nx) * g.ny));
+      double sum = 0.0;
+      forEachFace(i, j, k, [&](int a, bool, int fi, int fj, int fk, int, int, int) {
+        sum += effectiveOpenFraction(grid, fractions, a, fi, fj, fk);
+      });
+      op->diagonal[static_cast<size_t>(c)] = sum;
+    }
+  });
+
+  // Fluid regions by flood fill through open interior faces (serial: a breadth-first search is
+  // sequential, and it is O(cells) once per solve).
+  op->region.assign(static_cast<size_t>(cells), -1);
+  op->regionFloating.clear();
+  op->regionCellCount.clear();
+  op->fluidCellCount = 0;
+  std::vector<int64_t> queue;
+  for (int64_t seed = 0; seed < cells; ++seed) {
+    if (op->region[seed] >= 0 || !(op->diagonal[seed] > 0.0)) continue;
+    const int32_t id = static_cast<int32_t>(op->regionFloating.size());
+    bool floating = true;
+    int64_t count = 0;
+    queue.clear();
+    queue.push_back(seed);
+    op->region[seed] = id;
+    for (size_t head = 0; head < queue.size(); ++head) {
+      const int64_t c = queue[head];
+      ++count;
+      const int i = static_cast<int>(c % g.nx), j = static_cast<int>((c / g.nx) % g.ny),
+                k = static_cast<int>(c / (static_cast<int64_t>(g.nx) * g.ny));
+      forEachFace(i, j, k, [&](int a, bool, int fi, int fj, int fk, int ni, int nj, int nk) {
+        const double open = effectiveOpenFraction(grid, fractions, a, fi, fj, fk);
+        if (!(open > 0.0)) return;
+        if (!inside(g, ni, nj, nk)) {
+          floating = false;  // an open domain side: Dirichlet
+          return;
+        }
+        const size_t n = grid.cellIndex(ni, nj, nk);
+        if (op->region[n] < 0) {
+          op->region[n] = id;
+          queue.push_back(static_cast<int64_t>(n));
+        }
+      });
+    }
+    op->regionFloating.push_back(floating ? 1 : 0);
+    op->regionCellCount.push_back(count);
+    op->fluidCellCount += count;
+  }
+  return Status::Ok;
+}
+
+void applyCutCellPoisson(TaskSystem& tasks, const CutCellPoisson& op, const double* p, double* out) {
+  const MacGridSpec& g = op.grid;
+  const int64_t cells = static_cast<int64_t>(g.nx) * g.ny * g.nz;
+  const int64_t ux = g.nx + 1, vy = g.ny + 1;
+  const int64_t sx = 1, sy = g.nx, sz = static_cast<int64_t>(g.nx) * g.ny;
+  const double* cu = op.coupling[0].data();
+  const double* cv = op.coupling[1].data();
+  const double* cw = op.coupling[2].data();
+  parallelFor(tasks, cells, kCellGrain, [&](int64_t begin, int64_t end) {
+    for (int64_t c = begin; c < end; ++c) {
+      if (op.region[static_cast<size_t>(c)] < 0) {
+        out[c] = 0.0;
+        continue;
+      }
+      const int64_t i = c % g.nx, j = (c / g.nx) % g.ny, k = c / sz;
+      // Boundary faces have coupling 0, so the neighbour index is only read when it exists.
+      const int64_t fu = i + ux * (j + g.ny * k);
+      const int64_t fv = i + g.nx * (j + vy * k);
+      const int64_t fw = c;  // w-face (i, j, k) has the cell's index
+      double sum = op.diagonal[static_cast<size_t>(c)] * p[c];
+      if (cu[fu] != 0.0) sum -= cu[fu] * p[c - sx];
+      if (cu[fu + 1] != 0.0) sum -= cu[fu + 1] * p[c + sx];
+      if (cv[fv] != 0.0) sum -= cv[fv] * p[c - sy];
+      if (cv[fv + g.nx] != 0.0) sum -= cv[fv + g.nx] * p[c + sy];
+      if (cw[fw] != 0.0) sum -= cw[fw] * p[c - sz];
+      if (cw[fw + sz] != 0.0) sum -= cw[fw + sz] * p[c + sz];
+      out[c] = sum;
+    }
+  });
+}
+
+void filterCutCellPoisson(const CutCellPoisson& op, double* values) {
+  const size_t cells = op.region.size();
+  const size_t regions = op.regionFloating.size();
+  bool anyFloating = false;
+  for (uint8_t f : op.regionFloating) anyFloating = anyFloating || f != 0;
+  if (!anyFloating) {
+    for (size_t c = 0; c < cells; ++c)
+      if (op.region[c] < 0) values[c] = 0.0;
+    return;
+  }
+  std::vector<double> mean(regions, 0.0);
+  for (size_t c = 0; c < cells; ++c) {
+    const int32_t r = op.region[c];
+    if (r < 0) values[c] = 0.0;
+    else if (op.regionFloating[r]) mean[r] += values[c];
+  }
+  for (size_t r = 0; r < regions; ++r) mean[r] /= static_cast<double>(op.regionCellCount[r]);
+  for (size_t c = 0; c < cells; ++c) {
+    const int32_t r = op.region[c];
+    if (r >= 0 && op.regionFloating[r]) values[c] -= mean[r];
+  }
+}
+
+void computeNetOutflow(TaskSystem& tasks, const MacGrid& grid, const FaceFractionField& fractions,
+                       const CutCellPoisson& op, double* outflow) {
+  const MacGridSpec& g = grid.spec;
+  parallelFor(tasks, grid.cellCount(), kCellGrain, [&](int64_t begin, int64_t end) {
+    for (int64_t c = begin; c < end; ++c) {
+      if (op.region[static_cast<size_t>(c)] < 0) {
+        outflow[c] = 0.0;
+        continue;
+      }
+      const int i = static_cast<int>(c % g.nx), j = static_cast<int>((c / g.nx) % g.ny),
+                k = static_cast<int>(c / (static_cast<int64_t>(g.nx) * g.ny));
+      double sum = 0.0;
+      forEachFace(i, j, k, [&](int a, bool high, int fi, int fj, int fk, int, int, int) {
+        if (grid.isWallFace(a, fi, fj, fk)) return;
+        const size_t f = grid.faceIndex(a, fi, fj, fk);
+        const double open = effectiveOpenFraction(grid, fractions, a, fi, fj, fk);
+        const double flux = open * grid.velocity[a][f] + (1.0 - open) * fractions.solidVelocity[a][f];
+        sum += high ? flux : -flux;
+      });
+      outflow[c] = sum;
+    }
+  });
+}
+
+}  // namespace vp

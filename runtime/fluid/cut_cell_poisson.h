@@ -1,0 +1,82 @@
+// The finite-volume pressure operator of a cut-cell MAC grid (Batty et al. 2007; Ng, Min,
+// Gibou 2009), defined by the face open fractions A_f and never stored as a matrix.
+//
+// For a fluid cell c with faces f and neighbours nb across them:
+//     (L p)_c = sum_f A_f (p_c - p_nb)
+// * interior face, A_f > 0: couples c and nb (nb is then fluid too, it shares the open face);
+// * A_f = 0 (fully covered by a collider) or a domain Wall face: no term (Neumann);
+// * domain Open face: Dirichlet ghost p_nb = 0, so A_f goes to the diagonal only.
+// A cell is fluid when at least one of its faces is open; other cells (fully inside solids)
+// have no row: p = 0 there and the filter keeps them 0.
+//
+// Scaling: the physical equation is (dt / (rho h^2)) L p = -(1/h) sum_f +-(...). L is kept
+// unscaled (entries in [0, 6], independent of dt, rho, h) and the factor goes to the right-hand
+// side, b = -(rho h / dt) * netOutflow, so p is the physical pressure (warm starts stay valid
+// when dt changes) and the MIC(0) factors depend on the fractions only.
+//
+// Null space: a connected fluid region with no Dirichlet face ("floating", e.g. a closed
+// box) has L 1 = 0 on it. filterCutCellPoisson() removes the region's mean, which makes the
+// filtered CG (Baraff-Witkin style, see conjugate_gradient.h) solve the compatible part; the
+// pressure there is defined up to a constant and comes out with zero mean.
+//
+// Free surface hook (not implemented; liquids are a later step): the operator is written as
+// per-face couplings plus a per-cell diagonal precisely so a liquid-air face can drop its
+// coupling and add A_f / theta to the diagonal (Gibou 2002; theta = phi_c / (phi_c - phi_nb)
+// clamped below) inside buildCutCellPoisson, without touching apply, MIC(0) or the CG.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/status.h"
+#include "core/task_system.h"
+#include "fluid/face_fraction_field.h"
+#include "fluid/mac_grid.h"
+
+namespace vp {
+
+struct CutCellPoisson {
+  MacGridSpec grid;
+  // Per face (face layout): A_f for faces between two cells of the grid, 0 for boundary faces
+  // (their Dirichlet part is in the diagonal) and closed faces.
+  std::vector<double> coupling[3];
+  // Per cell: sum of A_f over the cell's open faces, Dirichlet faces included; 0 off fluid.
+  std::vector<double> diagonal;
+  // Per cell: connected fluid region id, -1 for cells that are not fluid.
+  std::vector<int32_t> region;
+  std::vector<uint8_t> regionFloating;  // per region: 1 when it has no Dirichlet face
+  std::vector<int64_t> regionCellCount;
+  int64_t fluidCellCount = 0;
+
+  bool isFluid(size_t cell) const { return region[cell] >= 0; }
+};
+
+// Open fractions below this count as closed. The exact coverage paths leave round-off
+// (~1e-15) on faces deep inside a solid; taken literally those make cells inside the solid
+// "fluid" with diagonals ~1e-15, which the CG cannot resolve (their pressure and the velocity
+// of their faces become garbage). 1e-6 of a face is far above any round-off and far below
+// any opening that carries a meaningful flux.
+constexpr double kMinOpenFraction = 1e-6;
+
+// The fraction the operator, the right-hand side and the velocity update use for a face: the
+// collider open fraction, forced to 0 on domain Wall faces and below kMinOpenFraction.
+double effectiveOpenFraction(const MacGrid& grid, const FaceFractionField& fractions, int axis, int i,
+                             int j, int k);
+
+// Builds the couplings, diagonal and fluid regions. The fractions must belong to grid.spec.
+Status buildCutCellPoisson(TaskSystem& tasks, const MacGrid& grid, const FaceFractionField& fractions,
+                           CutCellPoisson* op);
+
+// out = L p over all cells (0 on non-fluid cells). p and out have cellCount entries.
+void applyCutCellPoisson(TaskSystem& tasks, const CutCellPoisson& op, const double* p, double* out);
+
+// In place: zero on non-fluid cells, zero mean on every floating region.
+void filterCutCellPoisson(const CutCellPoisson& op, double* values);
+
+// Per cell: the net outflow sum_f +-(A_f u_f + (1 - A_f) u_solid,f) through the cell's faces
+// (velocity times area / h^2; + on the high face of each axis), with Wall faces contributing
+// nothing. The discrete divergence is netOutflow / h. 0 on non-fluid cells.
+void computeNetOutflow(TaskSystem& tasks, const MacGrid& grid, const FaceFractionField& fractions,
+                       const CutCellPoisson& op, double* outflow);
+
+}  // namespace vp

@@ -1,0 +1,96 @@
+// Cut-cell pressure projection (see pressure_projection.h).
+#include "fluid/pressure_projection.h"
+
+#include <cmath>
+
+#include "core/parallel_for.h"
+
+namespace vp {
+
+Status projectVelocity(TaskSystem& tasks, MacGrid& grid, const FaceFractionField& fractions, double dt,
+                       double density, const Deadline& deadline, const PressureSolveSettings& settings,
+                       PressureState& state, PressureSolveStats* stats) {
+  if (!(dt > 0.0) || !std::isfinite(dt))
+    return fail(Status::InvalidArgument, "pressure projection: dt = %g must be positive and finite", dt);
+  if (!(density > 0.0) || !std::isfinite(density))
+    return fail(Status::InvalidArgument, "pressure projection: density = %g must be positive and finite",
+                density);
+  if (!(settings.tolerance > 0.0) || !std::isfinite(settings.tolerance))
+    return fail(Status::InvalidArgument, "pressure projection: tolerance = %g must be positive and finite",
+                settings.tolerance);
+  if (settings.maxIterations < 0)
+    return fail(Status::InvalidArgument, "pressure projection: maxIterations = %d must be >= 0",
+                settings.maxIterations);
+  VP_TRY(buildCutCellPoisson(tasks, grid, fractions, &state.poisson));
+  VP_TRY(buildMic0Preconditioner(state.poisson, Mic0Settings{}, &state.preconditioner));
+  const CutCellPoisson& op = state.poisson;
+  const MacGridSpec& g = grid.spec;
+  const int64_t cells = grid.cellCount();
+  const double h = g.h;
+
+  state.rhs.resize(static_cast<size_t>(cells));
+  computeNetOutflow(tasks, grid, fractions, op, state.rhs.data());
+  const double rhsScale = -density * h / dt;
+  for (double& b : state.rhs) b *= rhsScale;
+
+  if (state.pressure.size() != static_cast<size_t>(cells)) state.pressure.assign(static_cast<size_t>(cells), 0.0);
+  // Cells that left the fluid keep no stale pressure (they would leak into open faces' gradients).
+  for (int64_t c = 0; c < cells; ++c)
+    if (!op.isFluid(static_cast<size_t>(c))) state.pressure[static_cast<size_t>(c)] = 0.0;
+
+  LinearSystem system;
+  system.size = cells;
+  system.apply = [&](const double* x, double* y) { applyCutCellPoisson(tasks, op, x, y); };
+  system.precondition = [&](const double* r, double* z) {
+    applyMic0Preconditioner(op, state.preconditioner, r, z);
+  };
+  system.filter = [&](double* v) { filterCutCellPoisson(op, v); };
+  CgSettings cgSettings;
+  cgSettings.relativeTolerance = settings.tolerance;
+  cgSettings.maxIterations = settings.maxIterations;
+  const CgResult result = solveConjugateGradient(tasks, system, state.rhs.data(), state.pressure.data(),
+                                                 cgSettings, deadline, state.cg);
+
+  // Velocity update, face by face (each face written once: parallel over face rows).
+  const double gradientScale = dt / (density * h);
+  const double* p = state.pressure.data();
+  for (int a = 0; a < 3; ++a) {
+    const Eigen::Vector3i d = grid.faceDims(a);
+    const int cellsAlong = a == 0 ? g.nx : a == 1 ? g.ny : g.nz;
+    std::vector<double>& u = grid.velocity[a];
+    parallelFor(tasks, static_cast<int64_t>(d.z()) * d.y(), 16, [&](int64_t begin, int64_t end) {
+      for (int64_t row = begin; row < end; ++row) {
+        const int j = static_cast<int>(row % d.y()), k = static_cast<int>(row / d.y());
+        for (int i = 0; i < d.x(); ++i) {
+          const size_t f = grid.faceIndex(a, i, j, k);
+          if (grid.isWallFace(a, i, j, k)) {
+            u[f] = 0.0;
+            continue;
+          }
+          if (!(effectiveOpenFraction(grid, fractions, a, i, j, k) > 0.0)) {
+            u[f] = fractions.solidVelocity[a][f];
+            continue;
+          }
+          const int along = a == 0 ? i : a == 1 ? j : k;
+          Eigen::Vector3i low(i, j, k);
+          low[a] -= 1;
+          // Outside an Open side the ghost pressure is 0.
+          const double pLow = along > 0 ? p[grid.cellIndex(low.x(), low.y(), low.z())] : 0.0;
+          const double pHigh = along < cellsAlong ? p[grid.cellIndex(i, j, k)] : 0.0;
+          u[f] -= gradientScale * (pHigh - pLow);
+        }
+      }
+    });
+  }
+
+  if (stats != nullptr) {
+    stats->iterations = result.iterations;
+    stats->relativeResidual = result.relativeResidual;
+    stats->converged = result.converged;
+    stats->budgetCut = result.budgetCut;
+    stats->fluidCells = op.fluidCellCount;
+  }
+  return Status::Ok;
+}
+
+}  // namespace vp

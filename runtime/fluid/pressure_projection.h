@@ -1,0 +1,57 @@
+// Pressure projection of a MAC velocity field on a cut-cell grid: makes the velocity
+// discretely divergence-free through the open parts of faces, with colliders' normal
+// velocities on the covered parts.
+//
+//   1. b_c = -(rho h / dt) * netOutflow_c(u*)          (cut_cell_poisson.h for L and scaling)
+//   2. L p = b by MIC(0)-preconditioned filtered CG, warm-started from the last pressure,
+//      stopping at the tolerance, maxIterations or the deadline (best iterate kept)
+//   3. open faces (A_f > 0):  u_f -= dt / (rho h) * (p_high - p_low)   (p = 0 outside Open sides)
+//      closed faces (A_f = 0, or below kMinOpenFraction): u_f = solid normal velocity
+//      Wall faces:             u_f = 0
+// After a converged solve, |netOutflow_c| <= tolerance * |netOutflow(u*)|_2 on every cell,
+// since netOutflow(u) = (dt / (rho h)) * (L p - b) cell by cell.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/budget_clock.h"
+#include "core/status.h"
+#include "core/task_system.h"
+#include "fluid/cut_cell_poisson.h"
+#include "fluid/face_fraction_field.h"
+#include "fluid/mac_grid.h"
+#include "fluid/mic0_preconditioner.h"
+#include "linalg/conjugate_gradient.h"
+
+namespace vp {
+
+struct PressureSolveSettings {
+  double tolerance = 1e-6;  // on |b - L p|_2 / |b|_2 (filtered)
+  int maxIterations = 500;
+};
+
+struct PressureSolveStats {
+  int iterations = 0;
+  double relativeResidual = 0.0;
+  bool converged = false;
+  bool budgetCut = false;
+  int64_t fluidCells = 0;
+};
+
+// What persists between steps: the pressure (warm start; physical units, so valid across dt
+// changes) and the solver's cell-sized buffers, so a projection every frame does not
+// reallocate them.
+struct PressureState {
+  std::vector<double> pressure;  // per cell; reset to 0 when the grid's cell count changes
+  CutCellPoisson poisson;
+  Mic0Preconditioner preconditioner;
+  CgWorkspace cg;
+  std::vector<double> rhs;
+};
+
+Status projectVelocity(TaskSystem& tasks, MacGrid& grid, const FaceFractionField& fractions, double dt,
+                       double density, const Deadline& deadline, const PressureSolveSettings& settings,
+                       PressureState& warmStart, PressureSolveStats* stats);
+
+}  // namespace vp
