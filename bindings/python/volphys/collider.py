@@ -4,7 +4,8 @@ import ctypes
 
 from . import _arrays
 from . import _types as T
-from ._api import call, lib
+from ._api import call
+from ._handle import ActorHandle
 
 # position (x, y, z) and rotation quaternion (x, y, z, w), as in vpTransform.
 Transform = namedtuple("Transform", "position rotation")
@@ -20,39 +21,9 @@ def transform_tuple(t):
     return Transform((p.x, p.y, p.z), (q.x, q.y, q.z, q.w))
 
 
-class Collider:
-    """Holds only the id: operations on a destroyed collider (or one of a destroyed world)
-    raise InvalidIdError from the library, never crash."""
-
-    def __init__(self, world, cid):
-        self.world = world
-        self._id = cid
-
-    def __repr__(self):
-        return "Collider(index1=%d, generation=%d)" % (self._id.index1, self._id.generation)
-
-    def __eq__(self, other):
-        return isinstance(other, Collider) and bytes(self._id) == bytes(other._id)
-
-    def __hash__(self):
-        return hash(bytes(self._id))
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.destroy()
-
-    @property
-    def id(self):
-        return self._id
-
-    @property
-    def is_valid(self):
-        return lib.vpColliderIsValid(self._id) == 0
-
-    def destroy(self):
-        call("vpColliderDestroy", self._id)
+class Collider(ActorHandle):
+    _is_valid_function = "vpColliderIsValid"
+    _destroy_function = "vpColliderDestroy"
 
     @property
     def pose(self):

@@ -4,40 +4,14 @@ from ctypes import c_float, c_int32
 
 from . import _arrays
 from . import _types as T
-from ._api import call, lib
+from ._api import call
+from ._handle import ActorHandle
 from .stats import ActorStats
 
 
-class Deformable:
-    def __init__(self, world, did):
-        self.world = world
-        self._id = did
-
-    def __repr__(self):
-        return "Deformable(index1=%d, generation=%d)" % (self._id.index1, self._id.generation)
-
-    def __eq__(self, other):
-        return isinstance(other, Deformable) and bytes(self._id) == bytes(other._id)
-
-    def __hash__(self):
-        return hash(bytes(self._id))
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.destroy()
-
-    @property
-    def id(self):
-        return self._id
-
-    @property
-    def is_valid(self):
-        return lib.vpDeformableIsValid(self._id) == 0
-
-    def destroy(self):
-        call("vpDeformableDestroy", self._id)
+class Deformable(ActorHandle):
+    _is_valid_function = "vpDeformableIsValid"
+    _destroy_function = "vpDeformableDestroy"
 
     @property
     def node_count(self):

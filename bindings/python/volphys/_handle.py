@@ -1,0 +1,40 @@
+"""ActorHandle: what Collider and Deformable share. It holds only the id: operations on a
+destroyed object (or one of a destroyed world) raise InvalidIdError from the library, they
+never crash."""
+from ._api import call, lib
+
+
+class ActorHandle:
+    # Set by subclasses: the C functions that check and destroy this kind of id.
+    _is_valid_function = None
+    _destroy_function = None
+
+    def __init__(self, world, handle_id):
+        self.world = world
+        self._id = handle_id
+
+    def __repr__(self):
+        return "%s(index1=%d, generation=%d)" % (type(self).__name__, self._id.index1, self._id.generation)
+
+    def __eq__(self, other):
+        return type(other) is type(self) and bytes(self._id) == bytes(other._id)
+
+    def __hash__(self):
+        return hash(bytes(self._id))
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.destroy()
+
+    @property
+    def id(self):
+        return self._id
+
+    @property
+    def is_valid(self):
+        return getattr(lib, self._is_valid_function)(self._id) == 0
+
+    def destroy(self):
+        call(self._destroy_function, self._id)
