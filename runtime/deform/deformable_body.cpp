@@ -4,9 +4,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 
 #include "core/parallel_for.h"
 #include "deform/bb_element_matrices.h"
+#include "deform/bb_evaluation.h"
+#include "deform/bb_multi_index.h"
+#include "deform/corotated_element.h"
 #include "deform/deformation_gradient.h"
 #include "deform/polar_decomposition.h"
 #include "geometry/tet_mesh_boundary.h"
@@ -33,16 +37,50 @@ Status DeformableBody::create(DeformableDesc desc, std::unique_ptr<DeformableBod
   std::unique_ptr<DeformableBody> body(new DeformableBody());
   DeformableBody& b = *body;
   const TetMesh& mesh = desc.mesh;
-  b.nodeCount_ = static_cast<int32_t>(mesh.vertices.size());
   const int64_t elements = static_cast<int64_t>(mesh.tets.size());
+  const int degree = desc.degree;
+  const int N = bbNodeCount(degree);
+  b.degree_ = degree;
+  b.nodesPerElement_ = N;
   b.lambda_ = desc.material.lameLambda();
   b.mu_ = desc.material.lameMu();
+
+  // Nodes: the mesh vertices keep their indices; for degree > 1 the edge and face control
+  // points follow, one per BB node key (shared between the tets around an edge or face).
+  std::vector<Vec3> restNodes(mesh.vertices.begin(), mesh.vertices.end());
+  b.nodeSupport_.assign(restNodes.size(), {-1, -1, -1});
+  b.elementNodes_.resize(static_cast<size_t>(N * elements));
+  std::map<std::array<int32_t, 10>, int32_t> nodeOfKey;
+  for (int64_t e = 0; e < elements; ++e) {
+    double corners[12], nodePositions[3 * kBBMaxNodes];
+    for (int a = 0; a < 4; ++a)
+      for (int k = 0; k < 3; ++k) corners[3 * a + k] = mesh.vertices[mesh.tets[e][a]][k];
+    if (degree > 1) bbRestNodePositions(degree, corners, nodePositions);
+    for (int a = 0; a < N; ++a) {
+      if (a < 4) {
+        b.elementNodes_[N * e + a] = mesh.tets[e][a];
+        continue;
+      }
+      BBNodeKey key;
+      VP_TRY(bbNodeKey(degree, a, mesh.tets[e].data(), &key));
+      const std::array<int32_t, 10> id{key.count, key.vertices[0], key.vertices[1], key.vertices[2], key.vertices[3],
+                                       key.exponents[0], key.exponents[1], key.exponents[2], key.exponents[3],
+                                       key.slot};
+      auto [it, inserted] = nodeOfKey.emplace(id, static_cast<int32_t>(restNodes.size()));
+      if (inserted) {
+        restNodes.emplace_back(nodePositions[3 * a], nodePositions[3 * a + 1], nodePositions[3 * a + 2]);
+        b.nodeSupport_.push_back({key.vertices[0], key.vertices[1], key.count > 2 ? key.vertices[2] : -1});
+      }
+      b.elementNodes_[N * e + a] = it->second;
+    }
+  }
+  b.nodeCount_ = static_cast<int32_t>(restNodes.size());
 
   b.restX_.resize(3 * static_cast<size_t>(b.nodeCount_));
   b.x_.resize(b.restX_.size());
   b.v_.resize(b.restX_.size());
   for (int32_t i = 0; i < b.nodeCount_; ++i) {
-    const Vec3& X = mesh.vertices[i];
+    const Vec3& X = restNodes[i];
     const Vec3 x = desc.pose.apply(X);
     for (int k = 0; k < 3; ++k) {
       b.restX_[3 * i + k] = X[k];
@@ -50,38 +88,39 @@ Status DeformableBody::create(DeformableDesc desc, std::unique_ptr<DeformableBod
       b.v_[3 * i + k] = desc.linearVelocity[k];
     }
   }
-  b.elementNodes_.resize(4 * static_cast<size_t>(elements));
   b.restGradients_.resize(12 * static_cast<size_t>(elements));
   b.restVolume_.resize(static_cast<size_t>(elements));
   b.rotations_.resize(4 * static_cast<size_t>(elements));
   b.mass_.assign(static_cast<size_t>(b.nodeCount_), 0.0);
+  if (degree > 1) b.elementStiffness_.resize(static_cast<size_t>(9 * N * N * elements));
   for (int64_t e = 0; e < elements; ++e) {
-    double corners[12];
-    for (int a = 0; a < 4; ++a) {
-      const int32_t node = mesh.tets[e][a];
-      b.elementNodes_[4 * e + a] = node;
-      for (int k = 0; k < 3; ++k) corners[3 * a + k] = mesh.vertices[node][k];
-    }
+    double corners[12], lumped[kBBMaxNodes];
+    for (int a = 0; a < 4; ++a)
+      for (int k = 0; k < 3; ++k) corners[3 * a + k] = mesh.vertices[mesh.tets[e][a]][k];
     Status s = bbBarycentricGradients(corners, &b.restGradients_[12 * e], &b.restVolume_[e]);
     if (!ok(s)) return addErrorContext(s, "mesh tet " + std::to_string(e));
-    const double nodeMass = desc.material.density * b.restVolume_[e] / 4.0;
-    for (int a = 0; a < 4; ++a) b.mass_[mesh.tets[e][a]] += nodeMass;
+    // Lumped BB mass: every Bernstein function integrates to V / C(n+3, 3), all positive.
+    VP_TRY(bbLumpedMass(degree, corners, desc.material.density, lumped));
+    for (int a = 0; a < N; ++a) b.mass_[b.elementNodes_[N * e + a]] += lumped[a];
+    if (degree > 1)
+      VP_TRY(bbStiffnessMatrix(degree, corners, b.lambda_, b.mu_, &b.elementStiffness_[9 * N * N * e]));
     const Quat& q = desc.pose.rotation;
     double* r = &b.rotations_[4 * e];
     r[0] = q.w(), r[1] = q.x(), r[2] = q.y(), r[3] = q.z();
   }
   // Node -> (element, corner) incidence, in element order, for the gather assembly.
   b.incidenceStart_.assign(static_cast<size_t>(b.nodeCount_) + 1, 0);
-  for (int64_t k = 0; k < 4 * elements; ++k) b.incidenceStart_[b.elementNodes_[k] + 1]++;
+  for (int64_t k = 0; k < N * elements; ++k) b.incidenceStart_[b.elementNodes_[k] + 1]++;
   for (int32_t i = 0; i < b.nodeCount_; ++i) b.incidenceStart_[i + 1] += b.incidenceStart_[i];
-  b.incidence_.resize(static_cast<size_t>(4 * elements));
+  b.incidence_.resize(static_cast<size_t>(N * elements));
   {
     std::vector<int32_t> fill(b.incidenceStart_.begin(), b.incidenceStart_.end() - 1);
-    for (int64_t k = 0; k < 4 * elements; ++k) b.incidence_[fill[b.elementNodes_[k]]++] = static_cast<int32_t>(k);
+    for (int64_t k = 0; k < N * elements; ++k) b.incidence_[fill[b.elementNodes_[k]]++] = static_cast<int32_t>(k);
   }
-  b.elementForce_.resize(12 * static_cast<size_t>(elements));
-  b.rotatedGradients_.resize(12 * static_cast<size_t>(elements));
-  buildElementPattern(b.nodeCount_, b.elementNodes_.data(), elements, 4, &b.matrix_, &b.scatter_);
+  b.elementForce_.resize(3 * static_cast<size_t>(N * elements));
+  if (degree == 1) b.rotatedGradients_.resize(12 * static_cast<size_t>(elements));
+  else b.rotatedStiffness_.resize(b.elementStiffness_.size());
+  buildElementPattern(b.nodeCount_, b.elementNodes_.data(), elements, N, &b.matrix_, &b.scatter_);
   const Preconditioner pc = desc.solver.preconditioner;
   b.useMultigrid_ = pc == Preconditioner::Multigrid || (pc == Preconditioner::Auto && b.nodeCount_ >= kMultigridMinNodes);
   if (b.useMultigrid_) {
@@ -103,6 +142,16 @@ Status DeformableBody::create(DeformableDesc desc, std::unique_ptr<DeformableBod
   // instead of alternating between "just above" and "landing" every step.
   b.contactMargin_ = 0.02 * meanTetEdgeLength(mesh);
   const SurfaceMesh boundary = tetMeshBoundary(mesh, &b.surfaceNodes_);
+  if (degree > 1) {
+    // Control points of boundary edges and faces collide too (an approximation: BB control
+    // points off the vertices lie near, not on, the curved surface).
+    std::vector<uint8_t> onBoundary(static_cast<size_t>(b.nodeCount_), 0);
+    for (int32_t v : b.surfaceNodes_) onBoundary[v] = 1;
+    for (int32_t i = static_cast<int32_t>(mesh.vertices.size()); i < b.nodeCount_; ++i) {
+      const auto& sup = b.nodeSupport_[i];
+      if (onBoundary[sup[0]] && onBoundary[sup[1]] && (sup[2] < 0 || onBoundary[sup[2]])) b.surfaceNodes_.push_back(i);
+    }
+  }
   b.renderRest_ = desc.renderMesh ? *desc.renderMesh : boundary;
   Status embedded = embedPoints(mesh, b.renderRest_.vertices, &b.embedding_);
   if (!ok(embedded)) return addErrorContext(embedded, "render mesh");
@@ -166,11 +215,19 @@ Status DeformableBody::setPinned(const int32_t* nodes, int64_t count, bool pin) 
     std::snprintf(field, sizeof field, "nodes[%lld]", static_cast<long long>(i));
     VP_TRY(checkNode(field, nodes[i]));
   }
-  for (int64_t i = 0; i < count; ++i) {
-    pinned_[nodes[i]] = pin ? 1 : 0;
-    if (pin)
-      for (int k = 0; k < 3; ++k) v_[3 * nodes[i] + k] = 0.0;
+  for (int64_t i = 0; i < count; ++i) pinned_[nodes[i]] = pin ? 1 : 0;
+  // Control points of edges and faces follow their vertices: pinned when all of them are,
+  // free again when one of them is unpinned (pinning a face of vertices pins the face).
+  for (int32_t i = 0; i < nodeCount_; ++i) {
+    const auto& sup = nodeSupport_[i];
+    if (sup[0] < 0) continue;
+    const bool all = pinned_[sup[0]] && pinned_[sup[1]] && (sup[2] < 0 || pinned_[sup[2]]);
+    if (pin && all) pinned_[i] = 1;
+    if (!pin && !all) pinned_[i] = 0;
   }
+  for (int32_t i = 0; i < nodeCount_; ++i)
+    if (pinned_[i])
+      for (int k = 0; k < 3; ++k) v_[3 * i + k] = 0.0;
   return Status::Ok;
 }
 
@@ -205,11 +262,31 @@ double DeformableBody::kineticEnergy() const {
 
 double DeformableBody::elasticEnergy() const {
   double energy = 0.0;
+  if (degree_ > 1) {
+    // ½ uᵀ K u with u = Rᵀ x − x0 in the element's unrotated frame.
+    const int N = nodesPerElement_;
+    for (int64_t e = 0; e < elementCount(); ++e) {
+      double x[3 * kBBMaxNodes], F[9], R[9];
+      for (int a = 0; a < N; ++a)
+        for (int i = 0; i < 3; ++i) x[3 * a + i] = x_[3 * elementNodes_[N * e + a] + i];
+      bbAverageDeformationGradient(degree_, x, &restGradients_[12 * e], F);
+      polarRotationSvd(F, R);
+      Eigen::VectorXd u(3 * N);
+      for (int a = 0; a < N; ++a)
+        for (int i = 0; i < 3; ++i)
+          u[3 * a + i] = R[i] * x[3 * a] + R[3 + i] * x[3 * a + 1] + R[6 + i] * x[3 * a + 2] -
+                         restX_[3 * elementNodes_[N * e + a] + i];
+      const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> Ke(
+          &elementStiffness_[9 * N * N * e], 3 * N, 3 * N);
+      energy += 0.5 * u.dot(Ke * u);
+    }
+    return energy;
+  }
   for (int64_t e = 0; e < elementCount(); ++e) {
     double x[12], F[9], R[9];
     for (int a = 0; a < 4; ++a)
       for (int i = 0; i < 3; ++i) x[3 * a + i] = x_[3 * elementNodes_[4 * e + a] + i];
-    bbAverageDeformationGradient(1, x, &restGradients_[12 * e], F);
+    bbAverageDeformationGradient(1, x, &restGradients_[12 * e], F);  // degree 1 from here on
     polarRotationSvd(F, R);
     double eps[9];
     for (int i = 0; i < 3; ++i)
@@ -235,13 +312,17 @@ void DeformableBody::updateRenderMesh(TaskSystem& tasks) {
   renderPositions_.resize(embedding_.size());
   parallelFor(tasks, static_cast<int64_t>(embedding_.size()), 2048, [&](int64_t begin, int64_t end) {
     for (int64_t p = begin; p < end; ++p) {
+      // The BB polynomial of the element at the point's barycentric coordinates (for degree
+      // 1 the plain barycentric combination of the corners).
       const EmbeddedPoint& e = embedding_[p];
-      Vec3 pos = Vec3::Zero();
-      for (int a = 0; a < 4; ++a) {
-        const int32_t node = elementNodes_[4 * static_cast<int64_t>(e.tet) + a];
-        pos += e.barycentric[a] * Vec3(x_[3 * node], x_[3 * node + 1], x_[3 * node + 2]);
+      const int N = nodesPerElement_;
+      double coeffs[3 * kBBMaxNodes], value[3];
+      for (int a = 0; a < N; ++a) {
+        const int32_t node = elementNodes_[N * static_cast<int64_t>(e.tet) + a];
+        for (int k = 0; k < 3; ++k) coeffs[3 * a + k] = x_[3 * node + k];
       }
-      renderPositions_[p] = pos;
+      bbEvaluate(degree_, coeffs, e.barycentric.data(), value);
+      renderPositions_[p] = Vec3(value[0], value[1], value[2]);
     }
   });
   computeVertexNormals(renderPositions_, renderRest_.triangles, &renderNormals_);
@@ -259,6 +340,7 @@ void DeformableBody::contactImpulses(TaskSystem& tasks, std::vector<Vec3>* impul
 }
 
 void DeformableBody::corotateAndAssemble(TaskSystem& tasks, double stiffnessScale) {
+  if (degree_ > 1) return corotateAndAssembleBB(tasks, stiffnessScale);
   // Pass 1, per element: rotation, force and rotated gradients into element buffers.
   parallelFor(tasks, elementCount(), 512, [&](int64_t begin, int64_t end) {
     for (int64_t e = begin; e < end; ++e) {
@@ -288,6 +370,46 @@ void DeformableBody::corotateAndAssemble(TaskSystem& tasks, double stiffnessScal
         for (int b = 0; b < 4; ++b)
           addLinearTetBlock(h, g, a, b, restVolume_[e], lambda_, mu_, stiffnessScale,
                             &matrix_.values[9 * static_cast<int64_t>(scatter_[16 * e + 4 * a + b])]);
+      }
+      for (int c = 0; c < 3; ++c) force_[3 * i + c] = f[c];
+    }
+  });
+}
+
+void DeformableBody::corotateAndAssembleBB(TaskSystem& tasks, double stiffnessScale) {
+  const int N = nodesPerElement_;
+  const int64_t K = 9 * N * N;
+  // Pass 1, per element: one rotation from the volume-averaged deformation gradient, then the
+  // corotated force −R K (Rᵀ x − x0) and the rotated stiffness R K Rᵀ of the stored rest K.
+  parallelFor(tasks, elementCount(), 64, [&](int64_t begin, int64_t end) {
+    for (int64_t e = begin; e < end; ++e) {
+      const int32_t* nodes = &elementNodes_[N * e];
+      double x[3 * kBBMaxNodes], x0[3 * kBBMaxNodes], F[9], R[9];
+      for (int a = 0; a < N; ++a)
+        for (int i = 0; i < 3; ++i) x[3 * a + i] = x_[3 * nodes[a] + i], x0[3 * a + i] = restX_[3 * nodes[a] + i];
+      bbAverageDeformationGradient(degree_, x, &restGradients_[12 * e], F);
+      if (polarRotationIterative(F, &rotations_[4 * e], R, 20, 1e-6) < 0)
+        for (int i = 0; i < 9; ++i) R[i] = (i % 4 == 0) ? 1.0 : 0.0;  // non-finite: the guard reports it
+      corotatedForce(N, &elementStiffness_[K * e], x0, x, R, &elementForce_[3 * N * e]);
+      corotatedStiffness(N, &elementStiffness_[K * e], R, &rotatedStiffness_[K * e]);
+    }
+  });
+  // Pass 2, per node: gather, as in the linear path.
+  parallelFor(tasks, nodeCount_, 64, [&](int64_t begin, int64_t end) {
+    for (int64_t i = begin; i < end; ++i) {
+      double f[3] = {0.0, 0.0, 0.0};
+      for (int32_t k = matrix_.rowStart[i]; k < matrix_.rowStart[i + 1]; ++k)
+        std::fill_n(&matrix_.values[9 * static_cast<int64_t>(k)], 9, 0.0);
+      for (int32_t k = incidenceStart_[i]; k < incidenceStart_[i + 1]; ++k) {
+        const int64_t e = incidence_[k] / N;
+        const int a = incidence_[k] % N;
+        for (int c = 0; c < 3; ++c) f[c] += elementForce_[3 * (N * e + a) + c];
+        const double* Ke = &rotatedStiffness_[K * e];
+        for (int b = 0; b < N; ++b) {
+          double* dst = &matrix_.values[9 * static_cast<int64_t>(scatter_[N * N * e + N * a + b])];
+          for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c) dst[3 * r + c] += stiffnessScale * Ke[(3 * a + r) * 3 * N + 3 * b + c];
+        }
       }
       for (int c = 0; c < 3; ++c) force_[3 * i + c] = f[c];
     }

@@ -8,6 +8,7 @@
 // handled inside CG by filtering (Baraff & Witkin 1998), not by penalties.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <vector>
@@ -47,7 +48,9 @@ class DeformableBody {
 
   const DeformableDesc& desc() const { return desc_; }
   int32_t nodeCount() const { return nodeCount_; }
-  int64_t elementCount() const { return static_cast<int64_t>(elementNodes_.size() / 4); }
+  int64_t elementCount() const { return static_cast<int64_t>(restVolume_.size()); }
+  int degree() const { return degree_; }
+  int nodesPerElement() const { return nodesPerElement_; }
   const Array<double>& positions() const { return x_; }  // 3 per node, world frame
   const Array<double>& velocities() const { return v_; }
   const Array<double>& nodeMasses() const { return mass_; }
@@ -85,6 +88,7 @@ class DeformableBody {
  private:
   DeformableBody() = default;
   void corotateAndAssemble(TaskSystem& tasks, double stiffnessScale);
+  void corotateAndAssembleBB(TaskSystem& tasks, double stiffnessScale);  // degree 2, 3
   void updateRenderMesh(TaskSystem& tasks);
   // Constraint impulse of each contact from the solved velocities: A v' − b at its node.
   void contactImpulses(TaskSystem& tasks, std::vector<Vec3>* impulses);
@@ -100,7 +104,14 @@ class DeformableBody {
   int32_t nodeCount_ = 0;
   double lambda_ = 0.0, mu_ = 0.0;
   Array<double> restX_, x_, v_, mass_, externalForce_;
-  Array<int32_t> elementNodes_;     // 4 per element
+  int degree_ = 1;
+  int nodesPerElement_ = 4;
+  Array<int32_t> elementNodes_;     // nodesPerElement_ per element, BB local order
+  // Per node: the global vertices an edge/face control point lies on (-1: unused; all -1 for
+  // vertex nodes).
+  std::vector<std::array<int32_t, 3>> nodeSupport_;
+  Array<double> elementStiffness_;  // degree > 1: rest K_e, 3N x 3N row-major per element
+  Array<double> rotatedStiffness_;  // degree > 1: R K_e Rᵀ this step
   Array<double> restGradients_;     // 12 per element
   Array<double> restVolume_;
   Array<double> rotations_;         // 4 per element, quaternion (w,x,y,z) warm start
@@ -108,7 +119,7 @@ class DeformableBody {
   std::vector<Attachment> attachments_;
   Array<int32_t> incidenceStart_;   // per node, into incidence_
   Array<int32_t> incidence_;        // 4 * element + corner, grouped by node
-  Array<double> elementForce_;      // 12 per element, this step
+  Array<double> elementForce_;      // 3 * nodesPerElement per element, this step
   Array<double> rotatedGradients_;  // 12 per element, this step
   BlockSparseMatrix<double> matrix_;
   Array<int32_t> scatter_;          // 16 block indices per element

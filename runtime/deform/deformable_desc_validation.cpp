@@ -23,8 +23,6 @@ Status checkNonNegative(const char* field, double value, double maxValue) {
 Status validateDeformableDesc(DeformableDesc& in) {
   if (in.degree < 1 || in.degree > 3)
     return fail(Status::InvalidArgument, "degree = %d: must be 1, 2 or 3", in.degree);
-  if (in.degree != 1)
-    return fail(Status::Unsupported, "degree = %d: quadratic and cubic elements are not available yet", in.degree);
   const DeformableMaterial& m = in.material;
   VP_TRY(checkPositive("youngsModulus", m.youngsModulus, 1e13));
   // ν = 0.5 makes λ infinite; stop just short of it (near-incompressible needs degree > 1).

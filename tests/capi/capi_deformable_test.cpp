@@ -142,7 +142,7 @@ TEST(CApiDeformable, DefRejectsBadValuesAndAddsNothing) {
       {"density = -1", vpStatus_InvalidArgument, [](vpDeformableDef& d) { d.density = -1; }},
       {"solverTolerance = nan", vpStatus_InvalidArgument, [](vpDeformableDef& d) { d.solverTolerance = NAN; }},
       {"solverMaxIterations = -3", vpStatus_InvalidArgument, [](vpDeformableDef& d) { d.solverMaxIterations = -3; }},
-      {"degree = 3", vpStatus_Unsupported, [](vpDeformableDef& d) { d.degree = 3; }},
+      {"degree = 4", vpStatus_InvalidArgument, [](vpDeformableDef& d) { d.degree = 4; }},
       {"degree = 0", vpStatus_InvalidArgument, [](vpDeformableDef& d) { d.degree = 0; }},
       {"vertexCount = 0", vpStatus_InvalidArgument, [](vpDeformableDef& d) { d.vertexCount = 0; }},
       {"tetCount = -1", vpStatus_InvalidArgument, [](vpDeformableDef& d) { d.tetCount = -1; }},

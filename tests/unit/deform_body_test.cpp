@@ -320,7 +320,6 @@ TEST(DeformableBody, DescValidationNamesTheField) {
       {"solverTolerance = 0", Status::InvalidArgument, [](DeformableDesc& d) { d.solver.tolerance = 0; }},
       {"solverMaxIterations = 0", Status::InvalidArgument, [](DeformableDesc& d) { d.solver.maxIterations = 0; }},
       {"degree = 4", Status::InvalidArgument, [](DeformableDesc& d) { d.degree = 4; }},
-      {"degree = 2", Status::Unsupported, [](DeformableDesc& d) { d.degree = 2; }},
       {"mesh", Status::InvalidArgument, [](DeformableDesc& d) { d.mesh.tets[0][2] = 1000; }},
       {"mesh", Status::InvalidArgument, [](DeformableDesc& d) { d.mesh.vertices[3].x() = NAN; }},
       {"mesh", Status::InvalidArgument, [](DeformableDesc& d) { d.mesh.tets.clear(); }},

@@ -34,8 +34,9 @@ struct Scene {
     g.friction = friction;
     return addCollider(g);
   }
-  DeformableBody& addCube(double size, const Vec3& centre, double friction, double E = 1e5) {
+  DeformableBody& addCube(double size, const Vec3& centre, double friction, double E = 1e5, int degree = 1) {
     DeformableDesc d;
+    d.degree = degree;
     d.mesh = makeBoxTetMesh({3, 3, 3}, Vec3::Constant(size), -0.5 * Vec3::Constant(size));
     d.pose.position = centre;
     d.material.youngsModulus = E;
@@ -83,6 +84,23 @@ TEST(DeformableContact, CubeComesToRestOnAPlaneWithoutPenetrationOrJitter) {
   s.run(60);
   EXPECT_LT((s.centroid() - before).norm(), 1e-4);
   EXPECT_GT(s.body().contacts().size(), 0u);
+}
+
+// Higher-order cubes collide through their vertex and boundary control points.
+TEST(DeformableContact, QuadraticAndCubicCubesRestOnAPlane) {
+  for (int degree : {2, 3}) {
+    Scene s;
+    s.addGround();
+    s.addCube(0.5, Vec3(0, 0.6, 0), 0.5, 1e5, degree);
+    s.run(150);
+    EXPECT_GT(s.minY(), -0.005) << "degree " << degree;
+    EXPECT_LT(s.minY(), 0.005) << "degree " << degree;
+    EXPECT_LT(s.centroidVelocity().norm(), 1e-3) << "degree " << degree;
+    // The render mesh (the box surface, evaluated through the BB polynomial) sits on the plane.
+    double renderMinY = 1e9;
+    for (const Vec3& p : s.body().renderPositions()) renderMinY = std::min(renderMinY, p.y());
+    EXPECT_NEAR(renderMinY, 0.0, 0.01) << "degree " << degree;
+  }
 }
 
 // On an incline of angle θ with friction μ: sticks when tan θ < μ, slides otherwise.

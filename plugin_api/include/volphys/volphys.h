@@ -326,14 +326,16 @@ VP_API vpStatus vpWorldFindCollider(vpWorldId world, const char* name, vpCollide
 /* ---------------------------------------------------------------- deformables */
 
 /* A deformable volume: corotational linear elasticity on a tetrahedral mesh, implicit
- * (backward Euler), solved by preconditioned CG within the frame budget. Give exactly one
+ * (backward Euler), solved by preconditioned CG within the frame budget. Nodes are the mesh
+ * vertices (same indices) followed, for degree > 1, by the shared edge and face control
+ * points; pinning all vertices of an edge or face pins its control points. Give exactly one
  * mesh source: vertices + tets, tetFile, or surfaceFile. Meshes are in the actor's local
  * frame; `pose` places them. The render mesh is renderVertices/renderTriangles if given, the
  * surface file's own mesh for surfaceFile, else the boundary of the tet mesh; it is embedded
  * in the tets and follows them. */
 typedef struct vpDeformableDef {
   uint32_t structSize;
-  int32_t degree;               /* element degree; 1 (2 and 3: vpStatus_Unsupported for now) */
+  int32_t degree;               /* element degree: 1 linear, 2 quadratic, 3 cubic (Bernstein–Bézier) */
   const float* vertices;        /* xyz per node, vertexCount of them (copied) */
   int32_t vertexCount;
   const int32_t* tets;          /* 4 node indices per tet, tetCount of them (copied) */
