@@ -112,10 +112,15 @@ Status DeformableBody::create(DeformableDesc desc, std::unique_ptr<DeformableBod
   b.incidenceStart_.assign(static_cast<size_t>(b.nodeCount_) + 1, 0);
   for (int64_t k = 0; k < N * elements; ++k) b.incidenceStart_[b.elementNodes_[k] + 1]++;
   for (int32_t i = 0; i < b.nodeCount_; ++i) b.incidenceStart_[i + 1] += b.incidenceStart_[i];
-  b.incidence_.resize(static_cast<size_t>(N * elements));
+  b.incidentElement_.resize(static_cast<size_t>(N * elements));
+  b.incidentCorner_.resize(static_cast<size_t>(N * elements));
   {
     std::vector<int32_t> fill(b.incidenceStart_.begin(), b.incidenceStart_.end() - 1);
-    for (int64_t k = 0; k < N * elements; ++k) b.incidence_[fill[b.elementNodes_[k]]++] = static_cast<int32_t>(k);
+    for (int64_t k = 0; k < N * elements; ++k) {
+      const int32_t slot = fill[b.elementNodes_[k]]++;
+      b.incidentElement_[slot] = static_cast<int32_t>(k / N);
+      b.incidentCorner_[slot] = static_cast<uint8_t>(k % N);
+    }
   }
   b.elementForce_.resize(3 * static_cast<size_t>(N * elements));
   if (degree == 1) b.rotatedGradients_.resize(12 * static_cast<size_t>(elements));
@@ -339,6 +344,31 @@ void DeformableBody::contactImpulses(TaskSystem& tasks, std::vector<Vec3>* impul
   }
 }
 
+// Pass 2 of assembly, per node: one matrix block row each, so no two tasks write the same
+// memory and the sum order is fixed (deterministic for any worker count). Gathers the forces
+// and, through addBlock(element, corner a, corner b, block), the stiffness blocks of the
+// incident elements. Gathering keeps the writes in matrix order; scattering element by element
+// touched the 20 MB matrix of a large mesh at random.
+template <class AddBlock>
+void DeformableBody::gatherRows(TaskSystem& tasks, int64_t grain, const AddBlock& addBlock) {
+  const int N = nodesPerElement_;
+  parallelFor(tasks, nodeCount_, grain, [&](int64_t begin, int64_t end) {
+    for (int64_t i = begin; i < end; ++i) {
+      double f[3] = {0.0, 0.0, 0.0};
+      for (int32_t k = matrix_.rowStart[i]; k < matrix_.rowStart[i + 1]; ++k)
+        std::fill_n(&matrix_.values[9 * static_cast<int64_t>(k)], 9, 0.0);
+      for (int32_t k = incidenceStart_[i]; k < incidenceStart_[i + 1]; ++k) {
+        const int64_t e = incidentElement_[k];
+        const int a = incidentCorner_[k];
+        for (int c = 0; c < 3; ++c) f[c] += elementForce_[3 * (N * e + a) + c];
+        for (int b = 0; b < N; ++b)
+          addBlock(e, a, b, &matrix_.values[9 * static_cast<int64_t>(scatter_[N * N * e + N * a + b])]);
+      }
+      for (int c = 0; c < 3; ++c) force_[3 * i + c] = f[c];
+    }
+  });
+}
+
 void DeformableBody::corotateAndAssemble(TaskSystem& tasks, double stiffnessScale) {
   if (degree_ > 1) return corotateAndAssembleBB(tasks, stiffnessScale);
   // Pass 1, per element: rotation, force and rotated gradients into element buffers.
@@ -352,27 +382,9 @@ void DeformableBody::corotateAndAssemble(TaskSystem& tasks, double stiffnessScal
                         &elementForce_[12 * e], &rotatedGradients_[12 * e]);
     }
   });
-  // Pass 2, per node (one matrix block row each, so no two tasks write the same memory and
-  // the sum order is fixed: deterministic for any worker count): gather the forces and the
-  // rotated stiffness blocks of the incident elements. Gathering keeps the writes in matrix
-  // order; scattering element by element touched the 20 MB matrix at random.
-  parallelFor(tasks, nodeCount_, 256, [&](int64_t begin, int64_t end) {
-    for (int64_t i = begin; i < end; ++i) {
-      double f[3] = {0.0, 0.0, 0.0};
-      for (int32_t k = matrix_.rowStart[i]; k < matrix_.rowStart[i + 1]; ++k)
-        std::fill_n(&matrix_.values[9 * static_cast<int64_t>(k)], 9, 0.0);
-      for (int32_t k = incidenceStart_[i]; k < incidenceStart_[i + 1]; ++k) {
-        const int64_t e = incidence_[k] >> 2;
-        const int a = incidence_[k] & 3;
-        for (int c = 0; c < 3; ++c) f[c] += elementForce_[12 * e + 3 * a + c];
-        const double* h = &rotatedGradients_[12 * e];
-        const double* g = &restGradients_[12 * e];
-        for (int b = 0; b < 4; ++b)
-          addLinearTetBlock(h, g, a, b, restVolume_[e], lambda_, mu_, stiffnessScale,
-                            &matrix_.values[9 * static_cast<int64_t>(scatter_[16 * e + 4 * a + b])]);
-      }
-      for (int c = 0; c < 3; ++c) force_[3 * i + c] = f[c];
-    }
+  gatherRows(tasks, 256, [&](int64_t e, int a, int b, double* block) {
+    addLinearTetBlock(&rotatedGradients_[12 * e], &restGradients_[12 * e], a, b, restVolume_[e], lambda_, mu_,
+                      stiffnessScale, block);
   });
 }
 
@@ -394,25 +406,10 @@ void DeformableBody::corotateAndAssembleBB(TaskSystem& tasks, double stiffnessSc
       corotatedStiffness(N, &elementStiffness_[K * e], R, &rotatedStiffness_[K * e]);
     }
   });
-  // Pass 2, per node: gather, as in the linear path.
-  parallelFor(tasks, nodeCount_, 64, [&](int64_t begin, int64_t end) {
-    for (int64_t i = begin; i < end; ++i) {
-      double f[3] = {0.0, 0.0, 0.0};
-      for (int32_t k = matrix_.rowStart[i]; k < matrix_.rowStart[i + 1]; ++k)
-        std::fill_n(&matrix_.values[9 * static_cast<int64_t>(k)], 9, 0.0);
-      for (int32_t k = incidenceStart_[i]; k < incidenceStart_[i + 1]; ++k) {
-        const int64_t e = incidence_[k] / N;
-        const int a = incidence_[k] % N;
-        for (int c = 0; c < 3; ++c) f[c] += elementForce_[3 * (N * e + a) + c];
-        const double* Ke = &rotatedStiffness_[K * e];
-        for (int b = 0; b < N; ++b) {
-          double* dst = &matrix_.values[9 * static_cast<int64_t>(scatter_[N * N * e + N * a + b])];
-          for (int r = 0; r < 3; ++r)
-            for (int c = 0; c < 3; ++c) dst[3 * r + c] += stiffnessScale * Ke[(3 * a + r) * 3 * N + 3 * b + c];
-        }
-      }
-      for (int c = 0; c < 3; ++c) force_[3 * i + c] = f[c];
-    }
+  gatherRows(tasks, 64, [&](int64_t e, int a, int b, double* block) {
+    const double* Ke = &rotatedStiffness_[K * e];
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) block[3 * r + c] += stiffnessScale * Ke[(3 * a + r) * 3 * N + 3 * b + c];
   });
 }
 

@@ -89,6 +89,8 @@ class DeformableBody {
   DeformableBody() = default;
   void corotateAndAssemble(TaskSystem& tasks, double stiffnessScale);
   void corotateAndAssembleBB(TaskSystem& tasks, double stiffnessScale);  // degree 2, 3
+  template <class AddBlock>
+  void gatherRows(TaskSystem& tasks, int64_t grain, const AddBlock& addBlock);
   void updateRenderMesh(TaskSystem& tasks);
   // Constraint impulse of each contact from the solved velocities: A v' − b at its node.
   void contactImpulses(TaskSystem& tasks, std::vector<Vec3>* impulses);
@@ -117,8 +119,9 @@ class DeformableBody {
   Array<double> rotations_;         // 4 per element, quaternion (w,x,y,z) warm start
   Array<uint8_t> pinned_;
   std::vector<Attachment> attachments_;
-  Array<int32_t> incidenceStart_;   // per node, into incidence_
-  Array<int32_t> incidence_;        // 4 * element + corner, grouped by node
+  Array<int32_t> incidenceStart_;   // per node, into incidentElement_/incidentCorner_
+  Array<int32_t> incidentElement_;  // (element, corner) pairs touching each node, grouped by node
+  Array<uint8_t> incidentCorner_;
   Array<double> elementForce_;      // 3 * nodesPerElement per element, this step
   Array<double> rotatedGradients_;  // 12 per element, this step
   BlockSparseMatrix<double> matrix_;

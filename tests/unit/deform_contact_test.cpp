@@ -220,7 +220,7 @@ TEST_P(DeformableContactShapes, CubeIsHeldUpByTheCollider) {
 INSTANTIATE_TEST_SUITE_P(AllShapes, DeformableContactShapes,
                          ::testing::Values(ShapeType::Sphere, ShapeType::Box, ShapeType::Capsule, ShapeType::Cylinder,
                                            ShapeType::ConvexHull, ShapeType::TriangleMesh),
-                         [](const auto& info) { return std::string(shapeTypeName(info.param)); });
+                         [](const auto& testParam) { return std::string(shapeTypeName(testParam.param)); });
 
 }  // namespace
 }  // namespace vp

@@ -70,7 +70,8 @@ TEST(HigherOrderElements, PatchTestForDegreesTwoAndThree) {
       const Vec3 Xi(X[3 * i], X[3 * i + 1], X[3 * i + 2]);
       const bool onBoundary = (Xi.array() < 1e-12).any() || (Xi.array() > 1.0 - 1e-12).any();
       const double fi = Vec3(f[3 * i], f[3 * i + 1], f[3 * i + 2]).norm();
-      (onBoundary ? boundary : interior) = std::max(onBoundary ? boundary : interior, fi);
+      double& worst = onBoundary ? boundary : interior;
+      worst = std::max(worst, fi);
     }
     EXPECT_GT(boundary, 1.0) << degree;
     EXPECT_LT(interior, 1e-9 * boundary) << "degree " << degree;
@@ -99,7 +100,9 @@ TEST(HigherOrderElements, PinningAFacesVerticesPinsItsControlPoints) {
     const bool onFace = body->restPositions()[3 * i] == 0.0;
     faceNodes += onFace;
     pinnedOnFace += onFace && body->pinned(i);
-    if (!onFace) EXPECT_FALSE(body->pinned(i)) << i;
+    if (!onFace) {
+      EXPECT_FALSE(body->pinned(i)) << i;
+    }
   }
   EXPECT_GT(faceNodes, 4);
   EXPECT_EQ(pinnedOnFace, faceNodes);
