@@ -91,6 +91,21 @@ Collider::Collider(ColliderDesc desc) : desc_(std::move(desc)), shape_(buildBull
 Collider::~Collider() = default;
 
 
+void Collider::addFluidLoad(const Vec3& force, const Vec3& torque) {
+  if (desc_.bodyType != BodyType::Dynamic) return;
+  fluidForce_ += force;
+  fluidTorque_ += torque;
+}
+
+void Collider::applyFluidLoad() {
+  if (desc_.bodyType != BodyType::Dynamic || (fluidForce_.isZero(0.0) && fluidTorque_.isZero(0.0))) return;
+  body_->activate(true);
+  body_->applyCentralForce(btVector3(btScalar(fluidForce_.x()), btScalar(fluidForce_.y()), btScalar(fluidForce_.z())));
+  body_->applyTorque(btVector3(btScalar(fluidTorque_.x()), btScalar(fluidTorque_.y()), btScalar(fluidTorque_.z())));
+}
+
+void Collider::clearFluidLoad() { fluidForce_ = fluidTorque_ = Vec3::Zero(); }
+
 void Collider::syncGeometry() {
   if (!geometry_) return;
   const Pose p = pose();

@@ -40,6 +40,12 @@ class Collider {
   // Brings the geometry to the body's current pose and velocity (after each rigid step).
   void syncGeometry();
 
+  // A force and torque (about the body's origin) from the fluids, applied on every Bullet
+  // sub-step of the next world step, then cleared. Dynamic bodies only; others ignore it.
+  void addFluidLoad(const Vec3& force, const Vec3& torque);
+  void applyFluidLoad();  // before each sub-step (Bullet clears forces after each one)
+  void clearFluidLoad();
+
   // Kinematic driving, called by CollisionWorld around Bullet's sub-steps.
   void beginKinematicStep(double dt);          // turns a target into a velocity for this step
   void advanceKinematic(double h, bool last);  // moves by h; on the last sub-step snaps to target
@@ -55,6 +61,7 @@ class Collider {
   std::optional<Pose> target_;
   std::optional<PreparedCollider> geometry_;
   bool targetActive_ = false;
+  Vec3 fluidForce_ = Vec3::Zero(), fluidTorque_ = Vec3::Zero();
 };
 
 }  // namespace vp

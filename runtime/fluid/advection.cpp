@@ -1,0 +1,152 @@
+// Semi-Lagrangian and MacCormack advection on the MAC grid (see advection.h).
+#include "fluid/advection.h"
+
+#include <algorithm>
+
+#include "core/parallel_for.h"
+#include "fluid/grid_sampling.h"
+
+namespace vp {
+namespace {
+
+constexpr int64_t kRowGrain = 8;  // x-lines per parallel chunk
+
+// Component b (!= a) of the velocity at the centre of a-face (i, j, k): the mean of the four
+// b-faces around it (what trilinear sampling gives there, without its cost).
+double otherComponentAtFace(const MacGrid& g, int a, int b, int i, int j, int k) {
+  const int cellsA = a == 0 ? g.spec.nx : a == 1 ? g.spec.ny : g.spec.nz;
+  Eigen::Vector3i cell(i, j, k);
+  double sum = 0.0;
+  for (int side = 0; side < 2; ++side) {
+    Eigen::Vector3i c = cell;
+    c[a] = std::clamp(cell[a] - side, 0, cellsA - 1);
+    for (int up = 0; up < 2; ++up) {
+      Eigen::Vector3i f = c;
+      f[b] += up;
+      sum += g.velocity[b][g.faceIndex(b, f.x(), f.y(), f.z())];
+    }
+  }
+  return 0.25 * sum;
+}
+
+// Midpoint-rule trace over `dt` (negative dt traces forward in time) from x, where the
+// velocity is u0.
+Eigen::Vector3d trace(const MacGrid& g, const Eigen::Vector3d& x, const Eigen::Vector3d& u0, double dt) {
+  return x - dt * g.sampleVelocity(x - 0.5 * dt * u0);
+}
+
+Eigen::Vector3d velocityAtFace(const MacGrid& g, int a, int i, int j, int k) {
+  Eigen::Vector3d u;
+  u[a] = g.velocity[a][g.faceIndex(a, i, j, k)];
+  u[(a + 1) % 3] = otherComponentAtFace(g, a, (a + 1) % 3, i, j, k);
+  u[(a + 2) % 3] = otherComponentAtFace(g, a, (a + 2) % 3, i, j, k);
+  return u;
+}
+
+Eigen::Vector3d velocityAtCell(const MacGrid& g, int i, int j, int k) {
+  Eigen::Vector3d u;
+  for (int a = 0; a < 3; ++a) {
+    Eigen::Vector3i hi(i, j, k);
+    hi[a] += 1;
+    u[a] = 0.5 * (g.velocity[a][g.faceIndex(a, i, j, k)] + g.velocity[a][g.faceIndex(a, hi.x(), hi.y(), hi.z())]);
+  }
+  return u;
+}
+
+// Lattice coordinate of world point x for the samples of a-faces (a = 3: cell centres).
+Eigen::Vector3d latticeCoordinate(const MacGridSpec& s, const Eigen::Vector3d& x, int a) {
+  Eigen::Vector3d l = (x - s.origin) / s.h - Eigen::Vector3d::Constant(0.5);
+  if (a < 3) l[a] += 0.5;
+  return l;
+}
+
+// Runs body(i, j, k, index) over every sample of a lattice with dims d, parallel over lines.
+template <class Body>
+void forEachSample(TaskSystem& tasks, const Eigen::Vector3i& d, const Body& body) {
+  parallelFor(tasks, static_cast<int64_t>(d.y()) * d.z(), kRowGrain, [&](int64_t begin, int64_t end) {
+    for (int64_t row = begin; row < end; ++row) {
+      const int j = static_cast<int>(row % d.y()), k = static_cast<int>(row / d.y());
+      size_t index = static_cast<size_t>(row) * static_cast<size_t>(d.x());
+      for (int i = 0; i < d.x(); ++i, ++index) body(i, j, k, index);
+    }
+  });
+}
+
+}  // namespace
+
+void advectVelocity(TaskSystem& tasks, MacGrid& grid, double dt, AdvectionScheme scheme, AdvectionWorkspace& work) {
+  const MacGridSpec& s = grid.spec;
+  const bool maccormack = scheme == AdvectionScheme::MacCormack;
+  for (int a = 0; a < 3; ++a) {
+    const Eigen::Vector3i d = grid.faceDims(a);
+    const std::vector<double>& old = grid.velocity[a];
+    std::vector<double>& out = work.advected[a];
+    out.resize(old.size());
+    std::vector<double>& fwd = maccormack ? work.forward : out;
+    fwd.resize(old.size());
+    if (maccormack) {
+      work.rangeLo.resize(old.size());
+      work.rangeHi.resize(old.size());
+    }
+    forEachSample(tasks, d, [&](int i, int j, int k, size_t f) {
+      const Eigen::Vector3d x = grid.faceCentre(a, i, j, k);
+      const Eigen::Vector3d back = trace(grid, x, velocityAtFace(grid, a, i, j, k), dt);
+      SampleRange range;
+      fwd[f] = trilinearSample(old.data(), d, latticeCoordinate(s, back, a), maccormack ? &range : nullptr);
+      if (maccormack) work.rangeLo[f] = range.lo, work.rangeHi[f] = range.hi;
+    });
+    if (!maccormack) continue;
+    forEachSample(tasks, d, [&](int i, int j, int k, size_t f) {
+      const Eigen::Vector3d x = grid.faceCentre(a, i, j, k);
+      const Eigen::Vector3d ahead = trace(grid, x, velocityAtFace(grid, a, i, j, k), -dt);
+      const double backAgain = trilinearSample(fwd.data(), d, latticeCoordinate(s, ahead, a));
+      out[f] = std::clamp(fwd[f] + 0.5 * (old[f] - backAgain), work.rangeLo[f], work.rangeHi[f]);
+    });
+  }
+  for (int a = 0; a < 3; ++a) grid.velocity[a].swap(work.advected[a]);
+}
+
+void advectCellScalars(TaskSystem& tasks, const MacGrid& grid, double dt, AdvectionScheme scheme,
+                       std::vector<double>* const* fields, int fieldCount, AdvectionWorkspace& work) {
+  if (fieldCount <= 0) return;
+  const MacGridSpec& s = grid.spec;
+  const Eigen::Vector3i d(s.nx, s.ny, s.nz);
+  const size_t cells = static_cast<size_t>(grid.cellCount());
+  const bool maccormack = scheme == AdvectionScheme::MacCormack;
+  // Both traces are shared by all fields: back (where the value comes from) and, for
+  // MacCormack, ahead (where the backward step samples the forward result).
+  work.cellTrace.resize(maccormack ? 2 * cells : cells);
+  forEachSample(tasks, d, [&](int i, int j, int k, size_t c) {
+    const Eigen::Vector3d x = grid.cellCentre(i, j, k);
+    const Eigen::Vector3d u = velocityAtCell(grid, i, j, k);
+    work.cellTrace[c] = latticeCoordinate(s, trace(grid, x, u, dt), 3);
+    if (maccormack) work.cellTrace[cells + c] = latticeCoordinate(s, trace(grid, x, u, -dt), 3);
+  });
+  work.forward.resize(cells);
+  std::vector<double>& out = work.advected[0];
+  out.resize(cells);
+  for (int field = 0; field < fieldCount; ++field) {
+    std::vector<double>& old = *fields[field];
+    if (!maccormack) {
+      forEachSample(tasks, d, [&](int, int, int, size_t c) {
+        out[c] = trilinearSample(old.data(), d, work.cellTrace[c]);
+      });
+      old.swap(out);
+      continue;
+    }
+    work.rangeLo.resize(cells);
+    work.rangeHi.resize(cells);
+    forEachSample(tasks, d, [&](int, int, int, size_t c) {
+      SampleRange range;
+      work.forward[c] = trilinearSample(old.data(), d, work.cellTrace[c], &range);
+      work.rangeLo[c] = range.lo, work.rangeHi[c] = range.hi;
+    });
+    forEachSample(tasks, d, [&](int, int, int, size_t c) {
+      const double backAgain = trilinearSample(work.forward.data(), d, work.cellTrace[cells + c]);
+      out[c] = std::clamp(work.forward[c] + 0.5 * (old[c] - backAgain), work.rangeLo[c], work.rangeHi[c]);
+    });
+    old.swap(out);
+  }
+}
+
+}  // namespace vp
