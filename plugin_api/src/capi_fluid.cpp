@@ -23,10 +23,10 @@ Status translateRegion(const std::string& field, const vpFluidRegion& r, FluidSh
 
 // Arrays of sources: a count without an array is a host bug worth naming.
 template <class T>
-Status checkArray(const char* field, const T* items, int32_t count) {
-  if (count < 0 || count > 4096) return fail(Status::InvalidArgument, "%sCount = %d: must be in [0, 4096]", field, count);
+Status checkArray(const char* field, const char* countField, const T* items, int32_t count) {
+  if (count < 0 || count > 4096) return fail(Status::InvalidArgument, "%s = %d: must be in [0, 4096]", countField, count);
   if (count > 0 && items == nullptr)
-    return fail(Status::InvalidArgument, "%s is NULL with %sCount = %d", field, field, count);
+    return fail(Status::InvalidArgument, "%s is NULL with %s = %d", field, countField, count);
   return Status::Ok;
 }
 
@@ -53,9 +53,9 @@ Status translateFluidDef(const vpFluidDef& d, FluidDesc* desc) {
   desc->smoke.vorticityConfinement = d.vorticityConfinement;
   desc->smoke.densityDissipation = d.densityDissipation;
   desc->smoke.temperatureDissipation = d.temperatureDissipation;
-  VP_TRY(checkArray("initialLiquid", d.initialLiquid, d.initialLiquidCount));
-  VP_TRY(checkArray("emitters", d.emitters, d.emitterCount));
-  VP_TRY(checkArray("drains", d.drains, d.drainCount));
+  VP_TRY(checkArray("initialLiquid", "initialLiquidCount", d.initialLiquid, d.initialLiquidCount));
+  VP_TRY(checkArray("emitters", "emitterCount", d.emitters, d.emitterCount));
+  VP_TRY(checkArray("drains", "drainCount", d.drains, d.drainCount));
   for (int32_t i = 0; i < d.initialLiquidCount; ++i) {
     desc->initialLiquid.emplace_back();
     VP_TRY(translateRegion("initialLiquid[" + std::to_string(i) + "]", d.initialLiquid[i], &desc->initialLiquid.back()));

@@ -39,4 +39,7 @@ class JsonObject {
 
 const char* jsonTypeName(const nlohmann::json& value);
 
+// An optional string field that must be one of `names`; *out = its position in the list.
+Status parseEnum(const JsonObject& obj, const char* key, std::initializer_list<const char*> names, int* out);
+
 }  // namespace vp

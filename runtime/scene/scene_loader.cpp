@@ -7,6 +7,7 @@
 
 #include "deform/deformable_mesh_source.h"
 #include "scene/json_fields.h"
+#include "scene/scene_fluid.h"
 #include "world.h"
 
 namespace vp {
@@ -34,25 +35,8 @@ struct Scene {
   SceneWorldSettings world;
   std::vector<ColliderDesc> colliders;
   std::vector<SceneDeformable> deformables;
+  std::vector<FluidDesc> fluids;
 };
-
-Status parseEnum(const JsonObject& obj, const char* key, std::initializer_list<const char*> names, int* out) {
-  std::string value;
-  VP_TRY(obj.string(key, &value));
-  if (!obj.has(key)) return Status::Ok;
-  int i = 0;
-  for (const char* name : names) {
-    if (value == name) {
-      *out = i;
-      return Status::Ok;
-    }
-    ++i;
-  }
-  std::string list;
-  for (const char* name : names) list += std::string(list.empty() ? "" : ", ") + name;
-  return fail(Status::ParseError, "%s = \"%s\": expected one of: %s", obj.pathOf(key).c_str(), value.c_str(),
-              list.c_str());
-}
 
 Status parsePointArray(const JsonObject& obj, const char* key, std::vector<Vec3>* out) {
   if (!obj.has(key)) return Status::Ok;
@@ -240,7 +224,7 @@ Status parseDeformable(const JsonObject& obj, const std::string& baseDirectory, 
 
 Status parseScene(const json& root, const std::string& baseDirectory, Scene* scene) {
   JsonObject top(root, "$");
-  VP_TRY(top.checkKeys({"version", "world", "colliders", "deformables"}));
+  VP_TRY(top.checkKeys({"version", "world", "colliders", "deformables", "fluids"}));
   int version = 1;
   VP_TRY(top.integer("version", &version));
   if (version != 1) return fail(Status::ParseError, "$.version = %d: this library reads version 1", version);
@@ -285,6 +269,16 @@ Status parseScene(const json& root, const std::string& baseDirectory, Scene* sce
       scene->deformables.push_back(std::move(d));
     }
   }
+  if (top.has("fluids")) {
+    const json& list = root.at("fluids");
+    if (!list.is_array()) return fail(Status::ParseError, "$.fluids: expected an array, got %s", jsonTypeName(list));
+    for (size_t i = 0; i < list.size(); ++i) {
+      JsonObject obj(list[i], "$.fluids[" + std::to_string(i) + "]");
+      FluidDesc f;
+      VP_TRY(parseFluid(obj, &f));
+      scene->fluids.push_back(std::move(f));
+    }
+  }
   return Status::Ok;
 }
 
@@ -321,7 +315,9 @@ Status loadSceneFromString(World& world, const std::string& text, const std::str
   // added so far is removed again.
   std::vector<ColliderHandle> addedColliders;
   std::vector<DeformableHandle> addedDeformables;
+  std::vector<FluidHandle> addedFluids;
   auto rollBack = [&](Status s) {
+    for (FluidHandle f : addedFluids) world.destroyFluid(f);
     for (DeformableHandle d : addedDeformables) world.destroyDeformable(d);
     for (ColliderHandle c : addedColliders) world.destroyCollider(c);
     return s;
@@ -346,6 +342,12 @@ Status loadSceneFromString(World& world, const std::string& text, const std::str
                                   *world.collider(c));
     }
     if (!ok(s)) return rollBack(s);
+  }
+  for (size_t i = 0; i < scene.fluids.size(); ++i) {
+    FluidHandle h;
+    Status s = world.createFluid(std::move(scene.fluids[i]), &h);
+    if (!ok(s)) return rollBack(addErrorContext(s, "$.fluids[" + std::to_string(i) + "]"));
+    addedFluids.push_back(h);
   }
   if (scene.world.gravity) world.setGravity(*scene.world.gravity);
   if (scene.world.frameBudgetMs) world.setFrameBudget(*scene.world.frameBudgetMs);

@@ -76,6 +76,7 @@ TEST_P(SceneLoaderRejects, WithThePathAndChangesNothing) {
       << "message: " << lastError() << "\nexpected to contain: " << bad.messagePart;
   EXPECT_EQ(world->colliderCount(), 0u);
   EXPECT_EQ(world->deformableCount(), 0u);
+  EXPECT_EQ(world->fluidCount(), 0u);
   EXPECT_EQ(world->config().frameBudgetMs, budgetBefore);
 }
 
@@ -136,7 +137,22 @@ INSTANTIATE_TEST_SUITE_P(
                  Status::ParseError, "$.deformables[0].pinBox: selects no node"},
         BadScene{R"({"colliders": [{"shape": {"type": "plane"}}],
                      "deformables": [{"box": {}, "attach": [{"collider": "ghost", "box": {"min": [-1, -1, -1], "max": [1, 1, 1]}}]}]})",
-                 Status::ParseError, "$.deformables[0].attach[0].collider = \"ghost\": no collider"}));
+                 Status::ParseError, "$.deformables[0].attach[0].collider = \"ghost\": no collider"},
+        BadScene{R"({"colliders": [{"shape": {"type": "plane"}}], "fluids": [{"kind": "lava"}]})", Status::ParseError,
+                 "$.fluids[0].kind = \"lava\": expected one of"},
+        BadScene{R"({"colliders": [{"shape": {"type": "plane"}}], "fluids": [{"resolution": [8, 1, 8]}]})",
+                 Status::ParseError, "$.fluids[0].resolution: expected 3 integers in [2, 1024]"},
+        BadScene{R"({"colliders": [{"shape": {"type": "plane"}}], "fluids": [{"cellSize": 0}]})",
+                 Status::InvalidArgument, "$.fluids[0]: cellSize = 0"},
+        BadScene{R"({"colliders": [{"shape": {"type": "plane"}}], "fluids": [{"sides": {"+y": "door"}}]})",
+                 Status::ParseError, "$.fluids[0].sides.+y = \"door\": expected one of"},
+        BadScene{R"({"colliders": [{"shape": {"type": "plane"}}],
+                     "fluids": [{"emitters": [{"region": {"type": "sphere", "radius": -1}}]}]})",
+                 Status::InvalidArgument, "$.fluids[0]: emitters[0].shape.radius = -1"},
+        BadScene{R"({"colliders": [{"shape": {"type": "plane"}}], "fluids": [{"emitters": [{"velocity": [0, 1, 0]}]}]})",
+                 Status::ParseError, "$.fluids[0].emitters[0].region: missing"},
+        BadScene{R"({"colliders": [{"shape": {"type": "plane"}}], "fluids": [{"smoke": {"heat": 1}}]})",
+                 Status::ParseError, "$.fluids[0].smoke.heat: unknown key"}));
 
 TEST(SceneLoader, DeformableWithPinsAndAnAttachment) {
   auto world = makeWorld();
