@@ -11,36 +11,56 @@ namespace {
 
 constexpr int64_t kRowGrain = 8;  // x-lines per parallel chunk
 
-// Component b (!= a) of the velocity at the centre of a-face (i, j, k): the mean of the four
-// b-faces around it (what trilinear sampling gives there, without its cost).
-double otherComponentAtFace(const MacGrid& g, int a, int b, int i, int j, int k) {
-  const int cellsA = a == 0 ? g.spec.nx : a == 1 ? g.spec.ny : g.spec.nz;
-  Eigen::Vector3i cell(i, j, k);
-  double sum = 0.0;
-  for (int side = 0; side < 2; ++side) {
-    Eigen::Vector3i c = cell;
-    c[a] = std::clamp(cell[a] - side, 0, cellsA - 1);
-    for (int up = 0; up < 2; ++up) {
-      Eigen::Vector3i f = c;
-      f[b] += up;
-      sum += g.velocity[b][g.faceIndex(b, f.x(), f.y(), f.z())];
-    }
+// The grid's velocity as a field that can be sampled anywhere, with the per-axis lattice data
+// computed once instead of per sample (sampling is most of advection's time).
+struct VelocityField {
+  const double* u[3];
+  Eigen::Vector3i dims[3];
+  Eigen::Vector3d origin;
+  double invH;
+
+  explicit VelocityField(const MacGrid& g) : origin(g.spec.origin), invH(1.0 / g.spec.h) {
+    for (int a = 0; a < 3; ++a) u[a] = g.velocity[a].data(), dims[a] = g.faceDims(a);
   }
-  return 0.25 * sum;
-}
+  Eigen::Vector3d sample(const Eigen::Vector3d& x) const {
+    const Eigen::Vector3d l = (x - origin) * invH - Eigen::Vector3d::Constant(0.5);
+    Eigen::Vector3d v;
+    for (int a = 0; a < 3; ++a) {
+      Eigen::Vector3d la = l;
+      la[a] += 0.5;
+      v[a] = trilinearSample(u[a], dims[a], la);
+    }
+    return v;
+  }
+  // Component b (!= a) at the centre of a-face (i, j, k): the mean of the four b-faces
+  // around it (what trilinear sampling gives there, without its cost); at the domain's
+  // a-sides the face has cells on one side only and takes that side's pair.
+  double otherComponentAtFace(int a, int b, int i, int j, int k) const {
+    const Eigen::Vector3i& d = dims[b];
+    const int64_t stride[3] = {1, d.x(), int64_t(d.x()) * d.y()};
+    const Eigen::Vector3i cell(i, j, k);
+    const int cellsA = d[a];  // b-faces have as many entries along a as there are cells
+    const int lo = std::max(cell[a] - 1, 0), hi = std::min(cell[a], cellsA - 1);
+    Eigen::Vector3i c = cell;
+    c[a] = lo;
+    const int64_t base = c.x() * stride[0] + c.y() * stride[1] + c.z() * stride[2];
+    const int64_t shift = (hi - lo) * stride[a];
+    const double* p = u[b] + base;
+    return 0.25 * (p[0] + p[stride[b]] + p[shift] + p[shift + stride[b]]);
+  }
+  Eigen::Vector3d atFace(int a, int i, int j, int k, double own) const {
+    Eigen::Vector3d v;
+    v[a] = own;
+    v[(a + 1) % 3] = otherComponentAtFace(a, (a + 1) % 3, i, j, k);
+    v[(a + 2) % 3] = otherComponentAtFace(a, (a + 2) % 3, i, j, k);
+    return v;
+  }
+};
 
 // Midpoint-rule trace over `dt` (negative dt traces forward in time) from x, where the
 // velocity is u0.
-Eigen::Vector3d trace(const MacGrid& g, const Eigen::Vector3d& x, const Eigen::Vector3d& u0, double dt) {
-  return x - dt * g.sampleVelocity(x - 0.5 * dt * u0);
-}
-
-Eigen::Vector3d velocityAtFace(const MacGrid& g, int a, int i, int j, int k) {
-  Eigen::Vector3d u;
-  u[a] = g.velocity[a][g.faceIndex(a, i, j, k)];
-  u[(a + 1) % 3] = otherComponentAtFace(g, a, (a + 1) % 3, i, j, k);
-  u[(a + 2) % 3] = otherComponentAtFace(g, a, (a + 2) % 3, i, j, k);
-  return u;
+Eigen::Vector3d trace(const VelocityField& field, const Eigen::Vector3d& x, const Eigen::Vector3d& u0, double dt) {
+  return x - dt * field.sample(x - 0.5 * dt * u0);
 }
 
 Eigen::Vector3d velocityAtCell(const MacGrid& g, int i, int j, int k) {
@@ -77,6 +97,7 @@ void forEachSample(TaskSystem& tasks, const Eigen::Vector3i& d, const Body& body
 void advectVelocity(TaskSystem& tasks, MacGrid& grid, double dt, AdvectionScheme scheme, AdvectionWorkspace& work) {
   const MacGridSpec& s = grid.spec;
   const bool maccormack = scheme == AdvectionScheme::MacCormack;
+  const VelocityField field(grid);
   for (int a = 0; a < 3; ++a) {
     const Eigen::Vector3i d = grid.faceDims(a);
     const std::vector<double>& old = grid.velocity[a];
@@ -90,7 +111,7 @@ void advectVelocity(TaskSystem& tasks, MacGrid& grid, double dt, AdvectionScheme
     }
     forEachSample(tasks, d, [&](int i, int j, int k, size_t f) {
       const Eigen::Vector3d x = grid.faceCentre(a, i, j, k);
-      const Eigen::Vector3d back = trace(grid, x, velocityAtFace(grid, a, i, j, k), dt);
+      const Eigen::Vector3d back = trace(field, x, field.atFace(a, i, j, k, old[f]), dt);
       SampleRange range;
       fwd[f] = trilinearSample(old.data(), d, latticeCoordinate(s, back, a), maccormack ? &range : nullptr);
       if (maccormack) work.rangeLo[f] = range.lo, work.rangeHi[f] = range.hi;
@@ -98,7 +119,7 @@ void advectVelocity(TaskSystem& tasks, MacGrid& grid, double dt, AdvectionScheme
     if (!maccormack) continue;
     forEachSample(tasks, d, [&](int i, int j, int k, size_t f) {
       const Eigen::Vector3d x = grid.faceCentre(a, i, j, k);
-      const Eigen::Vector3d ahead = trace(grid, x, velocityAtFace(grid, a, i, j, k), -dt);
+      const Eigen::Vector3d ahead = trace(field, x, field.atFace(a, i, j, k, old[f]), -dt);
       const double backAgain = trilinearSample(fwd.data(), d, latticeCoordinate(s, ahead, a));
       out[f] = std::clamp(fwd[f] + 0.5 * (old[f] - backAgain), work.rangeLo[f], work.rangeHi[f]);
     });
@@ -116,17 +137,18 @@ void advectCellScalars(TaskSystem& tasks, const MacGrid& grid, double dt, Advect
   // Both traces are shared by all fields: back (where the value comes from) and, for
   // MacCormack, ahead (where the backward step samples the forward result).
   work.cellTrace.resize(maccormack ? 2 * cells : cells);
+  const VelocityField field(grid);
   forEachSample(tasks, d, [&](int i, int j, int k, size_t c) {
     const Eigen::Vector3d x = grid.cellCentre(i, j, k);
     const Eigen::Vector3d u = velocityAtCell(grid, i, j, k);
-    work.cellTrace[c] = latticeCoordinate(s, trace(grid, x, u, dt), 3);
-    if (maccormack) work.cellTrace[cells + c] = latticeCoordinate(s, trace(grid, x, u, -dt), 3);
+    work.cellTrace[c] = latticeCoordinate(s, trace(field, x, u, dt), 3);
+    if (maccormack) work.cellTrace[cells + c] = latticeCoordinate(s, trace(field, x, u, -dt), 3);
   });
   work.forward.resize(cells);
   std::vector<double>& out = work.advected[0];
   out.resize(cells);
-  for (int field = 0; field < fieldCount; ++field) {
-    std::vector<double>& old = *fields[field];
+  for (int which = 0; which < fieldCount; ++which) {
+    std::vector<double>& old = *fields[which];
     if (!maccormack) {
       forEachSample(tasks, d, [&](int, int, int, size_t c) {
         out[c] = trilinearSample(old.data(), d, work.cellTrace[c]);
