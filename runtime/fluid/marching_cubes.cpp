@@ -176,13 +176,21 @@ Status extractLiquidSurface(TaskSystem& tasks, const MacGridSpec& grid, const do
   if (nodes > static_cast<size_t>(INT32_MAX / 3))
     return fail(Status::InvalidArgument, "marching cubes: %zu nodes exceed the 32-bit vertex index range", nodes);
   workspace.firstVertex.resize(nodes);
+  workspace.nodeBits.resize(nodes);
+  uint8_t* bits = workspace.nodeBits.data();
+  constexpr int kLiquidBit = 8;
   workspace.slabCount.assign(static_cast<size_t>(nz) + 1, 0);
 
   parallelFor(tasks, nz, 1, [&](int64_t begin, int64_t end) {
     for (int64_t K = begin; K < end; ++K) {
       int64_t count = 0;
       for (int J = 0; J < ny; ++J)
-        for (int I = 0; I < nx; ++I) count += popcount3(lattice.crossings(I, J, static_cast<int>(K)));
+        for (int I = 0; I < nx; ++I) {
+          const int K32 = static_cast<int>(K), mask = lattice.crossings(I, J, K32);
+          bits[lattice.node(I, J, K32)] =
+              static_cast<uint8_t>(mask | (isLiquid(lattice.value(I, J, K32)) ? kLiquidBit : 0));
+          count += popcount3(mask);
+        }
       workspace.slabCount[static_cast<size_t>(K) + 1] = count;
     }
   });
@@ -201,7 +209,7 @@ Status extractLiquidSurface(TaskSystem& tasks, const MacGridSpec& grid, const do
       for (int J = 0; J < ny; ++J)
         for (int I = 0; I < nx; ++I) {
           workspace.firstVertex[lattice.node(I, J, K)] = static_cast<int32_t>(v);
-          const int mask = lattice.crossings(I, J, K);
+          const int mask = bits[lattice.node(I, J, K)] & 7;
           if (mask == 0) continue;
           const double p0 = lattice.value(I, J, K);
           const Eigen::Vector3d x0(lattice.coordinate(0, I), lattice.coordinate(1, J), lattice.coordinate(2, K));
@@ -236,8 +244,9 @@ Status extractLiquidSurface(TaskSystem& tasks, const MacGridSpec& grid, const do
         for (int I = 0; I + 1 < nx; ++I) {
           int cubeCase = 0;
           for (int corner = 0; corner < 8; ++corner)
-            if (isLiquid(lattice.value(I + (corner & 1), J + ((corner >> 1) & 1), K + ((corner >> 2) & 1))))
+            if (bits[lattice.node(I + (corner & 1), J + ((corner >> 1) & 1), K + ((corner >> 2) & 1))] & kLiquidBit)
               cubeCase |= 1 << corner;
+          if (cubeCase == 0 || cubeCase == 255) continue;
           const CaseTriangles& triangles = table[static_cast<size_t>(cubeCase)];
           for (int t = 0; t < triangles.count; ++t) {
             std::array<int32_t, 3> tri;
@@ -246,7 +255,7 @@ Status extractLiquidSurface(TaskSystem& tasks, const MacGridSpec& grid, const do
               int at[3] = {I, J, K};
               at[a == 0 ? 1 : 0] += u;
               at[a == 2 ? 1 : 2] += w;
-              const int lowerAxes = lattice.crossings(at[0], at[1], at[2]) & ((1 << a) - 1);
+              const int lowerAxes = bits[lattice.node(at[0], at[1], at[2])] & ((1 << a) - 1);
               tri[s] = workspace.firstVertex[lattice.node(at[0], at[1], at[2])] + popcount3(lowerAxes);
             }
             out.push_back(tri);

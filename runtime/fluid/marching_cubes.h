@@ -37,6 +37,7 @@ namespace vp {
 
 struct MarchingCubesWorkspace {
   std::vector<int32_t> firstVertex;  // per node: index of its first crossing edge's vertex
+  std::vector<uint8_t> nodeBits;     // per node: bits 0-2 crossing edges along +x, +y, +z; bit 3 liquid
   std::vector<int64_t> slabCount;
 };
 

@@ -20,7 +20,7 @@
 // which linear extrapolation over several layers would amplify.
 //
 // Parallel and deterministic: within a layer every target reads only faces of earlier layers
-// and writes only itself (marks are double-buffered).
+// and writes only itself (its mark is set after the layer's scan).
 #pragma once
 
 #include <cstdint>
@@ -46,7 +46,6 @@ constexpr uint8_t kExtrapolationFixed = 254;
 
 struct VelocityExtrapolationState {
   std::vector<uint8_t> mark[3];
-  std::vector<uint8_t> scratch[3];
 };
 
 // liquidPhi: cellCount values (free_surface.h). layers in [0, 250].
