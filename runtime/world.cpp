@@ -175,7 +175,10 @@ Status World::step(double dt) {
     std::sort(loaded.begin(), loaded.end());
     loaded.erase(std::unique(loaded.begin(), loaded.end()), loaded.end());
     for (const FluidColliderLoad& l : fluidLoads_)
-      if (Collider* c = colliders_.get(l.index1, l.generation); c != nullptr) c->addFluidLoad(l.load.force, l.load.torque);
+      if (Collider* c = colliders_.get(l.index1, l.generation); c != nullptr)
+        c->addFluidLoad(l.load.force, l.load.torque, l.load.addedMass);
+    colliders_.forEach([](ColliderHandle, Collider& c) { c.trackVelocity(); });
+    for (Collider* c : loaded) c->prepareFluidLoad(dt, config_.gravity);
     stats.rigidSubsteps = collision_.step(dt, config_.rigidMaxSubstep, kinematics.data(),
                                           static_cast<int>(kinematics.size()), loaded.data(),
                                           static_cast<int>(loaded.size()));

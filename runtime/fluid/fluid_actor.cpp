@@ -7,20 +7,30 @@
 #include "core/log.h"
 #include "core/parallel_for.h"
 #include "fluid/fluid_sources.h"
+#include "fluid/level_set_solid_extension.h"
+#include "fluid/liquid_volume.h"
 
 namespace vp {
 
 Status FluidActor::create(FluidDesc desc, TaskSystem& tasks, std::unique_ptr<FluidActor>* out) {
   VP_TRY(validateFluidDesc(desc));
-  if (desc.kind == FluidKind::Liquid)
-    return fail(Status::Unsupported, "kind = 1 (liquid): liquids are not available in this build yet");
   std::unique_ptr<FluidActor> actor(new FluidActor(std::move(desc)));
-  VP_TRY(initMacGrid(actor->desc_.grid, actor->desc_.sides, &actor->grid_));
-  VP_TRY(initFaceFractionField(actor->desc_.grid, &actor->fractions_));
-  const size_t cells = static_cast<size_t>(actor->grid_.cellCount());
-  actor->smokeDensity_.assign(cells, 0.0);
-  actor->temperature_.assign(cells, actor->desc_.smoke.ambientTemperature);
-  (void)tasks;
+  FluidActor& a = *actor;
+  a.tasks_ = &tasks;
+  VP_TRY(initMacGrid(a.desc_.grid, a.desc_.sides, &a.grid_));
+  VP_TRY(initFaceFractionField(a.desc_.grid, &a.fractions_));
+  const size_t cells = static_cast<size_t>(a.grid_.cellCount());
+  if (a.desc_.kind == FluidKind::Smoke) {
+    a.smokeDensity_.assign(cells, 0.0);
+    a.temperature_.assign(cells, a.desc_.smoke.ambientTemperature);
+  } else {
+    initialLiquidLevelSet(a.grid_, a.desc_.initialLiquid, a.phi_);
+    RedistanceStats rs;
+    VP_TRY(redistanceLevelSet(tasks, a.grid_.spec, a.phi_.data(), RedistanceSettings{}, a.redistance_, &rs));
+    // Colliders are not known yet: the first step's fractions set the cell weights, and the
+    // target is re-measured then (liquid created inside a solid does not count).
+    a.targetVolume_ = -1.0;
+  }
   *out = std::move(actor);
   return Status::Ok;
 }
@@ -31,14 +41,104 @@ double FluidActor::totalSmoke() const {
   return sum * grid_.spec.h * grid_.spec.h * grid_.spec.h;
 }
 
-double FluidActor::liquidVolume() const { return 0.0; }
+double FluidActor::liquidVolume() const {
+  if (desc_.kind != FluidKind::Liquid) return 0.0;
+  return vp::liquidVolume(*tasks_, grid_.spec, phi_.data(), cellWeights_.empty() ? nullptr : cellWeights_.data());
+}
 
 const FluidSurface& FluidActor::surface() {
-  if (surfaceStep_ != stepCount_) {
-    surface_ = FluidSurface{};
-    surfaceStep_ = stepCount_;
+  if (surfaceStep_ == stepCount_) return surface_;
+  surface_ = FluidSurface{};
+  surfaceStep_ = stepCount_;
+  if (desc_.kind != FluidKind::Liquid) return surface_;
+  SurfaceMesh mesh;
+  std::vector<Eigen::Vector3d> normals;
+  if (Status s = extractLiquidSurface(*tasks_, grid_.spec, phi_.data(), &mesh, &normals, marchingCubes_); !ok(s)) {
+    log(LogLevel::Error, "fluid '%s': surface extraction failed: %s", desc_.name.c_str(), lastError());
+    return surface_;
   }
+  surface_.positions = std::move(mesh.vertices);
+  surface_.normals = std::move(normals);
+  surface_.triangles.reserve(mesh.triangles.size());
+  for (const auto& t : mesh.triangles) surface_.triangles.emplace_back(t[0], t[1], t[2]);
   return surface_;
+}
+
+void FluidActor::keepLevelSetHealthy(TaskSystem& tasks) {
+  extendLevelSetIntoSolids(grid_.spec, cellWeights_, phi_, solidCells_);
+  RedistanceStats rs;
+  if (Status s = redistanceLevelSet(tasks, grid_.spec, phi_.data(), RedistanceSettings{}, redistance_, &rs); !ok(s))
+    log(LogLevel::Error, "fluid '%s': redistancing failed: %s", desc_.name.c_str(), lastError());
+  // Advection and redistancing both lose or gain a little volume every step; a uniform
+  // shift of the level set puts it back (the correction moves at most a cell per call, so
+  // large mismatches are caught up over a few steps instead of jumping the surface).
+  VolumeCorrectionResult vc;
+  if (Status s = correctLiquidVolume(tasks, grid_.spec, phi_.data(), cellWeights_.data(), targetVolume_,
+                                     VolumeCorrectionSettings{}, &vc);
+      !ok(s))
+    log(LogLevel::Error, "fluid '%s': volume correction failed: %s", desc_.name.c_str(), lastError());
+}
+
+void FluidActor::extrapolateLiquidVelocity(TaskSystem& tasks) {
+  VelocityExtrapolationSettings settings;
+  // Advection traces at most cflNumber cells (plus the interpolation stencil) from any
+  // liquid face within a sub-step.
+  settings.layers = static_cast<int>(std::ceil(desc_.solver.cflNumber)) + 2;
+  if (Status s = extrapolateVelocity(tasks, grid_, fractions_, phi_.data(), settings, extrapolation_); !ok(s)) {
+    log(LogLevel::Error, "fluid '%s': velocity extrapolation failed: %s", desc_.name.c_str(), lastError());
+    return;
+  }
+  // Air faces out of reach of the liquid are never projected; left alone they would gather
+  // gravity step after step and inflate the CFL sub-step count.
+  for (int a = 0; a < 3; ++a) {
+    const std::vector<uint8_t>& mark = extrapolation_.mark[a];
+    std::vector<double>& u = grid_.velocity[a];
+    for (size_t f = 0; f < u.size(); ++f)
+      if (mark[f] == kExtrapolationUnreached) u[f] = 0.0;
+  }
+}
+
+void FluidActor::advectAndSource(TaskSystem& tasks, const Vec3& gravity, double h, ActorStats* stats,
+                                 const Deadline& deadline) {
+  const FluidSolverSettings& solver = desc_.solver;
+  double t0 = deadline.elapsedMs();
+  advectVelocity(tasks, grid_, h, solver.advection, advection_);
+  if (desc_.kind == FluidKind::Smoke) {
+    std::vector<double>* scalars[2] = {&smokeDensity_, &temperature_};
+    advectCellScalars(tasks, grid_, h, solver.advection, scalars, 2, advection_);
+  } else {
+    std::vector<double>* scalars[1] = {&phi_};
+    advectCellScalars(tasks, grid_, h, solver.advection, scalars, 1, advection_);
+  }
+  stats->phase(Phase::Advect).ms += deadline.elapsedMs() - t0;
+
+  t0 = deadline.elapsedMs();
+  if (desc_.kind == FluidKind::Smoke) {
+    applySmokeEmitters(grid_, desc_.emitters, h, smokeDensity_, temperature_);
+    applyBuoyancy(tasks, grid_, smokeDensity_, temperature_, desc_.smoke, gravity, h);
+    applyVorticityConfinement(tasks, grid_, desc_.smoke.vorticityConfinement, h, vorticity_);
+    dissipate(smokeDensity_, desc_.smoke.densityDissipation, h);
+    dissipate(temperature_, desc_.smoke.temperatureDissipation, h);
+  } else {
+    if (!desc_.emitters.empty() || !desc_.drains.empty()) {
+      // Sources change the volume on purpose: the target follows them.
+      const double before = vp::liquidVolume(tasks, grid_.spec, phi_.data(), cellWeights_.data());
+      applyLiquidEmitters(grid_, desc_.emitters, phi_);
+      applyDrains(grid_, desc_.drains, phi_);
+      targetVolume_ += vp::liquidVolume(tasks, grid_.spec, phi_.data(), cellWeights_.data()) - before;
+    }
+    for (int a = 0; a < 3; ++a) {
+      if (gravity[a] == 0.0) continue;
+      for (double& u : grid_.velocity[a]) u += h * gravity[a];
+    }
+  }
+  stats->phase(Phase::Forces).ms += deadline.elapsedMs() - t0;
+
+  if (desc_.kind == FluidKind::Liquid) {
+    t0 = deadline.elapsedMs();
+    keepLevelSetHealthy(tasks);
+    stats->phase(Phase::Surface).ms += deadline.elapsedMs() - t0;
+  }
 }
 
 Status FluidActor::updateFractions(const std::vector<FluidCollider>& colliders) {
@@ -103,6 +203,13 @@ void FluidActor::step(const FluidStepInput& input, ActorStats* stats, std::vecto
   double t0 = deadline.elapsedMs();
   if (Status st = updateFractions(input.colliders); st != Status::Ok)
     log(LogLevel::Error, "fluid '%s': face fractions failed: %s", desc_.name.c_str(), lastError());
+  if (desc_.kind == FluidKind::Liquid) {
+    cellOpenFractions(tasks, fractions_, &cellWeights_);
+    if (targetVolume_ < 0.0) {
+      targetVolume_ = vp::liquidVolume(tasks, grid_.spec, phi_.data(), cellWeights_.data());
+      extrapolateLiquidVelocity(tasks);
+    }
+  }
   stats->phase(Phase::Fractions).ms += deadline.elapsedMs() - t0;
 
   double speed = maxSpeed(tasks);
@@ -120,24 +227,13 @@ void FluidActor::step(const FluidStepInput& input, ActorStats* stats, std::vecto
   pressureSettings.maxIterations = solver.pressureMaxIterations;
   PhaseStats& pressurePhase = stats->phase(Phase::Pressure);
   for (int sub = 0; sub < substeps; ++sub) {
-    t0 = deadline.elapsedMs();
-    advectVelocity(tasks, grid_, h, solver.advection, advection_);
-    std::vector<double>* scalars[2] = {&smokeDensity_, &temperature_};
-    advectCellScalars(tasks, grid_, h, solver.advection, scalars, 2, advection_);
-    stats->phase(Phase::Advect).ms += deadline.elapsedMs() - t0;
-
-    t0 = deadline.elapsedMs();
-    applySmokeEmitters(grid_, desc_.emitters, h, smokeDensity_, temperature_);
-    applyBuoyancy(tasks, grid_, smokeDensity_, temperature_, desc_.smoke, input.gravity, h);
-    applyVorticityConfinement(tasks, grid_, desc_.smoke.vorticityConfinement, h, vorticity_);
-    dissipate(smokeDensity_, desc_.smoke.densityDissipation, h);
-    dissipate(temperature_, desc_.smoke.temperatureDissipation, h);
-    stats->phase(Phase::Forces).ms += deadline.elapsedMs() - t0;
+    advectAndSource(tasks, input.gravity, h, stats, deadline);
 
     t0 = deadline.elapsedMs();
     PressureSolveStats ps;
     const Deadline share = deadline.share(1.0 / (substeps - sub));
-    if (Status st = projectVelocity(tasks, grid_, fractions_, h, desc_.density, share, pressureSettings, pressure_, &ps);
+    if (Status st = projectVelocity(tasks, grid_, fractions_, h, desc_.density, share, pressureSettings, pressure_, &ps,
+                                    liquidPhi());
         st != Status::Ok)
       log(LogLevel::Error, "fluid '%s': pressure projection failed: %s", desc_.name.c_str(), lastError());
     pressurePhase.iterations += ps.iterations;
@@ -147,12 +243,18 @@ void FluidActor::step(const FluidStepInput& input, ActorStats* stats, std::vecto
       for (size_t c = 0; c < input.colliders.size(); ++c) {
         const FluidCollider& fc = input.colliders[c];
         if (!fc.dynamic || fc.geometry == nullptr) continue;
-        const PressureLoad l = pressureLoadOnCollider(grid_, pressure_.poisson, pressure_.pressure.data(),
+        const PressureLoad l = pressureLoadOnCollider(grid_, fractions_, pressure_.poisson, pressure_.pressure.data(), desc_.density,
                                                       *fc.geometry, fc.geometry->shape.translation);
         loadSum[c].force += l.force / substeps;
         loadSum[c].torque += l.torque / substeps;
+        loadSum[c].addedMass += l.addedMass / substeps;
       }
     pressurePhase.ms += deadline.elapsedMs() - t0;
+    if (desc_.kind == FluidKind::Liquid) {
+      t0 = deadline.elapsedMs();
+      extrapolateLiquidVelocity(tasks);
+      stats->phase(Phase::Surface).ms += deadline.elapsedMs() - t0;
+    }
   }
 
   bool finite = true;
@@ -167,6 +269,10 @@ void FluidActor::step(const FluidStepInput& input, ActorStats* stats, std::vecto
     stats->diverged = true;
     return;
   }
+  // The load is the mean over this step and acts during the next one (a delay of one step:
+  // explicit coupling). Extrapolating it one step ahead to cancel the delay was tried and made
+  // a floating box unstable (the pressure also carries the added-mass reaction, which an
+  // extrapolation amplifies); the plain delay lets bobbing decay, slowly, in an inviscid tank.
   if (loads != nullptr)
     for (size_t c = 0; c < input.colliders.size(); ++c)
       if (input.colliders[c].dynamic && desc_.twoWayCoupling)

@@ -24,6 +24,9 @@
 #include "fluid/advection.h"
 #include "fluid/face_fraction_field.h"
 #include "fluid/fluid_desc.h"
+#include "fluid/level_set_redistance.h"
+#include "fluid/marching_cubes.h"
+#include "fluid/velocity_extrapolation.h"
 #include "fluid/mac_grid.h"
 #include "fluid/pressure_forces.h"
 #include "fluid/pressure_projection.h"
@@ -84,6 +87,10 @@ class FluidActor {
   explicit FluidActor(FluidDesc desc) : desc_(std::move(desc)) {}
   Status updateFractions(const std::vector<FluidCollider>& colliders);
   double maxSpeed(TaskSystem& tasks) const;
+  void advectAndSource(TaskSystem& tasks, const Vec3& gravity, double dt, ActorStats* stats, const Deadline& deadline);
+  void keepLevelSetHealthy(TaskSystem& tasks);
+  void extrapolateLiquidVelocity(TaskSystem& tasks);
+  const double* liquidPhi() const { return desc_.kind == FluidKind::Liquid ? phi_.data() : nullptr; }
 
   struct ColliderSnapshot {
     uint32_t index1, generation;
@@ -102,6 +109,15 @@ class FluidActor {
   AdvectionWorkspace advection_;
   VorticityWorkspace vorticity_;
   FluidSurface surface_;
+  TaskSystem* tasks_ = nullptr;  // the world's, for on-request work (surface extraction)
+  // Liquid: the volume the level set must keep (initial + emitted - drained), the cells'
+  // open fractions that weight it, and the level-set workspaces.
+  double targetVolume_ = 0.0;
+  std::vector<double> cellWeights_;
+  std::vector<int64_t> solidCells_;
+  RedistanceWorkspace redistance_;
+  VelocityExtrapolationState extrapolation_;
+  MarchingCubesWorkspace marchingCubes_;
   uint64_t stepCount_ = 0, surfaceStep_ = ~uint64_t(0);
 };
 

@@ -145,7 +145,9 @@ TEST(FluidRedistance, FarCellsAreClampedAndBadInputRejected) {
   double largest = 0.0;
   for (size_t c = 0; c < f.phi.size(); ++c) {
     largest = std::max(largest, std::fabs(f.phi[c]));
-    if (std::fabs(f.exact[c]) > clamp + f.grid.spec.h) EXPECT_EQ(std::fabs(f.phi[c]), clamp);
+    if (std::fabs(f.exact[c]) > clamp + f.grid.spec.h) {
+      EXPECT_EQ(std::fabs(f.phi[c]), clamp);
+    }
   }
   EXPECT_EQ(largest, clamp);
   auto tasks = TaskSystem::create(TaskHooks{}, 1);
