@@ -298,3 +298,28 @@ vpStatus vpWorldFindDeformable(vpWorldId id, const char* name, vpDeformableId* o
 }
 
 }  // extern "C"
+
+vpStatus vpWorldGetDeformableCount(vpWorldId id, int32_t* outCount) {
+  return guarded(__func__, [&] {
+    VP_REQUIRE_POINTER(outCount);
+    World* w;
+    VP_TRY(resolveWorld(id, &w));
+    *outCount = static_cast<int32_t>(w->deformableCount());
+    return Status::Ok;
+  });
+}
+
+vpStatus vpWorldGetDeformables(vpWorldId id, vpDeformableId* outIds, int32_t capacity, int32_t* outCount) {
+  return guarded(__func__, [&] {
+    VP_REQUIRE_POINTER(outCount);
+    World* w;
+    VP_TRY(resolveWorld(id, &w));
+    if (capacity < 0) return fail(Status::InvalidArgument, "capacity = %d: must be >= 0", capacity);
+    if (capacity > 0 && !outIds) return fail(Status::InvalidArgument, "outIds is NULL with capacity = %d", capacity);
+    const std::vector<DeformableHandle> handles = w->deformableHandles();
+    const int32_t n = static_cast<int32_t>(handles.size());
+    for (int32_t i = 0; i < n && i < capacity; ++i) outIds[i] = makeDeformableId(id, handles[i]);
+    *outCount = n < capacity ? n : capacity;
+    return Status::Ok;
+  });
+}
