@@ -133,6 +133,8 @@ void renderScene(const SceneView* view, const OrbitCamera* camera, int width, in
 
 void renderOverlayText(const char* const* lines, int lineCount, int width, int height) {
   static char quads[60000]; /* stb_easy_font: ~270 bytes per character */
+  /* Larger glyphs where there is room; a snapshot-sized image keeps the long phase lines. */
+  const float scale = width >= 900 ? 1.5f : 1.15f;
   int i;
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_LIGHTING);
@@ -145,8 +147,8 @@ void renderOverlayText(const char* const* lines, int lineCount, int width, int h
   for (i = 0; i < lineCount; ++i) {
     int n;
     glPushMatrix();
-    glTranslatef(8.0f, 8.0f + 18.0f * (float)i, 0.0f);
-    glScalef(1.5f, 1.5f, 1.0f);
+    glTranslatef(8.0f, 8.0f + 12.0f * scale * (float)i, 0.0f);
+    glScalef(scale, scale, 1.0f);
     n = stb_easy_font_print(0, 0, (char*)lines[i], NULL, quads, (int)sizeof quads);
     glColor3f(0.95f, 0.95f, 0.85f);
     glVertexPointer(2, GL_FLOAT, 16, quads);

@@ -72,6 +72,7 @@ ViewMesh* sceneViewAddMesh(SceneView* v, const char* name, const float color[4],
   snprintf(m->name, sizeof m->name, "%s", name);
   memcpy(m->color, color, sizeof m->color);
   m->exported = exported;
+  m->framed = 1;
   m->pose = kIdentity;
   return m;
 }
@@ -115,6 +116,9 @@ static int addColliders(SceneView* v, vpWorldId world) {
     if ((s = vpColliderGetShapeMeshSize(ids[i], &nv, &nt)) != vpStatus_Ok) break;
     if (!(m = sceneViewAddMesh(v, name, color, 0)) || !viewMeshReserve(m, nv, nt)) break;
     v->colliderOf[v->meshCount - 1] = ids[i];
+    /* Frame what stays put: dynamic bodies start high and fall in, and a plane (the only
+     * shape whose mesh is a single quad) is unbounded. */
+    m->framed = type != vpBodyType_Dynamic && !(nv == 4 && nt == 2);
     if ((s = vpColliderGetShapeMesh(ids[i], m->positions, m->normals, nv, m->triangles, nt)) != vpStatus_Ok) break;
     m->vertexCount = nv;
     m->triangleCount = nt;
@@ -190,7 +194,7 @@ void sceneViewBounds(const SceneView* v, float centre[3], float* radius) {
   int32_t j;
   for (i = 0; i < v->meshCount; ++i) {
     const ViewMesh* m = &v->meshes[i];
-    if (m->vertexCount == 4 && m->triangleCount == 2) continue; /* a plane's square */
+    if (!m->framed) continue;
     for (j = 0; j < m->vertexCount; ++j) {
       float p[3];
       rotate(&m->pose.rotation, &m->positions[3 * j], p);

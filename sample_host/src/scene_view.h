@@ -12,6 +12,7 @@ typedef struct ViewMesh {
   char name[64];          /* file-name safe: used for exports */
   float color[4];
   int exported;           /* written by the mesh exporter (deformables: yes, colliders: no) */
+  int framed;             /* counted by sceneViewBounds (not things that fly off or are unbounded) */
   vpTransform pose;       /* placement of positions/normals; identity for world-space meshes */
   float* positions;       /* xyz per vertex */
   float* normals;         /* xyz per vertex, unit */
@@ -49,8 +50,7 @@ ViewMesh* sceneViewAddMesh(SceneView* view, const char* name, const float color[
 ViewPoints* sceneViewAddPoints(SceneView* view, const char* name, float pointSize);
 int viewMeshReserve(ViewMesh* mesh, int32_t vertexCount, int32_t triangleCount);
 int viewPointsReserve(ViewPoints* points, int32_t count);
-/* Centre and radius of a sphere around everything drawn except unbounded-looking shapes
- * (planes): what a camera should frame. */
+/* Centre and radius of a sphere around the meshes marked `framed`: what a camera should frame. */
 void sceneViewBounds(const SceneView* view, float centre[3], float* radius);
 void sceneViewFree(SceneView* view);
 
