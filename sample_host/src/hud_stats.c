@@ -20,8 +20,12 @@ int hudStatsLines(vpWorldId world, char lines[HUD_MAX_LINES][HUD_LINE_CHARS]) {
     int p;
     char* line = lines[n++];
     if (vpWorldGetActorStats(world, a, &s) != vpStatus_Ok) break;
-    used = (size_t)snprintf(line, HUD_LINE_CHARS, "%s%u %.2f ms:", kKindNames[(int)s.kind >= 0 && s.kind < 3 ? s.kind : 0],
-                            s.index1, s.totalMs);
+    /* The rigid pseudo-actor has no id; actors are named by kind and slot. */
+    if (s.kind == vpActorKind_Rigid)
+      used = (size_t)snprintf(line, HUD_LINE_CHARS, "bullet %.2f ms:", s.totalMs);
+    else
+      used = (size_t)snprintf(line, HUD_LINE_CHARS, "%s #%u %.2f ms:",
+                              kKindNames[(int)s.kind >= 0 && s.kind < 3 ? s.kind : 0], s.index1, s.totalMs);
     for (p = 0; p < vpPhase_Count && used < HUD_LINE_CHARS; ++p) {
       const vpPhaseStats* ph = &s.phases[p];
       if (ph->ms <= 0.0f && ph->iterations == 0) continue;
