@@ -302,6 +302,10 @@ class Scenes(unittest.TestCase):
             self.assertLess(ball.position[1], y0)
             with self.assertRaises(volphys.InvalidArgumentError):
                 w.find_collider("no-such-collider")
+            self.assertEqual(w.deformables(), [jelly, w.find_deformable("hanging_bar")])
+            positions, normals, triangles = w.find_collider("crate").shape_mesh()
+            self.assertEqual(len(positions), len(normals))
+            self.assertEqual(len(triangles), 12)  # a box: two triangles per face
 
 
 class Example(unittest.TestCase):
