@@ -10,8 +10,6 @@ packages=(
   python3-numpy
   # sample host: offscreen snapshots (OSMesa), PNG (stb), viewer (GLFW) under Xvfb + Mesa
   libosmesa6-dev libstb-dev libgl-dev libglfw3-dev xvfb xauth libgl1-mesa-dri
-  # the jelly's render mesh in the default scene (Collada duck), when installed
-  assimp-testmodels
   # plots (Python example, output checks) and the C# bindings
   python3-matplotlib python3-pil mono-mcs mono-runtime
 )
