@@ -61,12 +61,8 @@ int viewPointsReserve(ViewPoints* p, int32_t count) {
 
 ViewMesh* sceneViewAddMesh(SceneView* v, const char* name, const float color[4], int exported) {
   ViewMesh* m;
-  int oldCapacity = v->meshCapacity;
   if (!grow((void**)&v->meshes, &v->meshCapacity, v->meshCount + 1, sizeof(ViewMesh))) return NULL;
-  v->meshCapacity = oldCapacity;
-  if (!grow((void**)&v->colliderOf, &v->meshCapacity, v->meshCount + 1, sizeof(vpColliderId))) return NULL;
-  v->meshCapacity = oldCapacity;
-  if (!grow((void**)&v->deformableOf, &v->meshCapacity, v->meshCount + 1, sizeof(vpDeformableId))) return NULL;
+  if (!grow((void**)&v->sources, &v->sourcesCapacity, v->meshCount + 1, sizeof *v->sources)) return NULL;
   m = &v->meshes[v->meshCount++];
   memset(m, 0, sizeof *m);
   snprintf(m->name, sizeof m->name, "%s", name);
@@ -115,7 +111,7 @@ static int addColliders(SceneView* v, vpWorldId world) {
     snprintf(name, sizeof name, "collider%d", (int)i);
     if ((s = vpColliderGetShapeMeshSize(ids[i], &nv, &nt)) != vpStatus_Ok) break;
     if (!(m = sceneViewAddMesh(v, name, color, 0)) || !viewMeshReserve(m, nv, nt)) break;
-    v->colliderOf[v->meshCount - 1] = ids[i];
+    v->sources[v->meshCount - 1].collider = ids[i];
     /* Frame what stays put: dynamic bodies start high and fall in, and a plane (the only
      * shape whose mesh is a single quad) is unbounded. */
     m->framed = type != vpBodyType_Dynamic && !(nv == 4 && nt == 2);
@@ -145,7 +141,7 @@ static int addDeformables(SceneView* v, vpWorldId world) {
     ViewMesh* m;
     snprintf(name, sizeof name, "deformable%d", (int)i);
     if (!(m = sceneViewAddMesh(v, name, jelly, 1))) break;
-    v->deformableOf[v->meshCount - 1] = ids[i];
+    v->sources[v->meshCount - 1].deformable = ids[i];
   }
   free(ids);
   return i == count;
@@ -161,14 +157,16 @@ int sceneViewUpdate(SceneView* v) {
   vpStatus s;
   for (i = 0; i < v->meshCount; ++i) {
     ViewMesh* m = &v->meshes[i];
-    if (!vpColliderIdIsNull(v->colliderOf[i])) {
-      if ((s = vpColliderGetPose(v->colliderOf[i], &m->pose)) != vpStatus_Ok) return report("vpColliderGetPose", s);
-    } else if (!vpDeformableIdIsNull(v->deformableOf[i])) {
+    const vpColliderId collider = v->sources[i].collider;
+    const vpDeformableId deformable = v->sources[i].deformable;
+    if (!vpColliderIdIsNull(collider)) {
+      if ((s = vpColliderGetPose(collider, &m->pose)) != vpStatus_Ok) return report("vpColliderGetPose", s);
+    } else if (!vpDeformableIdIsNull(deformable)) {
       int32_t nv = 0, nt = 0;
-      if ((s = vpDeformableGetRenderMeshSize(v->deformableOf[i], &nv, &nt)) != vpStatus_Ok)
+      if ((s = vpDeformableGetRenderMeshSize(deformable, &nv, &nt)) != vpStatus_Ok)
         return report("vpDeformableGetRenderMeshSize", s);
       if (!viewMeshReserve(m, nv, nt)) return 0;
-      if ((s = vpDeformableGetRenderMesh(v->deformableOf[i], m->positions, m->normals, nv, m->triangles, nt)) !=
+      if ((s = vpDeformableGetRenderMesh(deformable, m->positions, m->normals, nv, m->triangles, nt)) !=
           vpStatus_Ok)
         return report("vpDeformableGetRenderMesh", s);
       m->vertexCount = nv;
@@ -232,7 +230,6 @@ void sceneViewFree(SceneView* v) {
   }
   free(v->meshes);
   free(v->points);
-  free(v->colliderOf);
-  free(v->deformableOf);
+  free(v->sources);
   memset(v, 0, sizeof *v);
 }

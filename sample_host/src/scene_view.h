@@ -34,9 +34,12 @@ typedef struct SceneView {
   int meshCount, meshCapacity;
   ViewPoints* points;
   int pointsCount, pointsCapacity;
-  /* Where each mesh comes from, parallel to meshes. */
-  vpColliderId* colliderOf;
-  vpDeformableId* deformableOf;
+  /* Where each mesh comes from, parallel to meshes (both null for meshes added by others). */
+  struct ViewMeshSource {
+    vpColliderId collider;
+    vpDeformableId deformable;
+  } * sources;
+  int sourcesCapacity;
 } SceneView;
 
 /* Builds meshes for every collider and deformable in the world. Returns 0 (with a message on
