@@ -4,11 +4,11 @@
  * --frames N it quits after N steps, and --screenshot PATH saves the last frame as a PNG
  * (what the Xvfb test checks). Drawing is shared with the headless host's snapshots. */
 #include <GLFW/glfw3.h>
-#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli_values.h"
 #include "hud_stats.h"
 #include "orbit_camera.h"
 #include "png_writer.h"
@@ -80,6 +80,8 @@ static void usage(FILE* f) {
           "--frames N quits after N steps (0: run until closed); --screenshot saves the last frame.\n");
 }
 
+static const char* const kProgram = "volphys_viewer";
+
 int main(int argc, char** argv) {
   const char* scenePath = VP_DEFAULT_SCENE;
   const char* shotPath = NULL;
@@ -107,24 +109,16 @@ int main(int argc, char** argv) {
     ++i;
     if (!strcmp(a, "--scene")) scenePath = val;
     else if (!strcmp(a, "--screenshot")) shotPath = val;
-    else if (!strcmp(a, "--dt")) dt = atof(val);
-    else if (!strcmp(a, "--budget")) budget = atof(val);
-    else if (!strcmp(a, "--workers")) workers = atoi(val);
-    else if (!strcmp(a, "--frames")) frames = atoi(val);
-    else if (!strcmp(a, "--size")) {
-      if (sscanf(val, "%dx%d", &width, &height) != 2 || width < 16 || height < 16) {
-        fprintf(stderr, "volphys_viewer: --size = '%s': expected WIDTHxHEIGHT\n", val);
-        return 2;
-      }
-    } else {
-      fprintf(stderr, "volphys_viewer: unknown option '%s'\n", a);
+    else if (!strcmp(a, "--dt")) { if (!cliDouble(kProgram, a, val, 1e-5, 1.0, &dt)) return 2; }
+    else if (!strcmp(a, "--budget")) { if (!cliDouble(kProgram, a, val, 0.0, 1e4, &budget)) return 2; }
+    else if (!strcmp(a, "--workers")) { if (!cliInt(kProgram, a, val, 1, 64, &workers)) return 2; }
+    else if (!strcmp(a, "--frames")) { if (!cliInt(kProgram, a, val, 0, 10000000, &frames)) return 2; }
+    else if (!strcmp(a, "--size")) { if (!cliSize(kProgram, a, val, 16, 8192, &width, &height)) return 2; }
+    else {
+      fprintf(stderr, "%s: unknown option '%s'\n", kProgram, a);
       usage(stderr);
       return 2;
     }
-  }
-  if (!(dt > 0.0 && dt <= 1.0) || workers < 1 || workers > 64 || frames < 0) {
-    fprintf(stderr, "volphys_viewer: --dt must be in (0, 1], --workers in [1, 64], --frames >= 0\n");
-    return 2;
   }
 
   if ((s = vpCheckVersion()) != vpStatus_Ok) return fail("version check", s);
