@@ -1,6 +1,7 @@
 #include "scene/scene_loader.h"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <optional>
 #include <sstream>
@@ -161,11 +162,59 @@ std::string resolvePath(const std::string& path, const std::string& baseDirector
   return path.empty() || path[0] == '/' ? path : baseDirectory + "/" + path;
 }
 
+// The keys that say where a deformable's mesh comes from; "ifFileMissing" may replace them.
+const std::initializer_list<const char*> kMeshSourceKeys = {"box", "tetFile", "surfaceFile", "voxelResolution",
+                                                            "renderFile", "scale"};
+
+Status parseDeformable(const JsonObject& obj, const std::string& baseDirectory, SceneDeformable* out);
+
+// A scene can name a model that only some machines have (a system package's sample file) and
+// say what to use instead: when the tetFile / surfaceFile does not exist, the mesh-source
+// keys of "ifFileMissing" replace the deformable's own. *replaced tells whether they did.
+Status applyFileFallback(const JsonObject& obj, const std::string& baseDirectory, SceneDeformable* out,
+                         bool* replaced) {
+  *replaced = false;
+  if (!obj.has("ifFileMissing")) return Status::Ok;
+  std::optional<JsonObject> fallback;
+  VP_TRY(obj.object("ifFileMissing", &fallback, true));
+  VP_TRY(fallback->checkKeys(kMeshSourceKeys));
+  std::string file;
+  VP_TRY(obj.string("surfaceFile", &file));
+  if (file.empty()) VP_TRY(obj.string("tetFile", &file));
+  if (file.empty())
+    return fail(Status::ParseError, "%s: needs a surfaceFile or tetFile whose absence it stands in for",
+                obj.pathOf("ifFileMissing").c_str());
+  std::error_code ec;
+  if (std::filesystem::exists(resolvePath(file, baseDirectory), ec)) return Status::Ok;
+  nlohmann::json merged = obj.value();
+  for (const char* key : kMeshSourceKeys) merged.erase(key);
+  merged.erase("ifFileMissing");
+  for (const auto& [key, value] : fallback->value().items()) merged[key] = value;
+  *replaced = true;
+  return parseDeformable(JsonObject(merged, obj.path()), baseDirectory, out);
+}
+
+// Uniform scale of the rest mesh and render mesh in the actor's frame (before the pose).
+Status applyScale(const JsonObject& obj, DeformableDesc* desc) {
+  if (!obj.has("scale")) return Status::Ok;
+  double scale = 1.0;
+  VP_TRY(obj.number("scale", &scale));
+  if (!(scale > 0.0 && std::isfinite(scale)))
+    return fail(Status::ParseError, "%s = %g: must be a positive number", obj.pathOf("scale").c_str(), scale);
+  for (Vec3& v : desc->mesh.vertices) v *= scale;
+  if (desc->renderMesh)
+    for (Vec3& v : desc->renderMesh->vertices) v *= scale;
+  return Status::Ok;
+}
+
 Status parseDeformable(const JsonObject& obj, const std::string& baseDirectory, SceneDeformable* out) {
-  VP_TRY(obj.checkKeys({"name", "degree", "box", "tetFile", "surfaceFile", "voxelResolution", "renderFile", "position",
-                        "rotation", "axisAngle", "linearVelocity", "youngsModulus", "poissonRatio", "density",
-                        "massDamping", "stiffnessDamping", "friction", "solverTolerance", "solverMaxIterations",
-                        "pinBox", "attach"}));
+  VP_TRY(obj.checkKeys({"name", "degree", "box", "tetFile", "surfaceFile", "voxelResolution", "renderFile", "scale",
+                        "ifFileMissing", "position", "rotation", "axisAngle", "linearVelocity", "youngsModulus",
+                        "poissonRatio", "density", "massDamping", "stiffnessDamping", "friction", "solverTolerance",
+                        "solverMaxIterations", "pinBox", "attach"}));
+  bool replaced = false;
+  VP_TRY(applyFileFallback(obj, baseDirectory, out, &replaced));
+  if (replaced) return Status::Ok;
   DeformableDesc& desc = out->desc;
   DeformableMeshSource source;
   VP_TRY(obj.string("name", &desc.name));
@@ -202,6 +251,7 @@ Status parseDeformable(const JsonObject& obj, const std::string& baseDirectory, 
   // Resolve and validate now so that applying the scene cannot fail half-way.
   Status s = resolveDeformableMesh(source, &desc);
   if (!ok(s)) return addErrorContext(s, obj.path());
+  VP_TRY(applyScale(obj, &desc));
   s = validateDeformableDesc(desc);
   if (!ok(s)) return addErrorContext(s, obj.path());
   if (obj.has("pinBox")) VP_TRY(parseNodeBox(obj, "pinBox", desc, &out->pinnedNodes));

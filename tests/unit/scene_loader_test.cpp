@@ -176,6 +176,72 @@ TEST(SceneLoader, DeformableWithPinsAndAnAttachment) {
   EXPECT_GT(minY, 0.0);
 }
 
+// A closed unit cube as an OBJ surface, and a scene with one deformable whose extra keys are
+// `deformable` (JSON text without braces).
+std::string writeCubeScene(const std::string& name, const std::string& deformable) {
+  const std::string dir = ::testing::TempDir();
+  std::ofstream obj(dir + "/unit_cube.obj");
+  obj << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+         "f 1 4 3\nf 1 3 2\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 4 8 7\nf 4 7 3\nf 1 5 8\nf 1 8 4\n"
+         "f 2 3 7\nf 2 7 6\n";
+  std::ofstream scene(dir + "/" + name);
+  scene << R"({"deformables": [{"name": "jelly", )" << deformable << "}]}";
+  return dir + "/" + name;
+}
+
+double extentX(const DeformableBody& body) {
+  double lo = 1e9, hi = -1e9;
+  for (int32_t i = 0; i < body.nodeCount(); ++i) {
+    lo = std::min(lo, body.positions()[3 * i]);
+    hi = std::max(hi, body.positions()[3 * i]);
+  }
+  return hi - lo;
+}
+
+TEST(SceneLoader, DeformableScaleAppliesToTheSurfaceFile) {
+  auto world = makeWorld();
+  const std::string path = writeCubeScene("scaled_cube.json", R"("surfaceFile": "unit_cube.obj", "scale": 0.5)");
+  ASSERT_EQ(loadScene(*world, path), Status::Ok) << lastError();
+  DeformableHandle h;
+  ASSERT_TRUE(world->findDeformable("jelly", &h));
+  EXPECT_NEAR(extentX(*world->deformable(h)), 0.5, 1e-9);
+}
+
+TEST(SceneLoader, IfFileMissingStandsInOnlyWhenTheFileIsAbsent) {
+  const char* fallback = R"("ifFileMissing": {"box": {"cells": [2, 1, 1], "size": [3, 1, 1]}}, "density": 500)";
+  {
+    auto world = makeWorld();  // the file is there: the fallback is ignored
+    const std::string path =
+        writeCubeScene("present.json", std::string(R"("surfaceFile": "unit_cube.obj", )") + fallback);
+    ASSERT_EQ(loadScene(*world, path), Status::Ok) << lastError();
+    DeformableHandle h;
+    ASSERT_TRUE(world->findDeformable("jelly", &h));
+    EXPECT_NEAR(extentX(*world->deformable(h)), 1.0, 1e-9);
+  }
+  {
+    auto world = makeWorld();  // the file is absent: the box, with the other keys kept
+    const std::string path = writeCubeScene(
+        "absent.json", std::string(R"("surfaceFile": "/no/such/duck.dae", "scale": 9, )") + fallback);
+    ASSERT_EQ(loadScene(*world, path), Status::Ok) << lastError();
+    DeformableHandle h;
+    ASSERT_TRUE(world->findDeformable("jelly", &h));
+    const DeformableBody& body = *world->deformable(h);
+    EXPECT_EQ(body.nodeCount(), 3 * 2 * 2);
+    EXPECT_NEAR(extentX(body), 3.0, 1e-9);  // the file's scale went with the file
+    EXPECT_DOUBLE_EQ(body.desc().material.density, 500);
+  }
+  {
+    auto world = makeWorld();
+    const std::string path = writeCubeScene("no_file.json", R"("box": {"cells": [1, 1, 1], "size": [1, 1, 1]},
+                                            "ifFileMissing": {"box": {"cells": [1, 1, 1], "size": [1, 1, 1]}})");
+    EXPECT_EQ(loadScene(*world, path), Status::ParseError);
+    EXPECT_NE(std::string(lastError()).find("$.deformables[0].ifFileMissing: needs a surfaceFile or tetFile"),
+              std::string::npos)
+        << lastError();
+    EXPECT_EQ(world->deformableCount(), 0u);
+  }
+}
+
 TEST(SceneLoader, MissingFileIsAnIoError) {
   auto world = makeWorld();
   EXPECT_EQ(loadScene(*world, "/does/not/exist.json"), Status::IoError);

@@ -173,7 +173,12 @@ typedef struct vpWorldDef {
   uint32_t structSize;
   vpVec3 gravity;              /* default (0, -9.81, 0) */
   int32_t workerCount;         /* worker threads incl. the caller, 1..64; default 1 */
-  float frameBudgetMs;         /* per-step budget for iterative solvers; 0 = unlimited; default 16 */
+  float frameBudgetMs;         /* per-step budget for iterative solvers; 0 = unlimited; default 16.
+                                  Sharing: the Bullet step is not budgeted; then the iterating
+                                  actors run in slot order and each may use an equal share of
+                                  what is left of the budget when its turn comes, so time one does
+                                  not use passes on to the next. A cut solver keeps its best
+                                  iterate, sets budgetCut, and warm-starts next step. */
   float rigidMaxSubstep;       /* Bullet sub-step length bound in seconds; default 1/120 */
   vpEnqueueTaskFn* enqueueTask;/* both NULL: built-in thread pool with workerCount threads */
   vpFinishTaskFn* finishTask;
@@ -324,6 +329,15 @@ VP_API vpStatus vpColliderSetVelocity(vpColliderId collider, vpVec3 linear, vpVe
 VP_API vpStatus vpColliderSetKinematicTarget(vpColliderId collider, const vpTransform* target);
 VP_API vpStatus vpColliderGetBodyType(vpColliderId collider, vpBodyType* outType);
 VP_API vpStatus vpColliderGetUserData(vpColliderId collider, void** outUserData);
+/* A triangle mesh of the collider's shape in its local frame, for drawing and export (place
+ * it with vpColliderGetPose). Round shapes are tessellated; a plane becomes a square 20 m on a
+ * side centred on the point of the plane nearest the local origin. Normals point out of the
+ * solid, triangles are counter-clockwise seen from outside (triangle meshes keep their own
+ * winding). Any output may be NULL; capacities are in vertices and triangles. */
+VP_API vpStatus vpColliderGetShapeMeshSize(vpColliderId collider, int32_t* outVertexCount,
+                                           int32_t* outTriangleCount);
+VP_API vpStatus vpColliderGetShapeMesh(vpColliderId collider, float* outPositions, float* outNormals,
+                                       int32_t vertexCapacity, int32_t* outTriangles, int32_t triangleCapacity);
 /* Number of colliders and their ids, in slot order (stable while none is destroyed). */
 VP_API vpStatus vpWorldGetColliderCount(vpWorldId world, int32_t* outCount);
 VP_API vpStatus vpWorldGetColliders(vpWorldId world, vpColliderId* outIds, int32_t capacity, int32_t* outCount);
@@ -393,6 +407,9 @@ VP_API vpStatus vpDeformableGetRenderMesh(vpDeformableId deformable, float* outP
                                           int32_t vertexCapacity, int32_t* outTriangles, int32_t triangleCapacity);
 /* Statistics of this actor in the last step (zeros before the first). */
 VP_API vpStatus vpDeformableGetStats(vpDeformableId deformable, vpActorStats* outStats);
+/* Number of deformables and their ids, in slot order (stable while none is destroyed). */
+VP_API vpStatus vpWorldGetDeformableCount(vpWorldId world, int32_t* outCount);
+VP_API vpStatus vpWorldGetDeformables(vpWorldId world, vpDeformableId* outIds, int32_t capacity, int32_t* outCount);
 VP_API vpStatus vpWorldFindDeformable(vpWorldId world, const char* name, vpDeformableId* outDeformable);
 
 /* ---------------------------------------------------------------- fluids */
