@@ -324,6 +324,14 @@ class Fluids(unittest.TestCase):
         with self.assertRaises(volphys.InvalidArgumentError):
             self.world.find_fluid("none")
 
+    def test_scene_fluids_are_listed_and_found_by_name(self):
+        self.world.load_scene(os.path.join(REPO, "tests", "data", "scenes", "fluid_tank.json"))
+        smoke, tank = self.world.fluids()
+        self.assertEqual((smoke.kind, tank.kind), (volphys.FluidKind.Smoke, volphys.FluidKind.Liquid))
+        self.assertEqual(self.world.find_fluid("tank"), tank)
+        self.assertEqual(tank.domain, ((0.0, 0.0, 0.0), 0.0625))
+        self.assertEqual(tank.resolution, (16, 12, 16))
+
     def test_destroyed_fluid_raises_invalid_id(self):
         fluid = self.world.create_fluid("smoke", resolution=(4, 4, 4), cell_size=0.25)
         with fluid:
