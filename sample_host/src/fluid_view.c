@@ -21,11 +21,16 @@ int fluidViewReadSurface(ViewMesh* m, vpFluidId fluid) {
   return 1;
 }
 
-/* The smallest stride whose subsampled grid has at most the point budget: a cheap, even
- * thinning that keeps the plume's shape (every cell is a candidate, so the bound is on cells). */
-static int smokeStride(int64_t cells) {
-  int stride = 1;
-  while (cells / ((int64_t)stride * stride * stride) > FLUID_VIEW_MAX_SMOKE_POINTS) ++stride;
+/* Cells visited when every stride-th cell along each axis is taken. */
+static int64_t sampledCells(int32_t nx, int32_t ny, int32_t nz, int32_t stride) {
+  return (int64_t)((nx + stride - 1) / stride) * ((ny + stride - 1) / stride) * ((nz + stride - 1) / stride);
+}
+
+/* The smallest stride that keeps the visited cells within the point budget: a cheap, even
+ * thinning that keeps the plume's shape. */
+static int32_t smokeStride(int32_t nx, int32_t ny, int32_t nz) {
+  int32_t stride = 1;
+  while (sampledCells(nx, ny, nz, stride) > FLUID_VIEW_MAX_SMOKE_POINTS) ++stride;
   return stride;
 }
 
@@ -48,7 +53,7 @@ int fluidViewReadSmoke(ViewPoints* p, vpFluidId fluid, float** scratch, int64_t*
   if ((s = vpFluidGetField(fluid, vpFluidField_SmokeDensity, *scratch, cells)) != vpStatus_Ok)
     return report("vpFluidGetField", s);
   rho = *scratch;
-  stride = smokeStride(cells);
+  stride = smokeStride(nx, ny, nz);
   for (k = 0; k < nz; k += stride)
     for (j = 0; j < ny; j += stride)
       for (i = 0; i < nx; i += stride) {
@@ -56,7 +61,7 @@ int fluidViewReadSmoke(ViewPoints* p, vpFluidId fluid, float** scratch, int64_t*
         if (d > densest) densest = d;
       }
   p->count = 0;
-  if (!viewPointsReserve(p, (int32_t)(cells / ((int64_t)stride * stride * stride) + 1))) return 0;
+  if (!viewPointsReserve(p, (int32_t)sampledCells(nx, ny, nz, stride))) return 0;
   /* Brightness and opacity relative to this frame's densest cell, so a faint plume is still
    * visible and a dense one does not turn into a solid block. */
   for (k = 0; k < nz; k += stride)
@@ -64,7 +69,7 @@ int fluidViewReadSmoke(ViewPoints* p, vpFluidId fluid, float** scratch, int64_t*
       for (i = 0; i < nx; i += stride) {
         const float d = rho[i + (int64_t)nx * (j + (int64_t)ny * k)];
         float t, *xyz, *rgba;
-        if (d <= FLUID_VIEW_SMOKE_THRESHOLD || p->count >= p->capacity) continue;
+        if (d <= FLUID_VIEW_SMOKE_THRESHOLD) continue;
         t = densest > 0.0f ? sqrtf(d / densest) : 0.0f;
         xyz = &p->xyz[3 * p->count];
         rgba = &p->rgba[4 * p->count];

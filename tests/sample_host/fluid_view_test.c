@@ -52,7 +52,7 @@ static vpFluidId makeFluid(vpWorldId world, vpFluidKind kind, float x0, int n, f
 
 int main(void) {
   const float h = 1.0f / 16.0f;
-  const int n = 48; /* 110592 cells: more than the point budget, so the smoke is subsampled */
+  const int n = 49; /* more cells than the point budget, and odd, so the subsampling rounds up */
   vpWorldDef def = vpDefaultWorldDef();
   vpWorldId world;
   SceneView view;
