@@ -1,5 +1,5 @@
 // A VolPhys world owned by managed code: destroyed by Dispose (or, as a last resort, by the
-// finalizer). Colliders and deformables are value handles over their ids; after the world is
+// finalizer). Colliders, deformables and fluids are value handles over their ids; after the world is
 // gone their calls throw VolPhysException(InvalidId) instead of touching freed memory.
 using System;
 using System.Runtime.InteropServices;

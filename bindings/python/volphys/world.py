@@ -86,7 +86,7 @@ def _set_pose(d, position, rotation):
 
 class World:
     """A simulation world. Destroy it with destroy() or by leaving a `with` block; ids of its
-    colliders and deformables go stale then (using them raises InvalidIdError).
+    colliders, deformables and fluids go stale then (using them raises InvalidIdError).
 
     Arguments left as None keep vpDefaultWorldDef()'s values (gravity (0,-9.81,0), 1 worker,
     16 ms budget, 1/120 s rigid sub-step)."""
