@@ -200,6 +200,10 @@ static class VolPhysTests
             Check(positions.Length == 3 * vertices && indices.Length == 3 * triangles, "surface array lengths");
             float[] levelSet = liquid.GetField(FluidField.LevelSet);
             Check(levelSet.Length == nx * ny * nz && levelSet[nx * 1 + 3] < 0, "level set negative near the floor");
+            vpVec3[] sampled = liquid.SampleVelocity(new[] { new vpVec3(0.5f, 0.1f, 0.25f), new vpVec3(0.2f, 0.6f, 0.1f) });
+            Check(sampled.Length == 2 && !float.IsNaN(sampled[0].y) && Math.Abs(sampled[0].y) < 5, "sampled velocity " + sampled[0]);
+            float[] velocity = liquid.GetVelocityGrid();
+            Check(velocity.Length == 3 * nx * ny * nz, "velocity grid length " + velocity.Length);
             Check(liquid.Kind == FluidKind.Liquid, "kind " + liquid.Kind);
             vpVec3 origin;
             float cellSize;
