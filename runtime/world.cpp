@@ -89,47 +89,38 @@ Status World::destroyFluid(FluidHandle handle) {
   return Status::Ok;
 }
 
-std::vector<FluidHandle> World::fluidHandles() const {
-  std::vector<FluidHandle> handles;
-  fluids_.forEach([&](FluidHandle h, const FluidActor&) { handles.push_back(h); });
+namespace {
+
+// Handles of every object in slot order, and the first one with a given name (scene files
+// name objects; names need not be unique).
+template <class T>
+std::vector<typename SlotMap<T>::Handle> handlesOf(const SlotMap<T>& map) {
+  std::vector<typename SlotMap<T>::Handle> handles;
+  handles.reserve(map.size());
+  map.forEach([&](typename SlotMap<T>::Handle h, const T&) { handles.push_back(h); });
   return handles;
 }
 
-bool World::findFluid(const std::string& name, FluidHandle* out) const {
+template <class T>
+bool findByName(const SlotMap<T>& map, const std::string& name, typename SlotMap<T>::Handle* out) {
   bool found = false;
-  fluids_.forEach([&](FluidHandle h, const FluidActor& f) {
-    if (!found && f.desc().name == name) *out = h, found = true;
+  map.forEach([&](typename SlotMap<T>::Handle h, const T& object) {
+    if (!found && object.desc().name == name) *out = h, found = true;
   });
   return found;
 }
 
-std::vector<DeformableHandle> World::deformableHandles() const {
-  std::vector<DeformableHandle> handles;
-  deformables_.forEach([&](DeformableHandle h, const DeformableBody&) { handles.push_back(h); });
-  return handles;
-}
+}  // namespace
 
+std::vector<FluidHandle> World::fluidHandles() const { return handlesOf(fluids_); }
+bool World::findFluid(const std::string& name, FluidHandle* out) const { return findByName(fluids_, name, out); }
+std::vector<DeformableHandle> World::deformableHandles() const { return handlesOf(deformables_); }
 bool World::findDeformable(const std::string& name, DeformableHandle* out) const {
-  bool found = false;
-  deformables_.forEach([&](DeformableHandle h, const DeformableBody& d) {
-    if (!found && d.desc().name == name) *out = h, found = true;
-  });
-  return found;
+  return findByName(deformables_, name, out);
 }
-
-std::vector<ColliderHandle> World::colliderHandles() const {
-  std::vector<ColliderHandle> handles;
-  handles.reserve(colliders_.size());
-  colliders_.forEach([&](ColliderHandle h, const Collider&) { handles.push_back(h); });
-  return handles;
-}
-
+std::vector<ColliderHandle> World::colliderHandles() const { return handlesOf(colliders_); }
 bool World::findCollider(const std::string& name, ColliderHandle* out) const {
-  bool found = false;
-  colliders_.forEach([&](ColliderHandle h, const Collider& c) {
-    if (!found && c.desc().name == name) *out = h, found = true;
-  });
-  return found;
+  return findByName(colliders_, name, out);
 }
 
 Status World::setGravity(const Vec3& gravity) {

@@ -399,9 +399,10 @@ class Scenes(unittest.TestCase):
     def test_default_scene_loads_and_runs(self):
         with volphys.World() as w:
             w.load_scene(DEFAULT_SCENE)
-            names = ["ground", "paddle", "crate", "ball", "pill", "can", "gem"]
+            names = ["ground", "tank_west", "tank_east", "tank_north", "tank_south", "paddle", "buoy",
+                     "chimney_ball", "crate", "pill", "can", "gem"]
             self.assertEqual(len(w.colliders()), len(names))
-            ball = w.find_collider("ball")
+            ball = w.find_collider("crate")
             self.assertIn(ball, w.colliders())
             y0 = ball.position[1]
             jelly = w.find_deformable("jelly")
