@@ -12,6 +12,7 @@
 #include "deform/bb_multi_index.h"
 #include "deform/corotated_element.h"
 #include "deform/deformation_gradient.h"
+#include "deform/degree_hierarchy.h"
 #include "deform/polar_decomposition.h"
 #include "geometry/tet_mesh_boundary.h"
 #include "deform/linear_tet_corotation.h"
@@ -29,6 +30,13 @@ constexpr double kSlipSpeed = 1e-4;
 // Contact active-set passes per step: each may re-solve once. Four settle stick/slide/
 // release decisions in practice; a budget-cut step simply stops earlier.
 constexpr int kContactPasses = 4;
+
+// The p-multigrid levels below each degree. Cubic goes through quadratic: see the figures
+// in tests/bench/deform_solve_bench.cpp (3->1 directly leaves too much for the smoother).
+std::vector<int> pMultigridDegrees(int degree) {
+  if (degree == 3) return {3, 2, 1};
+  return {degree, 1};
+}
 
 }  // namespace
 
@@ -127,11 +135,17 @@ Status DeformableBody::create(DeformableDesc desc, std::unique_ptr<DeformableBod
   else b.rotatedStiffness_.resize(b.elementStiffness_.size());
   buildElementPattern(b.nodeCount_, b.elementNodes_.data(), elements, N, &b.matrix_, &b.scatter_);
   const Preconditioner pc = desc.solver.preconditioner;
-  b.useMultigrid_ = pc == Preconditioner::Multigrid || (pc == Preconditioner::Auto && b.nodeCount_ >= kMultigridMinNodes);
-  if (b.useMultigrid_) {
-    b.multigrid_.build(b.matrix_);
-    b.nodeFilters_.assign(9 * static_cast<size_t>(b.nodeCount_), 0.0);
+  const bool large = b.nodeCount_ >= kMultigridMinNodes;
+  b.usePMultigrid_ = degree > 1 && (pc == Preconditioner::PMultigrid || (pc == Preconditioner::Auto && large));
+  b.useMultigrid_ = !b.usePMultigrid_ && (pc == Preconditioner::Multigrid || pc == Preconditioner::PMultigrid ||
+                                          (pc == Preconditioner::Auto && large));
+  if (b.useMultigrid_) b.multigrid_.build(b.matrix_);
+  if (b.usePMultigrid_) {
+    DegreeHierarchy hierarchy;
+    VP_TRY(buildDegreeHierarchy(pMultigridDegrees(degree), b.elementNodes_.data(), elements, b.nodeCount_, &hierarchy));
+    b.pMultigrid_.build(b.matrix_, std::move(hierarchy.prolongations));
   }
+  if (b.useMultigrid_ || b.usePMultigrid_) b.nodeFilters_.assign(9 * static_cast<size_t>(b.nodeCount_), 0.0);
   const size_t n3 = b.restX_.size();
   b.externalForce_.assign(n3, 0.0);
   b.force_.resize(n3);
@@ -165,6 +179,10 @@ Status DeformableBody::create(DeformableDesc desc, std::unique_ptr<DeformableBod
   b.updateRenderMesh(*TaskSystem::create(TaskHooks{}, 1));
   *out = std::move(body);
   return Status::Ok;
+}
+
+Preconditioner DeformableBody::preconditioner() const {
+  return usePMultigrid_ ? Preconditioner::PMultigrid : useMultigrid_ ? Preconditioner::Multigrid : Preconditioner::BlockJacobi;
 }
 
 Status DeformableBody::checkNode(const char* what, int32_t node) const {
@@ -494,7 +512,7 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
   LinearSystem system;
   system.size = n3;
   system.apply = [&](const double* x, double* y) { matrix_.multiply(tasks, x, y); };
-  if (useMultigrid_) {
+  if (useMultigrid_ || usePMultigrid_) {
     parallelFor(tasks, nodeCount_, 1024, [&](int64_t begin, int64_t end) {
       for (int64_t i = begin; i < end; ++i) {
         Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> F(&nodeFilters_[9 * i]);
@@ -504,11 +522,13 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
         else F.setIdentity();
       }
     });
-    multigrid_.update(tasks, matrix_, x_.data(), nodeFilters_.data());
+    if (useMultigrid_) multigrid_.update(tasks, matrix_, x_.data(), nodeFilters_.data());
+    else pMultigrid_.update(tasks, matrix_, x_.data(), nodeFilters_.data());
     lap(Phase::Assemble);  // the preconditioner's setup is part of building the system
   }
   system.precondition = [&](const double* r, double* z) {
     if (useMultigrid_) return multigrid_.apply(tasks, r, z);
+    if (usePMultigrid_) return pMultigrid_.apply(tasks, r, z);
     parallelFor(tasks, nodeCount_, 1024, [&](int64_t begin, int64_t end) {
       for (int64_t i = begin; i < end; ++i) {
         const double* m = &diagInverse_[9 * i];

@@ -23,6 +23,7 @@
 #include "linalg/aggregation_multigrid.h"
 #include "linalg/block_sparse_matrix.h"
 #include "linalg/conjugate_gradient.h"
+#include "linalg/p_multigrid.h"
 #include "step_stats.h"
 
 namespace vp {
@@ -84,6 +85,8 @@ class DeformableBody {
   void elasticForces(TaskSystem& tasks, Array<double>* out);
   // The assembled step matrix of the last step (tests inspect its symmetry).
   const BlockSparseMatrix<double>& stepMatrix() const { return matrix_; }
+  // Which preconditioner the solve uses (Auto resolved).
+  Preconditioner preconditioner() const;
 
  private:
   DeformableBody() = default;
@@ -145,7 +148,9 @@ class DeformableBody {
   CgWorkspace cg_;
   bool useMultigrid_ = false;
   AggregationMultigrid multigrid_;
-  Array<double> nodeFilters_;  // 9 per node: the CG filter as a 3x3 projector, for the multigrid
+  bool usePMultigrid_ = false;
+  PMultigrid pMultigrid_;
+  Array<double> nodeFilters_;  // 9 per node: the CG filter as a 3x3 projector, for the multigrids
 };
 
 }  // namespace vp

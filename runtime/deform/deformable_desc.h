@@ -28,9 +28,12 @@ struct DeformableMaterial {
 };
 
 enum class Preconditioner : int {
-  Auto = 0,         // multigrid above kMultigridMinNodes nodes, block-Jacobi below
+  Auto = 0,         // above kMultigridMinNodes nodes p-multigrid for degree >= 2, aggregation
+                    // multigrid for degree 1; block-Jacobi below
   BlockJacobi = 1,
   Multigrid = 2,    // aggregation multigrid with rigid-body modes (linalg/aggregation_multigrid.h)
+  PMultigrid = 3,   // V-cycle over the degrees, aggregation multigrid on the linear level
+                    // (linalg/p_multigrid.h); degree 1 has no lower degree and gets Multigrid
 };
 
 // Below this many nodes the multigrid's setup costs more than the CG iterations it saves.

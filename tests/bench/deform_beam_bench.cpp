@@ -16,14 +16,17 @@ namespace {
 
 struct BeamRun {
   double seconds = 0.0, tipDy = 0.0, cgIterations = 0.0;
+  int64_t tets = 0;
+  int32_t nodes = 0;
   bool ok = false;
 };
 
 BeamRun runBeam(int64_t tets, double tolerance, int maxIterations, int workers, int degree = 1) {
   BeamRun run;
   BeamCells cells;
-  if (!beamCellsForTetCount(tets, &cells)) return run;
+  if (!beamCellsNearTetCount(tets, &cells)) return run;
   const BeamMesh beam = makeBeamMesh(cells.x, cells.y, cells.z, 4.0, 1.0, 1.0);
+  run.tets = beam.tetCount();
   if (!findBeamMeshDefect(beam, 4.0).empty()) return run;
   DeformableDesc desc;
   desc.degree = degree;
@@ -38,6 +41,7 @@ BeamRun runBeam(int64_t tets, double tolerance, int maxIterations, int workers, 
   desc.solver.maxIterations = maxIterations;
   std::unique_ptr<DeformableBody> body;
   if (!ok(DeformableBody::create(std::move(desc), &body))) return run;
+  run.nodes = body->nodeCount();
   // Pinning the clamped face's vertices also pins its edge/face control points (degree > 1).
   body->setPinned(beam.fixedVertices.data(), static_cast<int64_t>(beam.fixedVertices.size()), true);
   auto tasks = TaskSystem::create(TaskHooks{}, workers);
@@ -65,6 +69,8 @@ void report(benchmark::State& state, const BeamRun& run) {
   state.counters["hz"] = 60.0 / run.seconds;
   state.counters["cg_iters"] = run.cgIterations;
   state.counters["tip_dy"] = run.tipDy;
+  state.counters["tets"] = static_cast<double>(run.tets);
+  state.counters["nodes"] = run.nodes;
 }
 
 void BM_DeformLinearBeam(benchmark::State& state) {
@@ -86,9 +92,8 @@ void BM_DeformLinearBeamReference(benchmark::State& state) {
 }
 BENCHMARK(BM_DeformLinearBeamReference)->Arg(12288)->Arg(98304)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(1);
 
-// Quadratic elements on the 12288-tet beam (18785 nodes, as many as the 98304-tet linear
-// beam). Issue 6 asks for ~13K quadratic tets at 10 Hz; 12288 is the nearest beam of the
-// shared 4:1:1 family.
+// Quadratic elements: 13000 -> the 34x8x8-cell beam, 13056 tets (issue 6: ~13K quadratic
+// tets at 10 Hz, the thesis' GPU figure); 12288 is the 32x8x8 beam of the shared family.
 void BM_DeformQuadraticBeam(benchmark::State& state) {
   for (auto _ : state) {
     const BeamRun run = runBeam(state.range(0), DeformableSolverSettings{}.tolerance,
@@ -97,7 +102,7 @@ void BM_DeformQuadraticBeam(benchmark::State& state) {
     report(state, run);
   }
 }
-BENCHMARK(BM_DeformQuadraticBeam)->Arg(12288)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(1)->Repetitions(3);
+BENCHMARK(BM_DeformQuadraticBeam)->Arg(12288)->Arg(13000)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(1)->Repetitions(3);
 
 }  // namespace
 }  // namespace vp::bench

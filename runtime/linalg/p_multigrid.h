@@ -1,0 +1,113 @@
+// p-multigrid: a V-cycle over the polynomial degrees of one mesh (cubic -> quadratic ->
+// linear), used as the CG preconditioner of the deformable solve for degree >= 2, or on its
+// own as a stationary solver (linalg/richardson_iteration.h). The levels come from
+// deform/degree_hierarchy.h: what this class needs of them is the per-node prolongations
+// (BB degree elevation), so it knows nothing about elements.
+//
+// Coarse operators are Galerkin products A_c = P̃ᵀ A P̃ with the constrained prolongation
+// P̃ = F_f P F_c (F: the per-node 3x3 constraint projectors CG filters with, 0 for pinned
+// nodes, I − nnᵀ for sliding contacts). Why Galerkin rather than re-discretizing each degree
+// with the same element rotations:
+//  - constraints: a coarse problem re-discretized from elements does not know which fine
+//    directions are filtered (a contact on one edge control point has no coarse node of
+//    its own), so its coarse correction would push constrained directions and the fine
+//    smoother would have to undo it; P̃ᵀAP̃ is by construction the fine problem restricted
+//    to the constrained coarse space, the best coarse correction in the energy norm;
+//  - everything the fine matrix holds (mass, Rayleigh damping, stiffness, with whatever
+//    scaling the integrator chose) reaches the coarse levels without this class knowing
+//    the integrator;
+//  - cost: one sparse triple product per step, a small part of the step (measured by
+//    BM_DeformSolve's setup_ms counter) — the fine assembly it follows touches as much memory.
+// F_c of a coarse node projects onto the directions some fine node reading it may move in
+// (zero on a pinned face, whose control points are pinned at every degree; identity
+// wherever a free node reads it).
+//
+// Smoothers (both polynomials in D⁻¹A with the filtered block diagonal D, so they are
+// symmetric and parallel like an SpMV; the same one before and after the coarse correction
+// makes the V-cycle symmetric, hence a valid CG preconditioner):
+//  - Chebyshev: damps the eigenvalues of D⁻¹A in [λmax/range, λmax];
+//  - damped block-Jacobi: ω = 4/(3 λmax), as the aggregation multigrid's.
+// λmax by power iteration (refreshed every few updates: the corotated matrix changes slowly).
+// Coloured Gauss–Seidel was not tried: BB control points of degree 3 touch ~100 neighbours,
+// so a colouring needs many colours, each a sweep with poor locality.
+// Measured (BM_DeformSolve, cubic 5184-tet beam, see tests/bench/deform_solve_bench.cpp for
+// the figures): Chebyshev with 2 steps needs fewer fine-level products for the same residual
+// than damped Jacobi, so it is the default.
+//
+// The coarsest level (degree 1) is solved with `coarseCycles` V-cycles of the aggregation
+// multigrid (rigid-body modes; linalg/aggregation_multigrid.h). Its node i must be fine node
+// i (the degree hierarchy numbers the mesh vertices first at every degree), so its positions
+// are the first entries of the fine positions.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/allocator.h"
+#include "core/task_system.h"
+#include "linalg/aggregation_multigrid.h"
+#include "linalg/block_sparse_matrix.h"
+#include "linalg/node_prolongation.h"
+
+namespace vp {
+
+enum class MultigridSmoother { Chebyshev, DampedJacobi };
+
+struct PMultigridSettings {
+  MultigridSmoother smoother = MultigridSmoother::Chebyshev;
+  int sweeps = 2;                // smoothing steps before and after the coarse correction
+  double chebyshevRange = 30.0;  // Chebyshev targets [λmax / range, λmax] of D⁻¹A
+  int coarseCycles = 1;          // aggregation-multigrid V-cycles on the coarsest level
+};
+
+class PMultigrid {
+ public:
+  // prolongations[l] maps level l+1 to level l; level 0 is `fine`. Builds the coarse
+  // patterns (the symbolic Galerkin products) and the coarsest level's multigrid.
+  void build(const BlockSparseMatrix<double>& fine, std::vector<NodeProlongation> prolongations,
+             const PMultigridSettings& settings = {});
+
+  // Recomputes filters, Galerkin operators, smoothers and the coarsest multigrid.
+  // positions: 3 per fine node; filters: 9 per fine node (row-major projector) or nullptr.
+  void update(TaskSystem& tasks, const BlockSparseMatrix<double>& fine, const double* positions,
+              const double* filters);
+
+  // z = V-cycle(r); r and z of size 3 * fine node count, not aliased.
+  void apply(TaskSystem& tasks, const double* r, double* z);
+
+  int levelCount() const { return static_cast<int>(levels_.size()); }
+  // The operator of level l (0: the fine matrix last passed to update).
+  const BlockSparseMatrix<double>& levelMatrix(int l) const { return *levels_[l].matrix; }
+  const PMultigridSettings& settings() const { return settings_; }
+
+ private:
+  enum : uint8_t { kIdentity = 0, kZero = 1, kGeneral = 2 };
+  struct Level {
+    int32_t nodes = 0;
+    const BlockSparseMatrix<double>* matrix = nullptr;  // level 0: the caller's
+    BlockSparseMatrix<double> galerkin;                 // levels >= 1
+    // From this level to the finer one (levels >= 1), and its transpose.
+    NodeProlongation P;
+    std::vector<int32_t> restrictStart, restrictFine;
+    std::vector<double> restrictWeight;
+    Array<double> filters;  // 9 per node
+    Array<uint8_t> filterKind;
+    Array<double> diagonalInverse;  // 9 per node, F D⁺ F
+    double lambdaMax = 1.0;
+    Array<double> rhs, z, residual, direction, product, post, smoothed;
+  };
+
+  void cycle(TaskSystem& tasks, int level, const double* r, double* z);
+  // out = S rhs, S the smoothing polynomial; leaves rhs − A out in L.residual when asked.
+  void smooth(TaskSystem& tasks, Level& L, const double* rhs, double* out, bool wantResidual);
+  void galerkin(TaskSystem& tasks, int level);
+  void estimateLambdaMax(TaskSystem& tasks, Level& L);
+  void coarsestSolve(TaskSystem& tasks, const double* r, double* z);
+
+  PMultigridSettings settings_;
+  std::vector<Level> levels_;
+  AggregationMultigrid coarsest_;
+  uint64_t updates_ = 0;
+};
+
+}  // namespace vp
