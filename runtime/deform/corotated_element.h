@@ -20,4 +20,10 @@ void corotatedForce(int nodeCount, const double* stiffness, const double* restPo
 void corotatedStiffness(int nodeCount, const double* stiffness, const double R[9],
                         double* rotatedStiffness);
 
+// block += scale · R K_ab Rᵀ for the node pair (a, b): the assembly rotates each block as it
+// adds it, so the rotated 3N x 3N matrix is never stored (for cubic elements that buffer was
+// 29 KB per element written and read back every step).
+void addRotatedStiffnessBlock(int nodeCount, const double* stiffness, const double R[9], int a, int b,
+                              double scale, double block[9]);
+
 }  // namespace vp

@@ -132,7 +132,7 @@ Status DeformableBody::create(DeformableDesc desc, std::unique_ptr<DeformableBod
   }
   b.elementForce_.resize(3 * static_cast<size_t>(N * elements));
   if (degree == 1) b.rotatedGradients_.resize(12 * static_cast<size_t>(elements));
-  else b.rotatedStiffness_.resize(b.elementStiffness_.size());
+  else b.elementRotation_.resize(9 * static_cast<size_t>(elements));
   buildElementPattern(b.nodeCount_, b.elementNodes_.data(), elements, N, &b.matrix_, &b.scatter_);
   const Preconditioner pc = desc.solver.preconditioner;
   const bool large = b.nodeCount_ >= kMultigridMinNodes;
@@ -409,8 +409,8 @@ void DeformableBody::corotateAndAssemble(TaskSystem& tasks, double stiffnessScal
 void DeformableBody::corotateAndAssembleBB(TaskSystem& tasks, double stiffnessScale) {
   const int N = nodesPerElement_;
   const int64_t K = 9 * N * N;
-  // Pass 1, per element: one rotation from the volume-averaged deformation gradient, then the
-  // corotated force −R K (Rᵀ x − x0) and the rotated stiffness R K Rᵀ of the stored rest K.
+  // Pass 1, per element: one rotation from the volume-averaged deformation gradient and the
+  // corotated force −R K (Rᵀ x − x0); the gather then adds R K_ab Rᵀ block by block.
   parallelFor(tasks, elementCount(), 64, [&](int64_t begin, int64_t end) {
     for (int64_t e = begin; e < end; ++e) {
       const int32_t* nodes = &elementNodes_[N * e];
@@ -421,13 +421,11 @@ void DeformableBody::corotateAndAssembleBB(TaskSystem& tasks, double stiffnessSc
       if (polarRotationIterative(F, &rotations_[4 * e], R, 20, 1e-6) < 0)
         for (int i = 0; i < 9; ++i) R[i] = (i % 4 == 0) ? 1.0 : 0.0;  // non-finite: the guard reports it
       corotatedForce(N, &elementStiffness_[K * e], x0, x, R, &elementForce_[3 * N * e]);
-      corotatedStiffness(N, &elementStiffness_[K * e], R, &rotatedStiffness_[K * e]);
+      std::copy_n(R, 9, &elementRotation_[9 * e]);
     }
   });
   gatherRows(tasks, 64, [&](int64_t e, int a, int b, double* block) {
-    const double* Ke = &rotatedStiffness_[K * e];
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) block[3 * r + c] += stiffnessScale * Ke[(3 * a + r) * 3 * N + 3 * b + c];
+    addRotatedStiffnessBlock(N, &elementStiffness_[K * e], &elementRotation_[9 * e], a, b, stiffnessScale, block);
   });
 }
 

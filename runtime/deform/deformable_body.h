@@ -116,7 +116,7 @@ class DeformableBody {
   // vertex nodes).
   std::vector<std::array<int32_t, 3>> nodeSupport_;
   Array<double> elementStiffness_;  // degree > 1: rest K_e, 3N x 3N row-major per element
-  Array<double> rotatedStiffness_;  // degree > 1: R K_e Rᵀ this step
+  Array<double> elementRotation_;   // degree > 1: R this step, 9 per element (row-major)
   Array<double> restGradients_;     // 12 per element
   Array<double> restVolume_;
   Array<double> rotations_;         // 4 per element, quaternion (w,x,y,z) warm start

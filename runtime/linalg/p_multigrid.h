@@ -57,7 +57,7 @@ struct PMultigridSettings {
   MultigridSmoother smoother = MultigridSmoother::Chebyshev;
   int sweeps = 2;                // smoothing steps before and after the coarse correction
   double chebyshevRange = 30.0;  // Chebyshev targets [λmax / range, λmax] of D⁻¹A
-  int coarseCycles = 1;          // aggregation-multigrid V-cycles on the coarsest level
+  int coarseCycles = 8;          // aggregation-multigrid V-cycles on the coarsest level
 };
 
 class PMultigrid {

@@ -6,6 +6,9 @@
 #include <benchmark/benchmark.h>
 
 #include <chrono>
+#include <ctime>
+#include <string>
+#include <utility>
 
 #include "beam_mesh.h"
 #include "core/task_system.h"
@@ -18,10 +21,14 @@ struct BeamRun {
   double seconds = 0.0, tipDy = 0.0, cgIterations = 0.0;
   int64_t tets = 0;
   int32_t nodes = 0;
+  double phaseMs[kPhaseCount] = {};  // per step
+  double processCpuSeconds = 0.0;    // all threads: with other programs competing for the
+                                     // cores, wall time alone says little
   bool ok = false;
 };
 
-BeamRun runBeam(int64_t tets, double tolerance, int maxIterations, int workers, int degree = 1) {
+BeamRun runBeam(int64_t tets, double tolerance, int maxIterations, int workers, int degree = 1,
+               Preconditioner preconditioner = Preconditioner::Auto) {
   BeamRun run;
   BeamCells cells;
   if (!beamCellsNearTetCount(tets, &cells)) return run;
@@ -39,6 +46,7 @@ BeamRun runBeam(int64_t tets, double tolerance, int maxIterations, int workers, 
   desc.material.density = 1000.0;
   desc.solver.tolerance = tolerance;
   desc.solver.maxIterations = maxIterations;
+  desc.solver.preconditioner = preconditioner;
   std::unique_ptr<DeformableBody> body;
   if (!ok(DeformableBody::create(std::move(desc), &body))) return run;
   run.nodes = body->nodeCount();
@@ -51,13 +59,16 @@ BeamRun runBeam(int64_t tets, double tolerance, int maxIterations, int workers, 
   in.tasks = tasks.get();
   const double y0 = body->positions()[3 * beam.tipVertex + 1];
   const auto start = std::chrono::steady_clock::now();
+  const std::clock_t cpuStart = std::clock();
   int iterations = 0;
   for (int step = 0; step < 60; ++step) {
     ActorStats stats;
     body->step(in, &stats);
     iterations += stats.phase(Phase::Solve).iterations;
+    for (int p = 0; p < kPhaseCount; ++p) run.phaseMs[p] += stats.phases[p].ms / 60.0;
   }
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  run.processCpuSeconds = double(std::clock() - cpuStart) / CLOCKS_PER_SEC;
   run.tipDy = body->positions()[3 * beam.tipVertex + 1] - y0;
   run.cgIterations = iterations / 60.0;
   run.ok = true;
@@ -71,6 +82,10 @@ void report(benchmark::State& state, const BeamRun& run) {
   state.counters["tip_dy"] = run.tipDy;
   state.counters["tets"] = static_cast<double>(run.tets);
   state.counters["nodes"] = run.nodes;
+  state.counters["process_cpu_s"] = run.processCpuSeconds;
+  const std::pair<Phase, const char*> phases[] = {
+      {Phase::Corotate, "corotate_ms"}, {Phase::Assemble, "assemble_ms"}, {Phase::Solve, "solve_ms"}, {Phase::Embed, "embed_ms"}};
+  for (const auto& [phase, name] : phases) state.counters[name] = run.phaseMs[static_cast<int>(phase)];
 }
 
 void BM_DeformLinearBeam(benchmark::State& state) {
@@ -103,6 +118,17 @@ void BM_DeformQuadraticBeam(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_DeformQuadraticBeam)->Arg(12288)->Arg(13000)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(1)->Repetitions(3);
+
+// The same with the aggregation multigrid instead of Auto's p-multigrid, to compare.
+void BM_DeformQuadraticBeamAggregationMultigrid(benchmark::State& state) {
+  for (auto _ : state) {
+    const BeamRun run = runBeam(state.range(0), DeformableSolverSettings{}.tolerance,
+                                DeformableSolverSettings{}.maxIterations, 2, 2, Preconditioner::Multigrid);
+    if (!run.ok) return state.SkipWithError("beam setup failed");
+    report(state, run);
+  }
+}
+BENCHMARK(BM_DeformQuadraticBeamAggregationMultigrid)->Arg(13000)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(1)->Repetitions(3);
 
 }  // namespace
 }  // namespace vp::bench

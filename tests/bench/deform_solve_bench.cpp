@@ -111,6 +111,7 @@ void runSolve(benchmark::State& state, Method method, std::vector<int> degrees, 
   const BlockSparseMatrix<double>& A = sys.body->stepMatrix();
   const CgSettings cg{1e-6, 100000};
   const int64_t n = 3 * static_cast<int64_t>(A.blockRows);
+  state.counters["blocks"] = static_cast<double>(A.blockCount());
   PMultigrid mg;
   if (method != Method::Pcg) {
     const auto start = Clock::now();
@@ -120,6 +121,8 @@ void runSolve(benchmark::State& state, Method method, std::vector<int> degrees, 
       return state.SkipWithError("hierarchy failed");
     mg.build(A, std::move(h.prolongations), settings);
     state.counters["build_ms"] = msSince(start);
+    for (int l = 1; l < mg.levelCount(); ++l)
+      state.counters["blocks_level" + std::to_string(l)] = static_cast<double>(mg.levelMatrix(l).blockCount());
   }
   std::vector<double> blockInverse(9 * static_cast<size_t>(A.blockRows));
   CgWorkspace work;
@@ -181,7 +184,15 @@ const bool registered = [] {
   registerSolve("pmg_pcg_jacobi2", Method::PmgPcg, {3, 2, 1}, with(MultigridSmoother::DampedJacobi, 2));
   registerSolve("pmg_pcg_chebyshev1", Method::PmgPcg, {3, 2, 1}, with(MultigridSmoother::Chebyshev, 1));
   registerSolve("pmg_pcg_chebyshev3", Method::PmgPcg, {3, 2, 1}, with(MultigridSmoother::Chebyshev, 3));
-  registerSolve("pmg_pcg_coarse2", Method::PmgPcg, {3, 2, 1}, with(MultigridSmoother::Chebyshev, 2, 2));
+  for (int coarse : {2, 4, 8, 16}) {
+    registerSolve("pmg_pcg_coarse" + std::to_string(coarse), Method::PmgPcg, {3, 2, 1},
+                  with(MultigridSmoother::Chebyshev, 2, coarse));
+    registerSolve("pmg_pcg_chebyshev1_coarse" + std::to_string(coarse), Method::PmgPcg, {3, 2, 1},
+                  with(MultigridSmoother::Chebyshev, 1, coarse));
+    registerSolve("pmg_pcg_jacobi1_coarse" + std::to_string(coarse), Method::PmgPcg, {3, 2, 1},
+                  with(MultigridSmoother::DampedJacobi, 1, coarse));
+  }
+  registerSolve("pmg_pcg_3to1_coarse4", Method::PmgPcg, {3, 1}, with(MultigridSmoother::Chebyshev, 2, 4));
   return true;
 }();
 
