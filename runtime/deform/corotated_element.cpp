@@ -30,20 +30,6 @@ void corotatedForce(int nodeCount, const double* stiffness, const double* restPo
   }
 }
 
-void addRotatedStiffnessBlock(int nodeCount, const double* stiffness, const double R[9], int a, int b,
-                              double scale, double block[9]) {
-  const int dim = 3 * nodeCount;
-  // t = K_ab Rᵀ, then R t.
-  double t[9];
-  for (int r = 0; r < 3; ++r) {
-    const double* k = stiffness + (3 * a + r) * dim + 3 * b;
-    for (int c = 0; c < 3; ++c) t[3 * r + c] = k[0] * R[3 * c] + k[1] * R[3 * c + 1] + k[2] * R[3 * c + 2];
-  }
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c)
-      block[3 * r + c] += scale * (R[3 * r] * t[c] + R[3 * r + 1] * t[3 + c] + R[3 * r + 2] * t[6 + c]);
-}
-
 void corotatedStiffness(int nodeCount, const double* stiffness, const double R[9],
                         double* rotatedStiffness) {
   assert(nodeCount >= 1 && nodeCount <= kBBMaxNodes);
@@ -51,7 +37,7 @@ void corotatedStiffness(int nodeCount, const double* stiffness, const double R[9
   for (int i = 0; i < nodeCount; ++i)
     for (int j = 0; j < nodeCount; ++j) {
       double block[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-      addRotatedStiffnessBlock(nodeCount, stiffness, R, i, j, 1.0, block);
+      addRotatedStiffnessBlock(nodeCount, stiffness, R, R, i, j, block);
       for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c) rotatedStiffness[(3 * i + r) * dim + 3 * j + c] = block[3 * r + c];
     }

@@ -116,7 +116,7 @@ class DeformableBody {
   // vertex nodes).
   std::vector<std::array<int32_t, 3>> nodeSupport_;
   Array<double> elementStiffness_;  // degree > 1: rest K_e, 3N x 3N row-major per element
-  Array<double> elementRotation_;   // degree > 1: R this step, 9 per element (row-major)
+  Array<double> elementRotation_;   // degree > 1: R and stiffnessScale · R this step, 18 per element
   Array<double> restGradients_;     // 12 per element
   Array<double> restVolume_;
   Array<double> rotations_;         // 4 per element, quaternion (w,x,y,z) warm start
