@@ -34,6 +34,15 @@ bool beamCellsForTetCount(int64_t tetCount, BeamCells* cells) {
   return true;
 }
 
+TetMesh toTetMesh(const BeamMesh& beam) {
+  TetMesh mesh;
+  for (int32_t i = 0; i < beam.vertexCount(); ++i)
+    mesh.vertices.emplace_back(beam.vertices[3 * i], beam.vertices[3 * i + 1], beam.vertices[3 * i + 2]);
+  for (int32_t t = 0; t < beam.tetCount(); ++t)
+    mesh.tets.push_back({beam.tets[4 * t], beam.tets[4 * t + 1], beam.tets[4 * t + 2], beam.tets[4 * t + 3]});
+  return mesh;
+}
+
 bool beamCellsNearTetCount(int64_t tetCount, BeamCells* cells) {
   if (tetCount < 24) return false;
   if (beamCellsForTetCount(tetCount, cells)) return true;

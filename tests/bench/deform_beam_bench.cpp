@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "beam_mesh.h"
+#include "deform_beam_desc.h"
 #include "core/task_system.h"
 #include "deform/deformable_body.h"
 
@@ -35,15 +36,7 @@ BeamRun runBeam(int64_t tets, double tolerance, int maxIterations, int workers, 
   const BeamMesh beam = makeBeamMesh(cells.x, cells.y, cells.z, 4.0, 1.0, 1.0);
   run.tets = beam.tetCount();
   if (!findBeamMeshDefect(beam, 4.0).empty()) return run;
-  DeformableDesc desc;
-  desc.degree = degree;
-  for (int32_t i = 0; i < beam.vertexCount(); ++i)
-    desc.mesh.vertices.emplace_back(beam.vertices[3 * i], beam.vertices[3 * i + 1], beam.vertices[3 * i + 2]);
-  for (int32_t t = 0; t < beam.tetCount(); ++t)
-    desc.mesh.tets.push_back({beam.tets[4 * t], beam.tets[4 * t + 1], beam.tets[4 * t + 2], beam.tets[4 * t + 3]});
-  desc.material.youngsModulus = 1e8;
-  desc.material.poissonRatio = 0.3;
-  desc.material.density = 1000.0;
+  DeformableDesc desc = beamDeformableDesc(beam, degree);
   desc.solver.tolerance = tolerance;
   desc.solver.maxIterations = maxIterations;
   desc.solver.preconditioner = preconditioner;

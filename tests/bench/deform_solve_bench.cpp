@@ -20,6 +20,7 @@
 #include <string>
 
 #include "beam_mesh.h"
+#include "deform_beam_desc.h"
 #include "core/budget_clock.h"
 #include "core/task_system.h"
 #include "deform/degree_hierarchy.h"
@@ -47,15 +48,7 @@ struct CubicBeamSystem {
     BeamCells cells;
     if (!beamCellsForTetCount(5184, &cells)) return;
     const BeamMesh beam = makeBeamMesh(cells.x, cells.y, cells.z, 4.0, 1.0, 1.0);
-    DeformableDesc desc;
-    desc.degree = degree;
-    for (int32_t i = 0; i < beam.vertexCount(); ++i)
-      desc.mesh.vertices.emplace_back(beam.vertices[3 * i], beam.vertices[3 * i + 1], beam.vertices[3 * i + 2]);
-    for (int32_t t = 0; t < beam.tetCount(); ++t)
-      desc.mesh.tets.push_back({beam.tets[4 * t], beam.tets[4 * t + 1], beam.tets[4 * t + 2], beam.tets[4 * t + 3]});
-    desc.material.youngsModulus = 1e8;
-    desc.material.poissonRatio = 0.3;
-    desc.material.density = 1000.0;
+    DeformableDesc desc = beamDeformableDesc(beam, degree);
     desc.solver.preconditioner = Preconditioner::BlockJacobi;  // the step only assembles the matrix
     desc.solver.maxIterations = 1;
     if (!vp::ok(DeformableBody::create(std::move(desc), &body))) return;

@@ -12,6 +12,7 @@
 #include "core/budget_clock.h"
 #include "deform/degree_hierarchy.h"
 #include "deform/deformable_body.h"
+#include "deform_test_util.h"
 #include "geometry/box_tet_mesh.h"
 #include "linalg/richardson_iteration.h"
 
@@ -33,10 +34,7 @@ struct BeamSystem {
     d.material.youngsModulus = 1e8;
     d.solver.preconditioner = Preconditioner::BlockJacobi;  // the test drives its own cycle
     EXPECT_EQ(DeformableBody::create(d, &body), Status::Ok) << lastError();
-    std::vector<int32_t> clamped;
-    for (int32_t i = 0; i < body->nodeCount(); ++i)
-      if (body->restPositions()[3 * i] == 0.0) clamped.push_back(i);
-    body->setPinned(clamped.data(), static_cast<int64_t>(clamped.size()), true);
+    deform_test::pinNodesAtX(*body, 0.0);
     DeformableStepInput in;
     in.tasks = tasks.get();
     in.gravity = Vec3(0, -9.81, 0);
@@ -232,10 +230,7 @@ TEST(PMultigrid, ActorStepMatchesBlockJacobi) {
     std::unique_ptr<DeformableBody> body;
     EXPECT_EQ(DeformableBody::create(d, &body), Status::Ok);
     EXPECT_EQ(body->preconditioner(), pc);
-    std::vector<int32_t> clamped;
-    for (int32_t i = 0; i < body->nodeCount(); ++i)
-      if (body->restPositions()[3 * i] == 0.0) clamped.push_back(i);
-    body->setPinned(clamped.data(), static_cast<int64_t>(clamped.size()), true);
+    deform_test::pinNodesAtX(*body, 0.0);
     auto tasks = TaskSystem::create(TaskHooks{}, 2);
     DeformableStepInput in;
     in.tasks = tasks.get();
