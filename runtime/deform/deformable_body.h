@@ -3,7 +3,8 @@
 //   (M + h D + h² K) v' = M v + h (f(x) + f_ext),   D = αM + βK,   x' = x + h v',
 // where f(x) is the corotated elastic force and K its (rotated) stiffness at x. The matrix is
 // assembled in 3x3 blocks, element pass then node gather (parallel, deterministic), and
-// solved by CG preconditioned with aggregation multigrid (block-Jacobi on small meshes),
+// solved by CG preconditioned with aggregation multigrid (p-multigrid over the degrees for
+// quadratic and cubic elements, block-Jacobi on small meshes),
 // warm-started from the current velocity, within the actor's share of the frame budget. Pinned and attached nodes are velocity constraints
 // handled inside CG by filtering (Baraff & Witkin 1998), not by penalties.
 #pragma once

@@ -30,9 +30,21 @@
 // λmax by power iteration (refreshed every few updates: the corotated matrix changes slowly).
 // Coloured Gauss–Seidel was not tried: BB control points of degree 3 touch ~100 neighbours,
 // so a colouring needs many colours, each a sweep with poor locality.
-// Measured (BM_DeformSolve, cubic 5184-tet beam, see tests/bench/deform_solve_bench.cpp for
-// the figures): Chebyshev with 2 steps needs fewer fine-level products for the same residual
-// than damped Jacobi, so it is the default.
+// Measured with BM_DeformSolve (cubic 5184-tet beam, 85K unknowns, PCG to 1e-6 from zero),
+// CG iterations for `sweeps` smoothing steps per side and c coarsest cycles (3 -> 2 -> 1):
+//                      c = 1    2    4    8   16
+//   Chebyshev, 2 steps     33   26   20   16   15
+//   Chebyshev, 1 step      38   31   29   27   27
+//   damped Jacobi, 1 step  39   35   33   32   32
+//   (c = 8: damped Jacobi 2 steps 24, Chebyshev 3 steps 14; 3 -> 1 directly, Chebyshev 2: 19)
+// A cycle costs 2·sweeps fine-level products (+1 for CG's own), the degree-2 level ~18% of
+// a fine product each, and the coarsest cycles little (the linear level has 1.3% of the fine
+// blocks). So Chebyshev needs fewer fine products than damped Jacobi for the same residual
+// (16 x 5 = 80 against 32 x 3 = 96 or 24 x 5 = 120; 3 steps: 14 x 7 = 98), the coarsest
+// level is worth 8 cycles, and 3 -> 2 -> 1
+// and 3 -> 1 cost about the same (16 x 5.7 against 19 x 5 products); the defaults are
+// Chebyshev, 2 steps, 8 cycles. Timings on the shared 2-core machine vary ±30% with the
+// other builds, which is why the choice rests on these counts.
 //
 // The coarsest level (degree 1) is solved with `coarseCycles` V-cycles of the aggregation
 // multigrid (rigid-body modes; linalg/aggregation_multigrid.h). Its node i must be fine node

@@ -173,19 +173,17 @@ const bool registered = [] {
   registerSolve("pmg", Method::Pmg, {3, 2, 1}, defaults);
   // The choices behind the defaults.
   registerSolve("pmg_pcg_3to1", Method::PmgPcg, {3, 1}, defaults);
-  registerSolve("pmg_pcg_jacobi1", Method::PmgPcg, {3, 2, 1}, with(MultigridSmoother::DampedJacobi, 1));
-  registerSolve("pmg_pcg_jacobi2", Method::PmgPcg, {3, 2, 1}, with(MultigridSmoother::DampedJacobi, 2));
-  registerSolve("pmg_pcg_chebyshev1", Method::PmgPcg, {3, 2, 1}, with(MultigridSmoother::Chebyshev, 1));
-  registerSolve("pmg_pcg_chebyshev3", Method::PmgPcg, {3, 2, 1}, with(MultigridSmoother::Chebyshev, 3));
-  for (int coarse : {2, 4, 8, 16}) {
-    registerSolve("pmg_pcg_coarse" + std::to_string(coarse), Method::PmgPcg, {3, 2, 1},
-                  with(MultigridSmoother::Chebyshev, 2, coarse));
+  registerSolve("pmg_pcg_jacobi2_coarse8", Method::PmgPcg, {3, 2, 1}, with(MultigridSmoother::DampedJacobi, 2, 8));
+  registerSolve("pmg_pcg_chebyshev3_coarse8", Method::PmgPcg, {3, 2, 1}, with(MultigridSmoother::Chebyshev, 3, 8));
+  for (int coarse : {1, 2, 4, 8, 16}) {
+    if (coarse != defaults.coarseCycles)
+      registerSolve("pmg_pcg_coarse" + std::to_string(coarse), Method::PmgPcg, {3, 2, 1},
+                    with(MultigridSmoother::Chebyshev, 2, coarse));
     registerSolve("pmg_pcg_chebyshev1_coarse" + std::to_string(coarse), Method::PmgPcg, {3, 2, 1},
                   with(MultigridSmoother::Chebyshev, 1, coarse));
     registerSolve("pmg_pcg_jacobi1_coarse" + std::to_string(coarse), Method::PmgPcg, {3, 2, 1},
                   with(MultigridSmoother::DampedJacobi, 1, coarse));
   }
-  registerSolve("pmg_pcg_3to1_coarse4", Method::PmgPcg, {3, 1}, with(MultigridSmoother::Chebyshev, 2, 4));
   return true;
 }();
 
