@@ -27,6 +27,10 @@ struct DeformableMaterial {
   }
 };
 
+// Auto's choice for degree >= 2 was measured: on the 5184-tet cubic beam PCG to 1e-6 takes
+// 16 iterations with p-multigrid against 57 with aggregation multigrid on the cubic matrix
+// (BM_DeformSolve/{pmg_pcg,amg_pcg}/cubic, ~1.5x less time), and the 13056-tet quadratic
+// beam's steps 8.5 against 20 (BM_DeformQuadraticBeam{,AggregationMultigrid}/13000).
 enum class Preconditioner : int {
   Auto = 0,         // above kMultigridMinNodes nodes p-multigrid for degree >= 2, aggregation
                     // multigrid for degree 1; block-Jacobi below

@@ -2,6 +2,7 @@
 //   BM_DeformSolve/pcg/cubic       CG with block-Jacobi (the baseline of issue 6)
 //   BM_DeformSolve/pmg_pcg/cubic   CG with the p-multigrid V-cycle (3 -> 2 -> 1, Chebyshev)
 //   BM_DeformSolve/pmg/cubic       the V-cycle alone as a solver (Richardson)
+//   BM_DeformSolve/amg_pcg/cubic   CG with the aggregation multigrid on the cubic matrix
 // and variants of the cycle (BM_DeformSolve/pmg_pcg_<variant>/cubic) for the choices made in
 // linalg/p_multigrid.h. The system: the shared 4 x 1 x 1 m beam (beam_mesh.h) at 24x6x6 cells
 // = 5184 cubic tets, E = 1e8, ν = 0.3, ρ = 1000, x = 0 clamped, the backward-Euler matrix of
@@ -87,7 +88,7 @@ const CubicBeamSystem& cubicSystem() {
   return system;
 }
 
-enum class Method { Pcg, PmgPcg, Pmg };
+enum class Method { Pcg, AmgPcg, PmgPcg, Pmg };
 
 void report(benchmark::State& state, double setupMs, double solveMs, const CgResult& result) {
   state.SetIterationTime((setupMs + solveMs) / 1000.0);
@@ -106,7 +107,9 @@ void runSolve(benchmark::State& state, Method method, std::vector<int> degrees, 
   const int64_t n = 3 * static_cast<int64_t>(A.blockRows);
   state.counters["blocks"] = static_cast<double>(A.blockCount());
   PMultigrid mg;
-  if (method != Method::Pcg) {
+  AggregationMultigrid amg;
+  if (method == Method::AmgPcg) amg.build(A);
+  if (method == Method::PmgPcg || method == Method::Pmg) {
     const auto start = Clock::now();
     DegreeHierarchy h;
     if (!ok(buildDegreeHierarchy(degrees, sys.body->elementNodes().data(), sys.body->elementCount(),
@@ -126,6 +129,8 @@ void runSolve(benchmark::State& state, Method method, std::vector<int> degrees, 
       for (int32_t i = 0; i < A.blockRows; ++i)
         Eigen::Map<Mat3R>{&blockInverse[9 * i]} =
             Eigen::Map<const Mat3R>(&A.values[9 * static_cast<int64_t>(A.diagonal[i])]).inverse();
+    } else if (method == Method::AmgPcg) {
+      amg.update(*sys.tasks, A, sys.body->positions().data(), sys.filters.data());
     } else {
       mg.update(*sys.tasks, A, sys.body->positions().data(), sys.filters.data());
     }
@@ -138,6 +143,9 @@ void runSolve(benchmark::State& state, Method method, std::vector<int> degrees, 
           Eigen::Map<Eigen::Vector3d>(z + 3 * i) =
               Eigen::Map<const Mat3R>(&blockInverse[9 * i]) * Eigen::Map<const Eigen::Vector3d>(r + 3 * i);
       });
+      result = solveConjugateGradient(*sys.tasks, s, sys.rhs.data(), x.data(), cg, Deadline(), work);
+    } else if (method == Method::AmgPcg) {
+      const LinearSystem s = sys.system([&](const double* r, double* z) { amg.apply(*sys.tasks, r, z); });
       result = solveConjugateGradient(*sys.tasks, s, sys.rhs.data(), x.data(), cg, Deadline(), work);
     } else {
       const LinearSystem s = sys.system([&](const double* r, double* z) { mg.apply(*sys.tasks, r, z); });
@@ -171,6 +179,8 @@ const bool registered = [] {
   registerSolve("pcg", Method::Pcg, {}, defaults);
   registerSolve("pmg_pcg", Method::PmgPcg, {3, 2, 1}, defaults);
   registerSolve("pmg", Method::Pmg, {3, 2, 1}, defaults);
+  // What Auto picked for cubic elements before p-multigrid: aggregation multigrid directly.
+  registerSolve("amg_pcg", Method::AmgPcg, {}, defaults);
   // The choices behind the defaults.
   registerSolve("pmg_pcg_3to1", Method::PmgPcg, {3, 1}, defaults);
   registerSolve("pmg_pcg_jacobi2_coarse8", Method::PmgPcg, {3, 2, 1}, with(MultigridSmoother::DampedJacobi, 2, 8));
