@@ -36,10 +36,17 @@ void corotatedStiffness(int nodeCount, const double* stiffness, const double R[9
   const int dim = 3 * nodeCount;
   for (int i = 0; i < nodeCount; ++i)
     for (int j = 0; j < nodeCount; ++j) {
-      double block[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-      addRotatedStiffnessBlock(nodeCount, stiffness, R, R, i, j, block);
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) rotatedStiffness[(3 * i + r) * dim + 3 * j + c] = block[3 * r + c];
+      // t = K_ij Rᵀ, then R t.
+      double t[9];
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) {
+          const double* k = stiffness + (3 * i + a) * dim + 3 * j;
+          t[3 * a + b] = k[0] * R[3 * b] + k[1] * R[3 * b + 1] + k[2] * R[3 * b + 2];
+        }
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b)
+          rotatedStiffness[(3 * i + a) * dim + 3 * j + b] =
+              R[3 * a] * t[b] + R[3 * a + 1] * t[3 + b] + R[3 * a + 2] * t[6 + b];
     }
 }
 

@@ -10,6 +10,7 @@
 #include "deform/bb_element_matrices.h"
 #include "deform/bb_evaluation.h"
 #include "deform/bb_multi_index.h"
+#include "deform/bb_rotated_stiffness.h"
 #include "deform/corotated_element.h"
 #include "deform/deformation_gradient.h"
 #include "deform/degree_hierarchy.h"
@@ -143,7 +144,10 @@ Status DeformableBody::create(DeformableDesc desc, std::unique_ptr<DeformableBod
   }
   b.elementForce_.resize(3 * static_cast<size_t>(N * elements));
   if (degree == 1) b.rotatedGradients_.resize(12 * static_cast<size_t>(elements));
-  else b.elementRotation_.resize(18 * static_cast<size_t>(elements));
+  else {
+    b.gradientPairs_.resize(144 * static_cast<size_t>(elements));
+    b.stiffnessTerms_ = bbStiffnessTerms(degree);
+  }
   buildElementPattern(b.nodeCount_, b.elementNodes_.data(), elements, N, &b.matrix_, &b.scatter_);
   const Preconditioner pc = desc.solver.preconditioner;
   const bool large = b.nodeCount_ >= kMultigridMinNodes;
@@ -421,7 +425,8 @@ void DeformableBody::corotateAndAssembleBB(TaskSystem& tasks, double stiffnessSc
   const int N = nodesPerElement_;
   const int64_t K = 9 * N * N;
   // Pass 1, per element: one rotation from the volume-averaged deformation gradient and the
-  // corotated force −R K (Rᵀ x − x0); the gather then adds R K_ab Rᵀ block by block.
+  // corotated force −R K (Rᵀ x − x0) from the stored rest K, and the 16 rotated gradient-pair
+  // matrices the gather sums into each R K_ab Rᵀ (deform/bb_rotated_stiffness.h).
   parallelFor(tasks, elementCount(), 64, [&](int64_t begin, int64_t end) {
     for (int64_t e = begin; e < end; ++e) {
       const int32_t* nodes = &elementNodes_[N * e];
@@ -432,13 +437,12 @@ void DeformableBody::corotateAndAssembleBB(TaskSystem& tasks, double stiffnessSc
       if (polarRotationIterative(F, &rotations_[4 * e], R, 20, 1e-6) < 0)
         for (int i = 0; i < 9; ++i) R[i] = (i % 4 == 0) ? 1.0 : 0.0;  // non-finite: the guard reports it
       corotatedForce(N, &elementStiffness_[K * e], x0, x, R, &elementForce_[3 * N * e]);
-      double* rotation = &elementRotation_[18 * e];
-      for (int i = 0; i < 9; ++i) rotation[i] = R[i], rotation[9 + i] = stiffnessScale * R[i];
+      bbRotatedGradientPairs(degree_, R, &restGradients_[12 * e], restVolume_[e], lambda_, mu_, stiffnessScale,
+                             &gradientPairs_[144 * e]);
     }
   });
   gatherRows(tasks, 64, [&](int64_t e, int a, int b, double* block) {
-    const double* rotation = &elementRotation_[18 * e];
-    addRotatedStiffnessBlock(N, &elementStiffness_[K * e], rotation, rotation + 9, a, b, block);
+    addBBRotatedBlock(stiffnessTerms_, &gradientPairs_[144 * e], N, a, b, block);
   });
 }
 

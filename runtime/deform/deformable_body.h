@@ -19,6 +19,7 @@
 #include "core/slot_map.h"
 #include "core/task_system.h"
 #include "deform/deformable_desc.h"
+#include "deform/bb_rotated_stiffness.h"
 #include "deform/deformable_contacts.h"
 #include "geometry/embedding.h"
 #include "linalg/aggregation_multigrid.h"
@@ -117,7 +118,8 @@ class DeformableBody {
   // vertex nodes).
   std::vector<std::array<int32_t, 3>> nodeSupport_;
   Array<double> elementStiffness_;  // degree > 1: rest K_e, 3N x 3N row-major per element
-  Array<double> elementRotation_;   // degree > 1: R and stiffnessScale · R this step, 18 per element
+  Array<double> gradientPairs_;     // degree > 1: 16 rotated 3x3 gradient pairs per element, this step
+  BBStiffnessTerms stiffnessTerms_;
   Array<double> restGradients_;     // 12 per element
   Array<double> restVolume_;
   Array<double> rotations_;         // 4 per element, quaternion (w,x,y,z) warm start
