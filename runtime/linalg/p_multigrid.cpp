@@ -138,7 +138,10 @@ void PMultigrid::galerkin(TaskSystem& tasks, int level) {
   });
   // C_ab = F_a Σ w_ia w_jb F_i A_ij F_j F_b, one coarse row per task (no races, fixed order).
   parallelFor(tasks, L.nodes, kGalerkinGrain, [&](int64_t begin, int64_t end) {
-    std::vector<int32_t> slot(static_cast<size_t>(L.nodes), -1);
+    // Coarse column -> block index of the current row; every entry is reset to -1 after its
+    // row, so a worker's scratch can be reused across chunks and updates without clearing.
+    thread_local std::vector<int32_t> slot;
+    if (slot.size() < static_cast<size_t>(L.nodes)) slot.assign(static_cast<size_t>(L.nodes), -1);
     for (int64_t a = begin; a < end; ++a) {
       for (int32_t k = C.rowStart[a]; k < C.rowStart[a + 1]; ++k) {
         slot[C.columns[k]] = k;
