@@ -1,0 +1,110 @@
+// Multigrid hierarchy and V-cycle for the cut-cell pressure operator (see poisson_multigrid.h).
+#include "fluid/poisson_multigrid.h"
+
+#include <algorithm>
+
+#include "core/parallel_for.h"
+#include "fluid/multigrid_coarsening.h"
+#include "fluid/multigrid_transfer.h"
+
+namespace vp {
+namespace {
+
+constexpr int64_t kGrain = 4096;
+
+void fillZero(TaskSystem& tasks, std::vector<double>& v) {
+  double* p = v.data();
+  parallelFor(tasks, static_cast<int64_t>(v.size()), kGrain, [&](int64_t begin, int64_t end) {
+    std::fill(p + begin, p + end, 0.0);
+  });
+}
+
+void smooth(TaskSystem& tasks, const CutCellPoisson& op, const MultigridSettings& s, const double* b, double* x,
+            double* scratch, int sweeps, bool adjoint) {
+  for (int i = 0; i < sweeps; ++i) {
+    if (s.smoother == MultigridSmoother::RedBlackGaussSeidel) smoothRedBlack(tasks, op, b, x, adjoint);
+    else smoothJacobi(tasks, op, b, x, scratch, s.jacobiWeight);
+  }
+}
+
+bool canCoarsen(const MacGridSpec& g, int coarsestSize) {
+  return std::min({g.nx, g.ny, g.nz}) >= 2 * coarsestSize;
+}
+
+}  // namespace
+
+Status buildPoissonMultigrid(TaskSystem& tasks, const CutCellPoisson& fine, const std::array<DomainSide, 6>& sides,
+                             const MultigridSettings& settings, PoissonMultigrid* mg) {
+  if (mg == nullptr) return fail(Status::InvalidArgument, "multigrid: output is null");
+  if (settings.sweeps < 1 || settings.coarsestSweeps < 1)
+    return fail(Status::InvalidArgument, "multigrid: sweeps = %d and coarsestSweeps = %d must be >= 1",
+                settings.sweeps, settings.coarsestSweeps);
+  if (settings.coarsestSize < 1)
+    return fail(Status::InvalidArgument, "multigrid: coarsestSize = %d must be >= 1", settings.coarsestSize);
+  if (!(settings.jacobiWeight > 0.0 && settings.jacobiWeight <= 1.0))
+    return fail(Status::InvalidArgument, "multigrid: jacobiWeight = %g must lie in (0, 1]", settings.jacobiWeight);
+  mg->settings = settings;
+  int levels = 1;
+  for (MacGridSpec g = fine.grid; canCoarsen(g, settings.coarsestSize); g = coarseGridSpec(g)) ++levels;
+  // resize() keeps the existing levels' buffers, so a rebuild every frame does not reallocate.
+  mg->coarse.resize(static_cast<size_t>(levels - 1));
+  mg->coarseFloating.assign(static_cast<size_t>(levels - 1), 0);
+  mg->prolongScale.resize(static_cast<size_t>(levels - 1));
+  mg->x.resize(static_cast<size_t>(levels));
+  mg->b.resize(static_cast<size_t>(levels));
+  mg->r.resize(static_cast<size_t>(levels));
+  for (int l = 1; l < levels; ++l) {
+    const CutCellPoisson& from = l == 1 ? fine : mg->coarse[static_cast<size_t>(l - 2)];
+    CutCellPoisson& to = mg->coarse[static_cast<size_t>(l - 1)];
+    if (settings.coarsening == MultigridCoarsening::CutCell) VP_TRY(coarsenCutCell(tasks, from, &to));
+    else VP_TRY(coarsenVoxel(tasks, from, sides, &to));
+    mg->coarseFloating[static_cast<size_t>(l - 1)] =
+        std::any_of(to.regionFloating.begin(), to.regionFloating.end(), [](uint8_t f) { return f != 0; });
+    computeProlongationScale(tasks, from, to, &mg->prolongScale[static_cast<size_t>(l - 1)]);
+  }
+  for (int l = 0; l < levels; ++l) {
+    const size_t cells = (l == 0 ? fine : mg->coarse[static_cast<size_t>(l - 1)]).diagonal.size();
+    mg->r[static_cast<size_t>(l)].resize(cells);
+    if (l > 0) {
+      mg->x[static_cast<size_t>(l)].resize(cells);
+      mg->b[static_cast<size_t>(l)].resize(cells);
+    }
+  }
+  return Status::Ok;
+}
+
+void applyPoissonMultigrid(TaskSystem& tasks, const CutCellPoisson& fine, PoissonMultigrid& mg, const double* r,
+                           double* z) {
+  const MultigridSettings& s = mg.settings;
+  const int levels = mg.levelCount();
+  auto op = [&](int l) -> const CutCellPoisson& { return l == 0 ? fine : mg.coarse[static_cast<size_t>(l - 1)]; };
+  auto xOf = [&](int l) { return l == 0 ? z : mg.x[static_cast<size_t>(l)].data(); };
+  auto bOf = [&](int l) { return l == 0 ? r : mg.b[static_cast<size_t>(l)].data(); };
+  auto filter = [&](int l, double* v) {
+    if (l > 0 && mg.coarseFloating[static_cast<size_t>(l - 1)]) filterCutCellPoisson(op(l), v);
+  };
+  const int64_t fineCells = static_cast<int64_t>(fine.diagonal.size());
+  parallelFor(tasks, fineCells, kGrain, [&](int64_t begin, int64_t end) { std::fill(z + begin, z + end, 0.0); });
+
+  for (int l = 0; l + 1 < levels; ++l) {
+    if (l > 0) fillZero(tasks, mg.x[static_cast<size_t>(l)]);
+    double* scratch = mg.r[static_cast<size_t>(l)].data();
+    smooth(tasks, op(l), s, bOf(l), xOf(l), scratch, s.sweeps, false);
+    computeResidual(tasks, op(l), bOf(l), xOf(l), scratch);
+    double* coarseB = mg.b[static_cast<size_t>(l + 1)].data();
+    restrictResidual(tasks, op(l), op(l + 1), mg.prolongScale[static_cast<size_t>(l)].data(), scratch, coarseB);
+    filter(l + 1, coarseB);
+  }
+  const int last = levels - 1;
+  if (last > 0) fillZero(tasks, mg.x[static_cast<size_t>(last)]);
+  smooth(tasks, op(last), s, bOf(last), xOf(last), mg.r[static_cast<size_t>(last)].data(), s.coarsestSweeps, false);
+  smooth(tasks, op(last), s, bOf(last), xOf(last), mg.r[static_cast<size_t>(last)].data(), s.coarsestSweeps, true);
+  filter(last, xOf(last));
+  for (int l = last - 1; l >= 0; --l) {
+    prolongateAdd(tasks, op(l), op(l + 1), mg.prolongScale[static_cast<size_t>(l)].data(), xOf(l + 1), xOf(l));
+    smooth(tasks, op(l), s, bOf(l), xOf(l), mg.r[static_cast<size_t>(l)].data(), s.sweeps, true);
+    filter(l, xOf(l));
+  }
+}
+
+}  // namespace vp
