@@ -80,6 +80,57 @@ void smoothJacobi(TaskSystem& tasks, const CutCellPoisson& op, const double* b, 
   });
 }
 
+void smoothRedBlackCells(TaskSystem& tasks, const CutCellPoisson& op, const std::vector<int64_t>* byColour,
+                         const double* b, double* x, bool reverse) {
+  const Stencil s(op);
+  for (int half = 0; half < 2; ++half) {
+    const std::vector<int64_t>& list = byColour[reverse ? 1 - half : half];
+    parallelFor(tasks, static_cast<int64_t>(list.size()), kCellsPerChunk, [&](int64_t begin, int64_t end) {
+      for (int64_t n = begin; n < end; ++n) {
+        const int64_t c = list[static_cast<size_t>(n)];
+        x[c] = (b[c] + s.neighbourSum(c / s.nx, c % s.nx, x)) / s.diagonal[c];
+      }
+    });
+  }
+}
+
+void findBoundaryCells(const CutCellPoisson& op, double fullCoupling, std::vector<int64_t> byColour[2]) {
+  const Stencil s(op);
+  const int64_t cells = s.rows() * s.nx;
+  std::vector<uint8_t> cut(static_cast<size_t>(cells), 0);
+  for (int64_t c = 0; c < cells; ++c) {
+    const double d = s.diagonal[c];
+    if (!(d > 0.0)) continue;
+    const int64_t row = c / s.nx, i = c % s.nx, j = row % s.ny, k = row / s.ny;
+    const int64_t fu = i + (s.nx + 1) * row, fv = i + s.nx * (j + (s.ny + 1) * k);
+    // Domain-boundary faces (coupling 0 on every level) are planar and grid-aligned, which the
+    // transfers handle (multigrid_transfer.h); only faces inside the grid count.
+    const bool inside[6] = {i > 0, i + 1 < s.nx, j > 0, j + 1 < s.ny, k > 0, k + 1 < s.nz};
+    const double faces[6] = {s.cu[fu], s.cu[fu + 1], s.cv[fv], s.cv[fv + s.nx], s.cw[c], s.cw[c + s.sz]};
+    bool isCut = false, onDomainBoundary = false;
+    double couplings = 0.0;
+    for (int f = 0; f < 6; ++f) {
+      couplings += faces[f];
+      onDomainBoundary = onDomainBoundary || !inside[f];
+      isCut = isCut || (inside[f] && faces[f] < fullCoupling * (1.0 - 1e-12));
+    }
+    // A Dirichlet part away from the domain sides is a free-surface face.
+    isCut = isCut || (!onDomainBoundary && d > couplings * (1.0 + 1e-12));
+    cut[static_cast<size_t>(c)] = isCut ? 1 : 0;
+  }
+  byColour[0].clear();
+  byColour[1].clear();
+  for (int64_t c = 0; c < cells; ++c) {
+    if (!(s.diagonal[c] > 0.0)) continue;
+    const int64_t row = c / s.nx, i = c % s.nx, j = row % s.ny, k = row / s.ny;
+    bool near = cut[static_cast<size_t>(c)] != 0;
+    near = near || (i > 0 && cut[static_cast<size_t>(c - 1)]) || (i + 1 < s.nx && cut[static_cast<size_t>(c + 1)]);
+    near = near || (j > 0 && cut[static_cast<size_t>(c - s.nx)]) || (j + 1 < s.ny && cut[static_cast<size_t>(c + s.nx)]);
+    near = near || (k > 0 && cut[static_cast<size_t>(c - s.sz)]) || (k + 1 < s.nz && cut[static_cast<size_t>(c + s.sz)]);
+    if (near) byColour[(i + j + k) & 1].push_back(c);
+  }
+}
+
 void computeResidual(TaskSystem& tasks, const CutCellPoisson& op, const double* b, const double* x, double* r) {
   const Stencil s(op);
   parallelFor(tasks, s.rows(), s.rowGrain(), [&](int64_t begin, int64_t end) {

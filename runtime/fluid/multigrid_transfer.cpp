@@ -1,6 +1,8 @@
 // Renormalized trilinear prolongation and its transpose (see multigrid_transfer.h).
 #include "fluid/multigrid_transfer.h"
 
+#include <cmath>
+
 #include "core/parallel_for.h"
 
 namespace vp {
@@ -8,18 +10,42 @@ namespace {
 
 constexpr int64_t kRowGrain = 16;
 
-// The two coarse cells fine index i interpolates from along one axis, with their weights; a
-// neighbour outside [0, coarseCount) gets weight 0 (and a valid index, so it can be read).
+// The two coarse cells fine index i interpolates from along one axis, with their weights. A
+// neighbour outside [0, coarseCount) is a ghost: behind a Wall side it is dropped (weight 0, a
+// valid index so it can be read); behind an Open side it is the Dirichlet ghost -x_parent, which
+// puts the zero at the domain face, so it becomes weight -1/4 on the parent. `presence` is the
+// weight the renormalization counts (the ghost is there, only with a mirrored value).
 struct AxisStencil {
   int64_t index[2];
   double weight[2];
-  AxisStencil(int64_t i, int64_t coarseCount) {
+  double presence[2];
+  AxisStencil(int64_t i, int64_t coarseCount, const TransferSides& sides, int axis) {
     const int64_t parent = i >> 1, side = (i & 1) ? parent + 1 : parent - 1;
     index[0] = parent;
-    weight[0] = 0.75;
+    weight[0] = presence[0] = 0.75;
     const bool inside = side >= 0 && side < coarseCount;
+    const bool dirichlet = !inside && sides.open[2 * axis + (side < 0 ? 0 : 1)];
     index[1] = inside ? side : parent;
-    weight[1] = inside ? 0.25 : 0.0;
+    weight[1] = inside ? 0.25 : dirichlet ? -0.25 : 0.0;
+    presence[1] = inside || dirichlet ? 0.25 : 0.0;
+  }
+};
+
+// The transpose of AxisStencil along one axis: the weights P gives coarse index I at the fine
+// indices first .. first + 3 (= 2I - 1 .. 2I + 2), 0 for fine indices outside the grid.
+struct AxisWeights {
+  int64_t first;
+  double weight[4];
+  AxisWeights(int64_t I, int64_t fineCount, int64_t coarseCount, const TransferSides& sides, int axis)
+      : first(2 * I - 1) {
+    for (int x = 0; x < 4; ++x) {
+      weight[x] = 0.0;
+      const int64_t i = first + x;
+      if (i < 0 || i >= fineCount) continue;
+      const AxisStencil s(i, coarseCount, sides, axis);
+      for (int e = 0; e < 2; ++e)
+        if (s.index[e] == I) weight[x] += s.weight[e];
+    }
   }
 };
 
@@ -27,23 +53,23 @@ struct AxisStencil {
 // cell, in parallel over fine rows.
 template <class Body>
 void forEachFineStencil(TaskSystem& tasks, const CutCellPoisson& fine, const CutCellPoisson& coarse,
-                        const Body& body) {
+                        const TransferSides& sides, const Body& body) {
   const int64_t nx = fine.grid.nx, ny = fine.grid.ny, nz = fine.grid.nz;
   const int64_t cx = coarse.grid.nx, cy = coarse.grid.ny, cz = coarse.grid.nz;
   parallelFor(tasks, ny * nz, kRowGrain, [&](int64_t begin, int64_t end) {
     for (int64_t row = begin; row < end; ++row) {
       const int64_t j = row % ny, k = row / ny;
-      const AxisStencil sy(j, cy), sz(k, cz);
+      const AxisStencil sy(j, cy, sides, 1), sz(k, cz, sides, 2);
       for (int64_t i = 0; i < nx; ++i) {
         const int64_t c = i + nx * row;
         if (!(fine.diagonal[static_cast<size_t>(c)] > 0.0)) continue;
-        const AxisStencil sx(i, cx);
+        const AxisStencil sx(i, cx, sides, 0);
         for (int z = 0; z < 2; ++z)
           for (int y = 0; y < 2; ++y) {
-            const double wyz = sy.weight[y] * sz.weight[z];
+            const double pyz = sy.presence[y] * sz.presence[z];
             const int64_t base = cx * (sy.index[y] + cy * sz.index[z]);
-            body(c, base + sx.index[0], wyz * sx.weight[0]);
-            body(c, base + sx.index[1], wyz * sx.weight[1]);
+            body(c, base + sx.index[0], pyz * sx.presence[0]);
+            body(c, base + sx.index[1], pyz * sx.presence[1]);
           }
       }
     }
@@ -53,11 +79,11 @@ void forEachFineStencil(TaskSystem& tasks, const CutCellPoisson& fine, const Cut
 }  // namespace
 
 void computeProlongationScale(TaskSystem& tasks, const CutCellPoisson& fine, const CutCellPoisson& coarse,
-                              std::vector<double>* scale) {
+                              const TransferSides& sides, std::vector<double>* scale) {
   const int64_t cells = static_cast<int64_t>(fine.diagonal.size());
   std::vector<double>& s = *scale;
   s.assign(static_cast<size_t>(cells), 0.0);
-  forEachFineStencil(tasks, fine, coarse, [&](int64_t c, int64_t coarseCell, double w) {
+  forEachFineStencil(tasks, fine, coarse, sides, [&](int64_t c, int64_t coarseCell, double w) {
     if (coarse.diagonal[static_cast<size_t>(coarseCell)] > 0.0) s[static_cast<size_t>(c)] += w;
   });
   parallelFor(tasks, cells, 4096, [&](int64_t begin, int64_t end) {
@@ -66,14 +92,14 @@ void computeProlongationScale(TaskSystem& tasks, const CutCellPoisson& fine, con
 }
 
 void prolongateAdd(TaskSystem& tasks, const CutCellPoisson& fine, const CutCellPoisson& coarse,
-                   const double* scale, const double* coarseX, double* fineX) {
+                   const TransferSides& sides, const double* scale, const double* coarseX, double* fineX) {
   const int64_t nx = fine.grid.nx, ny = fine.grid.ny, nz = fine.grid.nz;
   const int64_t cx = coarse.grid.nx, cy = coarse.grid.ny, cz = coarse.grid.nz;
   // Written out rather than through forEachFineStencil: the sum stays in a register.
   parallelFor(tasks, ny * nz, kRowGrain, [&](int64_t begin, int64_t end) {
     for (int64_t row = begin; row < end; ++row) {
       const int64_t j = row % ny, k = row / ny;
-      const AxisStencil sy(j, cy), sz(k, cz);
+      const AxisStencil sy(j, cy, sides, 1), sz(k, cz, sides, 2);
       const double* lines[4];
       double wyz[4];
       for (int z = 0; z < 2; ++z)
@@ -85,7 +111,7 @@ void prolongateAdd(TaskSystem& tasks, const CutCellPoisson& fine, const CutCellP
         const int64_t c = i + nx * row;
         const double s = scale[c];
         if (s == 0.0) continue;
-        const AxisStencil sx(i, cx);
+        const AxisStencil sx(i, cx, sides, 0);
         double sum = 0.0;
         for (int l = 0; l < 4; ++l)
           sum += wyz[l] * (sx.weight[0] * lines[l][sx.index[0]] + sx.weight[1] * lines[l][sx.index[1]]);
@@ -96,35 +122,32 @@ void prolongateAdd(TaskSystem& tasks, const CutCellPoisson& fine, const CutCellP
 }
 
 void restrictResidual(TaskSystem& tasks, const CutCellPoisson& fine, const CutCellPoisson& coarse,
-                      const double* scale, const double* fineR, double* coarseB) {
+                      const TransferSides& sides, const double* scale, const double* fineR, double* coarseB) {
   const int64_t nx = fine.grid.nx, ny = fine.grid.ny, nz = fine.grid.nz;
   const int64_t cx = coarse.grid.nx, cy = coarse.grid.ny, cz = coarse.grid.nz;
-  // Gather: coarse cell I collects fine 2I-1 .. 2I+2 per axis (weights 1/4, 3/4, 3/4, 1/4), the
-  // fine cells whose stencils name I (see AxisStencil), so every coarse value is written once.
-  constexpr double kWeight[4] = {0.25, 0.75, 0.75, 0.25};
+  // Gather: coarse cell I collects the fine cells 2I-1 .. 2I+2 whose stencils name it, each with
+  // the weight its AxisStencil gives I (so R is P^T by construction, ghosts included), and every
+  // coarse value is written once.
   parallelFor(tasks, cy * cz, 4, [&](int64_t begin, int64_t end) {
     for (int64_t row = begin; row < end; ++row) {
       const int64_t J = row % cy, K = row / cy;
+      const AxisWeights wy(J, ny, cy, sides, 1), wz(K, nz, cz, sides, 2);
       for (int64_t I = 0; I < cx; ++I) {
         const int64_t C = I + cx * row;
         if (!(coarse.diagonal[static_cast<size_t>(C)] > 0.0)) {
           coarseB[C] = 0.0;
           continue;
         }
+        const AxisWeights wx(I, nx, cx, sides, 0);
         double sum = 0.0;
         for (int z = 0; z < 4; ++z) {
-          const int64_t k = 2 * K - 1 + z;
-          if (k < 0 || k >= nz) continue;
+          if (wz.weight[z] == 0.0) continue;
           for (int y = 0; y < 4; ++y) {
-            const int64_t j = 2 * J - 1 + y;
-            if (j < 0 || j >= ny) continue;
-            const double wyz = kWeight[z] * kWeight[y];
-            const int64_t base = nx * (j + ny * k);
-            for (int x = 0; x < 4; ++x) {
-              const int64_t i = 2 * I - 1 + x;
-              if (i < 0 || i >= nx) continue;
-              sum += wyz * kWeight[x] * scale[base + i] * fineR[base + i];
-            }
+            if (wy.weight[y] == 0.0) continue;
+            const double wyz = wz.weight[z] * wy.weight[y];
+            const int64_t base = nx * (wy.first + y + ny * (wz.first + z)) + wx.first;
+            for (int x = 0; x < 4; ++x)
+              if (wx.weight[x] != 0.0) sum += wyz * wx.weight[x] * scale[base + x] * fineR[base + x];
           }
         }
         coarseB[C] = sum;

@@ -9,6 +9,9 @@
 // correction to 0 next to every solid, which McAdams et al. patch with extra boundary smoothing):
 //     (P x)_i = (1 / S_i) sum_I w_iI x_I          (0 on non-fluid fine cells)
 //     R = P^T:  (R r)_I = sum_i w_iI r_i / S_i     (0 on non-fluid coarse cells)
+// A ghost coarse cell behind an Open domain side (Dirichlet p = 0 on the domain face) is not
+// dropped but mirrored, x_ghost = -x_parent, so corrections vanish at the open face instead of
+// being extrapolated flat through it.
 // R = P^T exactly is what keeps the V-cycle symmetric (multigrid_coarsening.h derives the coarse
 // operator's scaling for this R).
 #pragma once
@@ -20,16 +23,21 @@
 
 namespace vp {
 
+// Which domain sides are Open (Dirichlet), in MacGrid::sides order.
+struct TransferSides {
+  bool open[6] = {false, false, false, false, false, false};
+};
+
 // Per fine cell: 1 / S_i, 0 on non-fluid fine cells and where no coarse neighbour is fluid.
 void computeProlongationScale(TaskSystem& tasks, const CutCellPoisson& fine, const CutCellPoisson& coarse,
-                              std::vector<double>* scale);
+                              const TransferSides& sides, std::vector<double>* scale);
 
 // fineX += P coarseX.
 void prolongateAdd(TaskSystem& tasks, const CutCellPoisson& fine, const CutCellPoisson& coarse,
-                   const double* scale, const double* coarseX, double* fineX);
+                   const TransferSides& sides, const double* scale, const double* coarseX, double* fineX);
 
 // coarseB = P^T fineR.
 void restrictResidual(TaskSystem& tasks, const CutCellPoisson& fine, const CutCellPoisson& coarse,
-                      const double* scale, const double* fineR, double* coarseB);
+                      const TransferSides& sides, const double* scale, const double* fineR, double* coarseB);
 
 }  // namespace vp

@@ -5,7 +5,6 @@
 
 #include "core/parallel_for.h"
 #include "fluid/multigrid_coarsening.h"
-#include "fluid/multigrid_transfer.h"
 
 namespace vp {
 namespace {
@@ -27,6 +26,15 @@ void smooth(TaskSystem& tasks, const CutCellPoisson& op, const MultigridSettings
   }
 }
 
+// Pre-smoothing: full sweeps then boundary sweeps; post-smoothing: the adjoint, in reverse.
+void smoothLevel(TaskSystem& tasks, const CutCellPoisson& op, const MultigridSettings& s,
+                 const std::array<std::vector<int64_t>, 2>& boundary, const double* b, double* x, double* scratch,
+                 bool post) {
+  if (!post) smooth(tasks, op, s, b, x, scratch, s.sweeps, false);
+  for (int i = 0; i < s.boundarySweeps; ++i) smoothRedBlackCells(tasks, op, boundary.data(), b, x, post);
+  if (post) smooth(tasks, op, s, b, x, scratch, s.sweeps, true);
+}
+
 bool canCoarsen(const MacGridSpec& g, int coarsestSize) {
   return std::min({g.nx, g.ny, g.nz}) >= 2 * coarsestSize;
 }
@@ -36,20 +44,23 @@ bool canCoarsen(const MacGridSpec& g, int coarsestSize) {
 Status buildPoissonMultigrid(TaskSystem& tasks, const CutCellPoisson& fine, const std::array<DomainSide, 6>& sides,
                              const MultigridSettings& settings, PoissonMultigrid* mg) {
   if (mg == nullptr) return fail(Status::InvalidArgument, "multigrid: output is null");
-  if (settings.sweeps < 1 || settings.coarsestSweeps < 1)
-    return fail(Status::InvalidArgument, "multigrid: sweeps = %d and coarsestSweeps = %d must be >= 1",
-                settings.sweeps, settings.coarsestSweeps);
+  if (settings.sweeps < 1 || settings.coarsestSweeps < 1 || settings.boundarySweeps < 0)
+    return fail(Status::InvalidArgument,
+                "multigrid: sweeps = %d and coarsestSweeps = %d must be >= 1, boundarySweeps = %d >= 0",
+                settings.sweeps, settings.coarsestSweeps, settings.boundarySweeps);
   if (settings.coarsestSize < 1)
     return fail(Status::InvalidArgument, "multigrid: coarsestSize = %d must be >= 1", settings.coarsestSize);
   if (!(settings.jacobiWeight > 0.0 && settings.jacobiWeight <= 1.0))
     return fail(Status::InvalidArgument, "multigrid: jacobiWeight = %g must lie in (0, 1]", settings.jacobiWeight);
   mg->settings = settings;
+  for (int side = 0; side < 6; ++side) mg->sides.open[side] = sides[static_cast<size_t>(side)] == DomainSide::Open;
   int levels = 1;
   for (MacGridSpec g = fine.grid; canCoarsen(g, settings.coarsestSize); g = coarseGridSpec(g)) ++levels;
   // resize() keeps the existing levels' buffers, so a rebuild every frame does not reallocate.
   mg->coarse.resize(static_cast<size_t>(levels - 1));
   mg->coarseFloating.assign(static_cast<size_t>(levels - 1), 0);
   mg->prolongScale.resize(static_cast<size_t>(levels - 1));
+  mg->boundaryCells.resize(static_cast<size_t>(levels));
   mg->x.resize(static_cast<size_t>(levels));
   mg->b.resize(static_cast<size_t>(levels));
   mg->r.resize(static_cast<size_t>(levels));
@@ -60,7 +71,15 @@ Status buildPoissonMultigrid(TaskSystem& tasks, const CutCellPoisson& fine, cons
     else VP_TRY(coarsenVoxel(tasks, from, sides, &to));
     mg->coarseFloating[static_cast<size_t>(l - 1)] =
         std::any_of(to.regionFloating.begin(), to.regionFloating.end(), [](uint8_t f) { return f != 0; });
-    computeProlongationScale(tasks, from, to, &mg->prolongScale[static_cast<size_t>(l - 1)]);
+    computeProlongationScale(tasks, from, to, mg->sides, &mg->prolongScale[static_cast<size_t>(l - 1)]);
+  }
+  // Full coupling doubles per level: 4 full fine faces, halved (multigrid_coarsening.h); the
+  // voxel levels' full coupling follows the same rule.
+  double fullCoupling = 1.0;
+  for (int l = 0; l < levels; ++l, fullCoupling *= 2.0) {
+    auto& boundary = mg->boundaryCells[static_cast<size_t>(l)];
+    if (settings.boundarySweeps > 0)
+      findBoundaryCells(l == 0 ? fine : mg->coarse[static_cast<size_t>(l - 1)], fullCoupling, boundary.data());
   }
   for (int l = 0; l < levels; ++l) {
     const size_t cells = (l == 0 ? fine : mg->coarse[static_cast<size_t>(l - 1)]).diagonal.size();
@@ -89,10 +108,10 @@ void applyPoissonMultigrid(TaskSystem& tasks, const CutCellPoisson& fine, Poisso
   for (int l = 0; l + 1 < levels; ++l) {
     if (l > 0) fillZero(tasks, mg.x[static_cast<size_t>(l)]);
     double* scratch = mg.r[static_cast<size_t>(l)].data();
-    smooth(tasks, op(l), s, bOf(l), xOf(l), scratch, s.sweeps, false);
+    smoothLevel(tasks, op(l), s, mg.boundaryCells[static_cast<size_t>(l)], bOf(l), xOf(l), scratch, false);
     computeResidual(tasks, op(l), bOf(l), xOf(l), scratch);
     double* coarseB = mg.b[static_cast<size_t>(l + 1)].data();
-    restrictResidual(tasks, op(l), op(l + 1), mg.prolongScale[static_cast<size_t>(l)].data(), scratch, coarseB);
+    restrictResidual(tasks, op(l), op(l + 1), mg.sides, mg.prolongScale[static_cast<size_t>(l)].data(), scratch, coarseB);
     filter(l + 1, coarseB);
   }
   const int last = levels - 1;
@@ -101,8 +120,9 @@ void applyPoissonMultigrid(TaskSystem& tasks, const CutCellPoisson& fine, Poisso
   smooth(tasks, op(last), s, bOf(last), xOf(last), mg.r[static_cast<size_t>(last)].data(), s.coarsestSweeps, true);
   filter(last, xOf(last));
   for (int l = last - 1; l >= 0; --l) {
-    prolongateAdd(tasks, op(l), op(l + 1), mg.prolongScale[static_cast<size_t>(l)].data(), xOf(l + 1), xOf(l));
-    smooth(tasks, op(l), s, bOf(l), xOf(l), mg.r[static_cast<size_t>(l)].data(), s.sweeps, true);
+    prolongateAdd(tasks, op(l), op(l + 1), mg.sides, mg.prolongScale[static_cast<size_t>(l)].data(), xOf(l + 1), xOf(l));
+    smoothLevel(tasks, op(l), s, mg.boundaryCells[static_cast<size_t>(l)], bOf(l), xOf(l),
+                mg.r[static_cast<size_t>(l)].data(), true);
     filter(l, xOf(l));
   }
 }

@@ -27,6 +27,7 @@
 #include "fluid/cut_cell_poisson.h"
 #include "fluid/mac_grid.h"
 #include "fluid/multigrid_smoother.h"
+#include "fluid/multigrid_transfer.h"
 
 namespace vp {
 
@@ -43,20 +44,23 @@ struct MultigridSettings {
   double jacobiWeight = 6.0 / 7.0;
   int coarsestSize = 4;      // stop coarsening before any grid dimension falls below this
   int coarsestSweeps = 24;   // sweeps, then as many adjoint sweeps, on the coarsest level
+  int boundarySweeps = 8;    // extra Gauss-Seidel sweeps on cells near cut faces (findBoundaryCells)
 };
 
 struct PoissonMultigrid {
   MultigridSettings settings;
+  TransferSides sides;
   std::vector<CutCellPoisson> coarse;              // levels 1 .. L-1
   std::vector<uint8_t> coarseFloating;             // per coarse level: any floating region
   std::vector<std::vector<double>> prolongScale;   // levels 0 .. L-2 (multigrid_transfer.h)
+  std::vector<std::array<std::vector<int64_t>, 2>> boundaryCells;  // per level, by colour
   std::vector<std::vector<double>> x, b, r;        // per level; x[0], b[0] unused (caller's)
 
   int levelCount() const { return 1 + static_cast<int>(coarse.size()); }
 };
 
-// `sides` only matters for Voxel coarsening (its coarse Dirichlet faces). Rebuild whenever the
-// fine operator changes.
+// `sides`: the domain's Open sides are Dirichlet for the transfers' ghosts and for the Voxel
+// coarsening's coarse faces. Rebuild whenever the fine operator changes.
 Status buildPoissonMultigrid(TaskSystem& tasks, const CutCellPoisson& fine, const std::array<DomainSide, 6>& sides,
                              const MultigridSettings& settings, PoissonMultigrid* multigrid);
 

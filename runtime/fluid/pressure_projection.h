@@ -39,7 +39,7 @@ struct PressureSolveSettings {
   double tolerance = 1e-6;  // on |b - L p|_2 / |b|_2 (filtered)
   int maxIterations = 500;
   PressureSolver solver = PressureSolver::Mic0Pcg;
-  MultigridSettings multigrid;  // smoother and cycle shape; its coarsening follows `solver`
+  MultigridSettings multigrid{};  // smoother and cycle shape; its coarsening follows `solver`
 };
 
 struct PressureSolveStats {

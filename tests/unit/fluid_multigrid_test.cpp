@@ -173,16 +173,36 @@ int iterationsTo1e6(TaskSystem& tasks, PressureSceneKind kind, int n, PressureSo
   return result.iterations;
 }
 
-// The same criterion as the 64^3 -> 128^3 one, on 32^3 -> 64^3 to keep the unit tests
-// quick; the benchmark reports 64, 128 and 192.
-TEST(FluidMultigrid, IterationCountGrowsAtMost30PercentPerRefinement) {
+// The criterion (smoke past a sphere, at most 1.3x more iterations from 64^3 to 128^3)
+// on 32^3 -> 64^3 to keep the unit tests quick; the benchmark reports 64, 128 and 192 for both
+// scenes. The plate scene is left out here: its 0.02 thick plate is thinner than a 32^3 cell
+// (partly open faces everywhere along it) and about one cell at 64^3, a change of regime rather
+// than of resolution (7 -> 12 iterations measured; 12 -> 12 from 64^3 to 128^3).
+TEST(FluidMultigrid, IterationCountGrowsAtMost30PercentPerRefinementPastSphere) {
   auto tasks = TaskSystem::create(TaskHooks{}, 2);
-  for (PressureSceneKind kind : {PressureSceneKind::SmokeSphere, PressureSceneKind::TankPlateSphere}) {
-    const int coarse = iterationsTo1e6(*tasks, kind, 32, PressureSolver::CutCellMgpcg);
-    const int fine = iterationsTo1e6(*tasks, kind, 64, PressureSolver::CutCellMgpcg);
-    std::printf("    %s: %d iterations at 32^3, %d at 64^3\n", testscene::sceneName(kind), coarse, fine);
-    EXPECT_LE(fine, 1.3 * coarse) << testscene::sceneName(kind);
+  const PressureSceneKind kind = PressureSceneKind::SmokeSphere;
+  const int coarse = iterationsTo1e6(*tasks, kind, 32, PressureSolver::CutCellMgpcg);
+  const int fine = iterationsTo1e6(*tasks, kind, 64, PressureSolver::CutCellMgpcg);
+  std::printf("    %d iterations at 32^3, %d at 64^3\n", coarse, fine);
+  EXPECT_LE(fine, 1.3 * coarse);
+}
+
+// Without boundary smoothing the cut-cell V-cycle loses its resolution independence (sliver
+// cells): the sweeps must be doing real work, or the test above is vacuous.
+TEST(FluidMultigrid, BoundarySmoothingKeepsIterationCountsDown) {
+  auto tasks = TaskSystem::create(TaskHooks{}, 2);
+  PressureScene scene;
+  makeScene(*tasks, PressureSceneKind::SmokeSphere, 64, &scene);
+  int iterations[2];
+  for (int withSweeps = 0; withSweeps < 2; ++withSweeps) {
+    SceneSolver solver;
+    solver.multigrid.boundarySweeps = withSweeps ? MultigridSettings{}.boundarySweeps : 0;
+    ASSERT_EQ(solver.prepare(*tasks, scene), Status::Ok);
+    std::vector<double> p;
+    iterations[withSweeps] = solver.solve(*tasks, scene, 1e-6, 500, &p).iterations;
   }
+  std::printf("    64^3 sphere: %d iterations without boundary sweeps, %d with\n", iterations[0], iterations[1]);
+  EXPECT_LT(iterations[1], iterations[0]);
 }
 
 // Every solver converges to the same pressure (up to the floating region's constant, which the
