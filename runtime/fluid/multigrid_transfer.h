@@ -36,8 +36,9 @@ void computeProlongationScale(TaskSystem& tasks, const CutCellPoisson& fine, con
 void prolongateAdd(TaskSystem& tasks, const CutCellPoisson& fine, const CutCellPoisson& coarse,
                    const TransferSides& sides, const double* scale, const double* coarseX, double* fineX);
 
-// coarseB = P^T fineR.
+// coarseB = P^T fineR. `scratch` holds the partial sums (resized, so reuse it across calls).
 void restrictResidual(TaskSystem& tasks, const CutCellPoisson& fine, const CutCellPoisson& coarse,
-                      const TransferSides& sides, const double* scale, const double* fineR, double* coarseB);
+                      const TransferSides& sides, const double* scale, const double* fineR, double* coarseB,
+                      std::vector<double>* scratch);
 
 }  // namespace vp

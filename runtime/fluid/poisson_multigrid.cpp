@@ -111,7 +111,8 @@ void applyPoissonMultigrid(TaskSystem& tasks, const CutCellPoisson& fine, Poisso
     smoothLevel(tasks, op(l), s, mg.boundaryCells[static_cast<size_t>(l)], bOf(l), xOf(l), scratch, false);
     computeResidual(tasks, op(l), bOf(l), xOf(l), scratch);
     double* coarseB = mg.b[static_cast<size_t>(l + 1)].data();
-    restrictResidual(tasks, op(l), op(l + 1), mg.sides, mg.prolongScale[static_cast<size_t>(l)].data(), scratch, coarseB);
+    restrictResidual(tasks, op(l), op(l + 1), mg.sides, mg.prolongScale[static_cast<size_t>(l)].data(), scratch, coarseB,
+                     &mg.restrictScratch);
     filter(l + 1, coarseB);
   }
   const int last = levels - 1;

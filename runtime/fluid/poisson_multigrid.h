@@ -55,6 +55,7 @@ struct PoissonMultigrid {
   std::vector<std::vector<double>> prolongScale;   // levels 0 .. L-2 (multigrid_transfer.h)
   std::vector<std::array<std::vector<int64_t>, 2>> boundaryCells;  // per level, by colour
   std::vector<std::vector<double>> x, b, r;        // per level; x[0], b[0] unused (caller's)
+  std::vector<double> restrictScratch;
 
   int levelCount() const { return 1 + static_cast<int>(coarse.size()); }
 };
