@@ -49,6 +49,18 @@ struct AxisWeights {
   }
 };
 
+// out = sum_t w.weight[t] * line(w.first + t), over rows of `count` values: one pass of the
+// separable restriction along y or z.
+template <class Line>
+void gatherRows(const AxisWeights& w, int64_t count, const Line& line, double* out) {
+  for (int64_t I = 0; I < count; ++I) out[I] = 0.0;
+  for (int t = 0; t < 4; ++t) {
+    if (w.weight[t] == 0.0) continue;
+    const double* in = line(w.first + t);
+    for (int64_t I = 0; I < count; ++I) out[I] += w.weight[t] * in[I];
+  }
+}
+
 // Calls body(fine cell, coarse index, weight) for the 8 stencil entries of every fluid fine
 // cell, in parallel over fine rows.
 template <class Body>
@@ -153,27 +165,15 @@ void restrictResidual(TaskSystem& tasks, const CutCellPoisson& fine, const CutCe
   parallelFor(tasks, cy * nz, kRowGrain, [&](int64_t begin, int64_t end) {
     for (int64_t row = begin; row < end; ++row) {
       const int64_t J = row % cy, k = row / cy;
-      const AxisWeights& w = wy[static_cast<size_t>(J)];
-      double* out = alongY + cx * row;
-      for (int64_t I = 0; I < cx; ++I) out[I] = 0.0;
-      for (int y = 0; y < 4; ++y) {
-        if (w.weight[y] == 0.0) continue;
-        const double* in = alongX + cx * (w.first + y + ny * k);
-        for (int64_t I = 0; I < cx; ++I) out[I] += w.weight[y] * in[I];
-      }
+      gatherRows(wy[static_cast<size_t>(J)], cx, [&](int64_t j) { return alongX + cx * (j + ny * k); },
+                 alongY + cx * row);
     }
   });
   parallelFor(tasks, cy * cz, kRowGrain, [&](int64_t begin, int64_t end) {
     for (int64_t row = begin; row < end; ++row) {
       const int64_t J = row % cy, K = row / cy;
-      const AxisWeights& w = wz[static_cast<size_t>(K)];
       double* out = coarseB + cx * row;
-      for (int64_t I = 0; I < cx; ++I) out[I] = 0.0;
-      for (int z = 0; z < 4; ++z) {
-        if (w.weight[z] == 0.0) continue;
-        const double* in = alongY + cx * (J + cy * (w.first + z));
-        for (int64_t I = 0; I < cx; ++I) out[I] += w.weight[z] * in[I];
-      }
+      gatherRows(wz[static_cast<size_t>(K)], cx, [&](int64_t k) { return alongY + cx * (J + cy * k); }, out);
       const double* diagonal = coarse.diagonal.data() + cx * row;
       for (int64_t I = 0; I < cx; ++I)
         if (!(diagonal[I] > 0.0)) out[I] = 0.0;

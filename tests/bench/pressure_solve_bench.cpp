@@ -1,18 +1,21 @@
 // BM_PressureSolve/{mic_pcg,voxel_mgpcg,cutcell_mgpcg}/{scene}/{N}: the fluid pressure solve
 // on N^3 cut-cell scenes (tests/unit/fluid_pressure_scenes.h), from p = 0 to a relative residual
-// of 1e-6, and the memory bandwidth its kernels reach.
+// of 1e-6, and the memory bandwidth its kernels reach. cutcell_mgpcg_jacobi is the cut-cell
+// multigrid with the damped Jacobi smoother instead of red-black Gauss-Seidel.
 //
 // Counters
 //   ms             the CG solve to 1e-6 (preconditioner already built)
 //   setup_ms       building the preconditioner (MIC(0) factors or the multigrid levels)
 //   iters          CG iterations
-//   gbps           the fine operator L p: bytes per cell / time per application. Byte model
-//                  (cells streamed from memory once; neighbour values hit the cache): p read 8,
-//                  L p written 8, diagonal 8, region id 4, three face-coupling arrays 3 x 8:
-//                  52 bytes per cell
-//   smoother_gbps  one red-black Gauss-Seidel sweep on the fine level (multigrid only): two
-//                  half-sweeps, each streaming x (read and written back, 16), b 8, diagonal 8
-//                  and the couplings 24: 112 bytes per cell per sweep
+//   gbps           the CG's operator L p (applyCutCellPoisson, the same for every solver):
+//                  bytes per cell / time per application. Byte model (every array streamed
+//                  from memory once; neighbour values hit the cache): p read 8, L p written 8,
+//                  diagonal 8, region id 4, three face-coupling arrays 3 x 8: 52 bytes per cell
+//   mg_operator_gbps  the multigrid's own operator kernel, the residual b - L x on level 0
+//                  (multigrid only): x 8, b 8, diagonal 8, couplings 24, r written 8: 56 bytes
+//   smoother_gbps  one fused red-black Gauss-Seidel sweep on level 0 (multigrid only): one pass
+//                  streaming x (read and written back, 16), b 8, diagonal 8, couplings 24:
+//                  56 bytes per cell
 //   triad_gbps     STREAM triad a = b + s c over 3 arrays of 64 MiB each (far beyond the
 //                  last-level cache), 24 bytes per element, on the same task system, measured
 //                  in the same run
@@ -42,7 +45,8 @@ constexpr double kTolerance = 1e-6;
 constexpr int kMaxIterations = 2000;
 constexpr int64_t kTriadElements = int64_t(8) << 20;  // 64 MiB per array
 constexpr double kOperatorBytesPerCell = 52.0;
-constexpr double kSweepBytesPerCell = 112.0;
+constexpr double kResidualBytesPerCell = 56.0;
+constexpr double kSweepBytesPerCell = 56.0;
 
 TaskSystem& benchTasks() {
   static std::unique_ptr<TaskSystem> tasks =
@@ -90,7 +94,8 @@ double triadGbps() {
   return 24.0 * kTriadElements / t / 1e9;
 }
 
-void BM_PressureSolve(benchmark::State& state, PressureSolver which, PressureSceneKind kind) {
+void BM_PressureSolve(benchmark::State& state, PressureSolver which, MultigridSmoother smoother,
+                      PressureSceneKind kind) {
   const int n = static_cast<int>(state.range(0));
   const PressureScene* built = scene(kind, n);
   if (built == nullptr) {
@@ -101,6 +106,7 @@ void BM_PressureSolve(benchmark::State& state, PressureSolver which, PressureSce
   TaskSystem& tasks = benchTasks();
   SceneSolver solver;
   solver.kind = which;
+  solver.multigrid.smoother = smoother;
   std::vector<double> p;
   const double cells = static_cast<double>(s.rhs.size());
   for (auto _ : state) {
@@ -117,6 +123,9 @@ void BM_PressureSolve(benchmark::State& state, PressureSolver which, PressureSce
     const double apply = medianSeconds(5, [&] { applyCutCellPoisson(tasks, s.poisson, p.data(), out.data()); });
     state.counters["gbps"] = kOperatorBytesPerCell * cells / apply / 1e9;
     if (which != PressureSolver::Mic0Pcg) {
+      const double residual =
+          medianSeconds(5, [&] { computeResidual(tasks, s.poisson, s.rhs.data(), p.data(), out.data()); });
+      state.counters["mg_operator_gbps"] = kResidualBytesPerCell * cells / residual / 1e9;
       const double sweep = medianSeconds(5, [&] { smoothRedBlack(tasks, s.poisson, s.rhs.data(), out.data(), false); });
       state.counters["smoother_gbps"] = kSweepBytesPerCell * cells / sweep / 1e9;
     }
@@ -125,14 +134,23 @@ void BM_PressureSolve(benchmark::State& state, PressureSolver which, PressureSce
 }
 
 void registerAll() {
-  const std::pair<PressureSolver, const char*> solvers[] = {{PressureSolver::Mic0Pcg, "mic_pcg"},
-                                                            {PressureSolver::VoxelMgpcg, "voxel_mgpcg"},
-                                                            {PressureSolver::CutCellMgpcg, "cutcell_mgpcg"}};
+  struct Variant {
+    PressureSolver solver;
+    MultigridSmoother smoother;
+    const char* name;
+  };
+  const Variant variants[] = {
+      {PressureSolver::Mic0Pcg, MultigridSmoother::RedBlackGaussSeidel, "mic_pcg"},
+      {PressureSolver::VoxelMgpcg, MultigridSmoother::RedBlackGaussSeidel, "voxel_mgpcg"},
+      {PressureSolver::CutCellMgpcg, MultigridSmoother::RedBlackGaussSeidel, "cutcell_mgpcg"},
+      {PressureSolver::CutCellMgpcg, MultigridSmoother::DampedJacobi, "cutcell_mgpcg_jacobi"},
+  };
   for (PressureSceneKind kind : {PressureSceneKind::SmokeSphere, PressureSceneKind::TankPlateSphere})
-    for (const auto& [which, name] : solvers)
+    for (const Variant& v : variants)
       for (int n : {64, 128, 192}) {
-        const std::string label = std::string("BM_PressureSolve/") + name + "/" + testscene::sceneName(kind);
-        auto* b = benchmark::RegisterBenchmark(label.c_str(), BM_PressureSolve, which, kind);
+        const PressureSolver which = v.solver;
+        const std::string label = std::string("BM_PressureSolve/") + v.name + "/" + testscene::sceneName(kind);
+        auto* b = benchmark::RegisterBenchmark(label.c_str(), BM_PressureSolve, which, v.smoother, kind);
         // MIC(0)-PCG at 192^3 takes about a minute per solve: one repetition there.
         const int repetitions = (which == PressureSolver::Mic0Pcg && n > 128) ? 1 : 3;
         b->Arg(n)->Iterations(1)->Repetitions(repetitions)->ReportAggregatesOnly(repetitions > 1)->Unit(

@@ -13,9 +13,12 @@
 #include "fluid/mac_grid.h"
 #include "fluid/mic0_preconditioner.h"
 #include "fluid/pressure_projection.h"
+#include "fluid_pressure_scenes.h"
 
 namespace vp {
 namespace {
+
+using testscene::fillSwirl;  // a smooth, non-solenoidal velocity with components of order 1
 
 constexpr std::array<DomainSide, 6> kClosed{DomainSide::Wall, DomainSide::Wall, DomainSide::Wall,
                                             DomainSide::Wall, DomainSide::Wall, DomainSide::Wall};
@@ -61,20 +64,6 @@ void makeScene(const MacGridSpec& spec, const std::array<DomainSide, 6>& sides, 
   ASSERT_EQ(prepareCollider(shape, &scene->collider), Status::Ok) << lastError();
   const PreparedCollider* list[] = {&scene->collider};
   ASSERT_EQ(computeFaceFractions(list, 1, &scene->fractions), Status::Ok) << lastError();
-}
-
-// A smooth, non-solenoidal velocity with components of order 1.
-void fillSwirl(MacGrid& grid) {
-  for (int a = 0; a < 3; ++a) {
-    const Eigen::Vector3i d = grid.faceDims(a);
-    for (int k = 0; k < d.z(); ++k)
-      for (int j = 0; j < d.y(); ++j)
-        for (int i = 0; i < d.x(); ++i) {
-          const Eigen::Vector3d x = grid.faceCentre(a, i, j, k);
-          grid.velocity[a][grid.faceIndex(a, i, j, k)] =
-              std::sin(3.0 * x.x() + a) * std::cos(2.0 * x.y() - a) + 0.5 * x.z() * x[a];
-        }
-  }
 }
 
 double norm2(const std::vector<double>& v) {
