@@ -103,25 +103,35 @@ void smoothRedBlack(TaskSystem& tasks, const CutCellPoisson& op, const double* b
   // Both colours in one pass over memory: plane k gets its first colour, then plane k - 1 its
   // second (which needs the first colour on k - 2, k - 1 and k: all done), so each plane is
   // streamed once while it is still in cache instead of twice. The values are exactly those of
-  // two full half-sweeps. Parallel over slabs of planes: a slab's last plane takes its second
-  // colour in a second phase, after the next slab has updated its first plane's first colour;
-  // within the first phase no slab touches a value another slab reads.
+  // two full half-sweeps. Parallel over slabs of planes: the first and the last plane of a slab
+  // take their second colour in a second phase, because in the first phase the neighbouring
+  // slabs' first-colour updates still read those planes' old second-colour values, and then
+  // the neighbours' first colour is all done.
   const Stencil s(op);
   const int first = reverse ? 1 : 0, second = 1 - first;
   const int64_t slabPlanes = std::max<int64_t>(2, (s.nz + kSlabsPerSweep - 1) / kSlabsPerSweep);
   const int64_t slabs = (s.nz + slabPlanes - 1) / slabPlanes;
+  auto slabRange = [&](int64_t slab, int64_t* k0, int64_t* k1) {
+    *k0 = slab * slabPlanes;
+    *k1 = std::min(s.nz, *k0 + slabPlanes);
+  };
   parallelFor(tasks, slabs, 1, [&](int64_t begin, int64_t end) {
     for (int64_t slab = begin; slab < end; ++slab) {
-      const int64_t k0 = slab * slabPlanes, k1 = std::min(s.nz, k0 + slabPlanes);
+      int64_t k0, k1;
+      slabRange(slab, &k0, &k1);
       for (int64_t k = k0; k < k1; ++k) {
         updatePlane(s, k, b, x, first);
-        if (k > k0) updatePlane(s, k - 1, b, x, second);
+        if (k - 1 > k0) updatePlane(s, k - 1, b, x, second);
       }
     }
   });
   parallelFor(tasks, slabs, 1, [&](int64_t begin, int64_t end) {
-    for (int64_t slab = begin; slab < end; ++slab)
-      updatePlane(s, std::min(s.nz, (slab + 1) * slabPlanes) - 1, b, x, second);
+    for (int64_t slab = begin; slab < end; ++slab) {
+      int64_t k0, k1;
+      slabRange(slab, &k0, &k1);
+      updatePlane(s, k0, b, x, second);
+      if (k1 - 1 > k0) updatePlane(s, k1 - 1, b, x, second);
+    }
   });
 }
 

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <random>
 
+#include "core/budget_clock.h"
 #include "fluid/multigrid_coarsening.h"
 #include "fluid_pressure_scenes.h"
 
@@ -137,6 +138,24 @@ TEST(FluidMultigrid, VCycleIsSymmetricAndPositive) {
   }
 }
 
+// The smoothers, transfers and coarse solves split work by fixed chunks and never let two
+// workers race on a value, so one V-cycle gives bitwise the same result on 1, 3 or 8 workers.
+TEST(FluidMultigrid, VCycleIsBitwiseIdenticalAcrossWorkerCounts) {
+  std::vector<double> results[3];
+  const int workers[3] = {1, 3, 8};
+  for (int w = 0; w < 3; ++w) {
+    auto tasks = TaskSystem::create(TaskHooks{}, workers[w]);
+    PressureScene scene;
+    makeScene(*tasks, PressureSceneKind::TankPlateSphere, 48, &scene);
+    SceneSolver solver;
+    ASSERT_EQ(solver.prepare(*tasks, scene), Status::Ok);
+    results[w].resize(scene.rhs.size());
+    solver.precondition(*tasks, scene, scene.rhs.data(), results[w].data());
+  }
+  EXPECT_TRUE(results[0] == results[1]);
+  EXPECT_TRUE(results[0] == results[2]);
+}
+
 // Relative residual of the CG after each iteration, from p = 0 (CG is deterministic, so a run
 // cut at k iterations has the k-th iterate of the full run).
 std::vector<double> residualHistory(TaskSystem& tasks, const PressureScene& scene, SceneSolver& solver, int count) {
@@ -235,6 +254,72 @@ TEST(FluidMultigrid, SameSolutionAsMic0Pcg) {
       EXPECT_LT(relative, 1e-7) << testscene::sceneName(kind) << " solver " << static_cast<int>(which);
     }
   }
+}
+
+// projectVelocity through each solver: the same projected velocity, the default is the cut-cell
+// multigrid, and the multigrid solve is cut by the budget and warm-starts like MIC(0)'s.
+TEST(FluidMultigrid, ProjectVelocityGivesTheSameVelocityWithEverySolver) {
+  auto tasks = TaskSystem::create(TaskHooks{}, 2);
+  EXPECT_EQ(PressureSolveSettings{}.solver, PressureSolver::CutCellMgpcg);
+  PressureScene reference;
+  makeScene(*tasks, PressureSceneKind::TankPlateSphere, 24, &reference);
+  std::vector<double> velocities[3];
+  const PressureSolver solvers[3] = {PressureSolver::Mic0Pcg, PressureSolver::VoxelMgpcg, PressureSolver::CutCellMgpcg};
+  for (int s = 0; s < 3; ++s) {
+    MacGrid grid = reference.grid;
+    PressureSolveSettings settings;
+    settings.tolerance = 1e-10;
+    settings.maxIterations = 1000;
+    settings.solver = solvers[s];
+    PressureState state;
+    PressureSolveStats stats;
+    ASSERT_EQ(projectVelocity(*tasks, grid, reference.fractions, 0.01, 1000.0, Deadline(), settings, state, &stats),
+              Status::Ok)
+        << lastError();
+    EXPECT_TRUE(stats.converged) << s;
+    for (int a = 0; a < 3; ++a) velocities[s].insert(velocities[s].end(), grid.velocity[a].begin(), grid.velocity[a].end());
+  }
+  for (int s = 1; s < 3; ++s) {
+    double worst = 0.0;
+    for (size_t f = 0; f < velocities[0].size(); ++f)
+      worst = std::max(worst, std::fabs(velocities[s][f] - velocities[0][f]));
+    EXPECT_LT(worst, 1e-7) << "solver " << s;
+  }
+}
+
+// A clock that advances 1 ms on every read (as in fluid_projection_test.cpp).
+struct SteppingClock {
+  double now = 0.0;
+  static double read(void* self) {
+    auto* c = static_cast<SteppingClock*>(self);
+    c->now += 1e-3;
+    return c->now;
+  }
+  Clock clock() { return Clock{&SteppingClock::read, this}; }
+};
+
+TEST(FluidMultigrid, BudgetCutMultigridSolveConvergesOverFramesByWarmStart) {
+  auto tasks = TaskSystem::create(TaskHooks{}, 2);
+  PressureScene scene;
+  makeScene(*tasks, PressureSceneKind::SmokeSphere, 24, &scene);
+  PressureSolveSettings settings;
+  settings.tolerance = 1e-10;
+  SteppingClock fake;
+  PressureState state;
+  PressureSolveStats stats;
+  int frames = 0;
+  for (; frames < 20; ++frames) {
+    MacGrid grid = scene.grid;  // the same intermediate velocity every frame
+    ASSERT_EQ(projectVelocity(*tasks, grid, scene.fractions, 0.01, 1000.0, Deadline(fake.clock(), 2.0), settings,
+                              state, &stats),
+              Status::Ok);
+    if (stats.converged) break;
+    EXPECT_TRUE(stats.budgetCut);
+    EXPECT_LE(stats.iterations, 2);
+  }
+  std::printf("    converged after %d frames of at most 2 iterations\n", frames + 1);
+  EXPECT_TRUE(stats.converged);
+  EXPECT_GT(frames, 1);
 }
 
 }  // namespace
