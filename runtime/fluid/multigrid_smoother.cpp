@@ -10,6 +10,10 @@ namespace vp {
 namespace {
 
 constexpr int64_t kCellsPerChunk = 4096;
+// Boundary lists are short (about 1% of the cells at 128^3) and swept 16 times per level and
+// cycle: chunks this large keep lists below it on the calling thread, where a dispatch to the
+// pool would cost more than the sweep.
+constexpr int64_t kBoundaryCellsPerChunk = 16384;
 // Slabs of planes a fused red-black sweep is cut into (fixed, so the work split never depends
 // on the worker count; the values never depend on it at all).
 constexpr int64_t kSlabsPerSweep = 16;
@@ -81,34 +85,38 @@ void forEachRow(TaskSystem& tasks, const Stencil& s, const Body& body) {
   });
 }
 
-// Gauss-Seidel update of the cells of one colour in one row.
-void updateRow(const Stencil& s, int64_t j, int64_t k, const double* b, double* x, int colour) {
+// Gauss-Seidel update of the cells of one colour in one row. kFromZero: the sweep starts from
+// x = 0 without x having been cleared, so the first colour ignores its neighbours (they are 0)
+// and both colours write every cell, non-fluid ones included (0), which makes a separate
+// clearing pass unnecessary.
+template <bool kFromZero>
+void updateRow(const Stencil& s, int64_t j, int64_t k, const double* b, double* x, int colour, bool firstColour) {
   const Row r(s, j, k, x);
   const int64_t c0 = s.nx * (j + s.ny * k);
   double* xr = x + c0;
   const double* br = b + c0;
   for (int64_t i = (j + k + colour) & 1; i < s.nx; i += 2) {
     const double d = r.diagonal[i];
-    if (d > 0.0) xr[i] = (br[i] + r.neighbourSum(i)) / d;
+    if (kFromZero) xr[i] = d > 0.0 ? (br[i] + (firstColour ? 0.0 : r.neighbourSum(i))) / d : 0.0;
+    else if (d > 0.0) xr[i] = (br[i] + r.neighbourSum(i)) / d;
   }
 }
 
-void updatePlane(const Stencil& s, int64_t k, const double* b, double* x, int colour) {
-  for (int64_t j = 0; j < s.ny; ++j) updateRow(s, j, k, b, x, colour);
+template <bool kFromZero>
+void updatePlane(const Stencil& s, int64_t k, const double* b, double* x, int colour, bool firstColour) {
+  for (int64_t j = 0; j < s.ny; ++j) updateRow<kFromZero>(s, j, k, b, x, colour, firstColour);
 }
 
-}  // namespace
-
-void smoothRedBlack(TaskSystem& tasks, const CutCellPoisson& op, const double* b, double* x, bool reverse) {
-  // Both colours in one pass over memory: plane k gets its first colour, then plane k - 1 its
-  // second (which needs the first colour on k - 2, k - 1 and k: all done), so each plane is
-  // streamed once while it is still in cache instead of twice. The values are exactly those of
-  // two full half-sweeps. Parallel over slabs of planes: the first and the last plane of a slab
-  // take their second colour in a second phase, because in the first phase the neighbouring
-  // slabs' first-colour updates still read those planes' old second-colour values, and then
-  // the neighbours' first colour is all done.
-  const Stencil s(op);
-  const int first = reverse ? 1 : 0, second = 1 - first;
+// Both colours in one pass over memory: plane k gets its first colour, then plane k - 1 its
+// second (which needs the first colour on k - 2, k - 1 and k: all done), so each plane is
+// streamed once while it is still in cache instead of twice. The values are exactly those of
+// two full half-sweeps. Parallel over slabs of planes: the first and the last plane of a slab
+// take their second colour in a second phase, because in the first phase the neighbouring
+// slabs' first-colour updates still read those planes' old second-colour values, and then
+// the neighbours' first colour is all done.
+template <bool kFromZero>
+void fusedSweep(TaskSystem& tasks, const Stencil& s, const double* b, double* x, int first) {
+  const int second = 1 - first;
   const int64_t slabPlanes = std::max<int64_t>(2, (s.nz + kSlabsPerSweep - 1) / kSlabsPerSweep);
   const int64_t slabs = (s.nz + slabPlanes - 1) / slabPlanes;
   auto slabRange = [&](int64_t slab, int64_t* k0, int64_t* k1) {
@@ -120,8 +128,8 @@ void smoothRedBlack(TaskSystem& tasks, const CutCellPoisson& op, const double* b
       int64_t k0, k1;
       slabRange(slab, &k0, &k1);
       for (int64_t k = k0; k < k1; ++k) {
-        updatePlane(s, k, b, x, first);
-        if (k - 1 > k0) updatePlane(s, k - 1, b, x, second);
+        updatePlane<kFromZero>(s, k, b, x, first, true);
+        if (k - 1 > k0) updatePlane<kFromZero>(s, k - 1, b, x, second, false);
       }
     }
   });
@@ -129,10 +137,19 @@ void smoothRedBlack(TaskSystem& tasks, const CutCellPoisson& op, const double* b
     for (int64_t slab = begin; slab < end; ++slab) {
       int64_t k0, k1;
       slabRange(slab, &k0, &k1);
-      updatePlane(s, k0, b, x, second);
-      if (k1 - 1 > k0) updatePlane(s, k1 - 1, b, x, second);
+      updatePlane<kFromZero>(s, k0, b, x, second, false);
+      if (k1 - 1 > k0) updatePlane<kFromZero>(s, k1 - 1, b, x, second, false);
     }
   });
+}
+
+}  // namespace
+
+void smoothRedBlack(TaskSystem& tasks, const CutCellPoisson& op, const double* b, double* x, bool reverse,
+                    bool fromZero) {
+  const Stencil s(op);
+  if (fromZero) fusedSweep<true>(tasks, s, b, x, reverse ? 1 : 0);
+  else fusedSweep<false>(tasks, s, b, x, reverse ? 1 : 0);
 }
 
 void smoothJacobi(TaskSystem& tasks, const CutCellPoisson& op, const double* b, double* x, double* scratch,
@@ -150,23 +167,25 @@ void smoothJacobi(TaskSystem& tasks, const CutCellPoisson& op, const double* b, 
   });
 }
 
-void smoothRedBlackCells(TaskSystem& tasks, const CutCellPoisson& op, const std::vector<int64_t>* byColour,
+void smoothRedBlackCells(TaskSystem& tasks, const CutCellPoisson& op, const BoundaryCellLists& byColour,
                          const double* b, double* x, bool reverse) {
   const Stencil s(op);
   for (int half = 0; half < 2; ++half) {
-    const std::vector<int64_t>& list = byColour[reverse ? 1 - half : half];
-    parallelFor(tasks, static_cast<int64_t>(list.size()), kCellsPerChunk, [&](int64_t begin, int64_t end) {
+    const std::vector<BoundaryCell>& list = byColour[static_cast<size_t>(reverse ? 1 - half : half)];
+    parallelFor(tasks, static_cast<int64_t>(list.size()), kBoundaryCellsPerChunk, [&](int64_t begin, int64_t end) {
       for (int64_t n = begin; n < end; ++n) {
-        const int64_t c = list[static_cast<size_t>(n)];
-        const int64_t row = c / s.nx, i = c - s.nx * row;
-        const Row r(s, row % s.ny, row / s.ny, x);
-        x[c] = (b[c] + r.neighbourSum(i)) / s.diagonal[c];
+        const BoundaryCell& e = list[static_cast<size_t>(n)];
+        const int64_t c = e.cell;
+        const double sum = s.cu[e.faceU] * x[e.neighbour[0]] + s.cu[e.faceU + 1] * x[e.neighbour[1]] +
+                           s.cv[e.faceV] * x[e.neighbour[2]] + s.cv[e.faceV + s.nx] * x[e.neighbour[3]] +
+                           s.cw[c] * x[e.neighbour[4]] + s.cw[c + s.sz] * x[e.neighbour[5]];
+        x[c] = (b[c] + sum) / s.diagonal[c];
       }
     });
   }
 }
 
-void findBoundaryCells(const CutCellPoisson& op, double fullCoupling, std::vector<int64_t> byColour[2]) {
+void findBoundaryCells(const CutCellPoisson& op, double fullCoupling, BoundaryCellLists* byColour) {
   const Stencil s(op);
   const int64_t cells = s.rows() * s.nx;
   std::vector<uint8_t> cut(static_cast<size_t>(cells), 0);
@@ -190,16 +209,21 @@ void findBoundaryCells(const CutCellPoisson& op, double fullCoupling, std::vecto
     isCut = isCut || (!onDomainBoundary && d > couplings * (1.0 + 1e-12));
     cut[static_cast<size_t>(c)] = isCut ? 1 : 0;
   }
-  byColour[0].clear();
-  byColour[1].clear();
+  for (std::vector<BoundaryCell>& list : *byColour) list.clear();
   for (int64_t c = 0; c < cells; ++c) {
     if (!(s.diagonal[c] > 0.0)) continue;
     const int64_t row = c / s.nx, i = c % s.nx, j = row % s.ny, k = row / s.ny;
+    const bool inside[6] = {i > 0, i + 1 < s.nx, j > 0, j + 1 < s.ny, k > 0, k + 1 < s.nz};
+    const int64_t step[6] = {-1, 1, -s.nx, s.nx, -s.sz, s.sz};
     bool near = cut[static_cast<size_t>(c)] != 0;
-    near = near || (i > 0 && cut[static_cast<size_t>(c - 1)]) || (i + 1 < s.nx && cut[static_cast<size_t>(c + 1)]);
-    near = near || (j > 0 && cut[static_cast<size_t>(c - s.nx)]) || (j + 1 < s.ny && cut[static_cast<size_t>(c + s.nx)]);
-    near = near || (k > 0 && cut[static_cast<size_t>(c - s.sz)]) || (k + 1 < s.nz && cut[static_cast<size_t>(c + s.sz)]);
-    if (near) byColour[(i + j + k) & 1].push_back(c);
+    for (int f = 0; f < 6; ++f) near = near || (inside[f] && cut[static_cast<size_t>(c + step[f])]);
+    if (!near) continue;
+    BoundaryCell e;
+    e.cell = c;
+    e.faceU = i + (s.nx + 1) * row;
+    e.faceV = i + s.nx * (j + (s.ny + 1) * k);
+    for (int f = 0; f < 6; ++f) e.neighbour[f] = inside[f] ? c + step[f] : c;
+    (*byColour)[static_cast<size_t>((i + j + k) & 1)].push_back(e);
   }
 }
 

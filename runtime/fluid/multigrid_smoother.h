@@ -12,6 +12,7 @@
 // Non-fluid cells (diagonal 0) are never written: they hold 0 and keep it.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -22,8 +23,10 @@ namespace vp {
 
 enum class MultigridSmoother { RedBlackGaussSeidel, DampedJacobi };
 
-// One red-black sweep (red then black; black then red when `reverse`).
-void smoothRedBlack(TaskSystem& tasks, const CutCellPoisson& op, const double* b, double* x, bool reverse);
+// One red-black sweep (red then black; black then red when `reverse`). `fromZero`: the sweep
+// starts from x = 0 whatever x holds (every cell is written, non-fluid ones with 0).
+void smoothRedBlack(TaskSystem& tasks, const CutCellPoisson& op, const double* b, double* x, bool reverse,
+                    bool fromZero = false);
 
 // One damped Jacobi sweep; `scratch` has the level's cell count.
 void smoothJacobi(TaskSystem& tasks, const CutCellPoisson& op, const double* b, double* x, double* scratch,
@@ -32,7 +35,16 @@ void smoothJacobi(TaskSystem& tasks, const CutCellPoisson& op, const double* b, 
 // Boundary smoothing (McAdams et al. 2010): Gauss-Seidel restricted to the listed cells, split
 // by colour (red list then black list; black then red when `reverse`), so it parallelizes like
 // the full sweep and its reverse is its adjoint.
-void smoothRedBlackCells(TaskSystem& tasks, const CutCellPoisson& op, const std::vector<int64_t>* byColour,
+// A listed cell with its face and neighbour indices resolved at build time (a neighbour outside
+// the grid is the cell itself: its face coupling is 0), so a sweep does no index arithmetic.
+struct BoundaryCell {
+  int64_t cell;
+  int64_t faceU, faceV;    // its -x and -y faces (its -z face has the cell's index)
+  int64_t neighbour[6];    // -x, +x, -y, +y, -z, +z
+};
+using BoundaryCellLists = std::array<std::vector<BoundaryCell>, 2>;  // red, black
+
+void smoothRedBlackCells(TaskSystem& tasks, const CutCellPoisson& op, const BoundaryCellLists& byColour,
                          const double* b, double* x, bool reverse);
 
 // The fluid cells within one face step of a cut cell, split by colour: red cells in
@@ -41,7 +53,7 @@ void smoothRedBlackCells(TaskSystem& tasks, const CutCellPoisson& op, const std:
 // has a Dirichlet part away from the domain sides (free surface). The multigrid's convergence
 // degrades with resolution without these sweeps: sliver cells (open fractions near 0) are
 // poorly represented by the coarse levels, and their number grows with the surface.
-void findBoundaryCells(const CutCellPoisson& op, double fullCoupling, std::vector<int64_t> byColour[2]);
+void findBoundaryCells(const CutCellPoisson& op, double fullCoupling, BoundaryCellLists* byColour);
 
 // r = b - A x on fluid cells, 0 elsewhere.
 void computeResidual(TaskSystem& tasks, const CutCellPoisson& op, const double* b, const double* x, double* r);

@@ -11,28 +11,30 @@ namespace {
 
 constexpr int64_t kGrain = 4096;
 
-void fillZero(TaskSystem& tasks, std::vector<double>& v) {
-  double* p = v.data();
-  parallelFor(tasks, static_cast<int64_t>(v.size()), kGrain, [&](int64_t begin, int64_t end) {
-    std::fill(p + begin, p + end, 0.0);
-  });
-}
-
+// `sweeps` sweeps (adjoint order when `adjoint`); `fromZero`: x holds anything and the smoothing
+// starts from 0 (red-black Gauss-Seidel folds the clearing into its first sweep).
 void smooth(TaskSystem& tasks, const CutCellPoisson& op, const MultigridSettings& s, const double* b, double* x,
-            double* scratch, int sweeps, bool adjoint) {
+            std::vector<double>& scratch, int sweeps, bool adjoint, bool fromZero) {
+  const bool gaussSeidel = s.smoother == MultigridSmoother::RedBlackGaussSeidel;
+  if (fromZero && !gaussSeidel) {
+    double* p = x;
+    parallelFor(tasks, static_cast<int64_t>(op.diagonal.size()), kGrain,
+                [&](int64_t begin, int64_t end) { std::fill(p + begin, p + end, 0.0); });
+  }
   for (int i = 0; i < sweeps; ++i) {
-    if (s.smoother == MultigridSmoother::RedBlackGaussSeidel) smoothRedBlack(tasks, op, b, x, adjoint);
-    else smoothJacobi(tasks, op, b, x, scratch, s.jacobiWeight);
+    if (gaussSeidel) smoothRedBlack(tasks, op, b, x, adjoint, fromZero && i == 0);
+    else smoothJacobi(tasks, op, b, x, scratch.data(), s.jacobiWeight);
   }
 }
 
-// Pre-smoothing: full sweeps then boundary sweeps; post-smoothing: the adjoint, in reverse.
+// Pre-smoothing (from zero): full sweeps then boundary sweeps; post-smoothing: the adjoint, in
+// reverse order.
 void smoothLevel(TaskSystem& tasks, const CutCellPoisson& op, const MultigridSettings& s,
-                 const std::array<std::vector<int64_t>, 2>& boundary, const double* b, double* x, double* scratch,
-                 bool post) {
-  if (!post) smooth(tasks, op, s, b, x, scratch, s.sweeps, false);
-  for (int i = 0; i < s.boundarySweeps; ++i) smoothRedBlackCells(tasks, op, boundary.data(), b, x, post);
-  if (post) smooth(tasks, op, s, b, x, scratch, s.sweeps, true);
+                 const BoundaryCellLists& boundary, const double* b, double* x,
+                 std::vector<double>& scratch, bool post) {
+  if (!post) smooth(tasks, op, s, b, x, scratch, s.sweeps, false, true);
+  for (int i = 0; i < s.boundarySweeps; ++i) smoothRedBlackCells(tasks, op, boundary, b, x, post);
+  if (post) smooth(tasks, op, s, b, x, scratch, s.sweeps, true, false);
 }
 
 bool canCoarsen(const MacGridSpec& g, int coarsestSize) {
@@ -79,7 +81,7 @@ Status buildPoissonMultigrid(TaskSystem& tasks, const CutCellPoisson& fine, cons
   for (int l = 0; l < levels; ++l, fullCoupling *= 2.0) {
     auto& boundary = mg->boundaryCells[static_cast<size_t>(l)];
     if (settings.boundarySweeps > 0)
-      findBoundaryCells(l == 0 ? fine : mg->coarse[static_cast<size_t>(l - 1)], fullCoupling, boundary.data());
+      findBoundaryCells(l == 0 ? fine : mg->coarse[static_cast<size_t>(l - 1)], fullCoupling, &boundary);
   }
   for (int l = 0; l < levels; ++l) {
     const size_t cells = (l == 0 ? fine : mg->coarse[static_cast<size_t>(l - 1)]).diagonal.size();
@@ -102,28 +104,25 @@ void applyPoissonMultigrid(TaskSystem& tasks, const CutCellPoisson& fine, Poisso
   auto filter = [&](int l, double* v) {
     if (l > 0 && mg.coarseFloating[static_cast<size_t>(l - 1)]) filterCutCellPoisson(op(l), v);
   };
-  const int64_t fineCells = static_cast<int64_t>(fine.diagonal.size());
-  parallelFor(tasks, fineCells, kGrain, [&](int64_t begin, int64_t end) { std::fill(z + begin, z + end, 0.0); });
+  auto scratchOf = [&](int l) -> std::vector<double>& { return mg.r[static_cast<size_t>(l)]; };
 
+  // Every level's x starts from 0; the first smoothing sweep clears it (smooth, fromZero).
   for (int l = 0; l + 1 < levels; ++l) {
-    if (l > 0) fillZero(tasks, mg.x[static_cast<size_t>(l)]);
-    double* scratch = mg.r[static_cast<size_t>(l)].data();
-    smoothLevel(tasks, op(l), s, mg.boundaryCells[static_cast<size_t>(l)], bOf(l), xOf(l), scratch, false);
-    computeResidual(tasks, op(l), bOf(l), xOf(l), scratch);
+    smoothLevel(tasks, op(l), s, mg.boundaryCells[static_cast<size_t>(l)], bOf(l), xOf(l), scratchOf(l), false);
+    double* residual = scratchOf(l).data();
+    computeResidual(tasks, op(l), bOf(l), xOf(l), residual);
     double* coarseB = mg.b[static_cast<size_t>(l + 1)].data();
-    restrictResidual(tasks, op(l), op(l + 1), mg.sides, mg.prolongScale[static_cast<size_t>(l)].data(), scratch, coarseB,
-                     &mg.restrictScratch);
+    restrictResidual(tasks, op(l), op(l + 1), mg.sides, mg.prolongScale[static_cast<size_t>(l)].data(), residual,
+                     coarseB, &mg.restrictScratch);
     filter(l + 1, coarseB);
   }
   const int last = levels - 1;
-  if (last > 0) fillZero(tasks, mg.x[static_cast<size_t>(last)]);
-  smooth(tasks, op(last), s, bOf(last), xOf(last), mg.r[static_cast<size_t>(last)].data(), s.coarsestSweeps, false);
-  smooth(tasks, op(last), s, bOf(last), xOf(last), mg.r[static_cast<size_t>(last)].data(), s.coarsestSweeps, true);
+  smooth(tasks, op(last), s, bOf(last), xOf(last), scratchOf(last), s.coarsestSweeps, false, true);
+  smooth(tasks, op(last), s, bOf(last), xOf(last), scratchOf(last), s.coarsestSweeps, true, false);
   filter(last, xOf(last));
   for (int l = last - 1; l >= 0; --l) {
     prolongateAdd(tasks, op(l), op(l + 1), mg.sides, mg.prolongScale[static_cast<size_t>(l)].data(), xOf(l + 1), xOf(l));
-    smoothLevel(tasks, op(l), s, mg.boundaryCells[static_cast<size_t>(l)], bOf(l), xOf(l),
-                mg.r[static_cast<size_t>(l)].data(), true);
+    smoothLevel(tasks, op(l), s, mg.boundaryCells[static_cast<size_t>(l)], bOf(l), xOf(l), scratchOf(l), true);
     filter(l, xOf(l));
   }
 }

@@ -53,7 +53,7 @@ struct PoissonMultigrid {
   std::vector<CutCellPoisson> coarse;              // levels 1 .. L-1
   std::vector<uint8_t> coarseFloating;             // per coarse level: any floating region
   std::vector<std::vector<double>> prolongScale;   // levels 0 .. L-2 (multigrid_transfer.h)
-  std::vector<std::array<std::vector<int64_t>, 2>> boundaryCells;  // per level, by colour
+  std::vector<BoundaryCellLists> boundaryCells;    // per level (multigrid_smoother.h)
   std::vector<std::vector<double>> x, b, r;        // per level; x[0], b[0] unused (caller's)
   std::vector<double> restrictScratch;
 
