@@ -16,6 +16,7 @@ namespace {
 using testscene::PressureScene;
 using testscene::PressureSceneKind;
 using testscene::SceneSolver;
+using testscene::SteppingClock;
 
 double dot(const std::vector<double>& a, const std::vector<double>& b) {
   double s = 0.0;
@@ -286,17 +287,6 @@ TEST(FluidMultigrid, ProjectVelocityGivesTheSameVelocityWithEverySolver) {
     EXPECT_LT(worst, 1e-7) << "solver " << s;
   }
 }
-
-// A clock that advances 1 ms on every read (as in fluid_projection_test.cpp).
-struct SteppingClock {
-  double now = 0.0;
-  static double read(void* self) {
-    auto* c = static_cast<SteppingClock*>(self);
-    c->now += 1e-3;
-    return c->now;
-  }
-  Clock clock() { return Clock{&SteppingClock::read, this}; }
-};
 
 TEST(FluidMultigrid, BudgetCutMultigridSolveConvergesOverFramesByWarmStart) {
   auto tasks = TaskSystem::create(TaskHooks{}, 2);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "collide/face_coverage.h"
+#include "core/budget_clock.h"
 #include "core/status.h"
 #include "core/task_system.h"
 #include "fluid/cut_cell_poisson.h"
@@ -105,6 +106,17 @@ inline Status makePressureScene(TaskSystem& tasks, PressureSceneKind kind, int n
   for (double& b : scene->rhs) b = -b;
   return Status::Ok;
 }
+
+// A clock that advances 1 ms on every read, so a budget lasts a fixed number of polls.
+struct SteppingClock {
+  double now = 0.0;
+  static double read(void* self) {
+    auto* c = static_cast<SteppingClock*>(self);
+    c->now += 1e-3;
+    return c->now;
+  }
+  Clock clock() { return Clock{&SteppingClock::read, this}; }
+};
 
 // The CG of projectVelocity on the scene's system, from p = 0, with the chosen preconditioner
 // (built here, outside any timing the caller does around solve()).

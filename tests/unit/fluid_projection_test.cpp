@@ -19,6 +19,7 @@ namespace vp {
 namespace {
 
 using testscene::fillSwirl;  // a smooth, non-solenoidal velocity with components of order 1
+using testscene::SteppingClock;
 
 constexpr std::array<DomainSide, 6> kClosed{DomainSide::Wall, DomainSide::Wall, DomainSide::Wall,
                                             DomainSide::Wall, DomainSide::Wall, DomainSide::Wall};
@@ -435,17 +436,6 @@ TEST(FluidProjection, HydrostaticRestWithTiltedBoxInClosedContainer) {
               stats.relativeResidual, maxSpeed, worst);
   EXPECT_LT(worst, 1e-6 * rho * g);
 }
-
-// A clock that advances 1 ms on every read, so a 5 ms budget lasts a fixed number of polls.
-struct SteppingClock {
-  double now = 0.0;
-  static double read(void* self) {
-    auto* c = static_cast<SteppingClock*>(self);
-    c->now += 1e-3;
-    return c->now;
-  }
-  Clock clock() { return Clock{&SteppingClock::read, this}; }
-};
 
 TEST(FluidProjection, BudgetCutSolveConvergesOverFramesByWarmStart) {
   auto tasks = TaskSystem::create(TaskHooks{}, 2);
