@@ -61,6 +61,8 @@ struct Row {
     cwLow = s.cw + c0;
     cwHigh = cwLow + s.sz;
     diagonal = s.diagonal + c0;
+    x = xDown = xUp = xBack = xFront = nullptr;  // values == nullptr: coefficients only
+    if (values == nullptr) return;
     x = values + c0;
     xDown = j > 0 ? x - s.nx : x;
     xUp = j + 1 < s.ny ? x + s.nx : x;
@@ -185,46 +187,52 @@ void smoothRedBlackCells(TaskSystem& tasks, const CutCellPoisson& op, const Boun
   }
 }
 
-void findBoundaryCells(const CutCellPoisson& op, double fullCoupling, BoundaryCellLists* byColour) {
+void findBoundaryCells(TaskSystem& tasks, const CutCellPoisson& op, double fullCoupling,
+                       BoundaryCellLists* byColour) {
   const Stencil s(op);
-  const int64_t cells = s.rows() * s.nx;
-  std::vector<uint8_t> cut(static_cast<size_t>(cells), 0);
-  for (int64_t c = 0; c < cells; ++c) {
-    const double d = s.diagonal[c];
-    if (!(d > 0.0)) continue;
-    const int64_t row = c / s.nx, i = c % s.nx, j = row % s.ny, k = row / s.ny;
-    const int64_t fu = i + (s.nx + 1) * row, fv = i + s.nx * (j + (s.ny + 1) * k);
-    // Domain-boundary faces (coupling 0 on every level) are planar and grid-aligned, which the
-    // transfers handle (multigrid_transfer.h); only faces inside the grid count.
-    const bool inside[6] = {i > 0, i + 1 < s.nx, j > 0, j + 1 < s.ny, k > 0, k + 1 < s.nz};
-    const double faces[6] = {s.cu[fu], s.cu[fu + 1], s.cv[fv], s.cv[fv + s.nx], s.cw[c], s.cw[c + s.sz]};
-    bool isCut = false, onDomainBoundary = false;
-    double couplings = 0.0;
-    for (int f = 0; f < 6; ++f) {
-      couplings += faces[f];
-      onDomainBoundary = onDomainBoundary || !inside[f];
-      isCut = isCut || (inside[f] && faces[f] < fullCoupling * (1.0 - 1e-12));
+  std::vector<uint8_t> cut(static_cast<size_t>(s.rows() * s.nx), 0);
+  forEachRow(tasks, s, [&](int64_t j, int64_t k, int64_t c0) {
+    const Row r(s, j, k, nullptr);
+    for (int64_t i = 0; i < s.nx; ++i) {
+      const double d = r.diagonal[i];
+      if (!(d > 0.0)) continue;
+      // Domain-boundary faces (coupling 0 on every level) are planar and grid-aligned, which
+      // the transfers handle (multigrid_transfer.h); only faces inside the grid count.
+      const bool inside[6] = {i > 0, i + 1 < s.nx, j > 0, j + 1 < s.ny, k > 0, k + 1 < s.nz};
+      const double faces[6] = {r.cu[i], r.cu[i + 1], r.cvLow[i], r.cvHigh[i], r.cwLow[i], r.cwHigh[i]};
+      bool isCut = false, onDomainBoundary = false;
+      double couplings = 0.0;
+      for (int f = 0; f < 6; ++f) {
+        couplings += faces[f];
+        onDomainBoundary = onDomainBoundary || !inside[f];
+        isCut = isCut || (inside[f] && faces[f] < fullCoupling * (1.0 - 1e-12));
+      }
+      // A Dirichlet part away from the domain sides is a free-surface face.
+      isCut = isCut || (!onDomainBoundary && d > couplings * (1.0 + 1e-12));
+      cut[static_cast<size_t>(c0 + i)] = isCut ? 1 : 0;
     }
-    // A Dirichlet part away from the domain sides is a free-surface face.
-    isCut = isCut || (!onDomainBoundary && d > couplings * (1.0 + 1e-12));
-    cut[static_cast<size_t>(c)] = isCut ? 1 : 0;
-  }
+  });
   for (std::vector<BoundaryCell>& list : *byColour) list.clear();
-  for (int64_t c = 0; c < cells; ++c) {
-    if (!(s.diagonal[c] > 0.0)) continue;
-    const int64_t row = c / s.nx, i = c % s.nx, j = row % s.ny, k = row / s.ny;
-    const bool inside[6] = {i > 0, i + 1 < s.nx, j > 0, j + 1 < s.ny, k > 0, k + 1 < s.nz};
-    const int64_t step[6] = {-1, 1, -s.nx, s.nx, -s.sz, s.sz};
-    bool near = cut[static_cast<size_t>(c)] != 0;
-    for (int f = 0; f < 6; ++f) near = near || (inside[f] && cut[static_cast<size_t>(c + step[f])]);
-    if (!near) continue;
-    BoundaryCell e;
-    e.cell = c;
-    e.faceU = i + (s.nx + 1) * row;
-    e.faceV = i + s.nx * (j + (s.ny + 1) * k);
-    for (int f = 0; f < 6; ++f) e.neighbour[f] = inside[f] ? c + step[f] : c;
-    (*byColour)[static_cast<size_t>((i + j + k) & 1)].push_back(e);
-  }
+  // Serial, in cell order, so the lists (and the sweeps' results) never depend on the workers.
+  const int64_t step[6] = {-1, 1, -s.nx, s.nx, -s.sz, s.sz};
+  for (int64_t k = 0; k < s.nz; ++k)
+    for (int64_t j = 0; j < s.ny; ++j) {
+      const int64_t row = j + s.ny * k;
+      for (int64_t i = 0; i < s.nx; ++i) {
+        const int64_t c = i + s.nx * row;
+        if (!(s.diagonal[c] > 0.0)) continue;
+        const bool inside[6] = {i > 0, i + 1 < s.nx, j > 0, j + 1 < s.ny, k > 0, k + 1 < s.nz};
+        bool near = cut[static_cast<size_t>(c)] != 0;
+        for (int f = 0; f < 6; ++f) near = near || (inside[f] && cut[static_cast<size_t>(c + step[f])]);
+        if (!near) continue;
+        BoundaryCell e;
+        e.cell = c;
+        e.faceU = i + (s.nx + 1) * row;
+        e.faceV = i + s.nx * (j + (s.ny + 1) * k);
+        for (int f = 0; f < 6; ++f) e.neighbour[f] = inside[f] ? c + step[f] : c;
+        (*byColour)[static_cast<size_t>((i + j + k) & 1)].push_back(e);
+      }
+    }
 }
 
 void computeResidual(TaskSystem& tasks, const CutCellPoisson& op, const double* b, const double* x, double* r) {

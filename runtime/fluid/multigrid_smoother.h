@@ -53,7 +53,8 @@ void smoothRedBlackCells(TaskSystem& tasks, const CutCellPoisson& op, const Boun
 // has a Dirichlet part away from the domain sides (free surface). The multigrid's convergence
 // degrades with resolution without these sweeps: sliver cells (open fractions near 0) are
 // poorly represented by the coarse levels, and their number grows with the surface.
-void findBoundaryCells(const CutCellPoisson& op, double fullCoupling, BoundaryCellLists* byColour);
+void findBoundaryCells(TaskSystem& tasks, const CutCellPoisson& op, double fullCoupling,
+                       BoundaryCellLists* byColour);
 
 // r = b - A x on fluid cells, 0 elsewhere.
 void computeResidual(TaskSystem& tasks, const CutCellPoisson& op, const double* b, const double* x, double* r);

@@ -81,7 +81,7 @@ Status buildPoissonMultigrid(TaskSystem& tasks, const CutCellPoisson& fine, cons
   for (int l = 0; l < levels; ++l, fullCoupling *= 2.0) {
     auto& boundary = mg->boundaryCells[static_cast<size_t>(l)];
     if (settings.boundarySweeps > 0)
-      findBoundaryCells(l == 0 ? fine : mg->coarse[static_cast<size_t>(l - 1)], fullCoupling, &boundary);
+      findBoundaryCells(tasks, l == 0 ? fine : mg->coarse[static_cast<size_t>(l - 1)], fullCoupling, &boundary);
   }
   for (int l = 0; l < levels; ++l) {
     const size_t cells = (l == 0 ? fine : mg->coarse[static_cast<size_t>(l - 1)]).diagonal.size();
