@@ -155,18 +155,31 @@ void smoothRedBlack(TaskSystem& tasks, const CutCellPoisson& op, const double* b
 }
 
 void smoothJacobi(TaskSystem& tasks, const CutCellPoisson& op, const double* b, double* x, double* scratch,
-                  double weight) {
+                  double weight, int sweeps, bool fromZero) {
   const Stencil s(op);
-  forEachRow(tasks, s, [&](int64_t j, int64_t k, int64_t c0) {
-    const Row r(s, j, k, x);
-    for (int64_t i = 0; i < s.nx; ++i) {
-      const double d = r.diagonal[i];
-      scratch[c0 + i] = d > 0.0 ? r.x[i] + weight * (b[c0 + i] + r.neighbourSum(i) - d * r.x[i]) / d : 0.0;
-    }
-  });
-  parallelFor(tasks, s.rows() * s.nx, kCellsPerChunk, [&](int64_t begin, int64_t end) {
-    for (int64_t c = begin; c < end; ++c) x[c] = scratch[c];
-  });
+  // Ping-pong between x and scratch, so a sweep is one pass and only an odd count copies back.
+  // From zero the first sweep is w D^-1 b: no neighbour reads, nothing to clear.
+  const double* in = x;
+  double* out = fromZero ? x : scratch;  // the sweep from zero reads nothing: it may write x
+  for (int sweep = 0; sweep < sweeps; ++sweep) {
+    const bool first = fromZero && sweep == 0;
+    forEachRow(tasks, s, [&](int64_t j, int64_t k, int64_t c0) {
+      const Row r(s, j, k, first ? nullptr : in);
+      for (int64_t i = 0; i < s.nx; ++i) {
+        const double d = r.diagonal[i];
+        if (!(d > 0.0)) out[c0 + i] = 0.0;
+        else if (first) out[c0 + i] = weight * b[c0 + i] / d;
+        else out[c0 + i] = r.x[i] + weight * (b[c0 + i] + r.neighbourSum(i) - d * r.x[i]) / d;
+      }
+    });
+    in = out;
+    out = out == x ? scratch : x;
+  }
+  if (in != x) {
+    parallelFor(tasks, s.rows() * s.nx, kCellsPerChunk, [&](int64_t begin, int64_t end) {
+      for (int64_t c = begin; c < end; ++c) x[c] = in[c];
+    });
+  }
 }
 
 void smoothRedBlackCells(TaskSystem& tasks, const CutCellPoisson& op, const BoundaryCellLists& byColour,

@@ -28,9 +28,10 @@ enum class MultigridSmoother { RedBlackGaussSeidel, DampedJacobi };
 void smoothRedBlack(TaskSystem& tasks, const CutCellPoisson& op, const double* b, double* x, bool reverse,
                     bool fromZero = false);
 
-// One damped Jacobi sweep; `scratch` has the level's cell count.
+// `sweeps` damped Jacobi sweeps; `scratch` has the level's cell count; `fromZero` as for
+// smoothRedBlack.
 void smoothJacobi(TaskSystem& tasks, const CutCellPoisson& op, const double* b, double* x, double* scratch,
-                  double weight);
+                  double weight, int sweeps, bool fromZero = false);
 
 // Boundary smoothing (McAdams et al. 2010): Gauss-Seidel restricted to the listed cells, split
 // by colour (red list then black list; black then red when `reverse`), so it parallelizes like

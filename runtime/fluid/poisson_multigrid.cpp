@@ -9,22 +9,15 @@
 namespace vp {
 namespace {
 
-constexpr int64_t kGrain = 4096;
-
 // `sweeps` sweeps (adjoint order when `adjoint`); `fromZero`: x holds anything and the smoothing
-// starts from 0 (red-black Gauss-Seidel folds the clearing into its first sweep).
+// starts from 0 (both smoothers fold the clearing into their first sweep).
 void smooth(TaskSystem& tasks, const CutCellPoisson& op, const MultigridSettings& s, const double* b, double* x,
             std::vector<double>& scratch, int sweeps, bool adjoint, bool fromZero) {
-  const bool gaussSeidel = s.smoother == MultigridSmoother::RedBlackGaussSeidel;
-  if (fromZero && !gaussSeidel) {
-    double* p = x;
-    parallelFor(tasks, static_cast<int64_t>(op.diagonal.size()), kGrain,
-                [&](int64_t begin, int64_t end) { std::fill(p + begin, p + end, 0.0); });
+  if (s.smoother == MultigridSmoother::DampedJacobi) {
+    smoothJacobi(tasks, op, b, x, scratch.data(), s.jacobiWeight, sweeps, fromZero);
+    return;
   }
-  for (int i = 0; i < sweeps; ++i) {
-    if (gaussSeidel) smoothRedBlack(tasks, op, b, x, adjoint, fromZero && i == 0);
-    else smoothJacobi(tasks, op, b, x, scratch.data(), s.jacobiWeight);
-  }
+  for (int i = 0; i < sweeps; ++i) smoothRedBlack(tasks, op, b, x, adjoint, fromZero && i == 0);
 }
 
 // Pre-smoothing (from zero): full sweeps then boundary sweeps; post-smoothing: the adjoint, in
