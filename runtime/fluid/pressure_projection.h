@@ -30,7 +30,7 @@ namespace vp {
 
 // The CG's preconditioner. All three solve the same system to the same tolerance. Cut-cell
 // MGPCG is the default: at 128^3 (tests/bench/pressure_solve_bench.cpp, smoke past a sphere) it
-// needs 7 iterations where voxel MGPCG needs 22 and MIC(0)-PCG 157, and it is the fastest of
+// needs 7 iterations where voxel MGPCG needs 19 and MIC(0)-PCG 157, and it is the fastest of
 // the three in time from 64^3 up.
 enum class PressureSolver {
   Mic0Pcg,       // MIC(0), serial triangular solves (mic0_preconditioner.h)
