@@ -1,5 +1,6 @@
 #include "world.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/log.h"
@@ -75,33 +76,51 @@ Status World::destroyDeformable(DeformableHandle handle) {
   return Status::Ok;
 }
 
-std::vector<DeformableHandle> World::deformableHandles() const {
-  std::vector<DeformableHandle> handles;
-  deformables_.forEach([&](DeformableHandle h, const DeformableBody&) { handles.push_back(h); });
+Status World::createFluid(FluidDesc desc, FluidHandle* out) {
+  std::unique_ptr<FluidActor> fluid;
+  VP_TRY(FluidActor::create(std::move(desc), *tasks_, &fluid));
+  *out = fluids_.insert(std::move(fluid));
+  return Status::Ok;
+}
+
+Status World::destroyFluid(FluidHandle handle) {
+  if (!fluids_.remove(handle.index1, handle.generation))
+    return fail(Status::InvalidId, "fluid id (%u, %u) is stale or null", handle.index1, handle.generation);
+  return Status::Ok;
+}
+
+namespace {
+
+// Handles of every object in slot order, and the first one with a given name (scene files
+// name objects; names need not be unique).
+template <class T>
+std::vector<typename SlotMap<T>::Handle> handlesOf(const SlotMap<T>& map) {
+  std::vector<typename SlotMap<T>::Handle> handles;
+  handles.reserve(map.size());
+  map.forEach([&](typename SlotMap<T>::Handle h, const T&) { handles.push_back(h); });
   return handles;
 }
 
+template <class T>
+bool findByName(const SlotMap<T>& map, const std::string& name, typename SlotMap<T>::Handle* out) {
+  bool found = false;
+  map.forEach([&](typename SlotMap<T>::Handle h, const T& object) {
+    if (!found && object.desc().name == name) *out = h, found = true;
+  });
+  return found;
+}
+
+}  // namespace
+
+std::vector<FluidHandle> World::fluidHandles() const { return handlesOf(fluids_); }
+bool World::findFluid(const std::string& name, FluidHandle* out) const { return findByName(fluids_, name, out); }
+std::vector<DeformableHandle> World::deformableHandles() const { return handlesOf(deformables_); }
 bool World::findDeformable(const std::string& name, DeformableHandle* out) const {
-  bool found = false;
-  deformables_.forEach([&](DeformableHandle h, const DeformableBody& d) {
-    if (!found && d.desc().name == name) *out = h, found = true;
-  });
-  return found;
+  return findByName(deformables_, name, out);
 }
-
-std::vector<ColliderHandle> World::colliderHandles() const {
-  std::vector<ColliderHandle> handles;
-  handles.reserve(colliders_.size());
-  colliders_.forEach([&](ColliderHandle h, const Collider&) { handles.push_back(h); });
-  return handles;
-}
-
+std::vector<ColliderHandle> World::colliderHandles() const { return handlesOf(colliders_); }
 bool World::findCollider(const std::string& name, ColliderHandle* out) const {
-  bool found = false;
-  colliders_.forEach([&](ColliderHandle h, const Collider& c) {
-    if (!found && c.desc().name == name) *out = h, found = true;
-  });
-  return found;
+  return findByName(colliders_, name, out);
 }
 
 Status World::setGravity(const Vec3& gravity) {
@@ -134,12 +153,27 @@ Status World::step(double dt) {
   rigid.kind = ActorKind::Rigid;
   {
     const double start = frame.elapsedMs();
-    std::vector<Collider*> kinematics;
+    std::vector<Collider*> kinematics, loaded;
     colliders_.forEach([&](ColliderHandle, Collider& c) {
       if (c.bodyType() == BodyType::Kinematic) kinematics.push_back(&c);
     });
-    stats.rigidSubsteps =
-        collision_.step(dt, config_.rigidMaxSubstep, kinematics.data(), static_cast<int>(kinematics.size()));
+    // Loads of several fluids on one body add up; a body destroyed since is skipped.
+    for (const FluidColliderLoad& l : fluidLoads_)
+      if (Collider* c = colliders_.get(l.index1, l.generation); c != nullptr) {
+        c->clearFluidLoad();
+        loaded.push_back(c);
+      }
+    std::sort(loaded.begin(), loaded.end());
+    loaded.erase(std::unique(loaded.begin(), loaded.end()), loaded.end());
+    for (const FluidColliderLoad& l : fluidLoads_)
+      if (Collider* c = colliders_.get(l.index1, l.generation); c != nullptr)
+        c->addFluidLoad(l.load.force, l.load.torque, l.load.addedMass);
+    colliders_.forEach([](ColliderHandle, Collider& c) { c.trackVelocity(); });
+    for (Collider* c : loaded) c->prepareFluidLoad(dt, config_.gravity);
+    stats.rigidSubsteps = collision_.step(dt, config_.rigidMaxSubstep, kinematics.data(),
+                                          static_cast<int>(kinematics.size()), loaded.data(),
+                                          static_cast<int>(loaded.size()));
+    for (Collider* c : loaded) c->clearFluidLoad();
     rigid.phase(Phase::Rigid).ms = frame.elapsedMs() - start;
     rigid.totalMs = rigid.phase(Phase::Rigid).ms;
   }
@@ -150,10 +184,11 @@ Status World::step(double dt) {
     if (c.geometry()) contactColliders.push_back(ContactCollider{c.geometry(), c.desc().friction});
   });
 
-  // Phase 3: deformables. Budget policy: the actors run in a fixed order and each gets an
-  // equal share of what is left of the frame when its turn comes, so time one actor does
-  // not use passes on to the next.
-  int remaining = static_cast<int>(deformables_.size());
+  // Phase 3: deformables, then fluids. Budget policy: the actors run in a fixed order
+  // (deformables, then fluids, each in slot order) and each gets an equal share of what is
+  // left of the frame when its turn comes, so time one actor does not use passes on to the
+  // next.
+  int remaining = static_cast<int>(deformables_.size() + fluids_.size());
   deformables_.forEach([&](DeformableHandle h, DeformableBody& body) {
     ActorStats a;
     a.kind = ActorKind::Deformable;
@@ -172,6 +207,31 @@ Status World::step(double dt) {
     body.step(input, &a);
     a.totalMs = frame.elapsedMs() - start;
     if (a.diverged) log(LogLevel::Warning, "deformable (%u, %u) diverged; restored its previous state", h.index1, h.generation);
+    stats.actors.push_back(a);
+  });
+
+  std::vector<FluidCollider> fluidColliders;
+  if (fluids_.size() > 0)
+    colliders_.forEach([&](ColliderHandle h, const Collider& c) {
+      if (c.geometry())
+        fluidColliders.push_back(FluidCollider{h.index1, h.generation, c.geometry(), c.bodyType() == BodyType::Dynamic});
+    });
+  fluidLoads_.clear();
+  fluids_.forEach([&](FluidHandle h, FluidActor& fluid) {
+    ActorStats a;
+    a.kind = ActorKind::Fluid;
+    a.index1 = h.index1;
+    a.generation = h.generation;
+    FluidStepInput input;
+    input.dt = dt;
+    input.gravity = config_.gravity;
+    input.deadline = frame.share(1.0 / remaining--);
+    input.tasks = tasks_.get();
+    input.colliders = fluidColliders;
+    const double start = frame.elapsedMs();
+    fluid.step(input, &a, &fluidLoads_);
+    a.totalMs = frame.elapsedMs() - start;
+    if (a.diverged) log(LogLevel::Warning, "fluid (%u, %u) diverged; its flow was reset to rest", h.index1, h.generation);
     stats.actors.push_back(a);
   });
 

@@ -1,4 +1,4 @@
-// A VolPhys world: rigid colliders (Bullet) and, later, deformable and fluid actors, stepped
+// A VolPhys world: rigid colliders (Bullet), deformable and fluid actors, stepped
 // together under one per-frame budget. Owned by the C ABI's world registry.
 #pragma once
 
@@ -13,6 +13,7 @@
 #include "core/slot_map.h"
 #include "core/task_system.h"
 #include "deform/deformable_body.h"
+#include "fluid/fluid_actor.h"
 #include "step_stats.h"
 
 namespace vp {
@@ -34,6 +35,7 @@ Status validateGravity(const Vec3& gravity);
 
 using ColliderHandle = SlotMap<Collider>::Handle;
 using DeformableHandle = SlotMap<DeformableBody>::Handle;
+using FluidHandle = SlotMap<FluidActor>::Handle;
 
 class World {
  public:
@@ -60,6 +62,13 @@ class World {
   size_t deformableCount() const { return deformables_.size(); }
   bool findDeformable(const std::string& name, DeformableHandle* out) const;
 
+  Status createFluid(FluidDesc desc, FluidHandle* out);
+  Status destroyFluid(FluidHandle handle);
+  FluidActor* fluid(FluidHandle h) const { return fluids_.get(h.index1, h.generation); }
+  std::vector<FluidHandle> fluidHandles() const;
+  size_t fluidCount() const { return fluids_.size(); }
+  bool findFluid(const std::string& name, FluidHandle* out) const;
+
   Status setGravity(const Vec3& gravity);
   const Vec3& gravity() const { return config_.gravity; }
   Status setFrameBudget(double frameBudgetMs);
@@ -77,6 +86,8 @@ class World {
   CollisionWorld collision_;
   SlotMap<Collider> colliders_;
   SlotMap<DeformableBody> deformables_;
+  SlotMap<FluidActor> fluids_;
+  std::vector<FluidColliderLoad> fluidLoads_;  // from the last step's fluids, applied in the next rigid step
   StepStats stats_;
   std::atomic<bool> stepping_{false};
 };

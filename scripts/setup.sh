@@ -8,6 +8,10 @@ packages=(
   libeigen3-dev libbullet-dev libassimp-dev nlohmann-json3-dev
   googletest libgtest-dev libgmock-dev libbenchmark-dev
   python3-numpy
+  # sample host: offscreen snapshots (OSMesa), PNG (stb), viewer (GLFW) under Xvfb + Mesa
+  libosmesa6-dev libstb-dev libgl-dev libglfw3-dev xvfb xauth libgl1-mesa-dri
+  # plots (Python example, output checks) and the C# bindings
+  python3-matplotlib python3-pil mono-mcs mono-runtime
 )
 
 missing=()

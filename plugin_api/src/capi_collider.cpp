@@ -3,6 +3,7 @@
 #include <cstring>
 
 #include "capi_convert.h"
+#include "capi_copy_out.h"
 #include "world_registry.h"
 
 using namespace vp;
@@ -231,13 +232,8 @@ vpStatus vpWorldGetColliders(vpWorldId id, vpColliderId* outIds, int32_t capacit
     VP_REQUIRE_POINTER(outCount);
     World* w;
     VP_TRY(resolveWorld(id, &w));
-    if (capacity < 0) return fail(Status::InvalidArgument, "capacity = %d: must be >= 0", capacity);
-    if (capacity > 0 && !outIds) return fail(Status::InvalidArgument, "outIds is NULL with capacity = %d", capacity);
-    std::vector<ColliderHandle> handles = w->colliderHandles();
-    const int32_t n = static_cast<int32_t>(handles.size());
-    for (int32_t i = 0; i < n && i < capacity; ++i) outIds[i] = makeColliderId(id, handles[i]);
-    *outCount = n < capacity ? n : capacity;
-    return Status::Ok;
+    return copyIdsOut(w->colliderHandles(), [&](ColliderHandle h) { return makeColliderId(id, h); }, outIds, capacity,
+                      outCount);
   });
 }
 

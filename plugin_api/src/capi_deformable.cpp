@@ -2,6 +2,7 @@
 #include <cmath>
 
 #include "capi_convert.h"
+#include "capi_copy_out.h"
 #include "deform/deformable_mesh_source.h"
 #include "world_registry.h"
 
@@ -248,22 +249,8 @@ vpStatus vpDeformableGetRenderMesh(vpDeformableId id, float* outPositions, float
     World* w;
     DeformableBody* d;
     VP_TRY(resolveDeformable(id, &w, &d));
-    const auto& pos = d->renderPositions();
-    const auto& nrm = d->renderNormals();
-    const auto& tris = d->renderMeshRest().triangles;
-    const int32_t nv = static_cast<int32_t>(pos.size()), nt = static_cast<int32_t>(tris.size());
-    if ((outPositions || outNormals) && vertexCapacity < nv)
-      return fail(Status::InvalidArgument, "vertexCapacity = %d: the render mesh has %d vertices", vertexCapacity, nv);
-    if (outTriangles && triangleCapacity < nt)
-      return fail(Status::InvalidArgument, "triangleCapacity = %d: the render mesh has %d triangles",
-                  triangleCapacity, nt);
-    for (int32_t i = 0; i < nv; ++i)
-      for (int k = 0; k < 3; ++k) {
-        if (outPositions) outPositions[3 * i + k] = static_cast<float>(pos[i][k]);
-        if (outNormals) outNormals[3 * i + k] = static_cast<float>(nrm[i][k]);
-      }
-    if (outTriangles) std::memcpy(outTriangles, tris.data(), sizeof(int32_t) * 3 * static_cast<size_t>(nt));
-    return Status::Ok;
+    return copyMeshOut("render mesh", d->renderPositions(), d->renderNormals(), d->renderMeshRest().triangles,
+                       outPositions, outNormals, vertexCapacity, outTriangles, triangleCapacity);
   });
 }
 
@@ -298,3 +285,23 @@ vpStatus vpWorldFindDeformable(vpWorldId id, const char* name, vpDeformableId* o
 }
 
 }  // extern "C"
+
+vpStatus vpWorldGetDeformableCount(vpWorldId id, int32_t* outCount) {
+  return guarded(__func__, [&] {
+    VP_REQUIRE_POINTER(outCount);
+    World* w;
+    VP_TRY(resolveWorld(id, &w));
+    *outCount = static_cast<int32_t>(w->deformableCount());
+    return Status::Ok;
+  });
+}
+
+vpStatus vpWorldGetDeformables(vpWorldId id, vpDeformableId* outIds, int32_t capacity, int32_t* outCount) {
+  return guarded(__func__, [&] {
+    VP_REQUIRE_POINTER(outCount);
+    World* w;
+    VP_TRY(resolveWorld(id, &w));
+    return copyIdsOut(w->deformableHandles(), [&](DeformableHandle h) { return makeDeformableId(id, h); }, outIds,
+                      capacity, outCount);
+  });
+}

@@ -74,19 +74,33 @@ Status resolveCollider(vpColliderId id, World** world, Collider** out) {
   return Status::Ok;
 }
 
-Status resolveDeformable(vpDeformableId id, World** world, DeformableBody** out) {
-  if (id.index1 == 0) return fail(Status::InvalidId, "deformable id is null");
+namespace {
+
+// Actor ids carry their world id; both must resolve, and a stale world is named as such.
+template <class Id, class Actor, class Lookup>
+Status resolveActor(const char* kind, const Id& id, World** world, Actor** out, const Lookup& lookup) {
+  if (id.index1 == 0) return fail(Status::InvalidId, "%s id is null", kind);
   Status s = resolveWorld(id.world, world);
   if (!ok(s)) {
     if (s == Status::InvalidId)
-      return fail(Status::InvalidId, "deformable id (%u, %u) belongs to world (%u, %u), which is stale or null",
+      return fail(Status::InvalidId, "%s id (%u, %u) belongs to world (%u, %u), which is stale or null", kind,
                   id.index1, id.generation, id.world.index1, id.world.generation);
     return s;
   }
-  DeformableBody* d = (*world)->deformable(handleOf(id));
-  if (!d) return fail(Status::InvalidId, "deformable id (%u, %u) is stale or destroyed", id.index1, id.generation);
-  *out = d;
+  Actor* a = lookup(**world);
+  if (!a) return fail(Status::InvalidId, "%s id (%u, %u) is stale or destroyed", kind, id.index1, id.generation);
+  *out = a;
   return Status::Ok;
+}
+
+}  // namespace
+
+Status resolveDeformable(vpDeformableId id, World** world, DeformableBody** out) {
+  return resolveActor("deformable", id, world, out, [&](World& w) { return w.deformable(handleOf(id)); });
+}
+
+Status resolveFluid(vpFluidId id, World** world, FluidActor** out) {
+  return resolveActor("fluid", id, world, out, [&](World& w) { return w.fluid(handleOf(id)); });
 }
 
 void fillActorStats(const ActorStats& in, vpActorStats* out) {

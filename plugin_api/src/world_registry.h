@@ -19,6 +19,7 @@ Status resolveWorld(vpWorldId id, World** out);
 Status resolveCollider(vpColliderId id, World** world, Collider** out);
 
 Status resolveDeformable(vpDeformableId id, World** world, DeformableBody** out);
+Status resolveFluid(vpFluidId id, World** world, FluidActor** out);
 
 inline vpColliderId makeColliderId(vpWorldId world, ColliderHandle h) { return vpColliderId{h.index1, h.generation, world}; }
 inline ColliderHandle handleOf(vpColliderId id) { return ColliderHandle{id.index1, id.generation}; }
@@ -26,6 +27,8 @@ inline vpDeformableId makeDeformableId(vpWorldId world, DeformableHandle h) {
   return vpDeformableId{h.index1, h.generation, world};
 }
 inline DeformableHandle handleOf(vpDeformableId id) { return DeformableHandle{id.index1, id.generation}; }
+inline vpFluidId makeFluidId(vpWorldId world, FluidHandle h) { return vpFluidId{h.index1, h.generation, world}; }
+inline FluidHandle handleOf(vpFluidId id) { return FluidHandle{id.index1, id.generation}; }
 
 void fillActorStats(const ActorStats& in, vpActorStats* out);
 

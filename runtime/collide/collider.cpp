@@ -91,6 +91,65 @@ Collider::Collider(ColliderDesc desc) : desc_(std::move(desc)), shape_(buildBull
 Collider::~Collider() = default;
 
 
+void Collider::addFluidLoad(const Vec3& force, const Vec3& torque, double addedMass) {
+  if (desc_.bodyType != BodyType::Dynamic) return;
+  fluidForce_ += force;
+  fluidTorque_ += torque;
+  fluidAddedMass_ += addedMass;
+}
+
+void Collider::trackVelocity() {
+  if (desc_.bodyType != BodyType::Dynamic) return;
+  const Vec3 v = linearVelocity(), w = angularVelocity();
+  lastVelocityChange_ = v - trackedVelocity_;
+  trackedVelocity_ = v;
+  lastSpinChange_ = w - trackedSpin_;
+  trackedSpin_ = w;
+}
+
+// The fluid's load F was computed from last step's pressure, which holds the reaction to the
+// body's acceleration then: F = F_rest - m_a a_last. Applied explicitly to a body lighter than
+// its added mass m_a, that reaction overshoots every step and the motion blows up (the
+// added-mass instability of partitioned coupling). Moving m_a to the left-hand side,
+//     (m + m_a) a = m g + F + m_a a_last,
+// is unconditionally stable for this model and changes nothing at rest (a_last = 0 and
+// F = -m g give a = 0). Bullet integrates m a = m g + F_applied, so
+//     F_applied = m / (m + m_a) (F + m_a (a_last - g)).
+// Rotation has the same problem (a flat floating box rolls itself over without it); its added
+// inertia is taken as the body's own inertia I scaled by k = m_a / m, which gives
+//     tau_applied = (tau + k I alpha_last) / (1 + k).
+void Collider::prepareFluidLoad(double dt, const Vec3& gravity) {
+  if (desc_.bodyType != BodyType::Dynamic) return;
+  const double inverseMass = body_->getInvMass();
+  if (!(inverseMass > 0.0) || !(dt > 0.0)) return;
+  const double m = 1.0 / inverseMass, ma = fluidAddedMass_;
+  const Vec3 lastAcceleration = lastVelocityChange_ / dt;
+  appliedFluidForce_ = m / (m + ma) * (fluidForce_ + ma * (lastAcceleration - gravity));
+  const double k = ma / m;
+  const btMatrix3x3& invInertia = body_->getInvInertiaTensorWorld();
+  const btVector3 alpha(btScalar(lastSpinChange_.x() / dt), btScalar(lastSpinChange_.y() / dt),
+                        btScalar(lastSpinChange_.z() / dt));
+  // A body with locked rotation has a singular inverse inertia: no stabilization needed there.
+  const btVector3 inertiaTimesAlpha =
+      std::abs(invInertia.determinant()) > 0 ? invInertia.inverse() * alpha : btVector3(0, 0, 0);
+  appliedFluidTorque_ =
+      (fluidTorque_ + k * Vec3(inertiaTimesAlpha.x(), inertiaTimesAlpha.y(), inertiaTimesAlpha.z())) / (1.0 + k);
+}
+
+void Collider::applyFluidLoad() {
+  if (desc_.bodyType != BodyType::Dynamic) return;
+  body_->activate(true);
+  body_->applyCentralForce(
+      btVector3(btScalar(appliedFluidForce_.x()), btScalar(appliedFluidForce_.y()), btScalar(appliedFluidForce_.z())));
+  body_->applyTorque(
+      btVector3(btScalar(appliedFluidTorque_.x()), btScalar(appliedFluidTorque_.y()), btScalar(appliedFluidTorque_.z())));
+}
+
+void Collider::clearFluidLoad() {
+  fluidForce_ = fluidTorque_ = appliedFluidForce_ = appliedFluidTorque_ = Vec3::Zero();
+  fluidAddedMass_ = 0.0;
+}
+
 void Collider::syncGeometry() {
   if (!geometry_) return;
   const Pose p = pose();

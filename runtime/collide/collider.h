@@ -40,6 +40,18 @@ class Collider {
   // Brings the geometry to the body's current pose and velocity (after each rigid step).
   void syncGeometry();
 
+  // Loads from the fluids: force, torque about the body's origin, and the added mass (the
+  // fluid that has to accelerate with the body). Applied on every Bullet sub-step of the next
+  // world step, then cleared. Dynamic bodies only; others ignore them.
+  void addFluidLoad(const Vec3& force, const Vec3& torque, double addedMass);
+  // Once per world step, before its sub-steps: turns the accumulated load into the force
+  // Bullet applies, stabilized for the added mass (collider.cpp says how).
+  void prepareFluidLoad(double dt, const Vec3& gravity);
+  void applyFluidLoad();  // before each sub-step (Bullet clears forces after each one)
+  void clearFluidLoad();
+  // At the start of every world step: remembers how much the velocity changed in the last one.
+  void trackVelocity();
+
   // Kinematic driving, called by CollisionWorld around Bullet's sub-steps.
   void beginKinematicStep(double dt);          // turns a target into a velocity for this step
   void advanceKinematic(double h, bool last);  // moves by h; on the last sub-step snaps to target
@@ -55,6 +67,11 @@ class Collider {
   std::optional<Pose> target_;
   std::optional<PreparedCollider> geometry_;
   bool targetActive_ = false;
+  Vec3 fluidForce_ = Vec3::Zero(), fluidTorque_ = Vec3::Zero();
+  Vec3 appliedFluidForce_ = Vec3::Zero(), appliedFluidTorque_ = Vec3::Zero();
+  double fluidAddedMass_ = 0.0;
+  Vec3 trackedVelocity_ = Vec3::Zero(), lastVelocityChange_ = Vec3::Zero();
+  Vec3 trackedSpin_ = Vec3::Zero(), lastSpinChange_ = Vec3::Zero();
 };
 
 }  // namespace vp

@@ -34,12 +34,14 @@ void CollisionWorld::setGravity(const Vec3& g) {
   world_->setGravity(btVector3(btScalar(g.x()), btScalar(g.y()), btScalar(g.z())));
 }
 
-int CollisionWorld::step(double dt, double maxSubstep, Collider* const* kinematics, int count) {
+int CollisionWorld::step(double dt, double maxSubstep, Collider* const* kinematics, int count,
+                         Collider* const* loaded, int loadedCount) {
   const int substeps = std::max(1, static_cast<int>(std::ceil(dt / maxSubstep - 1e-9)));
   const double h = dt / substeps;
   for (int k = 0; k < count; ++k) kinematics[k]->beginKinematicStep(dt);
   for (int s = 0; s < substeps; ++s) {
     for (int k = 0; k < count; ++k) kinematics[k]->advanceKinematic(h, s + 1 == substeps);
+    for (int k = 0; k < loadedCount; ++k) loaded[k]->applyFluidLoad();
     // maxSubSteps = 0: one step of exactly h, no interpolation.
     world_->stepSimulation(btScalar(h), 0);
   }

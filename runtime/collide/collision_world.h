@@ -29,8 +29,10 @@ class CollisionWorld {
   void setGravity(const Vec3& gravity);
 
   // Steps by dt in ceil(dt / maxSubstep) equal sub-steps; returns the sub-step count.
-  // `kinematics` lists the kinematic colliders to drive (count entries).
-  int step(double dt, double maxSubstep, Collider* const* kinematics, int count);
+  // `kinematics` lists the kinematic colliders to drive (count entries); `loaded` the
+  // dynamic ones carrying a fluid load (loadedCount entries), applied on every sub-step.
+  int step(double dt, double maxSubstep, Collider* const* kinematics, int count, Collider* const* loaded = nullptr,
+           int loadedCount = 0);
 
   btDiscreteDynamicsWorld& bullet() { return *world_; }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/parallel_for.h"
+#include "fluid/free_surface.h"
 
 namespace vp {
 namespace {
@@ -35,7 +36,7 @@ double effectiveOpenFraction(const MacGrid& grid, const FaceFractionField& fract
 }
 
 Status buildCutCellPoisson(TaskSystem& tasks, const MacGrid& grid, const FaceFractionField& fractions,
-                           CutCellPoisson* op) {
+                           CutCellPoisson* op, const double* liquidPhi) {
   if (op == nullptr) return fail(Status::InvalidArgument, "cut-cell poisson: op is null");
   if (!sameGrid(grid.spec, fractions.grid))
     return fail(Status::InvalidArgument,
@@ -61,6 +62,14 @@ Status buildCutCellPoisson(TaskSystem& tasks, const MacGrid& grid, const FaceFra
         for (int i = 0; i < d.x(); ++i) {
           const int along = a == 0 ? i : a == 1 ? j : k;
           if (along == 0 || along == d[a] - 1) continue;
+          if (liquidPhi != nullptr) {
+            // Only liquid-liquid faces couple; a liquid-air face is a diagonal term below.
+            Eigen::Vector3i low(i, j, k);
+            low[a] -= 1;
+            if (!isLiquid(liquidPhi[grid.cellIndex(i, j, k)]) ||
+                !isLiquid(liquidPhi[grid.cellIndex(low.x(), low.y(), low.z())]))
+              continue;
+          }
           c[grid.faceIndex(a, i, j, k)] = effectiveOpenFraction(grid, fractions, a, i, j, k);
         }
       }
@@ -72,9 +81,21 @@ Status buildCutCellPoisson(TaskSystem& tasks, const MacGrid& grid, const FaceFra
     for (int64_t c = begin; c < end; ++c) {
       const int i = static_cast<int>(c % g.nx), j = static_cast<int>((c / g.nx) % g.ny),
                 k = static_cast<int>(c / (static_cast<int64_t>(g.nx) * g.ny));
+      if (liquidPhi != nullptr && !isLiquid(liquidPhi[c])) {
+        op->diagonal[static_cast<size_t>(c)] = 0.0;  // air: p = 0, no row
+        continue;
+      }
       double sum = 0.0;
-      forEachFace(i, j, k, [&](int a, bool, int fi, int fj, int fk, int, int, int) {
-        sum += effectiveOpenFraction(grid, fractions, a, fi, fj, fk);
+      forEachFace(i, j, k, [&](int a, bool, int fi, int fj, int fk, int ni, int nj, int nk) {
+        const double open = effectiveOpenFraction(grid, fractions, a, fi, fj, fk);
+        if (liquidPhi != nullptr && open > 0.0 && inside(g, ni, nj, nk)) {
+          const double phiNb = liquidPhi[grid.cellIndex(ni, nj, nk)];
+          if (!isLiquid(phiNb)) {
+            sum += open / freeSurfaceTheta(liquidPhi[c], phiNb);
+            return;
+          }
+        }
+        sum += open;
       });
       op->diagonal[static_cast<size_t>(c)] = sum;
     }
@@ -108,6 +129,10 @@ Status buildCutCellPoisson(TaskSystem& tasks, const MacGrid& grid, const FaceFra
           return;
         }
         const size_t n = grid.cellIndex(ni, nj, nk);
+        if (liquidPhi != nullptr && !isLiquid(liquidPhi[n])) {
+          floating = false;  // the free surface: Dirichlet
+          return;
+        }
         if (op->region[n] < 0) {
           op->region[n] = id;
           queue.push_back(static_cast<int64_t>(n));

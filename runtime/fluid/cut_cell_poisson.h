@@ -19,10 +19,13 @@
 // filtered CG (Baraff-Witkin style, see conjugate_gradient.h) solve the compatible part; the
 // pressure there is defined up to a constant and comes out with zero mean.
 //
-// Free surface hook (not implemented; liquids are a later step): the operator is written as
-// per-face couplings plus a per-cell diagonal precisely so a liquid-air face can drop its
-// coupling and add A_f / theta to the diagonal (Gibou 2002; theta = phi_c / (phi_c - phi_nb)
-// clamped below) inside buildCutCellPoisson, without touching apply, MIC(0) or the CG.
+// Free surface (liquids; free_surface.h): with a level set, only liquid cells (phi < 0 with an
+// open face) have rows; air cells have p = 0 and no row. A face between a liquid cell c and
+// an air cell drops its coupling and adds A_f / theta to c's diagonal (symmetric ghost fluid,
+// Gibou 2002). So the meaning of the struct is unchanged: couplings between two row cells,
+// diagonal = sum of the open couplings + Dirichlet terms (open domain sides, free surface),
+// and code that reads only the struct (MIC(0), multigrid) picks the free surface up. A
+// liquid region touching air is not floating (the surface is Dirichlet).
 #pragma once
 
 #include <cstdint>
@@ -64,8 +67,10 @@ double effectiveOpenFraction(const MacGrid& grid, const FaceFractionField& fract
                              int j, int k);
 
 // Builds the couplings, diagonal and fluid regions. The fractions must belong to grid.spec.
+// liquidPhi: nullptr for smoke (every cell with an open face is fluid), else the liquid level
+// set (cellCount values, free_surface.h) for the free-surface operator.
 Status buildCutCellPoisson(TaskSystem& tasks, const MacGrid& grid, const FaceFractionField& fractions,
-                           CutCellPoisson* op);
+                           CutCellPoisson* op, const double* liquidPhi = nullptr);
 
 // out = L p over all cells (0 on non-fluid cells). p and out have cellCount entries.
 void applyCutCellPoisson(TaskSystem& tasks, const CutCellPoisson& op, const double* p, double* out);

@@ -4,12 +4,13 @@
 #include <cmath>
 
 #include "core/parallel_for.h"
+#include "fluid/free_surface.h"
 
 namespace vp {
 
 Status projectVelocity(TaskSystem& tasks, MacGrid& grid, const FaceFractionField& fractions, double dt,
                        double density, const Deadline& deadline, const PressureSolveSettings& settings,
-                       PressureState& state, PressureSolveStats* stats) {
+                       PressureState& state, PressureSolveStats* stats, const double* liquidPhi) {
   if (!(dt > 0.0) || !std::isfinite(dt))
     return fail(Status::InvalidArgument, "pressure projection: dt = %g must be positive and finite", dt);
   if (!(density > 0.0) || !std::isfinite(density))
@@ -21,7 +22,7 @@ Status projectVelocity(TaskSystem& tasks, MacGrid& grid, const FaceFractionField
   if (settings.maxIterations < 0)
     return fail(Status::InvalidArgument, "pressure projection: maxIterations = %d must be >= 0",
                 settings.maxIterations);
-  VP_TRY(buildCutCellPoisson(tasks, grid, fractions, &state.poisson));
+  VP_TRY(buildCutCellPoisson(tasks, grid, fractions, &state.poisson, liquidPhi));
   if (settings.solver == PressureSolver::Mic0Pcg) {
     VP_TRY(buildMic0Preconditioner(state.poisson, Mic0Settings{}, &state.preconditioner));
   } else {
@@ -82,9 +83,21 @@ Status projectVelocity(TaskSystem& tasks, MacGrid& grid, const FaceFractionField
           const int along = a == 0 ? i : a == 1 ? j : k;
           Eigen::Vector3i low(i, j, k);
           low[a] -= 1;
+          const bool hasLow = along > 0, hasHigh = along < cellsAlong;
+          const size_t cellLow = hasLow ? grid.cellIndex(low.x(), low.y(), low.z()) : 0;
+          const size_t cellHigh = hasHigh ? grid.cellIndex(i, j, k) : 0;
           // Outside an Open side the ghost pressure is 0.
-          const double pLow = along > 0 ? p[grid.cellIndex(low.x(), low.y(), low.z())] : 0.0;
-          const double pHigh = along < cellsAlong ? p[grid.cellIndex(i, j, k)] : 0.0;
+          double pLow = hasLow ? p[cellLow] : 0.0;
+          double pHigh = hasHigh ? p[cellHigh] : 0.0;
+          if (liquidPhi != nullptr) {
+            const bool liquidLow = hasLow && isLiquid(liquidPhi[cellLow]);
+            const bool liquidHigh = hasHigh && isLiquid(liquidPhi[cellHigh]);
+            if (!liquidLow && !liquidHigh) continue;
+            if (liquidLow && hasHigh && !liquidHigh)
+              pHigh = pLow * (1.0 - 1.0 / freeSurfaceTheta(liquidPhi[cellLow], liquidPhi[cellHigh]));
+            else if (liquidHigh && hasLow && !liquidLow)
+              pLow = pHigh * (1.0 - 1.0 / freeSurfaceTheta(liquidPhi[cellHigh], liquidPhi[cellLow]));
+          }
           u[f] -= gradientScale * (pHigh - pLow);
         }
       }

@@ -9,6 +9,10 @@
 //   3. open faces (A_f > 0):  u_f -= dt / (rho h) * (p_high - p_low)   (p = 0 outside Open sides)
 //      closed faces (A_f = 0, or below kMinOpenFraction): u_f = solid normal velocity
 //      Wall faces:             u_f = 0
+// Liquids (liquidPhi != nullptr, free_surface.h): only liquid cells are solved for; a face
+// between a liquid and an air cell uses the ghost pressure p_c (1 - 1/theta) on the air side
+// (the gradient the operator balanced), and faces with air on both sides (or an Open-side
+// face of an air cell) keep their velocity: velocity extrapolation sets those.
 // After a converged solve, |netOutflow_c| <= tolerance * |netOutflow(u*)|_2 on every cell,
 // since netOutflow(u) = (dt / (rho h)) * (L p - b) cell by cell.
 #pragma once
@@ -67,6 +71,7 @@ struct PressureState {
 
 Status projectVelocity(TaskSystem& tasks, MacGrid& grid, const FaceFractionField& fractions, double dt,
                        double density, const Deadline& deadline, const PressureSolveSettings& settings,
-                       PressureState& warmStart, PressureSolveStats* stats);
+                       PressureState& warmStart, PressureSolveStats* stats,
+                       const double* liquidPhi = nullptr);
 
 }  // namespace vp

@@ -86,4 +86,23 @@ Status JsonObject::object(const char* key, std::optional<JsonObject>* out, bool 
   return Status::Ok;
 }
 
+Status parseEnum(const JsonObject& obj, const char* key, std::initializer_list<const char*> names, int* out) {
+  std::string value;
+  VP_TRY(obj.string(key, &value));
+  if (!obj.has(key)) return Status::Ok;
+  int i = 0;
+  for (const char* name : names) {
+    if (value == name) {
+      *out = i;
+      return Status::Ok;
+    }
+    ++i;
+  }
+  std::string list;
+  for (const char* name : names) list += std::string(list.empty() ? "" : ", ") + name;
+  return fail(Status::ParseError, "%s = \"%s\": expected one of: %s", obj.pathOf(key).c_str(), value.c_str(),
+              list.c_str());
+}
+
+
 }  // namespace vp

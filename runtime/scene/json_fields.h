@@ -23,6 +23,7 @@ class JsonObject {
   std::string pathOf(const char* key) const { return path_ + "." + key; }
   const std::string& path() const { return path_; }
   const nlohmann::json& at(const char* key) const { return value_.at(key); }
+  const nlohmann::json& value() const { return value_; }
 
   // Optional fields: leave *out unchanged when the key is absent.
   Status number(const char* key, double* out) const;
@@ -38,5 +39,8 @@ class JsonObject {
 };
 
 const char* jsonTypeName(const nlohmann::json& value);
+
+// An optional string field that must be one of `names`; *out = its position in the list.
+Status parseEnum(const JsonObject& obj, const char* key, std::initializer_list<const char*> names, int* out);
 
 }  // namespace vp

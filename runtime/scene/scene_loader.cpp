@@ -1,12 +1,14 @@
 #include "scene/scene_loader.h"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <optional>
 #include <sstream>
 
 #include "deform/deformable_mesh_source.h"
 #include "scene/json_fields.h"
+#include "scene/scene_fluid.h"
 #include "world.h"
 
 namespace vp {
@@ -34,25 +36,8 @@ struct Scene {
   SceneWorldSettings world;
   std::vector<ColliderDesc> colliders;
   std::vector<SceneDeformable> deformables;
+  std::vector<FluidDesc> fluids;
 };
-
-Status parseEnum(const JsonObject& obj, const char* key, std::initializer_list<const char*> names, int* out) {
-  std::string value;
-  VP_TRY(obj.string(key, &value));
-  if (!obj.has(key)) return Status::Ok;
-  int i = 0;
-  for (const char* name : names) {
-    if (value == name) {
-      *out = i;
-      return Status::Ok;
-    }
-    ++i;
-  }
-  std::string list;
-  for (const char* name : names) list += std::string(list.empty() ? "" : ", ") + name;
-  return fail(Status::ParseError, "%s = \"%s\": expected one of: %s", obj.pathOf(key).c_str(), value.c_str(),
-              list.c_str());
-}
 
 Status parsePointArray(const JsonObject& obj, const char* key, std::vector<Vec3>* out) {
   if (!obj.has(key)) return Status::Ok;
@@ -177,11 +162,59 @@ std::string resolvePath(const std::string& path, const std::string& baseDirector
   return path.empty() || path[0] == '/' ? path : baseDirectory + "/" + path;
 }
 
+// The keys that say where a deformable's mesh comes from; "ifFileMissing" may replace them.
+const std::initializer_list<const char*> kMeshSourceKeys = {"box", "tetFile", "surfaceFile", "voxelResolution",
+                                                            "renderFile", "scale"};
+
+Status parseDeformable(const JsonObject& obj, const std::string& baseDirectory, SceneDeformable* out);
+
+// A scene can name a model that only some machines have (a system package's sample file) and
+// say what to use instead: when the tetFile / surfaceFile does not exist, the mesh-source
+// keys of "ifFileMissing" replace the deformable's own. *replaced tells whether they did.
+Status applyFileFallback(const JsonObject& obj, const std::string& baseDirectory, SceneDeformable* out,
+                         bool* replaced) {
+  *replaced = false;
+  if (!obj.has("ifFileMissing")) return Status::Ok;
+  std::optional<JsonObject> fallback;
+  VP_TRY(obj.object("ifFileMissing", &fallback, true));
+  VP_TRY(fallback->checkKeys(kMeshSourceKeys));
+  std::string file;
+  VP_TRY(obj.string("surfaceFile", &file));
+  if (file.empty()) VP_TRY(obj.string("tetFile", &file));
+  if (file.empty())
+    return fail(Status::ParseError, "%s: needs a surfaceFile or tetFile whose absence it stands in for",
+                obj.pathOf("ifFileMissing").c_str());
+  std::error_code ec;
+  if (std::filesystem::exists(resolvePath(file, baseDirectory), ec)) return Status::Ok;
+  nlohmann::json merged = obj.value();
+  for (const char* key : kMeshSourceKeys) merged.erase(key);
+  merged.erase("ifFileMissing");
+  for (const auto& [key, value] : fallback->value().items()) merged[key] = value;
+  *replaced = true;
+  return parseDeformable(JsonObject(merged, obj.path()), baseDirectory, out);
+}
+
+// Uniform scale of the rest mesh and render mesh in the actor's frame (before the pose).
+Status applyScale(const JsonObject& obj, DeformableDesc* desc) {
+  if (!obj.has("scale")) return Status::Ok;
+  double scale = 1.0;
+  VP_TRY(obj.number("scale", &scale));
+  if (!(scale > 0.0 && std::isfinite(scale)))
+    return fail(Status::ParseError, "%s = %g: must be a positive number", obj.pathOf("scale").c_str(), scale);
+  for (Vec3& v : desc->mesh.vertices) v *= scale;
+  if (desc->renderMesh)
+    for (Vec3& v : desc->renderMesh->vertices) v *= scale;
+  return Status::Ok;
+}
+
 Status parseDeformable(const JsonObject& obj, const std::string& baseDirectory, SceneDeformable* out) {
-  VP_TRY(obj.checkKeys({"name", "degree", "box", "tetFile", "surfaceFile", "voxelResolution", "renderFile", "position",
-                        "rotation", "axisAngle", "linearVelocity", "youngsModulus", "poissonRatio", "density",
-                        "massDamping", "stiffnessDamping", "friction", "solverTolerance", "solverMaxIterations",
-                        "pinBox", "attach"}));
+  VP_TRY(obj.checkKeys({"name", "degree", "box", "tetFile", "surfaceFile", "voxelResolution", "renderFile", "scale",
+                        "ifFileMissing", "position", "rotation", "axisAngle", "linearVelocity", "youngsModulus",
+                        "poissonRatio", "density", "massDamping", "stiffnessDamping", "friction", "solverTolerance",
+                        "solverMaxIterations", "pinBox", "attach"}));
+  bool replaced = false;
+  VP_TRY(applyFileFallback(obj, baseDirectory, out, &replaced));
+  if (replaced) return Status::Ok;
   DeformableDesc& desc = out->desc;
   DeformableMeshSource source;
   VP_TRY(obj.string("name", &desc.name));
@@ -218,6 +251,7 @@ Status parseDeformable(const JsonObject& obj, const std::string& baseDirectory, 
   // Resolve and validate now so that applying the scene cannot fail half-way.
   Status s = resolveDeformableMesh(source, &desc);
   if (!ok(s)) return addErrorContext(s, obj.path());
+  VP_TRY(applyScale(obj, &desc));
   s = validateDeformableDesc(desc);
   if (!ok(s)) return addErrorContext(s, obj.path());
   if (obj.has("pinBox")) VP_TRY(parseNodeBox(obj, "pinBox", desc, &out->pinnedNodes));
@@ -240,7 +274,7 @@ Status parseDeformable(const JsonObject& obj, const std::string& baseDirectory, 
 
 Status parseScene(const json& root, const std::string& baseDirectory, Scene* scene) {
   JsonObject top(root, "$");
-  VP_TRY(top.checkKeys({"version", "world", "colliders", "deformables"}));
+  VP_TRY(top.checkKeys({"version", "world", "colliders", "deformables", "fluids"}));
   int version = 1;
   VP_TRY(top.integer("version", &version));
   if (version != 1) return fail(Status::ParseError, "$.version = %d: this library reads version 1", version);
@@ -285,6 +319,16 @@ Status parseScene(const json& root, const std::string& baseDirectory, Scene* sce
       scene->deformables.push_back(std::move(d));
     }
   }
+  if (top.has("fluids")) {
+    const json& list = root.at("fluids");
+    if (!list.is_array()) return fail(Status::ParseError, "$.fluids: expected an array, got %s", jsonTypeName(list));
+    for (size_t i = 0; i < list.size(); ++i) {
+      JsonObject obj(list[i], "$.fluids[" + std::to_string(i) + "]");
+      FluidDesc f;
+      VP_TRY(parseFluid(obj, &f));
+      scene->fluids.push_back(std::move(f));
+    }
+  }
   return Status::Ok;
 }
 
@@ -321,7 +365,9 @@ Status loadSceneFromString(World& world, const std::string& text, const std::str
   // added so far is removed again.
   std::vector<ColliderHandle> addedColliders;
   std::vector<DeformableHandle> addedDeformables;
+  std::vector<FluidHandle> addedFluids;
   auto rollBack = [&](Status s) {
+    for (FluidHandle f : addedFluids) world.destroyFluid(f);
     for (DeformableHandle d : addedDeformables) world.destroyDeformable(d);
     for (ColliderHandle c : addedColliders) world.destroyCollider(c);
     return s;
@@ -346,6 +392,12 @@ Status loadSceneFromString(World& world, const std::string& text, const std::str
                                   *world.collider(c));
     }
     if (!ok(s)) return rollBack(s);
+  }
+  for (size_t i = 0; i < scene.fluids.size(); ++i) {
+    FluidHandle h;
+    Status s = world.createFluid(std::move(scene.fluids[i]), &h);
+    if (!ok(s)) return rollBack(addErrorContext(s, "$.fluids[" + std::to_string(i) + "]"));
+    addedFluids.push_back(h);
   }
   if (scene.world.gravity) world.setGravity(*scene.world.gravity);
   if (scene.world.frameBudgetMs) world.setFrameBudget(*scene.world.frameBudgetMs);

@@ -1,16 +1,20 @@
 /* VolPhys sample host: loads a scene through the C ABI, steps it headless, prints one line of
- * stats per frame and a summary, and writes its outputs (per-frame stats CSV, final collider
- * poses CSV) to an output folder. Uses nothing but volphys.h. */
+ * stats per frame and a summary, and writes its outputs to an output folder: per-frame stats
+ * CSV, final collider poses CSV, a frame-time plot (SVG), meshes of the deformables (assimp)
+ * and PNG snapshots (offscreen OSMesa) every few frames. Talks to VolPhys through nothing but
+ * volphys.h; the exporter is a C++ file only because assimp's exporter is C++. */
 #define _POSIX_C_SOURCE 200809L
 
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <time.h>
 
+#include "cli_values.h"
+#include "frame_plot.h"
 #include "frame_stats.h"
+#include "host_outputs.h"
 #include "volphys/volphys.h"
 
 typedef struct Options {
@@ -21,40 +25,20 @@ typedef struct Options {
   int workers;
   double budgetMs; /* < 0: keep the scene's */
   int quiet;
+  HostOutputsConfig outputs;
 } Options;
 
 static void usage(FILE* f) {
   fprintf(f,
           "usage: volphys_host [--scene FILE] [--frames N] [--dt SECONDS] [--workers N]\n"
           "                    [--budget MS] [--out DIR] [--quiet]\n"
-          "Steps the scene headless, prints per-frame stats, writes DIR/stats.csv and DIR/poses.csv.\n"
-          "Defaults: the bundled default scene, 300 frames, dt 1/60, 2 workers, out/sample.\n");
-}
-
-static int parseInt(const char* flag, const char* text, int lo, int hi, int* out) {
-  char* end;
-  long v;
-  errno = 0;
-  v = strtol(text, &end, 10);
-  if (errno || *end || v < lo || v > hi) {
-    fprintf(stderr, "volphys_host: %s = '%s': expected an integer in [%d, %d]\n", flag, text, lo, hi);
-    return 0;
-  }
-  *out = (int)v;
-  return 1;
-}
-
-static int parseDouble(const char* flag, const char* text, double lo, double hi, double* out) {
-  char* end;
-  double v;
-  errno = 0;
-  v = strtod(text, &end);
-  if (errno || *end || !(v >= lo && v <= hi)) {
-    fprintf(stderr, "volphys_host: %s = '%s': expected a number in [%g, %g]\n", flag, text, lo, hi);
-    return 0;
-  }
-  *out = v;
-  return 1;
+          "                    [--export-every N] [--export-format ID] [--snapshot-every N] [--image-size WxH]\n"
+          "Steps the scene headless, prints per-frame stats, writes DIR/stats.csv, DIR/poses.csv,\n"
+          "DIR/frame_times.svg, DIR/meshes/deformableK_fNNNNN.EXT every --export-every frames (assimp\n"
+          "format id: ply, plyb, obj, stl, ...) and DIR/snapshots/frame_NNNNN.png every --snapshot-every\n"
+          "frames (both also on the last frame; 0 = off).\n"
+          "Defaults: the bundled default scene, 300 frames, dt 1/60, 2 workers, out/sample,\n"
+          "export every 30 frames as ply, snapshot every 60 frames at 640x480.\n");
 }
 
 static int parseOptions(int argc, char** argv, Options* o) {
@@ -66,6 +50,11 @@ static int parseOptions(int argc, char** argv, Options* o) {
   o->workers = 2;
   o->budgetMs = -1.0;
   o->quiet = 0;
+  o->outputs.exportEvery = 30;
+  o->outputs.exportFormat = "ply";
+  o->outputs.snapshotEvery = 60;
+  o->outputs.imageWidth = 640;
+  o->outputs.imageHeight = 480;
   for (i = 1; i < argc; ++i) {
     const char* a = argv[i];
     const char* v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -83,10 +72,16 @@ static int parseOptions(int argc, char** argv, Options* o) {
     ++i;
     if (!strcmp(a, "--scene")) o->scene = v;
     else if (!strcmp(a, "--out")) o->outDir = v;
-    else if (!strcmp(a, "--frames")) { if (!parseInt(a, v, 1, 10000000, &o->frames)) return 0; }
-    else if (!strcmp(a, "--dt")) { if (!parseDouble(a, v, 1e-5, 1.0, &o->dt)) return 0; }
-    else if (!strcmp(a, "--workers")) { if (!parseInt(a, v, 1, 64, &o->workers)) return 0; }
-    else if (!strcmp(a, "--budget")) { if (!parseDouble(a, v, 0.0, 1e4, &o->budgetMs)) return 0; }
+    else if (!strcmp(a, "--frames")) { if (!cliInt("volphys_host", a, v, 1, 10000000, &o->frames)) return 0; }
+    else if (!strcmp(a, "--dt")) { if (!cliDouble("volphys_host", a, v, 1e-5, 1.0, &o->dt)) return 0; }
+    else if (!strcmp(a, "--workers")) { if (!cliInt("volphys_host", a, v, 1, 64, &o->workers)) return 0; }
+    else if (!strcmp(a, "--budget")) { if (!cliDouble("volphys_host", a, v, 0.0, 1e4, &o->budgetMs)) return 0; }
+    else if (!strcmp(a, "--export-every")) { if (!cliInt("volphys_host", a, v, 0, 10000000, &o->outputs.exportEvery)) return 0; }
+    else if (!strcmp(a, "--export-format")) o->outputs.exportFormat = v;
+    else if (!strcmp(a, "--snapshot-every")) { if (!cliInt("volphys_host", a, v, 0, 10000000, &o->outputs.snapshotEvery)) return 0; }
+    else if (!strcmp(a, "--image-size")) {
+      if (!cliSize("volphys_host", a, v, 16, 8192, &o->outputs.imageWidth, &o->outputs.imageHeight)) return 0;
+    }
     else {
       fprintf(stderr, "volphys_host: unknown option '%s'\n", a);
       usage(stderr);
@@ -100,23 +95,6 @@ static double wallMs(void) {
   struct timespec ts;
   clock_gettime(CLOCK_MONOTONIC, &ts);
   return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
-}
-
-/* mkdir -p */
-static int makeDirectories(const char* path) {
-  char buffer[4096];
-  size_t n = strlen(path), i;
-  if (n == 0 || n >= sizeof buffer) return 0;
-  memcpy(buffer, path, n + 1);
-  for (i = 1; i <= n; ++i) {
-    if (buffer[i] == '/' || buffer[i] == '\0') {
-      char saved = buffer[i];
-      buffer[i] = '\0';
-      if (mkdir(buffer, 0755) != 0 && errno != EEXIST) return 0;
-      buffer[i] = saved;
-    }
-  }
-  return 1;
 }
 
 static FILE* openOutput(const char* dir, const char* name) {
@@ -173,67 +151,96 @@ static int writePoses(vpWorldId world, const char* outDir) {
   return 1;
 }
 
-int main(int argc, char** argv) {
-  Options o;
-  vpWorldDef def;
-  vpWorldId world;
+/* Steps the loaded world and writes every output; returns the exit code. */
+static int run(vpWorldId world, const Options* o) {
   vpStatus s;
   FrameTimes times;
-  FILE* csv;
-  int frame, cutFrames = 0;
+  FramePlot plot;
+  HostOutputs outputs;
+  char plotPath[4096];
+  FILE* csv = NULL;
+  int frame, cutFrames = 0, rc = 1;
   vpStepStats stats = vpDefaultStepStats();
 
-  if (!parseOptions(argc, argv, &o)) return 2;
-  if ((s = vpCheckVersion()) != vpStatus_Ok) return fail("version check", s);
-
-  def = vpDefaultWorldDef();
-  def.workerCount = o.workers;
-  if ((s = vpWorldCreate(&def, &world)) != vpStatus_Ok) return fail("vpWorldCreate", s);
-  if ((s = vpWorldLoadScene(world, o.scene)) != vpStatus_Ok) {
-    vpWorldDestroy(world);
-    return fail("vpWorldLoadScene", s);
-  }
-  if (o.budgetMs >= 0.0 && (s = vpWorldSetFrameBudget(world, (float)o.budgetMs)) != vpStatus_Ok)
-    return fail("vpWorldSetFrameBudget", s);
-  if (!makeDirectories(o.outDir)) {
-    fprintf(stderr, "volphys_host: cannot create output folder '%s': %s\n", o.outDir, strerror(errno));
+  memset(&times, 0, sizeof times);
+  memset(&plot, 0, sizeof plot);
+  memset(&outputs, 0, sizeof outputs);
+  if (!makeDirectories(o->outDir)) {
+    fprintf(stderr, "volphys_host: cannot create output folder '%s': %s\n", o->outDir, strerror(errno));
     return 1;
   }
-  csv = openOutput(o.outDir, "stats.csv");
-  if (!csv || !frameTimesInit(&times, o.frames)) return 1;
+  if (!hostOutputsInit(&outputs, world, &o->outputs)) goto done;
+  csv = openOutput(o->outDir, "stats.csv");
+  if (!csv || !frameTimesInit(&times, o->frames) || !framePlotInit(&plot, o->frames)) goto done;
   fprintf(csv,
           "frame,step_ms,wall_ms,budget_ms,budget_cut,rigid_ms,rigid_substeps,colliders,actors,"
           "deform_ms,deform_solve_ms,deform_iters,deform_max_residual,diverged\n");
 
-  printf("volphys_host: scene %s, %d frames, dt %.5f s, %d workers\n", o.scene, o.frames, o.dt, o.workers);
-  for (frame = 0; frame < o.frames; ++frame) {
+  printf("volphys_host: scene %s, %d frames, dt %.5f s, %d workers\n", o->scene, o->frames, o->dt, o->workers);
+  for (frame = 0; frame < o->frames; ++frame) {
     vpActorStats rigid;
     DeformSummary deform;
     double t0 = wallMs(), wall;
-    if ((s = vpWorldStep(world, (float)o.dt)) != vpStatus_Ok) return fail("vpWorldStep", s);
+    if ((s = vpWorldStep(world, (float)o->dt)) != vpStatus_Ok) {
+      fail("vpWorldStep", s);
+      goto done;
+    }
     wall = wallMs() - t0;
     vpWorldGetStepStats(world, &stats);
     vpWorldGetActorStats(world, 0, &rigid);
     summarizeDeformables(world, stats.actorCount, &deform);
     frameTimesAdd(&times, wall);
+    framePlotAdd(&plot, stats.totalMs, stats.budgetMs, stats.budgetCut);
     cutFrames += stats.budgetCut;
     fprintf(csv, "%d,%.4f,%.4f,%.2f,%d,%.4f,%d,%d,%d,%.4f,%.4f,%d,%.3e,%d\n", frame, stats.totalMs, wall,
             stats.budgetMs, stats.budgetCut, rigid.phases[vpPhase_Rigid].ms, stats.rigidSubsteps, stats.colliderCount,
             stats.actorCount, deform.ms, deform.solveMs, deform.iterations, deform.maxResidual, deform.diverged);
-    if (!o.quiet)
+    if (!o->quiet)
       printf("frame %4d  step %7.3f ms  (budget %5.1f ms%s)  rigid %6.3f ms x%d  deform %7.3f ms, %3d CG its, "
              "res %.1e%s\n",
              frame, stats.totalMs, stats.budgetMs, stats.budgetCut ? ", CUT" : "", rigid.phases[vpPhase_Rigid].ms,
              stats.rigidSubsteps, deform.ms, deform.iterations, deform.maxResidual,
              deform.diverged ? "  DIVERGED" : "");
+    /* Outside the timed step: writing files is the host's cost, not the simulation's. */
+    if (!hostOutputsFrame(&outputs, frame, o->frames)) goto done;
   }
-  fclose(csv);
-  if (!writePoses(world, o.outDir)) return 1;
+  if (!writePoses(world, o->outDir)) goto done;
+  snprintf(plotPath, sizeof plotPath, "%s/frame_times.svg", o->outDir);
+  if (!framePlotWriteSvg(&plot, plotPath)) goto done;
   printf("summary: %d frames, mean %.3f ms, p50 %.3f ms, p95 %.3f ms, max %.3f ms, budget-cut frames %d\n",
          times.count, frameTimesMean(&times), frameTimesPercentile(&times, 0.5), frameTimesPercentile(&times, 0.95),
          frameTimesPercentile(&times, 1.0), cutFrames);
-  printf("wrote %s/stats.csv and %s/poses.csv\n", o.outDir, o.outDir);
+  printf("wrote %s/stats.csv, %s/poses.csv, %s, %d mesh files in %s/meshes, %d snapshots in %s/snapshots\n",
+         o->outDir, o->outDir, plotPath, outputs.meshFiles, o->outDir, outputs.snapshotFiles, o->outDir);
+  rc = 0;
+done:
+  if (csv) fclose(csv);
+  hostOutputsFree(&outputs);
+  framePlotFree(&plot);
   frameTimesFree(&times);
+  return rc;
+}
+
+int main(int argc, char** argv) {
+  Options o;
+  vpWorldDef def;
+  vpWorldId world;
+  vpStatus s;
+  int rc;
+
+  if (!parseOptions(argc, argv, &o)) return 2;
+  if ((s = vpCheckVersion()) != vpStatus_Ok) return fail("version check", s);
+  o.outputs.outDir = o.outDir;
+
+  def = vpDefaultWorldDef();
+  def.workerCount = o.workers;
+  if ((s = vpWorldCreate(&def, &world)) != vpStatus_Ok) return fail("vpWorldCreate", s);
+  if ((s = vpWorldLoadScene(world, o.scene)) != vpStatus_Ok)
+    rc = fail("vpWorldLoadScene", s);
+  else if (o.budgetMs >= 0.0 && (s = vpWorldSetFrameBudget(world, (float)o.budgetMs)) != vpStatus_Ok)
+    rc = fail("vpWorldSetFrameBudget", s);
+  else
+    rc = run(world, &o);
   vpWorldDestroy(world);
-  return 0;
+  return rc;
 }

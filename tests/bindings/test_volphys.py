@@ -7,6 +7,7 @@ import ctypes
 import os
 import subprocess
 import sys
+import tempfile
 import unittest
 
 import volphys
@@ -287,9 +288,10 @@ class Scenes(unittest.TestCase):
     def test_default_scene_loads_and_runs(self):
         with volphys.World() as w:
             w.load_scene(DEFAULT_SCENE)
-            names = ["ground", "paddle", "crate", "ball", "pill", "can", "gem"]
+            names = ["ground", "tank_west", "tank_east", "tank_north", "tank_south", "paddle", "buoy",
+                     "chimney_ball", "crate", "pill", "can", "gem"]
             self.assertEqual(len(w.colliders()), len(names))
-            ball = w.find_collider("ball")
+            ball = w.find_collider("crate")
             self.assertIn(ball, w.colliders())
             y0 = ball.position[1]
             jelly = w.find_deformable("jelly")
@@ -301,6 +303,10 @@ class Scenes(unittest.TestCase):
             self.assertLess(ball.position[1], y0)
             with self.assertRaises(volphys.InvalidArgumentError):
                 w.find_collider("no-such-collider")
+            self.assertEqual(w.deformables(), [jelly, w.find_deformable("hanging_bar")])
+            positions, normals, triangles = w.find_collider("crate").shape_mesh()
+            self.assertEqual(len(positions), len(normals))
+            self.assertEqual(len(triangles), 12)  # a box: two triangles per face
 
 
 class Example(unittest.TestCase):
@@ -313,6 +319,24 @@ class Example(unittest.TestCase):
         self.assertEqual([int(row[0]) for row in rows], [1, 2, 3])
         self.assertTrue(all(float(row[2]) == 0.0 for row in rows), "--budget-ms 0 must reach the world")
         self.assertIn("summary: 3 frames", r.stdout)
+
+    def test_run_scene_example_plots_frame_times_headless(self):
+        # Debian's matplotlib is installed by scripts/setup.sh: its absence is a failure here.
+        import matplotlib  # noqa: F401
+        script = os.path.join(REPO, "bindings", "python", "examples", "run_scene.py")
+        with tempfile.TemporaryDirectory() as tmp:
+            png = os.path.join(tmp, "frame_times.png")
+            env = dict(os.environ, MPLBACKEND="Agg")
+            env.pop("DISPLAY", None)  # headless, as in CI
+            r = subprocess.run([sys.executable, script, DEFAULT_SCENE, "--frames", "5", "--plot", png],
+                               capture_output=True, text=True, timeout=300, env=env)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            self.assertIn("plot: " + png, r.stdout)
+            with open(png, "rb") as f:
+                self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
+            from PIL import Image
+            with Image.open(png) as img:
+                self.assertGreater(len(set(img.convert("RGB").getdata())), 20, "a drawn plot, not a blank page")
 
     def test_run_scene_example_reports_a_missing_scene(self):
         script = os.path.join(REPO, "bindings", "python", "examples", "run_scene.py")

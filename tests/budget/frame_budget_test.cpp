@@ -1,5 +1,5 @@
 // The per-frame budget with an injected clock (deterministic): solvers stop when it is spent,
-// say so, keep their best iterate and catch up over the following frames; the budget is
+// say so, keep the iterate they reached, warm-start, and catch up over the following frames; the budget is
 // shared between actors by the world's policy (each gets an equal share of what is left).
 #include <gtest/gtest.h>
 
@@ -66,6 +66,48 @@ TEST(FrameBudget, SolverStopsAtTheBudgetFlagsItAndNeverOverrunsByMoreThanAnItera
   // (phase timers, integration, the step total) follow: one iteration's tick plus those.
   EXPECT_GE(stats.totalMs, budgetMs);
   EXPECT_LE(stats.totalMs, budgetMs + 6 * 0.1);
+}
+
+TEST(FrameBudget, ACutSolveKeepsExactlyTheIterateItReached) {
+  // The cut must not throw the work away or fall back to the warm start: the state after a
+  // solve cut at n iterations equals the state after a solve capped at n iterations.
+  BudgetWorld cut(5.0, {10000});
+  ASSERT_EQ(cut.world->step(1.0 / 60.0), Status::Ok);
+  ASSERT_TRUE(cut.solve(0).budgetCut);
+  const int n = cut.solve(0).iterations;
+  BudgetWorld capped(0.0, {n});
+  ASSERT_EQ(capped.world->step(1.0 / 60.0), Status::Ok);
+  ASSERT_FALSE(capped.solve(0).budgetCut);
+  ASSERT_EQ(capped.solve(0).iterations, n);
+  EXPECT_EQ(cut.solve(0).residual, capped.solve(0).residual);
+  const DeformableBody& a = *cut.world->deformable(cut.bars[0]);
+  const DeformableBody& b = *capped.world->deformable(capped.bars[0]);
+  for (int32_t i = 0; i < 3 * a.nodeCount(); ++i) ASSERT_EQ(a.positions()[i], b.positions()[i]) << "coordinate " << i;
+}
+
+TEST(FrameBudget, SolvesWarmStartFromTheCurrentVelocity) {
+  // A free body gliding without gravity solves to v' = v. Started from v the solve has
+  // nothing to do; started cold (from zero) it would iterate every frame.
+  TickClock clock;
+  WorldConfig config;
+  config.gravity = Vec3::Zero();
+  config.frameBudgetMs = 5.0;
+  config.clock = Clock{&TickClock::read, &clock};
+  std::unique_ptr<World> world;
+  ASSERT_EQ(World::create(config, &world), Status::Ok);
+  DeformableDesc d;
+  d.mesh = makeBoxTetMesh({4, 2, 2}, Vec3(1, 0.5, 0.5), Vec3::Zero());
+  d.linearVelocity = Vec3(2.0, 0.0, 0.0);
+  d.solver.preconditioner = Preconditioner::BlockJacobi;
+  DeformableHandle h;
+  ASSERT_EQ(world->createDeformable(std::move(d), &h), Status::Ok);
+  for (int frame = 0; frame < 10; ++frame) {
+    ASSERT_EQ(world->step(1.0 / 60.0), Status::Ok);
+    const PhaseStats& solve = world->lastStats().actors[1].phase(Phase::Solve);
+    EXPECT_LE(solve.iterations, 1) << "frame " << frame;
+    EXPECT_FALSE(solve.budgetCut);
+  }
+  EXPECT_NEAR(world->deformable(h)->positions()[0], 10 * 2.0 / 60.0, 1e-6);
 }
 
 double tipY(const BudgetWorld& w) {

@@ -78,6 +78,29 @@ TEST(CApiDeformable, CreateStepReadAndDestroy) {
   EXPECT_EQ(vpDeformableGetPositions(id, x.data(), nodes), vpStatus_InvalidId);
 }
 
+TEST(CApiDeformable, WorldListsItsDeformablesInSlotOrder) {
+  ScopedWorld w;
+  BoxArrays box;
+  vpDeformableDef def = box.def();
+  vpDeformableId a{}, b{}, c{};
+  ASSERT_VP_OK(vpDeformableCreate(w.id, &def, &a));
+  ASSERT_VP_OK(vpDeformableCreate(w.id, &def, &b));
+  ASSERT_VP_OK(vpDeformableCreate(w.id, &def, &c));
+  ASSERT_VP_OK(vpDeformableDestroy(b));
+  int32_t count = -1;
+  ASSERT_VP_OK(vpWorldGetDeformableCount(w.id, &count));
+  ASSERT_EQ(count, 2);
+  vpDeformableId ids[3] = {};
+  ASSERT_VP_OK(vpWorldGetDeformables(w.id, ids, 3, &count));
+  ASSERT_EQ(count, 2);
+  EXPECT_TRUE(ids[0].index1 == a.index1 && ids[0].generation == a.generation);
+  EXPECT_TRUE(ids[1].index1 == c.index1 && ids[1].generation == c.generation);
+  ASSERT_VP_OK(vpWorldGetDeformables(w.id, ids, 1, &count));  // a short buffer gets a prefix
+  EXPECT_EQ(count, 1);
+  EXPECT_EQ(vpWorldGetDeformables(w.id, nullptr, 2, &count), vpStatus_InvalidArgument);
+  EXPECT_EQ(vpWorldGetDeformableCount(vpWorldId{}, &count), vpStatus_InvalidId);
+}
+
 TEST(CApiDeformable, PinAndAttach) {
   ScopedWorld w;
   BoxArrays box;

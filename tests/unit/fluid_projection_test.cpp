@@ -13,6 +13,7 @@
 #include "fluid/mac_grid.h"
 #include "fluid/mic0_preconditioner.h"
 #include "fluid/pressure_projection.h"
+#include "fluid_liquid_test_util.h"
 #include "fluid_pressure_scenes.h"
 
 namespace vp {
@@ -43,14 +44,7 @@ ColliderShape sphereShape(const Eigen::Vector3d& centre, double radius) {
   return s;
 }
 
-ColliderShape tiltedBox(const Eigen::Vector3d& centre) {
-  ColliderShape b;
-  b.kind = ShapeKind::Box;
-  b.halfExtents = Eigen::Vector3d(0.18, 0.08, 0.22);
-  b.rotation = Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(-0.3, Eigen::Vector3d::UnitX());
-  b.translation = centre;
-  return b;
-}
+using testutil::tiltedBox;
 
 struct Scene {
   MacGrid grid;
@@ -80,25 +74,7 @@ double norm2(const std::vector<double>& v) {
 // the operator treats as closed (A_f < 1e-6) hold u_f = u_solid after projection, so the raw
 // fraction gives the same flux there.
 std::vector<double> netOutflow(const Scene& scene) {
-  const MacGrid& grid = scene.grid;
-  std::vector<double> out(static_cast<size_t>(grid.cellCount()), 0.0);
-  for (int k = 0; k < grid.spec.nz; ++k)
-    for (int j = 0; j < grid.spec.ny; ++j)
-      for (int i = 0; i < grid.spec.nx; ++i) {
-        double sum = 0.0;
-        for (int a = 0; a < 3; ++a)
-          for (int high = 0; high < 2; ++high) {
-            Eigen::Vector3i f(i, j, k);
-            f[a] += high;
-            if (grid.isWallFace(a, f.x(), f.y(), f.z())) continue;
-            const size_t index = grid.faceIndex(a, f.x(), f.y(), f.z());
-            const double open = scene.fractions.open[a][index];
-            const double flux = open * grid.velocity[a][index] + (1.0 - open) * scene.fractions.solidVelocity[a][index];
-            sum += high ? flux : -flux;
-          }
-        out[grid.cellIndex(i, j, k)] = sum;
-      }
-  return out;
+  return testutil::netOutflowByDefinition(scene.grid, scene.fractions);
 }
 
 // netOutflow(u) = (dt / (rho h)) (L p - b) cell by cell, and the CG stops at

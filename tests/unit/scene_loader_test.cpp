@@ -76,6 +76,7 @@ TEST_P(SceneLoaderRejects, WithThePathAndChangesNothing) {
       << "message: " << lastError() << "\nexpected to contain: " << bad.messagePart;
   EXPECT_EQ(world->colliderCount(), 0u);
   EXPECT_EQ(world->deformableCount(), 0u);
+  EXPECT_EQ(world->fluidCount(), 0u);
   EXPECT_EQ(world->config().frameBudgetMs, budgetBefore);
 }
 
@@ -136,7 +137,22 @@ INSTANTIATE_TEST_SUITE_P(
                  Status::ParseError, "$.deformables[0].pinBox: selects no node"},
         BadScene{R"({"colliders": [{"shape": {"type": "plane"}}],
                      "deformables": [{"box": {}, "attach": [{"collider": "ghost", "box": {"min": [-1, -1, -1], "max": [1, 1, 1]}}]}]})",
-                 Status::ParseError, "$.deformables[0].attach[0].collider = \"ghost\": no collider"}));
+                 Status::ParseError, "$.deformables[0].attach[0].collider = \"ghost\": no collider"},
+        BadScene{R"({"colliders": [{"shape": {"type": "plane"}}], "fluids": [{"kind": "lava"}]})", Status::ParseError,
+                 "$.fluids[0].kind = \"lava\": expected one of"},
+        BadScene{R"({"colliders": [{"shape": {"type": "plane"}}], "fluids": [{"resolution": [8, 1, 8]}]})",
+                 Status::ParseError, "$.fluids[0].resolution: expected 3 integers in [2, 1024]"},
+        BadScene{R"({"colliders": [{"shape": {"type": "plane"}}], "fluids": [{"cellSize": 0}]})",
+                 Status::InvalidArgument, "$.fluids[0]: cellSize = 0"},
+        BadScene{R"({"colliders": [{"shape": {"type": "plane"}}], "fluids": [{"sides": {"+y": "door"}}]})",
+                 Status::ParseError, "$.fluids[0].sides.+y = \"door\": expected one of"},
+        BadScene{R"({"colliders": [{"shape": {"type": "plane"}}],
+                     "fluids": [{"emitters": [{"region": {"type": "sphere", "radius": -1}}]}]})",
+                 Status::InvalidArgument, "$.fluids[0]: emitters[0].shape.radius = -1"},
+        BadScene{R"({"colliders": [{"shape": {"type": "plane"}}], "fluids": [{"emitters": [{"velocity": [0, 1, 0]}]}]})",
+                 Status::ParseError, "$.fluids[0].emitters[0].region: missing"},
+        BadScene{R"({"colliders": [{"shape": {"type": "plane"}}], "fluids": [{"smoke": {"heat": 1}}]})",
+                 Status::ParseError, "$.fluids[0].smoke.heat: unknown key"}));
 
 TEST(SceneLoader, DeformableWithPinsAndAnAttachment) {
   auto world = makeWorld();
@@ -158,6 +174,72 @@ TEST(SceneLoader, DeformableWithPinsAndAnAttachment) {
   for (int32_t i = 0; i < bridge->nodeCount(); ++i) minY = std::min(minY, bridge->positions()[3 * i + 1]);
   EXPECT_LT(minY, 1.0 - 0.125 - 1e-3);
   EXPECT_GT(minY, 0.0);
+}
+
+// A closed unit cube as an OBJ surface, and a scene with one deformable whose extra keys are
+// `deformable` (JSON text without braces).
+std::string writeCubeScene(const std::string& name, const std::string& deformable) {
+  const std::string dir = ::testing::TempDir();
+  std::ofstream obj(dir + "/unit_cube.obj");
+  obj << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+         "f 1 4 3\nf 1 3 2\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 4 8 7\nf 4 7 3\nf 1 5 8\nf 1 8 4\n"
+         "f 2 3 7\nf 2 7 6\n";
+  std::ofstream scene(dir + "/" + name);
+  scene << R"({"deformables": [{"name": "jelly", )" << deformable << "}]}";
+  return dir + "/" + name;
+}
+
+double extentX(const DeformableBody& body) {
+  double lo = 1e9, hi = -1e9;
+  for (int32_t i = 0; i < body.nodeCount(); ++i) {
+    lo = std::min(lo, body.positions()[3 * i]);
+    hi = std::max(hi, body.positions()[3 * i]);
+  }
+  return hi - lo;
+}
+
+TEST(SceneLoader, DeformableScaleAppliesToTheSurfaceFile) {
+  auto world = makeWorld();
+  const std::string path = writeCubeScene("scaled_cube.json", R"("surfaceFile": "unit_cube.obj", "scale": 0.5)");
+  ASSERT_EQ(loadScene(*world, path), Status::Ok) << lastError();
+  DeformableHandle h;
+  ASSERT_TRUE(world->findDeformable("jelly", &h));
+  EXPECT_NEAR(extentX(*world->deformable(h)), 0.5, 1e-9);
+}
+
+TEST(SceneLoader, IfFileMissingStandsInOnlyWhenTheFileIsAbsent) {
+  const char* fallback = R"("ifFileMissing": {"box": {"cells": [2, 1, 1], "size": [3, 1, 1]}}, "density": 500)";
+  {
+    auto world = makeWorld();  // the file is there: the fallback is ignored
+    const std::string path =
+        writeCubeScene("present.json", std::string(R"("surfaceFile": "unit_cube.obj", )") + fallback);
+    ASSERT_EQ(loadScene(*world, path), Status::Ok) << lastError();
+    DeformableHandle h;
+    ASSERT_TRUE(world->findDeformable("jelly", &h));
+    EXPECT_NEAR(extentX(*world->deformable(h)), 1.0, 1e-9);
+  }
+  {
+    auto world = makeWorld();  // the file is absent: the box, with the other keys kept
+    const std::string path = writeCubeScene(
+        "absent.json", std::string(R"("surfaceFile": "/no/such/duck.dae", "scale": 9, )") + fallback);
+    ASSERT_EQ(loadScene(*world, path), Status::Ok) << lastError();
+    DeformableHandle h;
+    ASSERT_TRUE(world->findDeformable("jelly", &h));
+    const DeformableBody& body = *world->deformable(h);
+    EXPECT_EQ(body.nodeCount(), 3 * 2 * 2);
+    EXPECT_NEAR(extentX(body), 3.0, 1e-9);  // the file's scale went with the file
+    EXPECT_DOUBLE_EQ(body.desc().material.density, 500);
+  }
+  {
+    auto world = makeWorld();
+    const std::string path = writeCubeScene("no_file.json", R"("box": {"cells": [1, 1, 1], "size": [1, 1, 1]},
+                                            "ifFileMissing": {"box": {"cells": [1, 1, 1], "size": [1, 1, 1]}})");
+    EXPECT_EQ(loadScene(*world, path), Status::ParseError);
+    EXPECT_NE(std::string(lastError()).find("$.deformables[0].ifFileMissing: needs a surfaceFile or tetFile"),
+              std::string::npos)
+        << lastError();
+    EXPECT_EQ(world->deformableCount(), 0u);
+  }
 }
 
 TEST(SceneLoader, MissingFileIsAnIoError) {

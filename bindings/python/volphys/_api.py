@@ -49,6 +49,8 @@ _PROTOTYPES = {
     "vpColliderGetUserData": (_S, [T.vpColliderId, _P(c_void_p)]),
     "vpWorldGetColliderCount": (_S, [T.vpWorldId, _P(c_int32)]),
     "vpWorldGetColliders": (_S, [T.vpWorldId, _P(T.vpColliderId), c_int32, _P(c_int32)]),
+    "vpColliderGetShapeMeshSize": (_S, [T.vpColliderId, _P(c_int32), _P(c_int32)]),
+    "vpColliderGetShapeMesh": (_S, [T.vpColliderId, _P(c_float), _P(c_float), c_int32, _P(c_int32), c_int32]),
     "vpWorldFindCollider": (_S, [T.vpWorldId, c_char_p, _P(T.vpColliderId)]),
     "vpDefaultDeformableDef": (T.vpDeformableDef, []),
     "vpDeformableCreate": (_S, [T.vpWorldId, _P(T.vpDeformableDef), _P(T.vpDeformableId)]),
@@ -67,6 +69,8 @@ _PROTOTYPES = {
     "vpDeformableGetRenderMesh": (_S, [T.vpDeformableId, _P(c_float), _P(c_float), c_int32, _P(c_int32), c_int32]),
     "vpDeformableGetStats": (_S, [T.vpDeformableId, _P(T.vpActorStats)]),
     "vpWorldFindDeformable": (_S, [T.vpWorldId, c_char_p, _P(T.vpDeformableId)]),
+    "vpWorldGetDeformableCount": (_S, [T.vpWorldId, _P(c_int32)]),
+    "vpWorldGetDeformables": (_S, [T.vpWorldId, _P(T.vpDeformableId), c_int32, _P(c_int32)]),
     "vpGetBuildInfo": (_S, [_P(T.vpBuildInfo)]),
 }
 

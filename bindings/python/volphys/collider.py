@@ -67,3 +67,14 @@ class Collider(ActorHandle):
         bt = T.c_enum()
         call("vpColliderGetBodyType", self._id, ctypes.byref(bt))
         return T.BodyType(bt.value)
+
+    def shape_mesh(self):
+        """The shape as a triangle mesh in the collider's local frame, for drawing:
+        (positions (v,3) float32, normals (v,3) float32, triangles (t,3) int32)."""
+        nv, nt = ctypes.c_int32(), ctypes.c_int32()
+        call("vpColliderGetShapeMeshSize", self._id, ctypes.byref(nv), ctypes.byref(nt))
+        pos = _arrays.OutBuffer(nv.value, 3, ctypes.c_float)
+        nrm = _arrays.OutBuffer(nv.value, 3, ctypes.c_float)
+        tri = _arrays.OutBuffer(nt.value, 3, ctypes.c_int32)
+        call("vpColliderGetShapeMesh", self._id, pos.ptr, nrm.ptr, nv.value, tri.ptr, nt.value)
+        return pos.result(), nrm.result(), tri.result()

@@ -142,6 +142,14 @@ class World:
         call("vpWorldGetColliders", self._id, ids, n.value, ctypes.byref(got))
         return [Collider(self, T.vpColliderId.from_buffer_copy(ids[i])) for i in range(got.value)]
 
+    def deformables(self):
+        n = c_int32()
+        call("vpWorldGetDeformableCount", self._id, ctypes.byref(n))
+        ids = (T.vpDeformableId * max(n.value, 1))()
+        got = c_int32()
+        call("vpWorldGetDeformables", self._id, ids, n.value, ctypes.byref(got))
+        return [Deformable(self, T.vpDeformableId.from_buffer_copy(ids[i])) for i in range(got.value)]
+
     def find_collider(self, name):
         """The first collider the scene named `name`; InvalidArgumentError if none."""
         cid = T.vpColliderId()

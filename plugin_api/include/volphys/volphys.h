@@ -156,9 +156,16 @@ typedef struct vpDeformableId {
   vpWorldId world;
 } vpDeformableId;
 
+typedef struct vpFluidId {
+  uint32_t index1; /* slot + 1; 0 = null */
+  uint32_t generation;
+  vpWorldId world;
+} vpFluidId;
+
 VP_API int vpWorldIdIsNull(vpWorldId id);
 VP_API int vpColliderIdIsNull(vpColliderId id);
 VP_API int vpDeformableIdIsNull(vpDeformableId id);
+VP_API int vpFluidIdIsNull(vpFluidId id);
 
 /* ---------------------------------------------------------------- world */
 
@@ -166,7 +173,12 @@ typedef struct vpWorldDef {
   uint32_t structSize;
   vpVec3 gravity;              /* default (0, -9.81, 0) */
   int32_t workerCount;         /* worker threads incl. the caller, 1..64; default 1 */
-  float frameBudgetMs;         /* per-step budget for iterative solvers; 0 = unlimited; default 16 */
+  float frameBudgetMs;         /* per-step budget for iterative solvers; 0 = unlimited; default 16.
+                                  Sharing: the Bullet step is not budgeted; then the iterating
+                                  actors run in slot order and each may use an equal share of
+                                  what is left of the budget when its turn comes, so time one does
+                                  not use passes on to the next. A cut solver keeps its best
+                                  iterate, sets budgetCut, and warm-starts next step. */
   float rigidMaxSubstep;       /* Bullet sub-step length bound in seconds; default 1/120 */
   vpEnqueueTaskFn* enqueueTask;/* both NULL: built-in thread pool with workerCount threads */
   vpFinishTaskFn* finishTask;
@@ -317,6 +329,15 @@ VP_API vpStatus vpColliderSetVelocity(vpColliderId collider, vpVec3 linear, vpVe
 VP_API vpStatus vpColliderSetKinematicTarget(vpColliderId collider, const vpTransform* target);
 VP_API vpStatus vpColliderGetBodyType(vpColliderId collider, vpBodyType* outType);
 VP_API vpStatus vpColliderGetUserData(vpColliderId collider, void** outUserData);
+/* A triangle mesh of the collider's shape in its local frame, for drawing and export (place
+ * it with vpColliderGetPose). Round shapes are tessellated; a plane becomes a square 20 m on a
+ * side centred on the point of the plane nearest the local origin. Normals point out of the
+ * solid, triangles are counter-clockwise seen from outside (triangle meshes keep their own
+ * winding). Any output may be NULL; capacities are in vertices and triangles. */
+VP_API vpStatus vpColliderGetShapeMeshSize(vpColliderId collider, int32_t* outVertexCount,
+                                           int32_t* outTriangleCount);
+VP_API vpStatus vpColliderGetShapeMesh(vpColliderId collider, float* outPositions, float* outNormals,
+                                       int32_t vertexCapacity, int32_t* outTriangles, int32_t triangleCapacity);
 /* Number of colliders and their ids, in slot order (stable while none is destroyed). */
 VP_API vpStatus vpWorldGetColliderCount(vpWorldId world, int32_t* outCount);
 VP_API vpStatus vpWorldGetColliders(vpWorldId world, vpColliderId* outIds, int32_t capacity, int32_t* outCount);
@@ -386,7 +407,119 @@ VP_API vpStatus vpDeformableGetRenderMesh(vpDeformableId deformable, float* outP
                                           int32_t vertexCapacity, int32_t* outTriangles, int32_t triangleCapacity);
 /* Statistics of this actor in the last step (zeros before the first). */
 VP_API vpStatus vpDeformableGetStats(vpDeformableId deformable, vpActorStats* outStats);
+/* Number of deformables and their ids, in slot order (stable while none is destroyed). */
+VP_API vpStatus vpWorldGetDeformableCount(vpWorldId world, int32_t* outCount);
+VP_API vpStatus vpWorldGetDeformables(vpWorldId world, vpDeformableId* outIds, int32_t capacity, int32_t* outCount);
 VP_API vpStatus vpWorldFindDeformable(vpWorldId world, const char* name, vpDeformableId* outDeformable);
+
+/* ---------------------------------------------------------------- fluids */
+
+/* A fluid actor: smoke or liquid on a MAC grid filling an axis-aligned box (the domain).
+ * Colliders inside the domain are solid boundaries through the exact open fraction of each
+ * grid face (cut cells): a sphere is round to the fluid, a thin slanted plate does not leak.
+ * Moving colliders push the fluid with their velocity; with twoWayCoupling, the pressure
+ * pushes back on dynamic colliders (buoyancy, drag), applied during the next step.
+ * Each step: advection (sub-stepped by the CFL number), sources and forces, cut-cell pressure
+ * projection within the frame budget (warm-started; a cut solve keeps its best iterate).
+ * Grids are cell-centred with x fastest: cell (i, j, k) is at index i + nx * (j + ny * k),
+ * centred at origin + cellSize * (i + 0.5, j + 0.5, k + 0.5). */
+
+typedef enum vpFluidKind {
+  vpFluidKind_Smoke = 0,  /* density and temperature carried by air; buoyancy, vorticity */
+  vpFluidKind_Liquid = 1  /* a level set with a free surface under gravity */
+} vpFluidKind;
+
+typedef enum vpAdvection {
+  vpAdvection_SemiLagrangian = 0, /* RK2 back-trace; stable, dissipative */
+  vpAdvection_MacCormack = 1      /* with the min/max clamp; keeps more detail (default) */
+} vpAdvection;
+
+typedef enum vpDomainSide {
+  vpDomainSide_Wall = 0, /* closed, motionless */
+  vpDomainSide_Open = 1  /* the fluid continues outside at zero pressure */
+} vpDomainSide;
+
+typedef enum vpRegionType {
+  vpRegionType_Box = 0,   /* centre, halfExtents (axis-aligned) */
+  vpRegionType_Sphere = 1 /* centre, radius */
+} vpRegionType;
+
+/* A region in world coordinates. */
+typedef struct vpFluidRegion {
+  vpRegionType type;
+  vpVec3 centre;
+  vpVec3 halfExtents;
+  float radius;
+} vpFluidRegion;
+
+/* Smoke: each step adds densityRate * dt of smoke in the region, sets the temperature there
+ * and the velocity of the fluid in it. Liquid: keeps the region full of liquid moving with
+ * `velocity` (densityRate and temperature unused). */
+typedef struct vpFluidEmitter {
+  vpFluidRegion region;
+  vpVec3 velocity;
+  float densityRate;
+  float temperature;
+} vpFluidEmitter;
+
+typedef struct vpFluidDef {
+  uint32_t structSize;
+  vpFluidKind kind;                 /* default smoke */
+  vpVec3 origin;                    /* the domain's low corner */
+  int32_t resolution[3];            /* cells along x, y, z: each 2..1024, 2^27 in all; default 32^3 */
+  float cellSize;                   /* metres; default 1/32 */
+  vpDomainSide sides[6];            /* -x, +x, -y, +y, -z, +z; default all walls */
+  float density;                    /* kg/m^3 (water 1000, air 1.2); scales the forces on colliders; default 1000 */
+  vpAdvection advection;            /* default MacCormack */
+  float cflNumber;                  /* most cells moved per sub-step, 0.1..100; default 2 */
+  int32_t maxSubsteps;              /* 1..64; default 4 */
+  float pressureTolerance;          /* relative residual of the pressure solve; default 1e-4 */
+  int32_t pressureMaxIterations;    /* default 200 */
+  /* smoke */
+  float ambientTemperature;         /* default 0 */
+  float densityBuoyancy;            /* m/s^2 per unit density, pulls smoke down; default 0.05 */
+  float thermalBuoyancy;            /* m/s^2 per unit temperature above ambient; default 1 */
+  float vorticityConfinement;       /* epsilon, 0..100; default 0.2 */
+  float densityDissipation;         /* 1/s; default 0 */
+  float temperatureDissipation;     /* 1/s; default 0 */
+  /* sources (copied) */
+  const vpFluidRegion* initialLiquid; /* liquid: regions filled at creation */
+  int32_t initialLiquidCount;
+  const vpFluidEmitter* emitters;
+  int32_t emitterCount;
+  const vpFluidRegion* drains;        /* liquid: removed where these are */
+  int32_t drainCount;
+  int32_t twoWayCoupling;           /* pressure forces act on dynamic colliders; default 1 */
+  void* userData;
+} vpFluidDef;
+
+typedef enum vpFluidField {
+  vpFluidField_SmokeDensity = 0,
+  vpFluidField_Temperature = 1,
+  vpFluidField_LevelSet = 2,  /* liquid: signed distance, negative inside the liquid */
+  vpFluidField_Pressure = 3   /* Pa above the open sides' pressure; 0 in solids and air */
+} vpFluidField;
+
+VP_API vpFluidDef vpDefaultFluidDef(void);
+VP_API vpStatus vpFluidCreate(vpWorldId world, const vpFluidDef* def, vpFluidId* outFluid);
+VP_API vpStatus vpFluidDestroy(vpFluidId fluid);
+VP_API vpStatus vpFluidIsValid(vpFluidId fluid); /* Ok or InvalidId */
+VP_API vpStatus vpFluidGetResolution(vpFluidId fluid, int32_t* outNx, int32_t* outNy, int32_t* outNz);
+/* A copy of a cell-centred field, nx * ny * nz values (capacity in values). */
+VP_API vpStatus vpFluidGetField(vpFluidId fluid, vpFluidField field, float* outValues, int64_t capacity);
+/* The velocity at the cell centres, xyz per cell (capacity in cells). */
+VP_API vpStatus vpFluidGetVelocityGrid(vpFluidId fluid, float* outXyz, int64_t capacity);
+/* The velocity at world points (trilinear from the grid; clamped to the domain). */
+VP_API vpStatus vpFluidSampleVelocity(vpFluidId fluid, const vpVec3* points, int32_t count, vpVec3* outVelocities);
+/* Liquid: the free surface as a triangle mesh (marching cubes of the level set, normals out
+ * of the liquid), built on request from the last step. Smoke: an empty mesh. */
+VP_API vpStatus vpFluidGetSurfaceMeshSize(vpFluidId fluid, int32_t* outVertexCount, int32_t* outTriangleCount);
+VP_API vpStatus vpFluidGetSurfaceMesh(vpFluidId fluid, float* outPositions, float* outNormals, int32_t vertexCapacity,
+                                      int32_t* outTriangles, int32_t triangleCapacity);
+/* Liquid: volume in m^3 (0 for smoke). Smoke: total smoke (density * m^3; 0 for liquid). */
+VP_API vpStatus vpFluidGetAmount(vpFluidId fluid, float* outAmount);
+VP_API vpStatus vpFluidGetStats(vpFluidId fluid, vpActorStats* outStats);
+VP_API vpStatus vpWorldFindFluid(vpWorldId world, const char* name, vpFluidId* outFluid);
 
 /* ---------------------------------------------------------------- build information */
 

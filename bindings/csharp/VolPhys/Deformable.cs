@@ -1,0 +1,59 @@
+// A deformable volume by id (a value: copying it does not copy the actor). Array getters
+// allocate; the overloads taking an array fill a host buffer, as a game loop would.
+namespace VolPhys
+{
+    public struct Deformable
+    {
+        public readonly vpDeformableId Id;
+        public Deformable(vpDeformableId id) { Id = id; }
+
+        public static vpDeformableDef DefaultDef() { return Native.vpDefaultDeformableDef(); }
+
+        public bool IsValid { get { return Native.vpDeformableIsValid(Id) == Status.Ok; } }
+
+        public int NodeCount
+        {
+            get { int n; VolPhysException.Check(Native.vpDeformableGetNodeCount(Id, out n), "vpDeformableGetNodeCount"); return n; }
+        }
+
+        /// <summary>Node positions, xyz per node.</summary>
+        public float[] GetPositions() { float[] xyz = new float[3 * NodeCount]; GetPositions(xyz); return xyz; }
+        public void GetPositions(float[] xyz)
+        {
+            VolPhysException.Check(Native.vpDeformableGetPositions(Id, xyz, xyz.Length / 3), "vpDeformableGetPositions");
+        }
+
+        public float[] GetVelocities()
+        {
+            float[] xyz = new float[3 * NodeCount];
+            VolPhysException.Check(Native.vpDeformableGetVelocities(Id, xyz, xyz.Length / 3), "vpDeformableGetVelocities");
+            return xyz;
+        }
+
+        public void Pin(int[] nodes) { VolPhysException.Check(Native.vpDeformablePin(Id, nodes, nodes.Length), "vpDeformablePin"); }
+
+        public void ApplyImpulse(int node, vpVec3 impulse)
+        {
+            VolPhysException.Check(Native.vpDeformableApplyImpulse(Id, node, impulse), "vpDeformableApplyImpulse");
+        }
+
+        /// <summary>The embedded render mesh: positions and normals (xyz per vertex), triangles.</summary>
+        public void GetRenderMesh(out float[] positions, out float[] normals, out int[] triangles)
+        {
+            int nv, nt;
+            VolPhysException.Check(Native.vpDeformableGetRenderMeshSize(Id, out nv, out nt), "vpDeformableGetRenderMeshSize");
+            positions = new float[3 * nv];
+            normals = new float[3 * nv];
+            triangles = new int[3 * nt];
+            VolPhysException.Check(Native.vpDeformableGetRenderMesh(Id, positions, normals, nv, triangles, nt),
+                                   "vpDeformableGetRenderMesh");
+        }
+
+        public vpActorStats Stats
+        {
+            get { vpActorStats s; VolPhysException.Check(Native.vpDeformableGetStats(Id, out s), "vpDeformableGetStats"); return s; }
+        }
+
+        public void Destroy() { VolPhysException.Check(Native.vpDeformableDestroy(Id), "vpDeformableDestroy"); }
+    }
+}

@@ -1,0 +1,81 @@
+// The C ABI as P/Invoke declarations, one per function in volphys.h. "volphys" resolves to
+// libvolphys.so / volphys.dll / libvolphys.dylib the way Unity and Mono look up plugins.
+// Strings the library owns (vpGetLastError, vpStatusName) come back as IntPtr: a `string`
+// return would make the marshaller free memory it does not own.
+using System;
+using System.Runtime.InteropServices;
+
+namespace VolPhys
+{
+    public static class Native
+    {
+        public const string Library = "volphys";
+
+        [DllImport(Library)] public static extern vpVersion vpGetVersion();
+        [DllImport(Library)] public static extern IntPtr vpGetLastError();
+        [DllImport(Library)] public static extern IntPtr vpStatusName(Status status);
+        [DllImport(Library)] public static extern Status vpCheckHeaderVersion(uint headerVersion, uint worldDefSize);
+        [DllImport(Library)] public static extern Status vpSetLogCallback(IntPtr logFn, IntPtr userContext, LogLevel minLevel);
+        [DllImport(Library)] public static extern Status vpGetBuildInfo(out vpBuildInfo info);
+
+        [DllImport(Library)] public static extern int vpWorldIdIsNull(vpWorldId id);
+        [DllImport(Library)] public static extern int vpColliderIdIsNull(vpColliderId id);
+        [DllImport(Library)] public static extern int vpDeformableIdIsNull(vpDeformableId id);
+
+        [DllImport(Library)] public static extern vpWorldDef vpDefaultWorldDef();
+        [DllImport(Library)] public static extern Status vpWorldCreate(ref vpWorldDef def, out vpWorldId world);
+        [DllImport(Library)] public static extern Status vpWorldDestroy(vpWorldId world);
+        [DllImport(Library)] public static extern Status vpWorldIsValid(vpWorldId world);
+        [DllImport(Library)] public static extern Status vpWorldSetGravity(vpWorldId world, vpVec3 gravity);
+        [DllImport(Library)] public static extern Status vpWorldGetGravity(vpWorldId world, out vpVec3 gravity);
+        [DllImport(Library)] public static extern Status vpWorldSetFrameBudget(vpWorldId world, float frameBudgetMs);
+        [DllImport(Library)] public static extern Status vpWorldStep(vpWorldId world, float dt);
+        [DllImport(Library)] public static extern Status vpWorldLoadScene(vpWorldId world, [MarshalAs(UnmanagedType.LPStr)] string path);
+
+        [DllImport(Library)] public static extern vpStepStats vpDefaultStepStats();
+        [DllImport(Library)] public static extern Status vpWorldGetStepStats(vpWorldId world, ref vpStepStats stats);
+        [DllImport(Library)] public static extern Status vpWorldGetActorStats(vpWorldId world, int actorIndex, out vpActorStats stats);
+
+        [DllImport(Library)] public static extern vpShapeDef vpDefaultShapeDef();
+        [DllImport(Library)] public static extern vpColliderDef vpDefaultColliderDef();
+        [DllImport(Library)] public static extern Status vpColliderCreate(vpWorldId world, ref vpColliderDef def, out vpColliderId collider);
+        [DllImport(Library)] public static extern Status vpColliderDestroy(vpColliderId collider);
+        [DllImport(Library)] public static extern Status vpColliderIsValid(vpColliderId collider);
+        [DllImport(Library)] public static extern Status vpColliderGetPose(vpColliderId collider, out vpTransform pose);
+        [DllImport(Library)] public static extern Status vpColliderSetPose(vpColliderId collider, ref vpTransform pose);
+        [DllImport(Library)] public static extern Status vpColliderGetVelocity(vpColliderId collider, out vpVec3 linear, out vpVec3 angular);
+        [DllImport(Library)] public static extern Status vpColliderSetVelocity(vpColliderId collider, vpVec3 linear, vpVec3 angular);
+        [DllImport(Library)] public static extern Status vpColliderSetKinematicTarget(vpColliderId collider, ref vpTransform target);
+        [DllImport(Library)] public static extern Status vpColliderGetBodyType(vpColliderId collider, out BodyType type);
+        [DllImport(Library)] public static extern Status vpColliderGetUserData(vpColliderId collider, out IntPtr userData);
+        [DllImport(Library)] public static extern Status vpColliderGetShapeMeshSize(vpColliderId collider, out int vertexCount, out int triangleCount);
+        [DllImport(Library)] public static extern Status vpColliderGetShapeMesh(vpColliderId collider, float[] positions, float[] normals,
+                                                                               int vertexCapacity, int[] triangles, int triangleCapacity);
+        [DllImport(Library)] public static extern Status vpWorldGetColliderCount(vpWorldId world, out int count);
+        [DllImport(Library)] public static extern Status vpWorldGetColliders(vpWorldId world, [Out] vpColliderId[] ids, int capacity, out int count);
+        [DllImport(Library)] public static extern Status vpWorldFindCollider(vpWorldId world, [MarshalAs(UnmanagedType.LPStr)] string name, out vpColliderId collider);
+
+        [DllImport(Library)] public static extern vpDeformableDef vpDefaultDeformableDef();
+        [DllImport(Library)] public static extern Status vpDeformableCreate(vpWorldId world, ref vpDeformableDef def, out vpDeformableId deformable);
+        [DllImport(Library)] public static extern Status vpDeformableDestroy(vpDeformableId deformable);
+        [DllImport(Library)] public static extern Status vpDeformableIsValid(vpDeformableId deformable);
+        [DllImport(Library)] public static extern Status vpDeformableGetNodeCount(vpDeformableId deformable, out int count);
+        [DllImport(Library)] public static extern Status vpDeformableGetPositions(vpDeformableId deformable, [Out] float[] xyz, int capacity);
+        [DllImport(Library)] public static extern Status vpDeformableGetVelocities(vpDeformableId deformable, [Out] float[] xyz, int capacity);
+        [DllImport(Library)] public static extern Status vpDeformableSetVelocities(vpDeformableId deformable, float[] xyz, int nodeCount);
+        [DllImport(Library)] public static extern Status vpDeformableApplyForce(vpDeformableId deformable, int node, vpVec3 force);
+        [DllImport(Library)] public static extern Status vpDeformableApplyImpulse(vpDeformableId deformable, int node, vpVec3 impulse);
+        [DllImport(Library)] public static extern Status vpDeformablePin(vpDeformableId deformable, int[] nodes, int count);
+        [DllImport(Library)] public static extern Status vpDeformableUnpin(vpDeformableId deformable, int[] nodes, int count);
+        [DllImport(Library)] public static extern Status vpDeformableAttach(vpDeformableId deformable, int[] nodes, int count, vpColliderId collider);
+        [DllImport(Library)] public static extern Status vpDeformableGetRenderMeshSize(vpDeformableId deformable, out int vertexCount, out int triangleCount);
+        [DllImport(Library)] public static extern Status vpDeformableGetRenderMesh(vpDeformableId deformable, [Out] float[] positions, [Out] float[] normals,
+                                                                                  int vertexCapacity, [Out] int[] triangles, int triangleCapacity);
+        [DllImport(Library)] public static extern Status vpDeformableGetStats(vpDeformableId deformable, out vpActorStats stats);
+        [DllImport(Library)] public static extern Status vpWorldGetDeformableCount(vpWorldId world, out int count);
+        [DllImport(Library)] public static extern Status vpWorldGetDeformables(vpWorldId world, [Out] vpDeformableId[] ids, int capacity, out int count);
+        [DllImport(Library)] public static extern Status vpWorldFindDeformable(vpWorldId world, [MarshalAs(UnmanagedType.LPStr)] string name, out vpDeformableId deformable);
+
+        public static string LastError() { return Marshal.PtrToStringAnsi(vpGetLastError()) ?? ""; }
+    }
+}

@@ -1,0 +1,208 @@
+// Blittable mirrors of the structs and enums in volphys.h, in the same order with the same
+// field names, so that [StructLayout(LayoutKind.Sequential)] gives the C layout on every
+// 64-bit platform a game engine runs on. Pointers and callbacks are IntPtr; C flags are int.
+// tests/bindings/csharp checks every size and field offset against the C compiler's.
+using System;
+using System.Runtime.InteropServices;
+
+namespace VolPhys
+{
+    public enum Status : int
+    {
+        Ok = 0, InvalidArgument = 1, InvalidId = 2, OutOfMemory = 3, Unsupported = 4, IoError = 5,
+        ParseError = 6, Busy = 7, Diverged = 8, VersionMismatch = 9, Internal = 10
+    }
+
+    public enum LogLevel : int { Debug = 0, Info = 1, Warning = 2, Error = 3, Off = 4 }
+
+    public enum Phase : int
+    {
+        Rigid = 0, Corotate = 1, Assemble = 2, Contacts = 3, Solve = 4, Embed = 5, Advect = 6, Forces = 7,
+        Fractions = 8, Pressure = 9, Surface = 10
+    }
+
+    public enum ActorKind : int { Rigid = 0, Deformable = 1, Fluid = 2 }
+    public enum BodyType : int { Static = 0, Kinematic = 1, Dynamic = 2 }
+    public enum ShapeType : int { Sphere = 0, Box = 1, Capsule = 2, Cylinder = 3, Plane = 4, ConvexHull = 5, TriangleMesh = 6 }
+
+    public static class Constants
+    {
+        public const int VersionMajor = 0, VersionMinor = 1, VersionPatch = 0;
+        public const uint HeaderVersion = (VersionMajor << 16) | (VersionMinor << 8) | VersionPatch;
+        public const int MaxPhases = 16;
+    }
+
+    [StructLayout(LayoutKind.Sequential)]
+    public struct vpVersion { public int major, minor, patch; }
+
+    [StructLayout(LayoutKind.Sequential)]
+    public struct vpVec3
+    {
+        public float x, y, z;
+        public vpVec3(float x, float y, float z) { this.x = x; this.y = y; this.z = z; }
+        public override string ToString() { return string.Format("({0}, {1}, {2})", x, y, z); }
+    }
+
+    /// <summary>Unit quaternion, w last.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct vpQuat
+    {
+        public float x, y, z, w;
+        public static readonly vpQuat Identity = new vpQuat { w = 1 };
+    }
+
+    [StructLayout(LayoutKind.Sequential)]
+    public struct vpTransform { public vpVec3 position; public vpQuat rotation; }
+
+    [StructLayout(LayoutKind.Sequential)]
+    public struct vpWorldId
+    {
+        public ushort index1, generation;
+        public bool IsNull { get { return index1 == 0; } }
+    }
+
+    [StructLayout(LayoutKind.Sequential)]
+    public struct vpColliderId
+    {
+        public uint index1, generation;
+        public vpWorldId world;
+        public bool IsNull { get { return index1 == 0; } }
+    }
+
+    [StructLayout(LayoutKind.Sequential)]
+    public struct vpDeformableId
+    {
+        public uint index1, generation;
+        public vpWorldId world;
+        public bool IsNull { get { return index1 == 0; } }
+    }
+
+    [StructLayout(LayoutKind.Sequential)]
+    public struct vpWorldDef
+    {
+        public uint structSize;
+        public vpVec3 gravity;
+        public int workerCount;
+        public float frameBudgetMs;
+        public float rigidMaxSubstep;
+        public IntPtr enqueueTask;
+        public IntPtr finishTask;
+        public IntPtr userTaskContext;
+        public IntPtr clock;
+        public IntPtr clockContext;
+        public IntPtr userData;
+    }
+
+    [StructLayout(LayoutKind.Sequential)]
+    public struct vpPhaseStats
+    {
+        public float ms;
+        public int iterations;
+        public float residual;
+        public int budgetCut;
+    }
+
+    [StructLayout(LayoutKind.Sequential)]
+    public unsafe struct vpActorStats
+    {
+        public ActorKind kind;
+        public uint index1;
+        public float totalMs;
+        public int diverged;
+        // vpPhaseStats[VP_MAX_PHASES] as raw storage: C# fixed buffers hold only primitives.
+        public fixed int phases[Constants.MaxPhases * 4];
+
+        public vpPhaseStats Phase(Phase phase)
+        {
+            int i = (int)phase;
+            if (i < 0 || i >= Constants.MaxPhases) throw new ArgumentOutOfRangeException("phase");
+            fixed (int* p = phases) { return ((vpPhaseStats*)p)[i]; }
+        }
+    }
+
+    [StructLayout(LayoutKind.Sequential)]
+    public struct vpStepStats
+    {
+        public uint structSize;
+        public ulong stepIndex;
+        public float dt;
+        public float totalMs;
+        public float budgetMs;
+        public int budgetCut;
+        public int actorCount;
+        public int colliderCount;
+        public int rigidSubsteps;
+    }
+
+    [StructLayout(LayoutKind.Sequential)]
+    public struct vpShapeDef
+    {
+        public uint structSize;
+        public ShapeType type;
+        public float radius;
+        public float halfHeight;
+        public vpVec3 halfExtents;
+        public vpVec3 normal;
+        public float offset;
+        public IntPtr points;
+        public int pointCount;
+        public IntPtr indices;
+        public int triangleCount;
+        public IntPtr meshFile;
+        public vpVec3 meshScale;
+    }
+
+    [StructLayout(LayoutKind.Sequential)]
+    public struct vpColliderDef
+    {
+        public uint structSize;
+        public BodyType bodyType;
+        public vpShapeDef shape;
+        public vpTransform pose;
+        public vpVec3 linearVelocity;
+        public vpVec3 angularVelocity;
+        public float mass;
+        public float friction;
+        public float restitution;
+        public float linearDamping;
+        public float angularDamping;
+        public IntPtr userData;
+    }
+
+    [StructLayout(LayoutKind.Sequential)]
+    public struct vpDeformableDef
+    {
+        public uint structSize;
+        public int degree;
+        public IntPtr vertices;
+        public int vertexCount;
+        public IntPtr tets;
+        public int tetCount;
+        public IntPtr tetFile;
+        public IntPtr surfaceFile;
+        public int voxelResolution;
+        public IntPtr renderVertices;
+        public int renderVertexCount;
+        public IntPtr renderTriangles;
+        public int renderTriangleCount;
+        public vpTransform pose;
+        public vpVec3 linearVelocity;
+        public float youngsModulus;
+        public float poissonRatio;
+        public float density;
+        public float massDamping;
+        public float stiffnessDamping;
+        public float friction;
+        public float solverTolerance;
+        public int solverMaxIterations;
+        public IntPtr userData;
+    }
+
+    [StructLayout(LayoutKind.Sequential)]
+    public struct vpBuildInfo
+    {
+        public int cudaCompiled;
+        public int cudaDeviceCount;
+        public int hardwareThreads;
+    }
+}

@@ -1,0 +1,120 @@
+// A VolPhys world owned by managed code: destroyed by Dispose (or, as a last resort, by the
+// finalizer). Colliders and deformables are value handles over their ids; after the world is
+// gone their calls throw VolPhysException(InvalidId) instead of touching freed memory.
+using System;
+using System.Runtime.InteropServices;
+
+namespace VolPhys
+{
+    public sealed class World : IDisposable
+    {
+        public vpWorldId Id { get; private set; }
+
+        static World()
+        {
+            // The header version these bindings mirror, and their vpWorldDef size, must match
+            // the loaded library: a mismatch would corrupt every def passed across.
+            VolPhysException.Check(Native.vpCheckHeaderVersion(Constants.HeaderVersion, (uint)Marshal.SizeOf(typeof(vpWorldDef))),
+                                   "vpCheckHeaderVersion");
+        }
+
+        public static vpWorldDef DefaultDef() { return Native.vpDefaultWorldDef(); }
+
+        public World() : this(DefaultDef()) { }
+
+        public World(vpWorldDef def)
+        {
+            vpWorldId id;
+            VolPhysException.Check(Native.vpWorldCreate(ref def, out id), "vpWorldCreate");
+            Id = id;
+        }
+
+        public void LoadScene(string path) { VolPhysException.Check(Native.vpWorldLoadScene(Id, path), "vpWorldLoadScene"); }
+        public void SetFrameBudget(float ms) { VolPhysException.Check(Native.vpWorldSetFrameBudget(Id, ms), "vpWorldSetFrameBudget"); }
+
+        public vpVec3 Gravity
+        {
+            get { vpVec3 g; VolPhysException.Check(Native.vpWorldGetGravity(Id, out g), "vpWorldGetGravity"); return g; }
+            set { VolPhysException.Check(Native.vpWorldSetGravity(Id, value), "vpWorldSetGravity"); }
+        }
+
+        /// <summary>Advances the world by dt seconds and returns the step's statistics.</summary>
+        public vpStepStats Step(float dt)
+        {
+            VolPhysException.Check(Native.vpWorldStep(Id, dt), "vpWorldStep");
+            vpStepStats stats = Native.vpDefaultStepStats();
+            VolPhysException.Check(Native.vpWorldGetStepStats(Id, ref stats), "vpWorldGetStepStats");
+            return stats;
+        }
+
+        public vpActorStats ActorStats(int actorIndex)
+        {
+            vpActorStats s;
+            VolPhysException.Check(Native.vpWorldGetActorStats(Id, actorIndex, out s), "vpWorldGetActorStats");
+            return s;
+        }
+
+        public Collider CreateCollider(vpColliderDef def)
+        {
+            vpColliderId id;
+            VolPhysException.Check(Native.vpColliderCreate(Id, ref def, out id), "vpColliderCreate");
+            return new Collider(id);
+        }
+
+        /// <summary>A deformable from a tet mesh: xyz per vertex, 4 vertex indices per tet.
+        /// The arrays are pinned for the call only (the library copies them).</summary>
+        public Deformable CreateDeformable(vpDeformableDef def, float[] vertices, int[] tets)
+        {
+            if (vertices == null || tets == null) throw new ArgumentNullException(vertices == null ? "vertices" : "tets");
+            GCHandle v = GCHandle.Alloc(vertices, GCHandleType.Pinned), t = GCHandle.Alloc(tets, GCHandleType.Pinned);
+            try
+            {
+                def.vertices = v.AddrOfPinnedObject();
+                def.vertexCount = vertices.Length / 3;
+                def.tets = t.AddrOfPinnedObject();
+                def.tetCount = tets.Length / 4;
+                return CreateDeformable(def);
+            }
+            finally
+            {
+                v.Free();
+                t.Free();
+            }
+        }
+
+        /// <summary>A deformable from a def whose pointers the caller keeps valid during the call.</summary>
+        public Deformable CreateDeformable(vpDeformableDef def)
+        {
+            vpDeformableId id;
+            VolPhysException.Check(Native.vpDeformableCreate(Id, ref def, out id), "vpDeformableCreate");
+            return new Deformable(id);
+        }
+
+        public Collider FindCollider(string name)
+        {
+            vpColliderId id;
+            VolPhysException.Check(Native.vpWorldFindCollider(Id, name, out id), "vpWorldFindCollider");
+            return new Collider(id);
+        }
+
+        public Deformable FindDeformable(string name)
+        {
+            vpDeformableId id;
+            VolPhysException.Check(Native.vpWorldFindDeformable(Id, name, out id), "vpWorldFindDeformable");
+            return new Deformable(id);
+        }
+
+        public void Dispose()
+        {
+            if (!Id.IsNull) Native.vpWorldDestroy(Id);
+            Id = default(vpWorldId);
+            GC.SuppressFinalize(this);
+        }
+
+        ~World()
+        {
+            // Worlds are not bound to a thread, so destroying one from the finalizer is allowed.
+            if (!Id.IsNull) Native.vpWorldDestroy(Id);
+        }
+    }
+}

@@ -1,0 +1,282 @@
+// Fluid actor step (see fluid_actor.h).
+#include "fluid/fluid_actor.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/log.h"
+#include "core/parallel_for.h"
+#include "fluid/fluid_sources.h"
+#include "fluid/level_set_solid_extension.h"
+#include "fluid/liquid_volume.h"
+
+namespace vp {
+
+Status FluidActor::create(FluidDesc desc, TaskSystem& tasks, std::unique_ptr<FluidActor>* out) {
+  VP_TRY(validateFluidDesc(desc));
+  std::unique_ptr<FluidActor> actor(new FluidActor(std::move(desc)));
+  FluidActor& a = *actor;
+  a.tasks_ = &tasks;
+  VP_TRY(initMacGrid(a.desc_.grid, a.desc_.sides, &a.grid_));
+  VP_TRY(initFaceFractionField(a.desc_.grid, &a.fractions_));
+  const size_t cells = static_cast<size_t>(a.grid_.cellCount());
+  if (a.desc_.kind == FluidKind::Smoke) {
+    a.smokeDensity_.assign(cells, 0.0);
+    a.temperature_.assign(cells, a.desc_.smoke.ambientTemperature);
+  } else {
+    initialLiquidLevelSet(a.grid_, a.desc_.initialLiquid, a.phi_);
+    RedistanceStats rs;
+    VP_TRY(redistanceLevelSet(tasks, a.grid_.spec, a.phi_.data(), RedistanceSettings{}, a.redistance_, &rs));
+    // Colliders are not known yet: the first step's fractions set the cell weights, and the
+    // target is re-measured then (liquid created inside a solid does not count).
+    a.targetVolume_ = -1.0;
+  }
+  *out = std::move(actor);
+  return Status::Ok;
+}
+
+double FluidActor::totalSmoke() const {
+  double sum = 0.0;
+  for (double d : smokeDensity_) sum += d;
+  return sum * grid_.spec.h * grid_.spec.h * grid_.spec.h;
+}
+
+double FluidActor::liquidVolume() const {
+  if (desc_.kind != FluidKind::Liquid) return 0.0;
+  return vp::liquidVolume(*tasks_, grid_.spec, phi_.data(), cellWeights_.empty() ? nullptr : cellWeights_.data());
+}
+
+const FluidSurface& FluidActor::surface() {
+  if (surfaceStep_ == stepCount_) return surface_;
+  surface_ = FluidSurface{};
+  surfaceStep_ = stepCount_;
+  if (desc_.kind != FluidKind::Liquid) return surface_;
+  SurfaceMesh mesh;
+  std::vector<Eigen::Vector3d> normals;
+  if (Status s = extractLiquidSurface(*tasks_, grid_.spec, phi_.data(), &mesh, &normals, marchingCubes_); !ok(s)) {
+    log(LogLevel::Error, "fluid '%s': surface extraction failed: %s", desc_.name.c_str(), lastError());
+    return surface_;
+  }
+  surface_.positions = std::move(mesh.vertices);
+  surface_.normals = std::move(normals);
+  surface_.triangles.reserve(mesh.triangles.size());
+  for (const auto& t : mesh.triangles) surface_.triangles.emplace_back(t[0], t[1], t[2]);
+  return surface_;
+}
+
+void FluidActor::keepLevelSetHealthy(TaskSystem& tasks) {
+  extendLevelSetIntoSolids(grid_.spec, cellWeights_, phi_, solidCells_);
+  RedistanceStats rs;
+  if (Status s = redistanceLevelSet(tasks, grid_.spec, phi_.data(), RedistanceSettings{}, redistance_, &rs); !ok(s))
+    log(LogLevel::Error, "fluid '%s': redistancing failed: %s", desc_.name.c_str(), lastError());
+  // Advection and redistancing both lose or gain a little volume every step; a uniform
+  // shift of the level set puts it back (the correction moves at most a cell per call, so
+  // large mismatches are caught up over a few steps instead of jumping the surface).
+  VolumeCorrectionResult vc;
+  if (Status s = correctLiquidVolume(tasks, grid_.spec, phi_.data(), cellWeights_.data(), targetVolume_,
+                                     VolumeCorrectionSettings{}, &vc);
+      !ok(s))
+    log(LogLevel::Error, "fluid '%s': volume correction failed: %s", desc_.name.c_str(), lastError());
+}
+
+void FluidActor::extrapolateLiquidVelocity(TaskSystem& tasks) {
+  VelocityExtrapolationSettings settings;
+  // Advection traces at most cflNumber cells (plus the interpolation stencil) from any
+  // liquid face within a sub-step.
+  settings.layers = static_cast<int>(std::ceil(desc_.solver.cflNumber)) + 2;
+  if (Status s = extrapolateVelocity(tasks, grid_, fractions_, phi_.data(), settings, extrapolation_); !ok(s)) {
+    log(LogLevel::Error, "fluid '%s': velocity extrapolation failed: %s", desc_.name.c_str(), lastError());
+    return;
+  }
+  // Air faces out of reach of the liquid are never projected; left alone they would gather
+  // gravity step after step and inflate the CFL sub-step count.
+  for (int a = 0; a < 3; ++a) {
+    const std::vector<uint8_t>& mark = extrapolation_.mark[a];
+    std::vector<double>& u = grid_.velocity[a];
+    for (size_t f = 0; f < u.size(); ++f)
+      if (mark[f] == kExtrapolationUnreached) u[f] = 0.0;
+  }
+}
+
+void FluidActor::advectAndSource(TaskSystem& tasks, const Vec3& gravity, double h, ActorStats* stats,
+                                 const Deadline& deadline) {
+  const FluidSolverSettings& solver = desc_.solver;
+  double t0 = deadline.elapsedMs();
+  advectVelocity(tasks, grid_, h, solver.advection, advection_);
+  if (desc_.kind == FluidKind::Smoke) {
+    std::vector<double>* scalars[2] = {&smokeDensity_, &temperature_};
+    advectCellScalars(tasks, grid_, h, solver.advection, scalars, 2, advection_);
+  } else {
+    std::vector<double>* scalars[1] = {&phi_};
+    advectCellScalars(tasks, grid_, h, solver.advection, scalars, 1, advection_);
+  }
+  stats->phase(Phase::Advect).ms += deadline.elapsedMs() - t0;
+
+  t0 = deadline.elapsedMs();
+  if (desc_.kind == FluidKind::Smoke) {
+    applySmokeEmitters(grid_, desc_.emitters, h, smokeDensity_, temperature_);
+    applyBuoyancy(tasks, grid_, smokeDensity_, temperature_, desc_.smoke, gravity, h);
+    applyVorticityConfinement(tasks, grid_, desc_.smoke.vorticityConfinement, h, vorticity_);
+    dissipate(smokeDensity_, desc_.smoke.densityDissipation, h);
+    dissipate(temperature_, desc_.smoke.temperatureDissipation, h);
+  } else {
+    if (!desc_.emitters.empty() || !desc_.drains.empty()) {
+      // Sources change the volume on purpose: the target follows them.
+      const double before = vp::liquidVolume(tasks, grid_.spec, phi_.data(), cellWeights_.data());
+      applyLiquidEmitters(grid_, desc_.emitters, phi_);
+      applyDrains(grid_, desc_.drains, phi_);
+      targetVolume_ += vp::liquidVolume(tasks, grid_.spec, phi_.data(), cellWeights_.data()) - before;
+    }
+    for (int a = 0; a < 3; ++a) {
+      if (gravity[a] == 0.0) continue;
+      for (double& u : grid_.velocity[a]) u += h * gravity[a];
+    }
+  }
+  stats->phase(Phase::Forces).ms += deadline.elapsedMs() - t0;
+
+  if (desc_.kind == FluidKind::Liquid) {
+    t0 = deadline.elapsedMs();
+    keepLevelSetHealthy(tasks);
+    stats->phase(Phase::Surface).ms += deadline.elapsedMs() - t0;
+  }
+}
+
+Status FluidActor::updateFractions(const std::vector<FluidCollider>& colliders) {
+  std::vector<const PreparedCollider*> geometry;
+  std::vector<ColliderSnapshot> now;
+  for (const FluidCollider& c : colliders) {
+    if (c.geometry == nullptr) continue;
+    geometry.push_back(c.geometry);
+    const ColliderShape& s = c.geometry->shape;
+    now.push_back(ColliderSnapshot{c.index1, c.generation, c.geometry->bounds, s.rotation, s.translation,
+                                   s.linearVelocity, s.angularVelocity});
+  }
+  const int count = static_cast<int>(geometry.size());
+  bool sameSet = fractionsValid_ && now.size() == snapshots_.size();
+  for (size_t i = 0; sameSet && i < now.size(); ++i)
+    sameSet = now[i].index1 == snapshots_[i].index1 && now[i].generation == snapshots_[i].generation;
+  if (!sameSet) {
+    // A collider came or went: a full recompute is simpler than tracking the union of
+    // everything that changed, and it happens only on such events.
+    VP_TRY(computeFaceFractions(geometry.data(), count, &fractions_));
+  } else {
+    for (size_t i = 0; i < now.size(); ++i) {
+      const ColliderSnapshot& a = snapshots_[i];
+      const ColliderSnapshot& b = now[i];
+      const bool moved = a.translation != b.translation || a.rotation.coeffs() != b.rotation.coeffs() ||
+                         a.linearVelocity != b.linearVelocity || a.angularVelocity != b.angularVelocity;
+      if (moved) VP_TRY(updateFaceFractions(geometry.data(), count, a.bounds, b.bounds, &fractions_));
+    }
+  }
+  snapshots_ = std::move(now);
+  fractionsValid_ = true;
+  return Status::Ok;
+}
+
+double FluidActor::maxSpeed(TaskSystem& tasks) const {
+  double speed = 0.0;
+  for (int a = 0; a < 3; ++a) {
+    const std::vector<double>& u = grid_.velocity[a];
+    struct Max {
+      double v = 0.0;
+      Max& operator+=(const Max& o) { v = std::max(v, o.v); return *this; }
+    };
+    const Max m = parallelReduce<Max>(tasks, static_cast<int64_t>(u.size()), 1 << 15, [&](int64_t b, int64_t e) {
+      Max r;
+      for (int64_t f = b; f < e; ++f) r.v = std::max(r.v, std::abs(u[static_cast<size_t>(f)]));
+      return r;
+    });
+    // Per component: the speed bound |u| <= sqrt(3) max component is not worth its sqrt.
+    speed = std::max(speed, m.v);
+  }
+  return speed;
+}
+
+void FluidActor::step(const FluidStepInput& input, ActorStats* stats, std::vector<FluidColliderLoad>* loads) {
+  TaskSystem& tasks = *input.tasks;
+  ++stepCount_;
+  const double dt = input.dt;
+  const Deadline& deadline = input.deadline;
+  const FluidSolverSettings& solver = desc_.solver;
+  const MacGridSpec& s = grid_.spec;
+
+  double t0 = deadline.elapsedMs();
+  if (Status st = updateFractions(input.colliders); st != Status::Ok)
+    log(LogLevel::Error, "fluid '%s': face fractions failed: %s", desc_.name.c_str(), lastError());
+  if (desc_.kind == FluidKind::Liquid) {
+    cellOpenFractions(tasks, fractions_, &cellWeights_);
+    if (targetVolume_ < 0.0) {
+      targetVolume_ = vp::liquidVolume(tasks, grid_.spec, phi_.data(), cellWeights_.data());
+      extrapolateLiquidVelocity(tasks);
+    }
+  }
+  stats->phase(Phase::Fractions).ms += deadline.elapsedMs() - t0;
+
+  double speed = maxSpeed(tasks);
+  for (const FluidCollider& c : input.colliders)
+    if (c.geometry != nullptr && c.geometry->bounds.overlaps(Aabb{s.origin, s.origin + s.h * Eigen::Vector3d(s.nx, s.ny, s.nz)}))
+      speed = std::max(speed, c.geometry->shape.linearVelocity.norm() +
+                                  c.geometry->shape.angularVelocity.norm() * c.geometry->boundRadius);
+  const int substeps = std::clamp(static_cast<int>(std::ceil(speed * dt / (solver.cflNumber * s.h))), 1,
+                                  solver.maxSubsteps);
+  const double h = dt / substeps;
+
+  std::vector<PressureLoad> loadSum(input.colliders.size());
+  PressureSolveSettings pressureSettings;
+  pressureSettings.tolerance = solver.pressureTolerance;
+  pressureSettings.maxIterations = solver.pressureMaxIterations;
+  PhaseStats& pressurePhase = stats->phase(Phase::Pressure);
+  for (int sub = 0; sub < substeps; ++sub) {
+    advectAndSource(tasks, input.gravity, h, stats, deadline);
+
+    t0 = deadline.elapsedMs();
+    PressureSolveStats ps;
+    const Deadline share = deadline.share(1.0 / (substeps - sub));
+    if (Status st = projectVelocity(tasks, grid_, fractions_, h, desc_.density, share, pressureSettings, pressure_, &ps,
+                                    liquidPhi());
+        st != Status::Ok)
+      log(LogLevel::Error, "fluid '%s': pressure projection failed: %s", desc_.name.c_str(), lastError());
+    pressurePhase.iterations += ps.iterations;
+    pressurePhase.residual = std::max(pressurePhase.residual, ps.relativeResidual);
+    pressurePhase.budgetCut = pressurePhase.budgetCut || ps.budgetCut;
+    if (desc_.twoWayCoupling)
+      for (size_t c = 0; c < input.colliders.size(); ++c) {
+        const FluidCollider& fc = input.colliders[c];
+        if (!fc.dynamic || fc.geometry == nullptr) continue;
+        const PressureLoad l = pressureLoadOnCollider(grid_, fractions_, pressure_.poisson, pressure_.pressure.data(), desc_.density,
+                                                      *fc.geometry, fc.geometry->shape.translation);
+        loadSum[c].force += l.force / substeps;
+        loadSum[c].torque += l.torque / substeps;
+        loadSum[c].addedMass += l.addedMass / substeps;
+      }
+    pressurePhase.ms += deadline.elapsedMs() - t0;
+    if (desc_.kind == FluidKind::Liquid) {
+      t0 = deadline.elapsedMs();
+      extrapolateLiquidVelocity(tasks);
+      stats->phase(Phase::Surface).ms += deadline.elapsedMs() - t0;
+    }
+  }
+
+  bool finite = true;
+  for (int a = 0; a < 3 && finite; ++a)
+    for (double u : grid_.velocity[a])
+      if (!std::isfinite(u)) { finite = false; break; }
+  if (!finite) {
+    // Nothing bounds a blown-up state from coming back: restart the flow from rest rather
+    // than hand NaNs to the host and the rigid bodies.
+    for (int a = 0; a < 3; ++a) std::fill(grid_.velocity[a].begin(), grid_.velocity[a].end(), 0.0);
+    std::fill(pressure_.pressure.begin(), pressure_.pressure.end(), 0.0);
+    stats->diverged = true;
+    return;
+  }
+  // The load is the mean over this step and acts during the next one (a delay of one step:
+  // explicit coupling). Extrapolating it one step ahead to cancel the delay was tried and made
+  // a floating box unstable (the pressure also carries the added-mass reaction, which an
+  // extrapolation amplifies); the plain delay lets bobbing decay, slowly, in an inviscid tank.
+  if (loads != nullptr)
+    for (size_t c = 0; c < input.colliders.size(); ++c)
+      if (input.colliders[c].dynamic && desc_.twoWayCoupling)
+        loads->push_back(FluidColliderLoad{input.colliders[c].index1, input.colliders[c].generation, loadSum[c]});
+}
+
+}  // namespace vp

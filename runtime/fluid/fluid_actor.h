@@ -1,0 +1,124 @@
+// A fluid actor: smoke or liquid on a MAC grid in a box domain, with the world's colliders as
+// cut-cell solid boundaries (exact face fractions) and, optionally, two-way coupling to the
+// dynamic ones.
+//
+// One world step of dt:
+//   Fractions  face fractions brought up to date where colliders moved (incremental)
+//   then sub-steps of dt/n, n = ceil(max speed * dt / (cfl h)) capped at maxSubsteps:
+//   Advect     velocity (and smoke density/temperature, or the liquid level set)
+//   Forces     emitters, drains, buoyancy + vorticity confinement (smoke) or gravity (liquid)
+//   Pressure   cut-cell projection, budgeted (each sub-step gets an equal share of what is
+//              left of the actor's deadline), warm-started from the last pressure
+//   Surface    liquid: redistancing, volume correction, velocity extrapolation
+// The pressure loads on dynamic colliders, averaged over the sub-steps, are reported in
+// FluidStepResult for the world to apply during the next rigid step.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "collide/face_coverage.h"
+#include "core/budget_clock.h"
+#include "core/task_system.h"
+#include "fluid/advection.h"
+#include "fluid/face_fraction_field.h"
+#include "fluid/fluid_desc.h"
+#include "fluid/level_set_redistance.h"
+#include "fluid/marching_cubes.h"
+#include "fluid/velocity_extrapolation.h"
+#include "fluid/mac_grid.h"
+#include "fluid/pressure_forces.h"
+#include "fluid/pressure_projection.h"
+#include "fluid/smoke_forces.h"
+#include "step_stats.h"
+
+namespace vp {
+
+struct FluidCollider {
+  uint32_t index1 = 0, generation = 0;  // identifies the collider across steps
+  const PreparedCollider* geometry = nullptr;
+  bool dynamic = false;  // receives pressure loads when two-way coupling is on
+};
+
+struct FluidStepInput {
+  double dt = 1.0 / 60.0;
+  Vec3 gravity = Vec3::Zero();
+  Deadline deadline;
+  TaskSystem* tasks = nullptr;
+  std::vector<FluidCollider> colliders;
+};
+
+struct FluidColliderLoad {
+  uint32_t index1 = 0, generation = 0;
+  PressureLoad load;  // torque about the collider's origin
+};
+
+// The liquid's free surface, oriented out of the liquid.
+struct FluidSurface {
+  std::vector<Vec3> positions, normals;
+  std::vector<Eigen::Vector3i> triangles;
+};
+
+class FluidActor {
+ public:
+  static Status create(FluidDesc desc, TaskSystem& tasks, std::unique_ptr<FluidActor>* out);
+
+  // Fills stats; `loads` receives the pressure loads on dynamic colliders (may be null).
+  void step(const FluidStepInput& input, ActorStats* stats, std::vector<FluidColliderLoad>* loads);
+
+  const FluidDesc& desc() const { return desc_; }
+  const MacGrid& grid() const { return grid_; }
+  const FaceFractionField& fractions() const { return fractions_; }
+  const std::vector<double>& smokeDensity() const { return smokeDensity_; }
+  const std::vector<double>& temperature() const { return temperature_; }
+  const std::vector<double>& levelSet() const { return phi_; }
+  const std::vector<double>& pressure() const { return pressure_.pressure; }
+  Vec3 sampleVelocity(const Vec3& x) const { return grid_.sampleVelocity(x); }
+  // Total smoke (density integrated over the domain, density units * m^3).
+  double totalSmoke() const;
+  // Liquid volume in m^3 (0 for smoke).
+  double liquidVolume() const;
+  // Built on the first request after a step (empty for smoke).
+  const FluidSurface& surface();
+  uint64_t stepCount() const { return stepCount_; }
+
+ private:
+  explicit FluidActor(FluidDesc desc) : desc_(std::move(desc)) {}
+  Status updateFractions(const std::vector<FluidCollider>& colliders);
+  double maxSpeed(TaskSystem& tasks) const;
+  void advectAndSource(TaskSystem& tasks, const Vec3& gravity, double dt, ActorStats* stats, const Deadline& deadline);
+  void keepLevelSetHealthy(TaskSystem& tasks);
+  void extrapolateLiquidVelocity(TaskSystem& tasks);
+  const double* liquidPhi() const { return desc_.kind == FluidKind::Liquid ? phi_.data() : nullptr; }
+
+  struct ColliderSnapshot {
+    uint32_t index1, generation;
+    Aabb bounds;
+    Eigen::Quaterniond rotation;
+    Eigen::Vector3d translation, linearVelocity, angularVelocity;
+  };
+
+  FluidDesc desc_;
+  MacGrid grid_;
+  FaceFractionField fractions_;
+  std::vector<ColliderSnapshot> snapshots_;  // the colliders the fractions were computed for
+  bool fractionsValid_ = false;
+  std::vector<double> smokeDensity_, temperature_, phi_;
+  PressureState pressure_;
+  AdvectionWorkspace advection_;
+  VorticityWorkspace vorticity_;
+  FluidSurface surface_;
+  TaskSystem* tasks_ = nullptr;  // the world's, for on-request work (surface extraction)
+  // Liquid: the volume the level set must keep (initial + emitted - drained), the cells'
+  // open fractions that weight it, and the level-set workspaces.
+  double targetVolume_ = 0.0;
+  std::vector<double> cellWeights_;
+  std::vector<int64_t> solidCells_;
+  RedistanceWorkspace redistance_;
+  VelocityExtrapolationState extrapolation_;
+  MarchingCubesWorkspace marchingCubes_;
+  uint64_t stepCount_ = 0, surfaceStep_ = ~uint64_t(0);
+};
+
+}  // namespace vp

@@ -1,0 +1,35 @@
+// Body forces of smoke, applied to the MAC face velocities before the pressure projection.
+//
+// Buoyancy (Boussinesq, Fedkiw, Stam, Jensen 2001): f = (-alpha d + beta (T - T_ambient)) up,
+// with up = -gravity / |gravity| (no buoyancy without gravity). Evaluated at each face from
+// the mean of its two cells.
+//
+// Vorticity confinement (Fedkiw et al. 2001): f = epsilon h (N x omega), N = grad|omega| /
+// |grad|omega||, which puts back the small swirls that numerical dissipation removes;
+// h makes the force vanish under refinement (the scheme stays consistent).
+#pragma once
+
+#include <vector>
+
+#include "core/task_system.h"
+#include "fluid/fluid_desc.h"
+#include "fluid/mac_grid.h"
+
+namespace vp {
+
+void applyBuoyancy(TaskSystem& tasks, MacGrid& grid, const std::vector<double>& smokeDensity,
+                   const std::vector<double>& temperature, const SmokeParameters& params, const Vec3& gravity,
+                   double dt);
+
+struct VorticityWorkspace {
+  std::vector<Eigen::Vector3d> omega;  // per cell
+  std::vector<Eigen::Vector3d> force;  // per cell
+};
+
+void applyVorticityConfinement(TaskSystem& tasks, MacGrid& grid, double epsilon, double dt,
+                               VorticityWorkspace& work);
+
+// values *= exp(-rate dt): exact decay for any dt.
+void dissipate(std::vector<double>& values, double rate, double dt);
+
+}  // namespace vp

@@ -1,0 +1,83 @@
+#include "frame_plot.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+int framePlotInit(FramePlot* p, int capacity) {
+  memset(p, 0, sizeof *p);
+  if (capacity < 1) capacity = 1;
+  p->stepMs = (float*)malloc(sizeof(float) * (size_t)capacity);
+  p->budgetMs = (float*)malloc(sizeof(float) * (size_t)capacity);
+  p->cut = (int*)malloc(sizeof(int) * (size_t)capacity);
+  p->capacity = capacity;
+  return p->stepMs && p->budgetMs && p->cut;
+}
+
+void framePlotAdd(FramePlot* p, float stepMs, float budgetMs, int cut) {
+  if (p->count >= p->capacity) return;
+  p->stepMs[p->count] = stepMs;
+  p->budgetMs[p->count] = budgetMs;
+  p->cut[p->count] = cut;
+  ++p->count;
+}
+
+/* A "nice" tick step (1, 2 or 5 times a power of ten) giving about `target` ticks. */
+static double tickStep(double range, int target) {
+  double raw = range / target, mag = pow(10.0, floor(log10(raw))), r = raw / mag;
+  return (r < 1.5 ? 1 : r < 3.5 ? 2 : r < 7.5 ? 5 : 10) * mag;
+}
+
+int framePlotWriteSvg(const FramePlot* p, const char* path) {
+  const double W = 800, H = 400, left = 60, right = 20, top = 30, bottom = 50;
+  const double pw = W - left - right, ph = H - top - bottom;
+  double ymax = 1.0, ystep, v;
+  int i, xmax = p->count > 1 ? p->count - 1 : 1;
+  FILE* f = fopen(path, "w");
+  if (!f) {
+    fprintf(stderr, "cannot write '%s'\n", path);
+    return 0;
+  }
+  for (i = 0; i < p->count; ++i) {
+    if (p->stepMs[i] > ymax) ymax = p->stepMs[i];
+    if (p->budgetMs[i] > ymax) ymax = p->budgetMs[i];
+  }
+  ymax *= 1.1;
+#define X(i) (left + pw * (double)(i) / xmax)
+#define Y(ms) (top + ph * (1.0 - (ms) / ymax))
+  fprintf(f, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%g\" height=\"%g\" font-family=\"sans-serif\" "
+             "font-size=\"12\">\n<rect width=\"100%%\" height=\"100%%\" fill=\"white\"/>\n", W, H);
+  fprintf(f, "<text x=\"%g\" y=\"18\" font-size=\"14\">VolPhys step time per frame against the budget</text>\n", left);
+  ystep = tickStep(ymax, 6);
+  for (v = 0; v <= ymax; v += ystep)
+    fprintf(f, "<line x1=\"%g\" y1=\"%.1f\" x2=\"%g\" y2=\"%.1f\" stroke=\"#ddd\"/><text x=\"%g\" y=\"%.1f\" "
+               "text-anchor=\"end\">%g</text>\n", left, Y(v), left + pw, Y(v), left - 6, Y(v) + 4, v);
+  for (v = 0; v <= xmax; v += tickStep(xmax, 8))
+    fprintf(f, "<text x=\"%.1f\" y=\"%g\" text-anchor=\"middle\">%g</text>\n", X(v), top + ph + 18, v);
+  fprintf(f, "<text x=\"%g\" y=\"%g\" text-anchor=\"middle\">frame</text>\n", left + pw / 2, H - 8);
+  fprintf(f, "<text transform=\"translate(16,%g) rotate(-90)\" text-anchor=\"middle\">ms</text>\n", top + ph / 2);
+  fprintf(f, "<rect x=\"%g\" y=\"%g\" width=\"%g\" height=\"%g\" fill=\"none\" stroke=\"black\"/>\n", left, top, pw, ph);
+  if (p->count > 0) {
+    fprintf(f, "<polyline fill=\"none\" stroke=\"#c33\" stroke-dasharray=\"6,4\" points=\"");
+    for (i = 0; i < p->count; ++i) fprintf(f, "%.1f,%.1f ", X(i), Y(p->budgetMs[i]));
+    fprintf(f, "\"/>\n<polyline fill=\"none\" stroke=\"#25a\" points=\"");
+    for (i = 0; i < p->count; ++i) fprintf(f, "%.1f,%.1f ", X(i), Y(p->stepMs[i]));
+    fprintf(f, "\"/>\n");
+    for (i = 0; i < p->count; ++i)
+      if (p->cut[i]) fprintf(f, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"2.5\" fill=\"#c33\"/>\n", X(i), Y(p->stepMs[i]));
+  }
+  fprintf(f, "<text x=\"%g\" y=\"%g\" fill=\"#25a\">step time</text><text x=\"%g\" y=\"%g\" fill=\"#c33\">"
+             "budget (0 = unlimited); dots: budget-cut frames</text>\n</svg>\n",
+          left + 10, top + 16, left + 90, top + 16);
+#undef X
+#undef Y
+  return fclose(f) == 0;
+}
+
+void framePlotFree(FramePlot* p) {
+  free(p->stepMs);
+  free(p->budgetMs);
+  free(p->cut);
+  memset(p, 0, sizeof *p);
+}

@@ -1,0 +1,40 @@
+#include "hud_stats.h"
+
+#include <stdio.h>
+#include <string.h>
+
+static const char* const kPhaseNames[vpPhase_Count] = {"rigid",    "corotate", "assemble",  "contacts",
+                                                       "solve",    "embed",    "advect",    "forces",
+                                                       "fractions", "pressure", "surface"};
+static const char* const kKindNames[3] = {"rigid", "deformable", "fluid"};
+
+int hudStatsLines(vpWorldId world, char lines[HUD_MAX_LINES][HUD_LINE_CHARS]) {
+  vpStepStats step = vpDefaultStepStats();
+  int n = 0, a;
+  if (vpWorldGetStepStats(world, &step) != vpStatus_Ok) return 0;
+  snprintf(lines[n++], HUD_LINE_CHARS, "frame %llu  step %.2f ms / budget %.1f ms%s", (unsigned long long)step.stepIndex,
+           step.totalMs, step.budgetMs, step.budgetMs <= 0.0f ? " (unlimited)" : step.budgetCut ? "  CUT" : "");
+  for (a = 0; a < step.actorCount && n < HUD_MAX_LINES; ++a) {
+    vpActorStats s;
+    size_t used;
+    int p;
+    char* line = lines[n++];
+    if (vpWorldGetActorStats(world, a, &s) != vpStatus_Ok) break;
+    /* The rigid pseudo-actor has no id; actors are named by kind and slot. */
+    if (s.kind == vpActorKind_Rigid)
+      used = (size_t)snprintf(line, HUD_LINE_CHARS, "bullet %.2f ms:", s.totalMs);
+    else
+      used = (size_t)snprintf(line, HUD_LINE_CHARS, "%s #%u %.2f ms:",
+                              kKindNames[(int)s.kind >= 0 && s.kind < 3 ? s.kind : 0], s.index1, s.totalMs);
+    for (p = 0; p < vpPhase_Count && used < HUD_LINE_CHARS; ++p) {
+      const vpPhaseStats* ph = &s.phases[p];
+      if (ph->ms <= 0.0f && ph->iterations == 0) continue;
+      used += (size_t)snprintf(line + used, HUD_LINE_CHARS - used, " %s %.2f", kPhaseNames[p], ph->ms);
+      if (ph->iterations > 0 && used < HUD_LINE_CHARS)
+        used += (size_t)snprintf(line + used, HUD_LINE_CHARS - used, " (%d its, res %.0e%s)", ph->iterations,
+                                 ph->residual, ph->budgetCut ? ", cut" : "");
+    }
+    if (s.diverged && used < HUD_LINE_CHARS) snprintf(line + used, HUD_LINE_CHARS - used, " DIVERGED");
+  }
+  return n;
+}

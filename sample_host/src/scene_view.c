@@ -1,0 +1,235 @@
+#include "scene_view.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const vpTransform kIdentity = {{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f, 1.0f}};
+
+static int report(const char* what, vpStatus s) {
+  fprintf(stderr, "scene view: %s failed (%s): %s\n", what, vpStatusName(s), vpGetLastError());
+  return 0;
+}
+
+static int grow(void** items, int* capacity, int needed, size_t itemSize) {
+  void* p;
+  int cap = *capacity ? *capacity : 8;
+  if (needed <= *capacity) return 1;
+  while (cap < needed) cap *= 2;
+  p = realloc(*items, (size_t)cap * itemSize);
+  if (!p) return 0;
+  memset((char*)p + (size_t)*capacity * itemSize, 0, (size_t)(cap - *capacity) * itemSize);
+  *items = p;
+  *capacity = cap;
+  return 1;
+}
+
+int viewMeshReserve(ViewMesh* m, int32_t vertexCount, int32_t triangleCount) {
+  if (vertexCount > m->vertexCapacity) {
+    float* p = (float*)realloc(m->positions, sizeof(float) * 3 * (size_t)vertexCount);
+    float* n;
+    if (!p) return 0;
+    m->positions = p;
+    n = (float*)realloc(m->normals, sizeof(float) * 3 * (size_t)vertexCount);
+    if (!n) return 0;
+    m->normals = n;
+    m->vertexCapacity = vertexCount;
+  }
+  if (triangleCount > m->triangleCapacity) {
+    int32_t* t = (int32_t*)realloc(m->triangles, sizeof(int32_t) * 3 * (size_t)triangleCount);
+    if (!t) return 0;
+    m->triangles = t;
+    m->triangleCapacity = triangleCount;
+  }
+  return 1;
+}
+
+int viewPointsReserve(ViewPoints* p, int32_t count) {
+  if (count > p->capacity) {
+    float* xyz = (float*)realloc(p->xyz, sizeof(float) * 3 * (size_t)count);
+    float* rgba;
+    if (!xyz) return 0;
+    p->xyz = xyz;
+    rgba = (float*)realloc(p->rgba, sizeof(float) * 4 * (size_t)count);
+    if (!rgba) return 0;
+    p->rgba = rgba;
+    p->capacity = count;
+  }
+  return 1;
+}
+
+ViewMesh* sceneViewAddMesh(SceneView* v, const char* name, const float color[4], int exported) {
+  ViewMesh* m;
+  if (!grow((void**)&v->meshes, &v->meshCapacity, v->meshCount + 1, sizeof(ViewMesh))) return NULL;
+  if (!grow((void**)&v->sources, &v->sourcesCapacity, v->meshCount + 1, sizeof *v->sources)) return NULL;
+  m = &v->meshes[v->meshCount++];
+  memset(m, 0, sizeof *m);
+  snprintf(m->name, sizeof m->name, "%s", name);
+  memcpy(m->color, color, sizeof m->color);
+  m->exported = exported;
+  m->framed = 1;
+  m->pose = kIdentity;
+  return m;
+}
+
+ViewPoints* sceneViewAddPoints(SceneView* v, const char* name, float pointSize) {
+  ViewPoints* p;
+  if (!grow((void**)&v->points, &v->pointsCapacity, v->pointsCount + 1, sizeof(ViewPoints))) return NULL;
+  p = &v->points[v->pointsCount++];
+  memset(p, 0, sizeof *p);
+  snprintf(p->name, sizeof p->name, "%s", name);
+  p->pointSize = pointSize;
+  return p;
+}
+
+static void colliderColor(vpBodyType type, float out[4]) {
+  /* Static grey, kinematic (host-driven) orange, dynamic blue: the reader sees who moves whom. */
+  static const float colors[3][4] = {{0.55f, 0.57f, 0.6f, 1}, {0.95f, 0.55f, 0.15f, 1}, {0.25f, 0.5f, 0.9f, 1}};
+  memcpy(out, colors[(int)type >= 0 && (int)type < 3 ? (int)type : 0], sizeof colors[0]);
+}
+
+static int addColliders(SceneView* v, vpWorldId world) {
+  int32_t count = 0, i;
+  vpColliderId* ids;
+  vpStatus s;
+  if ((s = vpWorldGetColliderCount(world, &count)) != vpStatus_Ok) return report("vpWorldGetColliderCount", s);
+  ids = (vpColliderId*)calloc((size_t)(count > 0 ? count : 1), sizeof *ids);
+  if (!ids) return 0;
+  if ((s = vpWorldGetColliders(world, ids, count, &count)) != vpStatus_Ok) {
+    free(ids);
+    return report("vpWorldGetColliders", s);
+  }
+  for (i = 0; i < count; ++i) {
+    char name[64];
+    float color[4];
+    vpBodyType type = vpBodyType_Static;
+    int32_t nv = 0, nt = 0;
+    ViewMesh* m;
+    vpColliderGetBodyType(ids[i], &type);
+    colliderColor(type, color);
+    snprintf(name, sizeof name, "collider%d", (int)i);
+    if ((s = vpColliderGetShapeMeshSize(ids[i], &nv, &nt)) != vpStatus_Ok) break;
+    if (!(m = sceneViewAddMesh(v, name, color, 0)) || !viewMeshReserve(m, nv, nt)) break;
+    v->sources[v->meshCount - 1].collider = ids[i];
+    /* Frame what stays put: dynamic bodies start high and fall in, and a plane (the only
+     * shape whose mesh is a single quad) is unbounded. */
+    m->framed = type != vpBodyType_Dynamic && !(nv == 4 && nt == 2);
+    if ((s = vpColliderGetShapeMesh(ids[i], m->positions, m->normals, nv, m->triangles, nt)) != vpStatus_Ok) break;
+    m->vertexCount = nv;
+    m->triangleCount = nt;
+  }
+  free(ids);
+  if (i < count) return report("collider shape mesh", s);
+  return 1;
+}
+
+static int addDeformables(SceneView* v, vpWorldId world) {
+  static const float jelly[4] = {0.35f, 0.8f, 0.35f, 1.0f};
+  int32_t count = 0, i;
+  vpDeformableId* ids;
+  vpStatus s;
+  if ((s = vpWorldGetDeformableCount(world, &count)) != vpStatus_Ok) return report("vpWorldGetDeformableCount", s);
+  ids = (vpDeformableId*)calloc((size_t)(count > 0 ? count : 1), sizeof *ids);
+  if (!ids) return 0;
+  if ((s = vpWorldGetDeformables(world, ids, count, &count)) != vpStatus_Ok) {
+    free(ids);
+    return report("vpWorldGetDeformables", s);
+  }
+  for (i = 0; i < count; ++i) {
+    char name[64];
+    ViewMesh* m;
+    snprintf(name, sizeof name, "deformable%d", (int)i);
+    if (!(m = sceneViewAddMesh(v, name, jelly, 1))) break;
+    v->sources[v->meshCount - 1].deformable = ids[i];
+  }
+  free(ids);
+  return i == count;
+}
+
+int sceneViewInit(SceneView* v, vpWorldId world) {
+  memset(v, 0, sizeof *v);
+  return addColliders(v, world) && addDeformables(v, world) && sceneViewUpdate(v);
+}
+
+int sceneViewUpdate(SceneView* v) {
+  int i;
+  vpStatus s;
+  for (i = 0; i < v->meshCount; ++i) {
+    ViewMesh* m = &v->meshes[i];
+    const vpColliderId collider = v->sources[i].collider;
+    const vpDeformableId deformable = v->sources[i].deformable;
+    if (!vpColliderIdIsNull(collider)) {
+      if ((s = vpColliderGetPose(collider, &m->pose)) != vpStatus_Ok) return report("vpColliderGetPose", s);
+    } else if (!vpDeformableIdIsNull(deformable)) {
+      int32_t nv = 0, nt = 0;
+      if ((s = vpDeformableGetRenderMeshSize(deformable, &nv, &nt)) != vpStatus_Ok)
+        return report("vpDeformableGetRenderMeshSize", s);
+      if (!viewMeshReserve(m, nv, nt)) return 0;
+      if ((s = vpDeformableGetRenderMesh(deformable, m->positions, m->normals, nv, m->triangles, nt)) !=
+          vpStatus_Ok)
+        return report("vpDeformableGetRenderMesh", s);
+      m->vertexCount = nv;
+      m->triangleCount = nt;
+    }
+  }
+  return 1;
+}
+
+static void rotate(const vpQuat* q, const float in[3], float out[3]) {
+  /* v' = v + 2w (u x v) + 2 u x (u x v), u = (x, y, z) */
+  float tx = 2.0f * (q->y * in[2] - q->z * in[1]);
+  float ty = 2.0f * (q->z * in[0] - q->x * in[2]);
+  float tz = 2.0f * (q->x * in[1] - q->y * in[0]);
+  out[0] = in[0] + q->w * tx + (q->y * tz - q->z * ty);
+  out[1] = in[1] + q->w * ty + (q->z * tx - q->x * tz);
+  out[2] = in[2] + q->w * tz + (q->x * ty - q->y * tx);
+}
+
+void sceneViewBounds(const SceneView* v, float centre[3], float* radius) {
+  float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
+  int i, k, any = 0;
+  int32_t j;
+  for (i = 0; i < v->meshCount; ++i) {
+    const ViewMesh* m = &v->meshes[i];
+    if (!m->framed) continue;
+    for (j = 0; j < m->vertexCount; ++j) {
+      float p[3];
+      rotate(&m->pose.rotation, &m->positions[3 * j], p);
+      p[0] += m->pose.position.x;
+      p[1] += m->pose.position.y;
+      p[2] += m->pose.position.z;
+      for (k = 0; k < 3; ++k) {
+        if (p[k] < lo[k]) lo[k] = p[k];
+        if (p[k] > hi[k]) hi[k] = p[k];
+      }
+      any = 1;
+    }
+  }
+  if (!any) {
+    centre[0] = centre[1] = centre[2] = 0.0f;
+    *radius = 5.0f;
+    return;
+  }
+  for (k = 0; k < 3; ++k) centre[k] = 0.5f * (lo[k] + hi[k]);
+  *radius = 0.5f * sqrtf((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                         (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  if (*radius < 0.5f) *radius = 0.5f;
+}
+
+void sceneViewFree(SceneView* v) {
+  int i;
+  for (i = 0; i < v->meshCount; ++i) {
+    free(v->meshes[i].positions);
+    free(v->meshes[i].normals);
+    free(v->meshes[i].triangles);
+  }
+  for (i = 0; i < v->pointsCount; ++i) {
+    free(v->points[i].xyz);
+    free(v->points[i].rgba);
+  }
+  free(v->meshes);
+  free(v->points);
+  free(v->sources);
+  memset(v, 0, sizeof *v);
+}

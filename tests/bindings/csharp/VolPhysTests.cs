@@ -1,0 +1,227 @@
+// Tests of the C# binding against the real libvolphys.so, run by ctest under Mono. No test
+// framework (Debian's mono has none by default): each public static method named Test* runs,
+// failures are printed, and the exit code is the number of failures.
+//   mono VolPhysTests.exe PATH/TO/vp_csharp_struct_layout
+using System;
+using System.Collections.Generic;
+using System.Diagnostics;
+using System.Reflection;
+using System.Runtime.InteropServices;
+using VolPhys;
+
+static class VolPhysTests
+{
+    static string layoutProgram;
+
+    static void Check(bool condition, string what)
+    {
+        if (!condition) throw new Exception("check failed: " + what);
+    }
+
+    // A 2x1x1 box of two unit cubes, six tets each (the C ABI tests' mesh).
+    static void BoxMesh(out float[] vertices, out int[] tets)
+    {
+        var v = new List<float>();
+        for (int k = 0; k < 2; ++k)
+            for (int j = 0; j < 2; ++j)
+                for (int i = 0; i < 3; ++i) { v.Add(i); v.Add(j); v.Add(k); }
+        Func<int, int, int, int> id = (i, j, k) => i + 3 * (j + 2 * k);
+        int[][] orders = { new[] { 0, 1, 2 }, new[] { 0, 2, 1 }, new[] { 1, 0, 2 }, new[] { 1, 2, 0 }, new[] { 2, 0, 1 }, new[] { 2, 1, 0 } };
+        var t = new List<int>();
+        for (int cube = 0; cube < 2; ++cube)
+            foreach (int[] o in orders)
+            {
+                int[] c = { cube, 0, 0 };
+                t.Add(id(c[0], c[1], c[2]));
+                for (int s = 0; s < 3; ++s) { c[o[s]]++; t.Add(id(c[0], c[1], c[2])); }
+            }
+        vertices = v.ToArray();
+        tets = t.ToArray();
+    }
+
+    public static void TestStructLayoutsMatchTheCCompiler()
+    {
+        var psi = new ProcessStartInfo(layoutProgram) { RedirectStandardOutput = true, UseShellExecute = false };
+        var expected = new Dictionary<string, int>();
+        using (Process p = Process.Start(psi))
+        {
+            string line;
+            while ((line = p.StandardOutput.ReadLine()) != null)
+            {
+                string[] parts = line.Split(' ');
+                expected[parts[0]] = int.Parse(parts[1]);
+            }
+            p.WaitForExit();
+            Check(p.ExitCode == 0, "layout program exit code");
+        }
+        int checkedFields = 0;
+        Type[] types = { typeof(vpVersion), typeof(vpVec3), typeof(vpQuat), typeof(vpTransform), typeof(vpWorldId),
+                         typeof(vpColliderId), typeof(vpDeformableId), typeof(vpWorldDef), typeof(vpPhaseStats),
+                         typeof(vpActorStats), typeof(vpStepStats), typeof(vpShapeDef), typeof(vpColliderDef),
+                         typeof(vpDeformableDef), typeof(vpBuildInfo) };
+        foreach (Type t in types)
+        {
+            Check(expected.ContainsKey(t.Name), t.Name + " is printed by the layout program");
+            int size = Marshal.SizeOf(t);
+            Check(size == expected[t.Name], string.Format("sizeof({0}): C {1}, C# {2}", t.Name, expected[t.Name], size));
+            foreach (FieldInfo f in t.GetFields(BindingFlags.Public | BindingFlags.Instance))
+            {
+                string key = t.Name + "." + f.Name;
+                Check(expected.ContainsKey(key), key + " exists in C");
+                int offset = (int)Marshal.OffsetOf(t, f.Name);
+                Check(offset == expected[key], string.Format("offsetof({0}): C {1}, C# {2}", key, expected[key], offset));
+                ++checkedFields;
+            }
+        }
+        // Every C field has a C# twin: the C# side has no fewer fields than the C side.
+        int cFields = 0;
+        foreach (string k in expected.Keys) if (k.Contains(".")) ++cFields;
+        Check(checkedFields == cFields, string.Format("{0} C# fields checked, {1} C fields", checkedFields, cFields));
+        // The defaults' structSize is the library's own sizeof: the marshalled return agrees.
+        Check(Native.vpDefaultWorldDef().structSize == Marshal.SizeOf(typeof(vpWorldDef)), "vpWorldDef.structSize");
+        Check(Native.vpDefaultColliderDef().structSize == Marshal.SizeOf(typeof(vpColliderDef)), "vpColliderDef.structSize");
+        Check(Native.vpDefaultDeformableDef().structSize == Marshal.SizeOf(typeof(vpDeformableDef)), "vpDeformableDef.structSize");
+        Check(Native.vpDefaultStepStats().structSize == Marshal.SizeOf(typeof(vpStepStats)), "vpStepStats.structSize");
+    }
+
+    public static void TestVersionAndDefaults()
+    {
+        vpVersion v = Native.vpGetVersion();
+        Check(v.major == Constants.VersionMajor && v.minor >= Constants.VersionMinor, "version " + v.major + "." + v.minor);
+        vpWorldDef def = World.DefaultDef();
+        Check(Math.Abs(def.gravity.y + 9.81f) < 1e-5f, "default gravity");
+        Check(def.workerCount == 1 && def.frameBudgetMs == 16.0f, "default workers and budget");
+    }
+
+    public static void TestColliderAndDeformableFallAndRest()
+    {
+        vpWorldDef def = World.DefaultDef();
+        def.frameBudgetMs = 0; // physics checks must not depend on machine speed
+        using (var world = new World(def))
+        {
+            vpColliderDef ground = Collider.DefaultDef();
+            ground.shape.type = ShapeType.Plane;
+            world.CreateCollider(ground);
+            vpColliderDef ballDef = Collider.DefaultDef();
+            ballDef.bodyType = BodyType.Dynamic;
+            ballDef.shape.radius = 0.5f;
+            ballDef.pose.position.y = 2.0f;
+            Collider ball = world.CreateCollider(ballDef);
+
+            float[] vertices;
+            int[] tets;
+            BoxMesh(out vertices, out tets);
+            vpDeformableDef jelly = Deformable.DefaultDef();
+            jelly.pose.position = new vpVec3(3, 3, 0);
+            jelly.youngsModulus = 2e5f;
+            Deformable body = world.CreateDeformable(jelly, vertices, tets);
+            Check(body.NodeCount == 12, "node count " + body.NodeCount);
+
+            vpStepStats stats = default(vpStepStats);
+            for (int i = 0; i < 120; ++i) stats = world.Step(1.0f / 60.0f);
+            Check(stats.stepIndex == 120 && stats.colliderCount == 2 && stats.actorCount == 2,
+                  string.Format("stats: step {0}, colliders {1}, actors {2}", stats.stepIndex, stats.colliderCount, stats.actorCount));
+            Check(Math.Abs(ball.Pose.position.y - 0.5f) < 0.02f, "ball rests on the plane, y = " + ball.Pose.position.y);
+
+            float[] x = body.GetPositions();
+            float minY = float.MaxValue;
+            for (int i = 0; i < body.NodeCount; ++i) minY = Math.Min(minY, x[3 * i + 1]);
+            Check(minY > -0.05f && minY < 0.1f, "the box landed on the plane, lowest node y = " + minY);
+            vpActorStats s = body.Stats;
+            Check(s.kind == ActorKind.Deformable && s.Phase(Phase.Solve).iterations > 0, "solve stats through the fixed buffer");
+
+            float[] p, n;
+            int[] tris;
+            body.GetRenderMesh(out p, out n, out tris);
+            Check(p.Length == 36 && tris.Length == 3 * 20, "render mesh sizes");
+        }
+    }
+
+    public static void TestBadDefRaisesWithTheFieldName()
+    {
+        using (var world = new World())
+        {
+            float[] vertices;
+            int[] tets;
+            BoxMesh(out vertices, out tets);
+            vpDeformableDef bad = Deformable.DefaultDef();
+            bad.youngsModulus = -5;
+            try
+            {
+                world.CreateDeformable(bad, vertices, tets);
+                Check(false, "a negative Young's modulus was accepted");
+            }
+            catch (VolPhysException e)
+            {
+                Check(e.Status == Status.InvalidArgument, "status " + e.Status);
+                Check(e.Message.Contains("youngsModulus") && e.Message.Contains("-5"), "message names field and value: " + e.Message);
+            }
+            vpColliderDef ball = Collider.DefaultDef();
+            ball.shape.radius = -1;
+            try
+            {
+                world.CreateCollider(ball);
+                Check(false, "a negative radius was accepted");
+            }
+            catch (VolPhysException e)
+            {
+                Check(e.Message.Contains("shape.radius"), "message names the field: " + e.Message);
+            }
+        }
+    }
+
+    public static void TestIdsAfterDestroyRaiseInvalidId()
+    {
+        var world = new World();
+        Collider c = world.CreateCollider(Collider.DefaultDef());
+        Check(c.IsValid, "fresh collider is valid");
+        world.Dispose();
+        Check(!c.IsValid, "collider of a destroyed world is invalid");
+        try
+        {
+            var pose = c.Pose;
+            Check(false, "pose of a destroyed collider: " + pose.position);
+        }
+        catch (VolPhysException e)
+        {
+            Check(e.Status == Status.InvalidId, "status " + e.Status);
+        }
+        try
+        {
+            world.Step(1.0f / 60.0f);
+            Check(false, "stepping a disposed world");
+        }
+        catch (VolPhysException e)
+        {
+            Check(e.Status == Status.InvalidId, "status " + e.Status);
+        }
+    }
+
+    static int Main(string[] args)
+    {
+        if (args.Length != 1)
+        {
+            Console.Error.WriteLine("usage: VolPhysTests.exe PATH/TO/vp_csharp_struct_layout");
+            return 2;
+        }
+        layoutProgram = args[0];
+        int failures = 0, count = 0;
+        foreach (MethodInfo m in typeof(VolPhysTests).GetMethods(BindingFlags.Public | BindingFlags.Static))
+        {
+            if (!m.Name.StartsWith("Test")) continue;
+            ++count;
+            try
+            {
+                m.Invoke(null, null);
+                Console.WriteLine("PASS " + m.Name);
+            }
+            catch (TargetInvocationException e)
+            {
+                ++failures;
+                Console.WriteLine("FAIL " + m.Name + ": " + e.InnerException);
+            }
+        }
+        Console.WriteLine("{0} tests, {1} failures", count, failures);
+        return failures;
+    }
+}

@@ -1,0 +1,52 @@
+/* Prints the C compiler's size of every struct in volphys.h and the offset of every field,
+ * one "name value" per line, for the C# binding test to compare with Marshal.SizeOf/OffsetOf. */
+#include <stddef.h>
+#include <stdio.h>
+
+#include "volphys/volphys.h"
+
+#define SIZE(T) printf(#T " %u\n", (unsigned)sizeof(T))
+#define FIELD(T, f) printf(#T "." #f " %u\n", (unsigned)offsetof(T, f))
+
+int main(void) {
+  SIZE(vpVersion); FIELD(vpVersion, major); FIELD(vpVersion, minor); FIELD(vpVersion, patch);
+  SIZE(vpVec3); FIELD(vpVec3, x); FIELD(vpVec3, y); FIELD(vpVec3, z);
+  SIZE(vpQuat); FIELD(vpQuat, x); FIELD(vpQuat, y); FIELD(vpQuat, z); FIELD(vpQuat, w);
+  SIZE(vpTransform); FIELD(vpTransform, position); FIELD(vpTransform, rotation);
+  SIZE(vpWorldId); FIELD(vpWorldId, index1); FIELD(vpWorldId, generation);
+  SIZE(vpColliderId); FIELD(vpColliderId, index1); FIELD(vpColliderId, generation); FIELD(vpColliderId, world);
+  SIZE(vpDeformableId); FIELD(vpDeformableId, index1); FIELD(vpDeformableId, generation);
+  FIELD(vpDeformableId, world);
+  SIZE(vpWorldDef); FIELD(vpWorldDef, structSize); FIELD(vpWorldDef, gravity); FIELD(vpWorldDef, workerCount);
+  FIELD(vpWorldDef, frameBudgetMs); FIELD(vpWorldDef, rigidMaxSubstep); FIELD(vpWorldDef, enqueueTask);
+  FIELD(vpWorldDef, finishTask); FIELD(vpWorldDef, userTaskContext); FIELD(vpWorldDef, clock);
+  FIELD(vpWorldDef, clockContext); FIELD(vpWorldDef, userData);
+  SIZE(vpPhaseStats); FIELD(vpPhaseStats, ms); FIELD(vpPhaseStats, iterations); FIELD(vpPhaseStats, residual);
+  FIELD(vpPhaseStats, budgetCut);
+  SIZE(vpActorStats); FIELD(vpActorStats, kind); FIELD(vpActorStats, index1); FIELD(vpActorStats, totalMs);
+  FIELD(vpActorStats, diverged); FIELD(vpActorStats, phases);
+  SIZE(vpStepStats); FIELD(vpStepStats, structSize); FIELD(vpStepStats, stepIndex); FIELD(vpStepStats, dt);
+  FIELD(vpStepStats, totalMs); FIELD(vpStepStats, budgetMs); FIELD(vpStepStats, budgetCut);
+  FIELD(vpStepStats, actorCount); FIELD(vpStepStats, colliderCount); FIELD(vpStepStats, rigidSubsteps);
+  SIZE(vpShapeDef); FIELD(vpShapeDef, structSize); FIELD(vpShapeDef, type); FIELD(vpShapeDef, radius);
+  FIELD(vpShapeDef, halfHeight); FIELD(vpShapeDef, halfExtents); FIELD(vpShapeDef, normal); FIELD(vpShapeDef, offset);
+  FIELD(vpShapeDef, points); FIELD(vpShapeDef, pointCount); FIELD(vpShapeDef, indices);
+  FIELD(vpShapeDef, triangleCount); FIELD(vpShapeDef, meshFile); FIELD(vpShapeDef, meshScale);
+  SIZE(vpColliderDef); FIELD(vpColliderDef, structSize); FIELD(vpColliderDef, bodyType); FIELD(vpColliderDef, shape);
+  FIELD(vpColliderDef, pose); FIELD(vpColliderDef, linearVelocity); FIELD(vpColliderDef, angularVelocity);
+  FIELD(vpColliderDef, mass); FIELD(vpColliderDef, friction); FIELD(vpColliderDef, restitution);
+  FIELD(vpColliderDef, linearDamping); FIELD(vpColliderDef, angularDamping); FIELD(vpColliderDef, userData);
+  SIZE(vpDeformableDef); FIELD(vpDeformableDef, structSize); FIELD(vpDeformableDef, degree);
+  FIELD(vpDeformableDef, vertices); FIELD(vpDeformableDef, vertexCount); FIELD(vpDeformableDef, tets);
+  FIELD(vpDeformableDef, tetCount); FIELD(vpDeformableDef, tetFile); FIELD(vpDeformableDef, surfaceFile);
+  FIELD(vpDeformableDef, voxelResolution); FIELD(vpDeformableDef, renderVertices);
+  FIELD(vpDeformableDef, renderVertexCount); FIELD(vpDeformableDef, renderTriangles);
+  FIELD(vpDeformableDef, renderTriangleCount); FIELD(vpDeformableDef, pose); FIELD(vpDeformableDef, linearVelocity);
+  FIELD(vpDeformableDef, youngsModulus); FIELD(vpDeformableDef, poissonRatio); FIELD(vpDeformableDef, density);
+  FIELD(vpDeformableDef, massDamping); FIELD(vpDeformableDef, stiffnessDamping); FIELD(vpDeformableDef, friction);
+  FIELD(vpDeformableDef, solverTolerance); FIELD(vpDeformableDef, solverMaxIterations);
+  FIELD(vpDeformableDef, userData);
+  SIZE(vpBuildInfo); FIELD(vpBuildInfo, cudaCompiled); FIELD(vpBuildInfo, cudaDeviceCount);
+  FIELD(vpBuildInfo, hardwareThreads);
+  return 0;
+}

@@ -1,0 +1,120 @@
+#!/usr/bin/env python3
+"""Checks what the sample programs write, run by ctest:
+
+  check_outputs.py host HOST_EXE OUT_DIR     runs the headless host for 7 frames with exports
+                                             and snapshots every 3 frames, checks every file
+  check_outputs.py viewer VIEWER_EXE PNG     runs the viewer for a few frames (the caller
+                                             provides the display, e.g. xvfb-run), checks the
+                                             screenshot is not blank
+"""
+import csv
+import os
+import shutil
+import subprocess
+import sys
+import xml.etree.ElementTree as ET
+
+from PIL import Image
+
+
+def fail(message):
+    print("FAIL: " + message)
+    sys.exit(1)
+
+
+def check_not_blank(path, min_foreground=0.05):
+    """A picture of the scene, not a cleared buffer: enough pixels differ from the background
+    (the most common colour), and they are not all one colour."""
+    if not os.path.isfile(path):
+        fail("%s was not written" % path)
+    img = Image.open(path).convert("RGB")
+    pixels = list(img.getdata())
+    background = max(set(pixels), key=pixels.count)
+    foreground = sum(1 for p in pixels if sum(abs(a - b) for a, b in zip(p, background)) > 30)
+    fraction = foreground / len(pixels)
+    distinct = len(set(pixels))
+    print("%s: %dx%d, %.1f%% off the background, %d colours" % (path, img.width, img.height, 100 * fraction, distinct))
+    if fraction < min_foreground:
+        fail("%s is nearly blank (%.2f%% foreground)" % (path, 100 * fraction))
+    if distinct < 50:
+        fail("%s has only %d colours: no shading, nothing drawn?" % (path, distinct))
+
+
+def read_ply(path):
+    """Vertex positions of an ASCII PLY file, and the face count; checks normals are there."""
+    with open(path) as f:
+        header = []
+        for line in f:
+            header.append(line.strip())
+            if line.strip() == "end_header":
+                break
+        if header[0] != "ply" or "format ascii 1.0" not in header:
+            fail("%s: not an ASCII PLY file" % path)
+        counts = {h.split()[1]: int(h.split()[2]) for h in header if h.startswith("element")}
+        props = [h.split()[-1] for h in header if h.startswith("property") and "list" not in h]
+        if props[:6] != ["x", "y", "z", "nx", "ny", "nz"]:
+            fail("%s: expected x y z nx ny nz vertex properties, got %s" % (path, props))
+        rows = [next(f).split() for _ in range(counts["vertex"])]
+        faces = [next(f).split() for _ in range(counts["face"])]
+    if not rows or not faces or any(face[0] != "3" for face in faces):
+        fail("%s: expected a triangle mesh, got %d vertices, %d faces" % (path, len(rows), len(faces)))
+    if any(int(i) >= len(rows) for face in faces for i in face[1:]):
+        fail("%s: face index out of range" % path)
+    return [tuple(float(v) for v in r[:3]) for r in rows], len(faces)
+
+
+def check_host(exe, out):
+    shutil.rmtree(out, ignore_errors=True)
+    # No frame budget: the motion checked below must not depend on the machine's speed (under
+    # ASan on a loaded machine the budget can be spent before the solver runs at all).
+    r = subprocess.run([exe, "--frames", "7", "--budget", "0", "--export-every", "3", "--snapshot-every", "3",
+                        "--quiet", "--out", out],
+                       capture_output=True, text=True, timeout=300)
+    print(r.stdout + r.stderr)
+    if r.returncode != 0:
+        fail("host exited with %d" % r.returncode)
+    with open(os.path.join(out, "stats.csv")) as f:
+        rows = list(csv.DictReader(f))
+    if len(rows) != 7:
+        fail("stats.csv has %d rows, expected 7" % len(rows))
+    # Frames 0, 3, 6 (every 3rd, and the last) for both deformables of the default scene.
+    expected = ["deformable%d_f%05d.ply" % (d, f) for d in (0, 1) for f in (0, 3, 6)]
+    meshes = sorted(os.listdir(os.path.join(out, "meshes")))
+    if meshes != sorted(expected):
+        fail("meshes/ holds %s, expected %s" % (meshes, expected))
+    first, nf0 = read_ply(os.path.join(out, "meshes", "deformable0_f00000.ply"))
+    last, nf6 = read_ply(os.path.join(out, "meshes", "deformable0_f00006.ply"))
+    if len(first) != len(last) or nf0 != nf6:
+        fail("the render mesh changed its size between frames")
+    moved = max(abs(a[1] - b[1]) for a, b in zip(first, last))
+    if moved < 1e-3:
+        fail("the exported jelly did not move between frames 0 and 6 (max dy %g)" % moved)
+    shots = sorted(os.listdir(os.path.join(out, "snapshots")))
+    if shots != ["frame_00000.png", "frame_00003.png", "frame_00006.png"]:
+        fail("snapshots/ holds %s" % shots)
+    for s in shots:
+        check_not_blank(os.path.join(out, "snapshots", s))
+    svg = ET.parse(os.path.join(out, "frame_times.svg")).getroot()
+    lines = [e for e in svg.iter() if e.tag.endswith("polyline")]
+    if len(lines) != 2 or any(len(e.get("points").split()) != 7 for e in lines):
+        fail("frame_times.svg: expected a budget line and a step-time line of 7 points each")
+    print("host outputs OK")
+
+
+def check_viewer(exe, png):
+    if os.path.exists(png):
+        os.unlink(png)
+    r = subprocess.run([exe, "--frames", "20", "--size", "640x400", "--screenshot", png],
+                       capture_output=True, text=True, timeout=300)
+    print(r.stdout + r.stderr)
+    if r.returncode != 0:
+        fail("viewer exited with %d" % r.returncode)
+    check_not_blank(png)
+    print("viewer screenshot OK")
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 4 or sys.argv[1] not in ("host", "viewer"):
+        print(__doc__)
+        sys.exit(2)
+    (check_host if sys.argv[1] == "host" else check_viewer)(sys.argv[2], sys.argv[3])
