@@ -23,7 +23,14 @@ Status projectVelocity(TaskSystem& tasks, MacGrid& grid, const FaceFractionField
     return fail(Status::InvalidArgument, "pressure projection: maxIterations = %d must be >= 0",
                 settings.maxIterations);
   VP_TRY(buildCutCellPoisson(tasks, grid, fractions, &state.poisson, liquidPhi));
-  VP_TRY(buildMic0Preconditioner(state.poisson, Mic0Settings{}, &state.preconditioner));
+  if (settings.solver == PressureSolver::Mic0Pcg) {
+    VP_TRY(buildMic0Preconditioner(state.poisson, Mic0Settings{}, &state.preconditioner));
+  } else {
+    MultigridSettings mg = settings.multigrid;
+    mg.coarsening = settings.solver == PressureSolver::VoxelMgpcg ? MultigridCoarsening::Voxel
+                                                                   : MultigridCoarsening::CutCell;
+    VP_TRY(buildPoissonMultigrid(tasks, state.poisson, grid.sides, mg, &state.multigrid));
+  }
   const CutCellPoisson& op = state.poisson;
   const MacGridSpec& g = grid.spec;
   const int64_t cells = grid.cellCount();
@@ -42,9 +49,10 @@ Status projectVelocity(TaskSystem& tasks, MacGrid& grid, const FaceFractionField
   LinearSystem system;
   system.size = cells;
   system.apply = [&](const double* x, double* y) { applyCutCellPoisson(tasks, op, x, y); };
-  system.precondition = [&](const double* r, double* z) {
-    applyMic0Preconditioner(op, state.preconditioner, r, z);
-  };
+  if (settings.solver == PressureSolver::Mic0Pcg)
+    system.precondition = [&](const double* r, double* z) { applyMic0Preconditioner(op, state.preconditioner, r, z); };
+  else
+    system.precondition = [&](const double* r, double* z) { applyPoissonMultigrid(tasks, op, state.multigrid, r, z); };
   system.filter = [&](double* v) { filterCutCellPoisson(op, v); };
   CgSettings cgSettings;
   cgSettings.relativeTolerance = settings.tolerance;

@@ -1,0 +1,225 @@
+// Cut-cell and voxel coarsening of the pressure operator (see multigrid_coarsening.h).
+#include "fluid/multigrid_coarsening.h"
+
+#include <cmath>
+#include <vector>
+
+#include "core/parallel_for.h"
+
+namespace vp {
+namespace {
+
+constexpr int64_t kRowGrain = 16;
+// Fully open fine face, coarsened: 4 fine couplings of 1, halved.
+constexpr double kVoxelCoupling = 2.0;
+
+struct Dims {
+  int64_t nx, ny, nz;
+  explicit Dims(const MacGridSpec& g) : nx(g.nx), ny(g.ny), nz(g.nz) {}
+  int64_t cells() const { return nx * ny * nz; }
+  int64_t cell(int64_t i, int64_t j, int64_t k) const { return i + nx * (j + ny * k); }
+  // Face index on axis a of the face at the low side of cell (i, j, k).
+  int64_t face(int a, int64_t i, int64_t j, int64_t k) const {
+    return a == 0 ? i + (nx + 1) * (j + ny * k) : a == 1 ? i + nx * (j + (ny + 1) * k) : i + nx * (j + ny * k);
+  }
+  int64_t along(int a) const { return a == 0 ? nx : a == 1 ? ny : nz; }
+};
+
+void sizeLevel(const MacGridSpec& spec, CutCellPoisson* op) {
+  const Dims d(spec);
+  op->grid = spec;
+  op->coupling[0].assign(static_cast<size_t>((d.nx + 1) * d.ny * d.nz), 0.0);
+  op->coupling[1].assign(static_cast<size_t>(d.nx * (d.ny + 1) * d.nz), 0.0);
+  op->coupling[2].assign(static_cast<size_t>(d.nx * d.ny * (d.nz + 1)), 0.0);
+  op->diagonal.assign(static_cast<size_t>(d.cells()), 0.0);
+}
+
+// Diagonal = couplings of the six faces + Dirichlet part; couplings must be set.
+void assembleDiagonal(TaskSystem& tasks, const std::vector<double>& dirichlet, CutCellPoisson* op) {
+  const Dims d(op->grid);
+  parallelFor(tasks, d.ny * d.nz, kRowGrain, [&](int64_t begin, int64_t end) {
+    for (int64_t row = begin; row < end; ++row) {
+      const int64_t j = row % d.ny, k = row / d.ny;
+      for (int64_t i = 0; i < d.nx; ++i) {
+        const int64_t c = d.cell(i, j, k);
+        double sum = 0.0;
+        for (int a = 0; a < 3; ++a) {
+          int64_t hi[3] = {i, j, k};
+          ++hi[a];
+          sum += op->coupling[a][static_cast<size_t>(d.face(a, i, j, k))];
+          sum += op->coupling[a][static_cast<size_t>(d.face(a, hi[0], hi[1], hi[2]))];
+        }
+        op->diagonal[static_cast<size_t>(c)] = sum + dirichlet[static_cast<size_t>(c)];
+      }
+    }
+  });
+}
+
+// Regions by flood fill through positive couplings; a region floats when none of its cells has
+// a Dirichlet part. Serial like buildCutCellPoisson's, and on coarse levels only (1/8 the cells).
+void labelRegions(const std::vector<double>& dirichlet, CutCellPoisson* op) {
+  const Dims d(op->grid);
+  const int64_t cells = d.cells();
+  op->region.assign(static_cast<size_t>(cells), -1);
+  op->regionFloating.clear();
+  op->regionCellCount.clear();
+  op->fluidCellCount = 0;
+  std::vector<int64_t> queue;
+  for (int64_t seed = 0; seed < cells; ++seed) {
+    if (op->region[static_cast<size_t>(seed)] >= 0 || !(op->diagonal[static_cast<size_t>(seed)] > 0.0)) continue;
+    const int32_t id = static_cast<int32_t>(op->regionFloating.size());
+    bool floating = true;
+    queue.clear();
+    queue.push_back(seed);
+    op->region[static_cast<size_t>(seed)] = id;
+    for (size_t head = 0; head < queue.size(); ++head) {
+      const int64_t c = queue[head];
+      if (dirichlet[static_cast<size_t>(c)] > 0.0) floating = false;
+      const int64_t i = c % d.nx, j = (c / d.nx) % d.ny, k = c / (d.nx * d.ny);
+      for (int a = 0; a < 3; ++a)
+        for (int high = 0; high < 2; ++high) {
+          int64_t f[3] = {i, j, k};
+          f[a] += high;
+          if (!(op->coupling[a][static_cast<size_t>(d.face(a, f[0], f[1], f[2]))] > 0.0)) continue;
+          int64_t n[3] = {i, j, k};
+          n[a] += high ? 1 : -1;
+          const size_t nb = static_cast<size_t>(d.cell(n[0], n[1], n[2]));
+          if (op->region[nb] < 0) {
+            op->region[nb] = id;
+            queue.push_back(static_cast<int64_t>(nb));
+          }
+        }
+    }
+    op->regionFloating.push_back(floating ? 1 : 0);
+    op->regionCellCount.push_back(static_cast<int64_t>(queue.size()));
+    op->fluidCellCount += static_cast<int64_t>(queue.size());
+  }
+}
+
+// Calls visit(child cell index) for the children of coarse cell (I, J, K) that exist.
+template <class Visit>
+void forEachChild(const Dims& fine, int64_t I, int64_t J, int64_t K, const Visit& visit) {
+  for (int64_t k = 2 * K; k < 2 * K + 2 && k < fine.nz; ++k)
+    for (int64_t j = 2 * J; j < 2 * J + 2 && j < fine.ny; ++j)
+      for (int64_t i = 2 * I; i < 2 * I + 2 && i < fine.nx; ++i) visit(fine.cell(i, j, k));
+}
+
+}  // namespace
+
+double dirichletPart(const CutCellPoisson& op, int64_t cell) {
+  const double diag = op.diagonal[static_cast<size_t>(cell)];
+  if (!(diag > 0.0)) return 0.0;
+  const Dims d(op.grid);
+  const int64_t i = cell % d.nx, j = (cell / d.nx) % d.ny, k = cell / (d.nx * d.ny);
+  double rest = diag;
+  for (int a = 0; a < 3; ++a)
+    for (int high = 0; high < 2; ++high) {
+      int64_t f[3] = {i, j, k};
+      f[a] += high;
+      rest -= op.coupling[a][static_cast<size_t>(d.face(a, f[0], f[1], f[2]))];
+    }
+  return rest > 1e-12 * diag ? rest : 0.0;
+}
+
+MacGridSpec coarseGridSpec(const MacGridSpec& fine) {
+  MacGridSpec c = fine;
+  c.nx = (fine.nx + 1) / 2;
+  c.ny = (fine.ny + 1) / 2;
+  c.nz = (fine.nz + 1) / 2;
+  c.h = 2.0 * fine.h;
+  return c;
+}
+
+Status coarsenCutCell(TaskSystem& tasks, const CutCellPoisson& fine, CutCellPoisson* coarse) {
+  if (coarse == nullptr) return fail(Status::InvalidArgument, "multigrid coarsening: coarse is null");
+  const Dims f(fine.grid);
+  sizeLevel(coarseGridSpec(fine.grid), coarse);
+  const Dims c(coarse->grid);
+  // Interior coarse faces only (boundary couplings stay 0 on every level): the fine faces under
+  // coarse face index I along its axis sit at fine index 2I <= n_fine - 1, always interior.
+  for (int a = 0; a < 3; ++a) {
+    const int b = (a + 1) % 3, e = (a + 2) % 3;
+    const int64_t fineB = f.along(b), fineE = f.along(e);
+    std::vector<double>& out = coarse->coupling[a];
+    const std::vector<double>& in = fine.coupling[a];
+    parallelFor(tasks, c.ny * c.nz, kRowGrain, [&](int64_t begin, int64_t end) {
+      for (int64_t row = begin; row < end; ++row) {
+        const int64_t J = row % c.ny, K = row / c.ny;
+        for (int64_t I = 0; I < c.nx; ++I) {
+          const int64_t C[3] = {I, J, K};
+          if (C[a] == 0) continue;
+          double sum = 0.0;
+          for (int64_t e2 = 2 * C[e]; e2 < 2 * C[e] + 2 && e2 < fineE; ++e2)
+            for (int64_t b2 = 2 * C[b]; b2 < 2 * C[b] + 2 && b2 < fineB; ++b2) {
+              int64_t x[3];
+              x[a] = 2 * C[a];
+              x[b] = b2;
+              x[e] = e2;
+              sum += in[static_cast<size_t>(f.face(a, x[0], x[1], x[2]))];
+            }
+          out[static_cast<size_t>(c.face(a, I, J, K))] = 0.5 * sum;
+        }
+      }
+    });
+  }
+  std::vector<double> dirichlet(static_cast<size_t>(c.cells()), 0.0);
+  parallelFor(tasks, c.ny * c.nz, kRowGrain, [&](int64_t begin, int64_t end) {
+    for (int64_t row = begin; row < end; ++row) {
+      const int64_t J = row % c.ny, K = row / c.ny;
+      for (int64_t I = 0; I < c.nx; ++I) {
+        double sum = 0.0;
+        forEachChild(f, I, J, K, [&](int64_t child) { sum += dirichletPart(fine, child); });
+        dirichlet[static_cast<size_t>(c.cell(I, J, K))] = 0.5 * sum;
+      }
+    }
+  });
+  assembleDiagonal(tasks, dirichlet, coarse);
+  labelRegions(dirichlet, coarse);
+  return Status::Ok;
+}
+
+Status coarsenVoxel(TaskSystem& tasks, const CutCellPoisson& fine, const std::array<DomainSide, 6>& sides,
+                    CutCellPoisson* coarse) {
+  if (coarse == nullptr) return fail(Status::InvalidArgument, "multigrid coarsening: coarse is null");
+  const Dims f(fine.grid);
+  sizeLevel(coarseGridSpec(fine.grid), coarse);
+  const Dims c(coarse->grid);
+  std::vector<uint8_t> fluid(static_cast<size_t>(c.cells()), 0);
+  parallelFor(tasks, c.ny * c.nz, kRowGrain, [&](int64_t begin, int64_t end) {
+    for (int64_t row = begin; row < end; ++row) {
+      const int64_t J = row % c.ny, K = row / c.ny;
+      for (int64_t I = 0; I < c.nx; ++I) {
+        bool any = false;
+        forEachChild(f, I, J, K, [&](int64_t child) { any = any || fine.diagonal[static_cast<size_t>(child)] > 0.0; });
+        fluid[static_cast<size_t>(c.cell(I, J, K))] = any ? 1 : 0;
+      }
+    }
+  });
+  std::vector<double> dirichlet(static_cast<size_t>(c.cells()), 0.0);
+  parallelFor(tasks, c.ny * c.nz, kRowGrain, [&](int64_t begin, int64_t end) {
+    for (int64_t row = begin; row < end; ++row) {
+      const int64_t J = row % c.ny, K = row / c.ny;
+      for (int64_t I = 0; I < c.nx; ++I) {
+        const int64_t C[3] = {I, J, K};
+        const int64_t cell = c.cell(I, J, K);
+        if (!fluid[static_cast<size_t>(cell)]) continue;
+        double open = 0.0;
+        for (int a = 0; a < 3; ++a) {
+          if (C[a] == 0 && sides[2 * a] == DomainSide::Open) open += kVoxelCoupling;
+          if (C[a] == c.along(a) - 1 && sides[2 * a + 1] == DomainSide::Open) open += kVoxelCoupling;
+          if (C[a] == 0) continue;
+          int64_t low[3] = {I, J, K};
+          --low[a];
+          if (fluid[static_cast<size_t>(c.cell(low[0], low[1], low[2]))])
+            coarse->coupling[a][static_cast<size_t>(c.face(a, I, J, K))] = kVoxelCoupling;
+        }
+        dirichlet[static_cast<size_t>(cell)] = open;
+      }
+    }
+  });
+  assembleDiagonal(tasks, dirichlet, coarse);
+  labelRegions(dirichlet, coarse);
+  return Status::Ok;
+}
+
+}  // namespace vp

@@ -1,0 +1,51 @@
+// Coarse levels of the pressure multigrid, each one a CutCellPoisson (couplings + diagonal on a
+// grid of half the resolution), so every level is applied, smoothed and filtered by the same code.
+//
+// Cell (I, J, K) of the coarse grid covers the fine cells (2I .. 2I+1, 2J .. 2J+1, 2K .. 2K+1)
+// that exist (odd fine counts: the last coarse cell has one child along that axis); coarse
+// counts are ceil(n / 2), h doubles, the origin stays.
+//
+// Scaling. The fine operator is the finite-volume flux balance divided by h:
+// (L p)_c = sum_f A_f (p_c - p_nb) (cut_cell_poisson.h). The multigrid restricts residuals with
+// R = P^T for a prolongation P that reproduces constants (multigrid_transfer.h), so a coarse
+// right-hand side is (in the interior) the sum of its 8 children's, i.e. the coarse cell's
+// integrated source divided by h = (2h) / 2. The consistent finite-volume operator at spacing
+// 2h in those units is 2 sum_F A_F (p_C - p_NB) with A_F the average of the 4 fine fractions
+// under coarse face F, so
+//     coarse coupling = (sum of the 4 fine couplings under the coarse face) / 2,
+//     coarse Dirichlet part = (sum of the children's Dirichlet parts) / 2,
+// the Dirichlet part of a cell being its diagonal minus the couplings of its faces (open domain
+// sides today, liquid-air faces A_f / theta once the free surface adds them). The coarse
+// operator is the fine one at 2h with averaged fractions, i.e. half the Galerkin product of
+// piecewise-constant transfers, whose factor 2 overshoot is the known defect of that product.
+//
+// Voxel coarsening (McAdams et al. 2010, the baseline): a coarse cell is fluid when any child is,
+// every coupling between two coarse fluid cells is that of a fully open face (2 in the units
+// above), and a coarse cell on an Open domain side gets a fully open Dirichlet face there.
+// There are no Dirichlet cells inside the domain until liquids exist; free-surface air cells
+// would coarsen as solids here (a known weakness of this baseline, not of the cut-cell path).
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "core/status.h"
+#include "core/task_system.h"
+#include "fluid/cut_cell_poisson.h"
+#include "fluid/mac_grid.h"
+
+namespace vp {
+
+// Per cell: diagonal minus the couplings of the cell's faces; 0 on non-fluid cells and where
+// the difference is round-off (below 1e-12 of the diagonal).
+double dirichletPart(const CutCellPoisson& op, int64_t cell);
+
+// The coarse grid spec of `fine` (ceil halves, h doubled, same origin).
+MacGridSpec coarseGridSpec(const MacGridSpec& fine);
+
+Status coarsenCutCell(TaskSystem& tasks, const CutCellPoisson& fine, CutCellPoisson* coarse);
+
+Status coarsenVoxel(TaskSystem& tasks, const CutCellPoisson& fine, const std::array<DomainSide, 6>& sides,
+                    CutCellPoisson* coarse);
+
+}  // namespace vp

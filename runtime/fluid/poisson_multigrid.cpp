@@ -1,0 +1,123 @@
+// Multigrid hierarchy and V-cycle for the cut-cell pressure operator (see poisson_multigrid.h).
+#include "fluid/poisson_multigrid.h"
+
+#include <algorithm>
+
+#include "core/parallel_for.h"
+#include "fluid/multigrid_coarsening.h"
+
+namespace vp {
+namespace {
+
+// `sweeps` sweeps (adjoint order when `adjoint`); `fromZero`: x holds anything and the smoothing
+// starts from 0 (both smoothers fold the clearing into their first sweep).
+void smooth(TaskSystem& tasks, const CutCellPoisson& op, const MultigridSettings& s, const double* b, double* x,
+            std::vector<double>& scratch, int sweeps, bool adjoint, bool fromZero) {
+  if (s.smoother == MultigridSmoother::DampedJacobi) {
+    smoothJacobi(tasks, op, b, x, scratch.data(), s.jacobiWeight, sweeps, fromZero);
+    return;
+  }
+  for (int i = 0; i < sweeps; ++i) smoothRedBlack(tasks, op, b, x, adjoint, fromZero && i == 0);
+}
+
+// Pre-smoothing (from zero): full sweeps then boundary sweeps; post-smoothing: the adjoint, in
+// reverse order.
+void smoothLevel(TaskSystem& tasks, const CutCellPoisson& op, const MultigridSettings& s,
+                 const BoundaryCellLists& boundary, const double* b, double* x,
+                 std::vector<double>& scratch, bool post) {
+  if (!post) smooth(tasks, op, s, b, x, scratch, s.sweeps, false, true);
+  for (int i = 0; i < s.boundarySweeps; ++i) smoothRedBlackCells(tasks, op, boundary, b, x, post);
+  if (post) smooth(tasks, op, s, b, x, scratch, s.sweeps, true, false);
+}
+
+bool canCoarsen(const MacGridSpec& g, int coarsestSize) {
+  return std::min({g.nx, g.ny, g.nz}) >= 2 * coarsestSize;
+}
+
+}  // namespace
+
+Status buildPoissonMultigrid(TaskSystem& tasks, const CutCellPoisson& fine, const std::array<DomainSide, 6>& sides,
+                             const MultigridSettings& settings, PoissonMultigrid* mg) {
+  if (mg == nullptr) return fail(Status::InvalidArgument, "multigrid: output is null");
+  if (settings.sweeps < 1 || settings.coarsestSweeps < 1 || settings.boundarySweeps < 0)
+    return fail(Status::InvalidArgument,
+                "multigrid: sweeps = %d and coarsestSweeps = %d must be >= 1, boundarySweeps = %d >= 0",
+                settings.sweeps, settings.coarsestSweeps, settings.boundarySweeps);
+  if (settings.coarsestSize < 1)
+    return fail(Status::InvalidArgument, "multigrid: coarsestSize = %d must be >= 1", settings.coarsestSize);
+  if (!(settings.jacobiWeight > 0.0 && settings.jacobiWeight <= 1.0))
+    return fail(Status::InvalidArgument, "multigrid: jacobiWeight = %g must lie in (0, 1]", settings.jacobiWeight);
+  mg->settings = settings;
+  for (int side = 0; side < 6; ++side) mg->sides.open[side] = sides[static_cast<size_t>(side)] == DomainSide::Open;
+  int levels = 1;
+  for (MacGridSpec g = fine.grid; canCoarsen(g, settings.coarsestSize); g = coarseGridSpec(g)) ++levels;
+  // resize() keeps the existing levels' buffers, so a rebuild every frame does not reallocate.
+  mg->coarse.resize(static_cast<size_t>(levels - 1));
+  mg->coarseFloating.assign(static_cast<size_t>(levels - 1), 0);
+  mg->prolongScale.resize(static_cast<size_t>(levels - 1));
+  mg->boundaryCells.resize(static_cast<size_t>(levels));
+  mg->x.resize(static_cast<size_t>(levels));
+  mg->b.resize(static_cast<size_t>(levels));
+  mg->r.resize(static_cast<size_t>(levels));
+  for (int l = 1; l < levels; ++l) {
+    const CutCellPoisson& from = l == 1 ? fine : mg->coarse[static_cast<size_t>(l - 2)];
+    CutCellPoisson& to = mg->coarse[static_cast<size_t>(l - 1)];
+    if (settings.coarsening == MultigridCoarsening::CutCell) VP_TRY(coarsenCutCell(tasks, from, &to));
+    else VP_TRY(coarsenVoxel(tasks, from, sides, &to));
+    mg->coarseFloating[static_cast<size_t>(l - 1)] =
+        std::any_of(to.regionFloating.begin(), to.regionFloating.end(), [](uint8_t f) { return f != 0; });
+    computeProlongationScale(tasks, from, to, mg->sides, &mg->prolongScale[static_cast<size_t>(l - 1)]);
+  }
+  // Full coupling doubles per level: 4 full fine faces, halved (multigrid_coarsening.h); the
+  // voxel levels' full coupling follows the same rule.
+  double fullCoupling = 1.0;
+  for (int l = 0; l < levels; ++l, fullCoupling *= 2.0) {
+    auto& boundary = mg->boundaryCells[static_cast<size_t>(l)];
+    if (settings.boundarySweeps > 0)
+      findBoundaryCells(tasks, l == 0 ? fine : mg->coarse[static_cast<size_t>(l - 1)], fullCoupling, &boundary);
+  }
+  for (int l = 0; l < levels; ++l) {
+    const size_t cells = (l == 0 ? fine : mg->coarse[static_cast<size_t>(l - 1)]).diagonal.size();
+    mg->r[static_cast<size_t>(l)].resize(cells);
+    if (l > 0) {
+      mg->x[static_cast<size_t>(l)].resize(cells);
+      mg->b[static_cast<size_t>(l)].resize(cells);
+    }
+  }
+  return Status::Ok;
+}
+
+void applyPoissonMultigrid(TaskSystem& tasks, const CutCellPoisson& fine, PoissonMultigrid& mg, const double* r,
+                           double* z) {
+  const MultigridSettings& s = mg.settings;
+  const int levels = mg.levelCount();
+  auto op = [&](int l) -> const CutCellPoisson& { return l == 0 ? fine : mg.coarse[static_cast<size_t>(l - 1)]; };
+  auto xOf = [&](int l) { return l == 0 ? z : mg.x[static_cast<size_t>(l)].data(); };
+  auto bOf = [&](int l) { return l == 0 ? r : mg.b[static_cast<size_t>(l)].data(); };
+  auto filter = [&](int l, double* v) {
+    if (l > 0 && mg.coarseFloating[static_cast<size_t>(l - 1)]) filterCutCellPoisson(op(l), v);
+  };
+  auto scratchOf = [&](int l) -> std::vector<double>& { return mg.r[static_cast<size_t>(l)]; };
+
+  // Every level's x starts from 0; the first smoothing sweep clears it (smooth, fromZero).
+  for (int l = 0; l + 1 < levels; ++l) {
+    smoothLevel(tasks, op(l), s, mg.boundaryCells[static_cast<size_t>(l)], bOf(l), xOf(l), scratchOf(l), false);
+    double* residual = scratchOf(l).data();
+    computeResidual(tasks, op(l), bOf(l), xOf(l), residual);
+    double* coarseB = mg.b[static_cast<size_t>(l + 1)].data();
+    restrictResidual(tasks, op(l), op(l + 1), mg.sides, mg.prolongScale[static_cast<size_t>(l)].data(), residual,
+                     coarseB, &mg.restrictScratch);
+    filter(l + 1, coarseB);
+  }
+  const int last = levels - 1;
+  smooth(tasks, op(last), s, bOf(last), xOf(last), scratchOf(last), s.coarsestSweeps, false, true);
+  smooth(tasks, op(last), s, bOf(last), xOf(last), scratchOf(last), s.coarsestSweeps, true, false);
+  filter(last, xOf(last));
+  for (int l = last - 1; l >= 0; --l) {
+    prolongateAdd(tasks, op(l), op(l + 1), mg.sides, mg.prolongScale[static_cast<size_t>(l)].data(), xOf(l + 1), xOf(l));
+    smoothLevel(tasks, op(l), s, mg.boundaryCells[static_cast<size_t>(l)], bOf(l), xOf(l), scratchOf(l), true);
+    filter(l, xOf(l));
+  }
+}
+
+}  // namespace vp
