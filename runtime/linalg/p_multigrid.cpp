@@ -258,7 +258,7 @@ void PMultigrid::smooth(TaskSystem& tasks, Level& L, const double* rhs, double* 
   // Chebyshev iteration for D⁺A on [a, b] from a zero start (Saad, Iterative Methods, alg.
   // 12.1); damped Jacobi is the same loop with ρ = 0 and a fixed step ω.
   const int64_t n = 3 * static_cast<int64_t>(L.nodes);
-  const bool chebyshev = settings_.smoother == MultigridSmoother::Chebyshev;
+  const bool chebyshev = settings_.smoother == PMultigridSmoother::Chebyshev;
   const double b = L.lambdaMax, a = b / settings_.chebyshevRange;
   const double theta = 0.5 * (b + a), delta = 0.5 * (b - a), sigma = theta / delta;
   double rho = 1.0 / sigma;

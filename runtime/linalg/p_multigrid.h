@@ -66,10 +66,10 @@
 
 namespace vp {
 
-enum class MultigridSmoother { Chebyshev, DampedJacobi };
+enum class PMultigridSmoother { Chebyshev, DampedJacobi };
 
 struct PMultigridSettings {
-  MultigridSmoother smoother = MultigridSmoother::Chebyshev;
+  PMultigridSmoother smoother = PMultigridSmoother::Chebyshev;
   int sweeps = 2;                // smoothing steps before and after the coarse correction
   double chebyshevRange = 30.0;  // Chebyshev targets [λmax / range, λmax] of D⁻¹A
   int coarseCycles = 8;          // aggregation-multigrid V-cycles on the coarsest level

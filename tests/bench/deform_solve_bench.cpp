@@ -170,7 +170,7 @@ void registerSolve(const std::string& name, Method method, std::vector<int> degr
       ->Repetitions(5);
 }
 
-PMultigridSettings with(MultigridSmoother smoother, int sweeps, int coarseCycles = 1) {
+PMultigridSettings with(PMultigridSmoother smoother, int sweeps, int coarseCycles = 1) {
   PMultigridSettings s;
   s.smoother = smoother;
   s.sweeps = sweeps;
@@ -187,16 +187,16 @@ const bool registered = [] {
   registerSolve("amg_pcg", Method::AmgPcg, {}, defaults);
   // The choices behind the defaults.
   registerSolve("pmg_pcg_3to1", Method::PmgPcg, {3, 1}, defaults);
-  registerSolve("pmg_pcg_jacobi2_coarse8", Method::PmgPcg, {3, 2, 1}, with(MultigridSmoother::DampedJacobi, 2, 8));
-  registerSolve("pmg_pcg_chebyshev3_coarse8", Method::PmgPcg, {3, 2, 1}, with(MultigridSmoother::Chebyshev, 3, 8));
+  registerSolve("pmg_pcg_jacobi2_coarse8", Method::PmgPcg, {3, 2, 1}, with(PMultigridSmoother::DampedJacobi, 2, 8));
+  registerSolve("pmg_pcg_chebyshev3_coarse8", Method::PmgPcg, {3, 2, 1}, with(PMultigridSmoother::Chebyshev, 3, 8));
   for (int coarse : {1, 2, 4, 8, 16}) {
     if (coarse != defaults.coarseCycles)
       registerSolve("pmg_pcg_coarse" + std::to_string(coarse), Method::PmgPcg, {3, 2, 1},
-                    with(MultigridSmoother::Chebyshev, 2, coarse));
+                    with(PMultigridSmoother::Chebyshev, 2, coarse));
     registerSolve("pmg_pcg_chebyshev1_coarse" + std::to_string(coarse), Method::PmgPcg, {3, 2, 1},
-                  with(MultigridSmoother::Chebyshev, 1, coarse));
+                  with(PMultigridSmoother::Chebyshev, 1, coarse));
     registerSolve("pmg_pcg_jacobi1_coarse" + std::to_string(coarse), Method::PmgPcg, {3, 2, 1},
-                  with(MultigridSmoother::DampedJacobi, 1, coarse));
+                  with(PMultigridSmoother::DampedJacobi, 1, coarse));
   }
   return true;
 }();

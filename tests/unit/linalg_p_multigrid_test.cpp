@@ -108,7 +108,7 @@ void expectSymmetricPositive(const BeamSystem& sys, const PMultigridSettings& se
 // both smoothers: CG's requirements on a preconditioner.
 TEST(PMultigrid, VCycleIsSymmetricAndPositive) {
   const BeamSystem cubic321(3, {6, 2, 2}, {3, 2, 1}), cubic31(3, {6, 2, 2}, {3, 1}), quad21(2, {6, 2, 2}, {2, 1});
-  for (MultigridSmoother smoother : {MultigridSmoother::Chebyshev, MultigridSmoother::DampedJacobi}) {
+  for (PMultigridSmoother smoother : {PMultigridSmoother::Chebyshev, PMultigridSmoother::DampedJacobi}) {
     PMultigridSettings s;
     s.smoother = smoother;
     expectSymmetricPositive(cubic321, s, "3-2-1");
