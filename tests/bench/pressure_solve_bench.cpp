@@ -1,6 +1,8 @@
 // BM_PressureSolve/{mic_pcg,voxel_mgpcg,cutcell_mgpcg}/{scene}/{N}: the fluid pressure solve
 // on N^3 cut-cell scenes (tests/unit/fluid_pressure_scenes.h), from p = 0 to a relative residual
-// of 1e-6, and the memory bandwidth its kernels reach. cutcell_mgpcg_jacobi is the cut-cell
+// of 1e-6, and the memory bandwidth its kernels reach. Scenes: smoke_sphere, tank_plate_sphere
+// (open-top tank, no free surface) and liquid_tank (the same tank filled to 0.61 with a free
+// surface). cutcell_mgpcg_jacobi is the cut-cell
 // multigrid with the damped Jacobi smoother instead of red-black Gauss-Seidel.
 //
 // Counters
@@ -145,7 +147,8 @@ void registerAll() {
       {PressureSolver::CutCellMgpcg, MultigridSmoother::RedBlackGaussSeidel, "cutcell_mgpcg"},
       {PressureSolver::CutCellMgpcg, MultigridSmoother::DampedJacobi, "cutcell_mgpcg_jacobi"},
   };
-  for (PressureSceneKind kind : {PressureSceneKind::SmokeSphere, PressureSceneKind::TankPlateSphere})
+  for (PressureSceneKind kind :
+       {PressureSceneKind::SmokeSphere, PressureSceneKind::TankPlateSphere, PressureSceneKind::LiquidTank})
     for (const Variant& v : variants)
       for (int n : {64, 128, 192}) {
         const PressureSolver which = v.solver;
