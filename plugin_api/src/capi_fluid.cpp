@@ -2,6 +2,7 @@
 #include <cmath>
 
 #include "capi_convert.h"
+#include "capi_copy_out.h"
 #include "world_registry.h"
 
 using namespace vp;
@@ -154,6 +155,28 @@ vpStatus vpFluidGetResolution(vpFluidId id, int32_t* outNx, int32_t* outNy, int3
   });
 }
 
+vpStatus vpFluidGetKind(vpFluidId id, vpFluidKind* outKind) {
+  return guarded(__func__, [&] {
+    World* w;
+    FluidActor* f;
+    VP_TRY(resolveFluid(id, &w, &f));
+    if (outKind) *outKind = f->desc().kind == FluidKind::Liquid ? vpFluidKind_Liquid : vpFluidKind_Smoke;
+    return Status::Ok;
+  });
+}
+
+vpStatus vpFluidGetDomain(vpFluidId id, vpVec3* outOrigin, float* outCellSize) {
+  return guarded(__func__, [&] {
+    World* w;
+    FluidActor* f;
+    VP_TRY(resolveFluid(id, &w, &f));
+    const MacGridSpec& s = f->grid().spec;
+    if (outOrigin) *outOrigin = toC(s.origin);
+    if (outCellSize) *outCellSize = static_cast<float>(s.h);
+    return Status::Ok;
+  });
+}
+
 vpStatus vpFluidGetField(vpFluidId id, vpFluidField field, float* outValues, int64_t capacity) {
   return guarded(__func__, [&] {
     VP_REQUIRE_POINTER(outValues);
@@ -280,6 +303,26 @@ vpStatus vpFluidGetStats(vpFluidId id, vpActorStats* outStats) {
     for (const ActorStats& a : w->lastStats().actors)
       if (a.kind == ActorKind::Fluid && a.index1 == id.index1 && a.generation == id.generation) fillActorStats(a, outStats);
     return Status::Ok;
+  });
+}
+
+vpStatus vpWorldGetFluidCount(vpWorldId id, int32_t* outCount) {
+  return guarded(__func__, [&] {
+    VP_REQUIRE_POINTER(outCount);
+    World* w;
+    VP_TRY(resolveWorld(id, &w));
+    *outCount = static_cast<int32_t>(w->fluidCount());
+    return Status::Ok;
+  });
+}
+
+vpStatus vpWorldGetFluids(vpWorldId id, vpFluidId* outIds, int32_t capacity, int32_t* outCount) {
+  return guarded(__func__, [&] {
+    VP_REQUIRE_POINTER(outCount);
+    World* w;
+    VP_TRY(resolveWorld(id, &w));
+    return copyIdsOut(w->fluidHandles(), [&](FluidHandle h) { return makeFluidId(id, h); }, outIds, capacity,
+                      outCount);
   });
 }
 

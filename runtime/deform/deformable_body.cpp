@@ -10,8 +10,10 @@
 #include "deform/bb_element_matrices.h"
 #include "deform/bb_evaluation.h"
 #include "deform/bb_multi_index.h"
+#include "deform/bb_rotated_stiffness.h"
 #include "deform/corotated_element.h"
 #include "deform/deformation_gradient.h"
+#include "deform/degree_hierarchy.h"
 #include "deform/polar_decomposition.h"
 #include "geometry/tet_mesh_boundary.h"
 #include "deform/linear_tet_corotation.h"
@@ -29,6 +31,24 @@ constexpr double kSlipSpeed = 1e-4;
 // Contact active-set passes per step: each may re-solve once. Four settle stick/slide/
 // release decisions in practice; a budget-cut step simply stops earlier.
 constexpr int kContactPasses = 4;
+
+// The p-multigrid levels below each degree. Cubic goes through quadratic: see the figures
+// in tests/bench/deform_solve_bench.cpp (3->1 directly leaves too much for the smoother).
+std::vector<int> pMultigridDegrees(int degree) {
+  if (degree == 3) return {3, 2, 1};
+  return {degree, 1};
+}
+
+// One Chebyshev step per side for quadratic elements: at the step's usual tolerance (1e-3,
+// warm-started) the coarse correction does most of the work and a second step cost more
+// fine-level products than the iterations it saved (BM_DeformQuadraticBeam/13000: 8.5 CG
+// iterations with one step against 7.95 with two, ~10% less CPU per step). Cubic keeps two
+// (BM_DeformSolve: 16 against 27 iterations).
+PMultigridSettings pMultigridSettings(int degree) {
+  PMultigridSettings settings;
+  if (degree == 2) settings.sweeps = 1;
+  return settings;
+}
 
 }  // namespace
 
@@ -124,14 +144,23 @@ Status DeformableBody::create(DeformableDesc desc, std::unique_ptr<DeformableBod
   }
   b.elementForce_.resize(3 * static_cast<size_t>(N * elements));
   if (degree == 1) b.rotatedGradients_.resize(12 * static_cast<size_t>(elements));
-  else b.rotatedStiffness_.resize(b.elementStiffness_.size());
+  else {
+    b.gradientPairs_.resize(144 * static_cast<size_t>(elements));
+    b.stiffnessTerms_ = bbStiffnessTerms(degree);
+  }
   buildElementPattern(b.nodeCount_, b.elementNodes_.data(), elements, N, &b.matrix_, &b.scatter_);
   const Preconditioner pc = desc.solver.preconditioner;
-  b.useMultigrid_ = pc == Preconditioner::Multigrid || (pc == Preconditioner::Auto && b.nodeCount_ >= kMultigridMinNodes);
-  if (b.useMultigrid_) {
-    b.multigrid_.build(b.matrix_);
-    b.nodeFilters_.assign(9 * static_cast<size_t>(b.nodeCount_), 0.0);
+  const bool large = b.nodeCount_ >= kMultigridMinNodes;
+  b.usePMultigrid_ = degree > 1 && (pc == Preconditioner::PMultigrid || (pc == Preconditioner::Auto && large));
+  b.useMultigrid_ = !b.usePMultigrid_ && (pc == Preconditioner::Multigrid || pc == Preconditioner::PMultigrid ||
+                                          (pc == Preconditioner::Auto && large));
+  if (b.useMultigrid_) b.multigrid_.build(b.matrix_);
+  if (b.usePMultigrid_) {
+    DegreeHierarchy hierarchy;
+    VP_TRY(buildDegreeHierarchy(pMultigridDegrees(degree), b.elementNodes_.data(), elements, b.nodeCount_, &hierarchy));
+    b.pMultigrid_.build(b.matrix_, std::move(hierarchy.prolongations), pMultigridSettings(degree));
   }
+  if (b.useMultigrid_ || b.usePMultigrid_) b.nodeFilters_.assign(9 * static_cast<size_t>(b.nodeCount_), 0.0);
   const size_t n3 = b.restX_.size();
   b.externalForce_.assign(n3, 0.0);
   b.force_.resize(n3);
@@ -165,6 +194,10 @@ Status DeformableBody::create(DeformableDesc desc, std::unique_ptr<DeformableBod
   b.updateRenderMesh(*TaskSystem::create(TaskHooks{}, 1));
   *out = std::move(body);
   return Status::Ok;
+}
+
+Preconditioner DeformableBody::preconditioner() const {
+  return usePMultigrid_ ? Preconditioner::PMultigrid : useMultigrid_ ? Preconditioner::Multigrid : Preconditioner::BlockJacobi;
 }
 
 Status DeformableBody::checkNode(const char* what, int32_t node) const {
@@ -391,8 +424,9 @@ void DeformableBody::corotateAndAssemble(TaskSystem& tasks, double stiffnessScal
 void DeformableBody::corotateAndAssembleBB(TaskSystem& tasks, double stiffnessScale) {
   const int N = nodesPerElement_;
   const int64_t K = 9 * N * N;
-  // Pass 1, per element: one rotation from the volume-averaged deformation gradient, then the
-  // corotated force −R K (Rᵀ x − x0) and the rotated stiffness R K Rᵀ of the stored rest K.
+  // Pass 1, per element: one rotation from the volume-averaged deformation gradient and the
+  // corotated force −R K (Rᵀ x − x0) from the stored rest K, and the 16 rotated gradient-pair
+  // matrices the gather sums into each R K_ab Rᵀ (deform/bb_rotated_stiffness.h).
   parallelFor(tasks, elementCount(), 64, [&](int64_t begin, int64_t end) {
     for (int64_t e = begin; e < end; ++e) {
       const int32_t* nodes = &elementNodes_[N * e];
@@ -403,13 +437,12 @@ void DeformableBody::corotateAndAssembleBB(TaskSystem& tasks, double stiffnessSc
       if (polarRotationIterative(F, &rotations_[4 * e], R, 20, 1e-6) < 0)
         for (int i = 0; i < 9; ++i) R[i] = (i % 4 == 0) ? 1.0 : 0.0;  // non-finite: the guard reports it
       corotatedForce(N, &elementStiffness_[K * e], x0, x, R, &elementForce_[3 * N * e]);
-      corotatedStiffness(N, &elementStiffness_[K * e], R, &rotatedStiffness_[K * e]);
+      bbRotatedGradientPairs(degree_, R, &restGradients_[12 * e], restVolume_[e], lambda_, mu_, stiffnessScale,
+                             &gradientPairs_[144 * e]);
     }
   });
   gatherRows(tasks, 64, [&](int64_t e, int a, int b, double* block) {
-    const double* Ke = &rotatedStiffness_[K * e];
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) block[3 * r + c] += stiffnessScale * Ke[(3 * a + r) * 3 * N + 3 * b + c];
+    addBBRotatedBlock(stiffnessTerms_, &gradientPairs_[144 * e], N, a, b, block);
   });
 }
 
@@ -494,7 +527,7 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
   LinearSystem system;
   system.size = n3;
   system.apply = [&](const double* x, double* y) { matrix_.multiply(tasks, x, y); };
-  if (useMultigrid_) {
+  if (useMultigrid_ || usePMultigrid_) {
     parallelFor(tasks, nodeCount_, 1024, [&](int64_t begin, int64_t end) {
       for (int64_t i = begin; i < end; ++i) {
         Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> F(&nodeFilters_[9 * i]);
@@ -504,11 +537,13 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
         else F.setIdentity();
       }
     });
-    multigrid_.update(tasks, matrix_, x_.data(), nodeFilters_.data());
+    if (useMultigrid_) multigrid_.update(tasks, matrix_, x_.data(), nodeFilters_.data());
+    else pMultigrid_.update(tasks, matrix_, x_.data(), nodeFilters_.data());
     lap(Phase::Assemble);  // the preconditioner's setup is part of building the system
   }
   system.precondition = [&](const double* r, double* z) {
     if (useMultigrid_) return multigrid_.apply(tasks, r, z);
+    if (usePMultigrid_) return pMultigrid_.apply(tasks, r, z);
     parallelFor(tasks, nodeCount_, 1024, [&](int64_t begin, int64_t end) {
       for (int64_t i = begin; i < end; ++i) {
         const double* m = &diagInverse_[9 * i];

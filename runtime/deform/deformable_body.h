@@ -3,7 +3,8 @@
 //   (M + h D + h² K) v' = M v + h (f(x) + f_ext),   D = αM + βK,   x' = x + h v',
 // where f(x) is the corotated elastic force and K its (rotated) stiffness at x. The matrix is
 // assembled in 3x3 blocks, element pass then node gather (parallel, deterministic), and
-// solved by CG preconditioned with aggregation multigrid (block-Jacobi on small meshes),
+// solved by CG preconditioned with aggregation multigrid (p-multigrid over the degrees for
+// quadratic and cubic elements, block-Jacobi on small meshes),
 // warm-started from the current velocity, within the actor's share of the frame budget. Pinned and attached nodes are velocity constraints
 // handled inside CG by filtering (Baraff & Witkin 1998), not by penalties.
 #pragma once
@@ -18,11 +19,13 @@
 #include "core/slot_map.h"
 #include "core/task_system.h"
 #include "deform/deformable_desc.h"
+#include "deform/bb_rotated_stiffness.h"
 #include "deform/deformable_contacts.h"
 #include "geometry/embedding.h"
 #include "linalg/aggregation_multigrid.h"
 #include "linalg/block_sparse_matrix.h"
 #include "linalg/conjugate_gradient.h"
+#include "linalg/p_multigrid.h"
 #include "step_stats.h"
 
 namespace vp {
@@ -84,6 +87,8 @@ class DeformableBody {
   void elasticForces(TaskSystem& tasks, Array<double>* out);
   // The assembled step matrix of the last step (tests inspect its symmetry).
   const BlockSparseMatrix<double>& stepMatrix() const { return matrix_; }
+  // Which preconditioner the solve uses (Auto resolved).
+  Preconditioner preconditioner() const;
 
  private:
   DeformableBody() = default;
@@ -113,7 +118,8 @@ class DeformableBody {
   // vertex nodes).
   std::vector<std::array<int32_t, 3>> nodeSupport_;
   Array<double> elementStiffness_;  // degree > 1: rest K_e, 3N x 3N row-major per element
-  Array<double> rotatedStiffness_;  // degree > 1: R K_e Rᵀ this step
+  Array<double> gradientPairs_;     // degree > 1: 16 rotated 3x3 gradient pairs per element, this step
+  BBStiffnessTerms stiffnessTerms_;
   Array<double> restGradients_;     // 12 per element
   Array<double> restVolume_;
   Array<double> rotations_;         // 4 per element, quaternion (w,x,y,z) warm start
@@ -145,7 +151,9 @@ class DeformableBody {
   CgWorkspace cg_;
   bool useMultigrid_ = false;
   AggregationMultigrid multigrid_;
-  Array<double> nodeFilters_;  // 9 per node: the CG filter as a 3x3 projector, for the multigrid
+  bool usePMultigrid_ = false;
+  PMultigrid pMultigrid_;
+  Array<double> nodeFilters_;  // 9 per node: the CG filter as a 3x3 projector, for the multigrids
 };
 
 }  // namespace vp

@@ -65,7 +65,8 @@ static int exportMeshes(HostOutputs* o, int frame) {
   for (i = 0; i < o->view.meshCount; ++i) {
     char path[4096];
     const ViewMesh* m = &o->view.meshes[i];
-    if (!m->exported) continue;
+    /* A liquid drained to nothing has no surface; an empty file would only confuse readers. */
+    if (!m->exported || m->triangleCount == 0) continue;
     snprintf(path, sizeof path, "%s/meshes/%s_f%05d.%s", o->config.outDir, m->name, frame, ext);
     if (!meshExportWrite(m, o->config.exportFormat, path)) return 0;
     ++o->meshFiles;

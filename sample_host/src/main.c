@@ -1,7 +1,7 @@
 /* VolPhys sample host: loads a scene through the C ABI, steps it headless, prints one line of
  * stats per frame and a summary, and writes its outputs to an output folder: per-frame stats
- * CSV, final collider poses CSV, a frame-time plot (SVG), meshes of the deformables (assimp)
- * and PNG snapshots (offscreen OSMesa) every few frames. Talks to VolPhys through nothing but
+ * CSV, final collider poses CSV, a frame-time plot (SVG), meshes of the deformables and liquid
+ * surfaces (assimp) and PNG snapshots (offscreen OSMesa) every few frames. Talks to VolPhys through nothing but
  * volphys.h; the exporter is a C++ file only because assimp's exporter is C++. */
 #define _POSIX_C_SOURCE 200809L
 
@@ -15,6 +15,7 @@
 #include "frame_plot.h"
 #include "frame_stats.h"
 #include "host_outputs.h"
+#include "step_summary.h"
 #include "volphys/volphys.h"
 
 typedef struct Options {
@@ -34,9 +35,10 @@ static void usage(FILE* f) {
           "                    [--budget MS] [--out DIR] [--quiet]\n"
           "                    [--export-every N] [--export-format ID] [--snapshot-every N] [--image-size WxH]\n"
           "Steps the scene headless, prints per-frame stats, writes DIR/stats.csv, DIR/poses.csv,\n"
-          "DIR/frame_times.svg, DIR/meshes/deformableK_fNNNNN.EXT every --export-every frames (assimp\n"
-          "format id: ply, plyb, obj, stl, ...) and DIR/snapshots/frame_NNNNN.png every --snapshot-every\n"
-          "frames (both also on the last frame; 0 = off).\n"
+          "DIR/frame_times.svg, DIR/meshes/deformableK_fNNNNN.EXT and fluidK_fNNNNN.EXT (liquid surfaces)\n"
+          "every --export-every frames (assimp format id: ply, plyb, obj, stl, ...) and\n"
+          "DIR/snapshots/frame_NNNNN.png every --snapshot-every frames (both also on the last frame;\n"
+          "0 = off).\n"
           "Defaults: the bundled default scene, 300 frames, dt 1/60, 2 workers, out/sample,\n"
           "export every 30 frames as ply, snapshot every 60 frames at 640x480.\n");
 }
@@ -111,26 +113,6 @@ static int fail(const char* what, vpStatus status) {
   return 1;
 }
 
-/* Totals over the deformable actors of the last step. */
-typedef struct DeformSummary {
-  double ms, solveMs, maxResidual;
-  int iterations, diverged;
-} DeformSummary;
-
-static void summarizeDeformables(vpWorldId world, int actorCount, DeformSummary* out) {
-  int a;
-  memset(out, 0, sizeof *out);
-  for (a = 1; a < actorCount; ++a) {
-    vpActorStats s;
-    if (vpWorldGetActorStats(world, a, &s) != vpStatus_Ok || s.kind != vpActorKind_Deformable) continue;
-    out->ms += s.totalMs;
-    out->solveMs += s.phases[vpPhase_Solve].ms;
-    out->iterations += s.phases[vpPhase_Solve].iterations;
-    if (s.phases[vpPhase_Solve].residual > out->maxResidual) out->maxResidual = s.phases[vpPhase_Solve].residual;
-    out->diverged += s.diverged;
-  }
-}
-
 static int writePoses(vpWorldId world, const char* outDir) {
   int32_t count = 0, i;
   vpColliderId* ids;
@@ -174,12 +156,15 @@ static int run(vpWorldId world, const Options* o) {
   if (!csv || !frameTimesInit(&times, o->frames) || !framePlotInit(&plot, o->frames)) goto done;
   fprintf(csv,
           "frame,step_ms,wall_ms,budget_ms,budget_cut,rigid_ms,rigid_substeps,colliders,actors,"
-          "deform_ms,deform_solve_ms,deform_iters,deform_max_residual,diverged\n");
+          "deform_ms,deform_solve_ms,deform_iters,deform_max_residual,fluid_ms,fluid_advect_ms,fluid_forces_ms,"
+          "fluid_fractions_ms,fluid_pressure_ms,fluid_pressure_iters,fluid_pressure_max_residual,fluid_surface_ms,"
+          "diverged\n");
 
   printf("volphys_host: scene %s, %d frames, dt %.5f s, %d workers\n", o->scene, o->frames, o->dt, o->workers);
   for (frame = 0; frame < o->frames; ++frame) {
     vpActorStats rigid;
     DeformSummary deform;
+    FluidSummary fluid;
     double t0 = wallMs(), wall;
     if ((s = vpWorldStep(world, (float)o->dt)) != vpStatus_Ok) {
       fail("vpWorldStep", s);
@@ -189,18 +174,21 @@ static int run(vpWorldId world, const Options* o) {
     vpWorldGetStepStats(world, &stats);
     vpWorldGetActorStats(world, 0, &rigid);
     summarizeDeformables(world, stats.actorCount, &deform);
+    summarizeFluids(world, stats.actorCount, &fluid);
     frameTimesAdd(&times, wall);
     framePlotAdd(&plot, stats.totalMs, stats.budgetMs, stats.budgetCut);
     cutFrames += stats.budgetCut;
-    fprintf(csv, "%d,%.4f,%.4f,%.2f,%d,%.4f,%d,%d,%d,%.4f,%.4f,%d,%.3e,%d\n", frame, stats.totalMs, wall,
-            stats.budgetMs, stats.budgetCut, rigid.phases[vpPhase_Rigid].ms, stats.rigidSubsteps, stats.colliderCount,
-            stats.actorCount, deform.ms, deform.solveMs, deform.iterations, deform.maxResidual, deform.diverged);
+    fprintf(csv, "%d,%.4f,%.4f,%.2f,%d,%.4f,%d,%d,%d,%.4f,%.4f,%d,%.3e,%.4f,%.4f,%.4f,%.4f,%.4f,%d,%.3e,%.4f,%d\n",
+            frame, stats.totalMs, wall, stats.budgetMs, stats.budgetCut, rigid.phases[vpPhase_Rigid].ms,
+            stats.rigidSubsteps, stats.colliderCount, stats.actorCount, deform.ms, deform.solveMs, deform.iterations,
+            deform.maxResidual, fluid.ms, fluid.advectMs, fluid.forcesMs, fluid.fractionsMs, fluid.pressureMs,
+            fluid.pressureIterations, fluid.maxResidual, fluid.surfaceMs, deform.diverged + fluid.diverged);
     if (!o->quiet)
       printf("frame %4d  step %7.3f ms  (budget %5.1f ms%s)  rigid %6.3f ms x%d  deform %7.3f ms, %3d CG its, "
-             "res %.1e%s\n",
+             "res %.1e  fluid %7.3f ms, %3d p its, res %.1e%s\n",
              frame, stats.totalMs, stats.budgetMs, stats.budgetCut ? ", CUT" : "", rigid.phases[vpPhase_Rigid].ms,
-             stats.rigidSubsteps, deform.ms, deform.iterations, deform.maxResidual,
-             deform.diverged ? "  DIVERGED" : "");
+             stats.rigidSubsteps, deform.ms, deform.iterations, deform.maxResidual, fluid.ms,
+             fluid.pressureIterations, fluid.maxResidual, deform.diverged + fluid.diverged ? "  DIVERGED" : "");
     /* Outside the timed step: writing files is the host's cost, not the simulation's. */
     if (!hostOutputsFrame(&outputs, frame, o->frames)) goto done;
   }

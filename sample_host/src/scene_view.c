@@ -5,6 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "fluid_view.h"
+
 static const vpTransform kIdentity = {{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f, 1.0f}};
 
 static int report(const char* what, vpStatus s) {
@@ -76,6 +78,8 @@ ViewMesh* sceneViewAddMesh(SceneView* v, const char* name, const float color[4],
 ViewPoints* sceneViewAddPoints(SceneView* v, const char* name, float pointSize) {
   ViewPoints* p;
   if (!grow((void**)&v->points, &v->pointsCapacity, v->pointsCount + 1, sizeof(ViewPoints))) return NULL;
+  if (!grow((void**)&v->pointSources, &v->pointSourcesCapacity, v->pointsCount + 1, sizeof *v->pointSources))
+    return NULL;
   p = &v->points[v->pointsCount++];
   memset(p, 0, sizeof *p);
   snprintf(p->name, sizeof p->name, "%s", name);
@@ -147,9 +151,41 @@ static int addDeformables(SceneView* v, vpWorldId world) {
   return i == count;
 }
 
+/* A liquid becomes a surface mesh named fluidK, smoke a point set: K is the fluid's place in
+ * the world's list, so file names match the scene's order whatever the kinds. */
+static int addFluids(SceneView* v, vpWorldId world) {
+  static const float water[4] = {0.2f, 0.45f, 0.85f, 1.0f};
+  int32_t count = 0, i;
+  vpFluidId* ids;
+  vpStatus s = vpStatus_Ok;
+  if ((s = vpWorldGetFluidCount(world, &count)) != vpStatus_Ok) return report("vpWorldGetFluidCount", s);
+  ids = (vpFluidId*)calloc((size_t)(count > 0 ? count : 1), sizeof *ids);
+  if (!ids) return 0;
+  if ((s = vpWorldGetFluids(world, ids, count, &count)) != vpStatus_Ok) {
+    free(ids);
+    return report("vpWorldGetFluids", s);
+  }
+  for (i = 0; i < count; ++i) {
+    char name[64];
+    vpFluidKind kind = vpFluidKind_Smoke;
+    if ((s = vpFluidGetKind(ids[i], &kind)) != vpStatus_Ok) break;
+    snprintf(name, sizeof name, "fluid%d", (int)i);
+    if (kind == vpFluidKind_Liquid) {
+      if (!sceneViewAddMesh(v, name, water, 1)) break;
+      v->sources[v->meshCount - 1].fluid = ids[i];
+    } else {
+      if (!sceneViewAddPoints(v, name, 4.0f)) break;
+      v->pointSources[v->pointsCount - 1] = ids[i];
+    }
+  }
+  free(ids);
+  if (s != vpStatus_Ok) return report("vpFluidGetKind", s);
+  return i == count;
+}
+
 int sceneViewInit(SceneView* v, vpWorldId world) {
   memset(v, 0, sizeof *v);
-  return addColliders(v, world) && addDeformables(v, world) && sceneViewUpdate(v);
+  return addColliders(v, world) && addDeformables(v, world) && addFluids(v, world) && sceneViewUpdate(v);
 }
 
 int sceneViewUpdate(SceneView* v) {
@@ -159,6 +195,7 @@ int sceneViewUpdate(SceneView* v) {
     ViewMesh* m = &v->meshes[i];
     const vpColliderId collider = v->sources[i].collider;
     const vpDeformableId deformable = v->sources[i].deformable;
+    const vpFluidId fluid = v->sources[i].fluid;
     if (!vpColliderIdIsNull(collider)) {
       if ((s = vpColliderGetPose(collider, &m->pose)) != vpStatus_Ok) return report("vpColliderGetPose", s);
     } else if (!vpDeformableIdIsNull(deformable)) {
@@ -171,8 +208,14 @@ int sceneViewUpdate(SceneView* v) {
         return report("vpDeformableGetRenderMesh", s);
       m->vertexCount = nv;
       m->triangleCount = nt;
+    } else if (!vpFluidIdIsNull(fluid) && !fluidViewReadSurface(m, fluid)) {
+      return 0;
     }
   }
+  for (i = 0; i < v->pointsCount; ++i)
+    if (!vpFluidIdIsNull(v->pointSources[i]) &&
+        !fluidViewReadSmoke(&v->points[i], v->pointSources[i], &v->fieldScratch, &v->fieldScratchCount))
+      return 0;
   return 1;
 }
 
@@ -231,5 +274,7 @@ void sceneViewFree(SceneView* v) {
   free(v->meshes);
   free(v->points);
   free(v->sources);
+  free(v->pointSources);
+  free(v->fieldScratch);
   memset(v, 0, sizeof *v);
 }

@@ -1,8 +1,7 @@
 /* Everything the sample host draws or exports, read from a world through the C ABI: indexed
- * triangle meshes (collider shapes placed by a pose, deformable render meshes in world
- * space) and point sets. The renderer and the exporters take only these two kinds, so a new
- * actor (a fluid's surface mesh, a smoke density grid as points) needs only code that fills
- * one. */
+ * triangle meshes (collider shapes placed by a pose, deformable render meshes and liquid
+ * surfaces in world space) and point sets (smoke). The renderer and the exporters take only
+ * these two kinds, so a new actor needs only code that fills one. */
 #ifndef VP_SAMPLE_SCENE_VIEW_H
 #define VP_SAMPLE_SCENE_VIEW_H
 
@@ -34,18 +33,24 @@ typedef struct SceneView {
   int meshCount, meshCapacity;
   ViewPoints* points;
   int pointsCount, pointsCapacity;
-  /* Where each mesh comes from, parallel to meshes (both null for meshes added by others). */
+  /* Where each mesh comes from, parallel to meshes (all null for meshes added by others). */
   struct ViewMeshSource {
     vpColliderId collider;
     vpDeformableId deformable;
+    vpFluidId fluid;
   } * sources;
   int sourcesCapacity;
+  /* The smoke fluid each point set shows, parallel to points (null for sets added by others). */
+  vpFluidId* pointSources;
+  int pointSourcesCapacity;
+  float* fieldScratch;    /* a fluid field copied out for the smoke points */
+  int64_t fieldScratchCount;
 } SceneView;
 
-/* Builds meshes for every collider and deformable in the world. Returns 0 (with a message on
- * stderr) if the ABI refuses. */
+/* Builds meshes for every collider, deformable and liquid in the world and point sets for
+ * every smoke fluid. Returns 0 (with a message on stderr) if the ABI refuses. */
 int sceneViewInit(SceneView* view, vpWorldId world);
-/* Reads the current poses and deformed meshes. */
+/* Reads the current poses, deformed meshes, liquid surfaces and smoke. */
 int sceneViewUpdate(SceneView* view);
 /* Generic slots for other producers; the returned pointer is valid until the next add. Sizes
  * are grown with viewMeshReserve / viewPointsReserve. */

@@ -2,6 +2,7 @@
 
 #include "geometry/box_tet_mesh.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <sstream>
@@ -28,6 +29,25 @@ bool beamCellsForTetCount(int64_t tetCount, BeamCells* cells) {
   const auto n = static_cast<int64_t>(std::llround(std::cbrt(double(cubeOfN))));
   if (n < 1 || n * n * n != cubeOfN) return false;
   cells->x = static_cast<int>(4 * n);
+  cells->y = static_cast<int>(n);
+  cells->z = static_cast<int>(n);
+  return true;
+}
+
+TetMesh toTetMesh(const BeamMesh& beam) {
+  TetMesh mesh;
+  for (int32_t i = 0; i < beam.vertexCount(); ++i)
+    mesh.vertices.emplace_back(beam.vertices[3 * i], beam.vertices[3 * i + 1], beam.vertices[3 * i + 2]);
+  for (int32_t t = 0; t < beam.tetCount(); ++t)
+    mesh.tets.push_back({beam.tets[4 * t], beam.tets[4 * t + 1], beam.tets[4 * t + 2], beam.tets[4 * t + 3]});
+  return mesh;
+}
+
+bool beamCellsNearTetCount(int64_t tetCount, BeamCells* cells) {
+  if (tetCount < 24) return false;
+  if (beamCellsForTetCount(tetCount, cells)) return true;
+  const auto n = std::max<int64_t>(1, std::llround(std::cbrt(double(tetCount) / 24.0)));
+  cells->x = static_cast<int>(std::max<int64_t>(1, std::llround(double(tetCount) / double(6 * n * n))));
   cells->y = static_cast<int>(n);
   cells->z = static_cast<int>(n);
   return true;

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "geometry/tet_mesh.h"
+
 namespace vp::bench {
 
 // A box [0, lengthX] x [0, sizeY] x [0, sizeZ] cut into cellsX * cellsY * cellsZ cubes (boxes),
@@ -34,6 +36,14 @@ struct BeamCells {
 };
 // Returns false when tetCount is not 24 * n^3 for a whole n >= 1.
 bool beamCellsForTetCount(int64_t tetCount, BeamCells* cells);
+// For tet counts of no 4n x n x n beam (issue 6's "about 13K" quadratic tets): n x n cells
+// across, n = round(cbrt(tetCount / 24)), and the cell count along x that brings 6 x n n
+// nearest to tetCount (cells then are boxes, not cubes). Exact counts give the 4n x n x n
+// beam. Returns false for tetCount < 24.
+bool beamCellsNearTetCount(int64_t tetCount, BeamCells* cells);
+
+// The beam as the runtime's tet mesh (same vertex and tet order).
+TetMesh toTetMesh(const BeamMesh& mesh);
 
 // Signed volume of tet (a, b, c, d): positive when positively oriented.
 double signedTetVolume(const BeamMesh& mesh, int32_t tet);

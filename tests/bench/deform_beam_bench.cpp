@@ -6,8 +6,12 @@
 #include <benchmark/benchmark.h>
 
 #include <chrono>
+#include <ctime>
+#include <string>
+#include <utility>
 
 #include "beam_mesh.h"
+#include "deform_beam_desc.h"
 #include "core/task_system.h"
 #include "deform/deformable_body.h"
 
@@ -16,28 +20,29 @@ namespace {
 
 struct BeamRun {
   double seconds = 0.0, tipDy = 0.0, cgIterations = 0.0;
+  int64_t tets = 0;
+  int32_t nodes = 0;
+  double phaseMs[kPhaseCount] = {};  // per step
+  double processCpuSeconds = 0.0;    // all threads: with other programs competing for the
+                                     // cores, wall time alone says little
   bool ok = false;
 };
 
-BeamRun runBeam(int64_t tets, double tolerance, int maxIterations, int workers, int degree = 1) {
+BeamRun runBeam(int64_t tets, double tolerance, int maxIterations, int workers, int degree = 1,
+               Preconditioner preconditioner = Preconditioner::Auto) {
   BeamRun run;
   BeamCells cells;
-  if (!beamCellsForTetCount(tets, &cells)) return run;
+  if (!beamCellsNearTetCount(tets, &cells)) return run;
   const BeamMesh beam = makeBeamMesh(cells.x, cells.y, cells.z, 4.0, 1.0, 1.0);
+  run.tets = beam.tetCount();
   if (!findBeamMeshDefect(beam, 4.0).empty()) return run;
-  DeformableDesc desc;
-  desc.degree = degree;
-  for (int32_t i = 0; i < beam.vertexCount(); ++i)
-    desc.mesh.vertices.emplace_back(beam.vertices[3 * i], beam.vertices[3 * i + 1], beam.vertices[3 * i + 2]);
-  for (int32_t t = 0; t < beam.tetCount(); ++t)
-    desc.mesh.tets.push_back({beam.tets[4 * t], beam.tets[4 * t + 1], beam.tets[4 * t + 2], beam.tets[4 * t + 3]});
-  desc.material.youngsModulus = 1e8;
-  desc.material.poissonRatio = 0.3;
-  desc.material.density = 1000.0;
+  DeformableDesc desc = beamDeformableDesc(beam, degree);
   desc.solver.tolerance = tolerance;
   desc.solver.maxIterations = maxIterations;
+  desc.solver.preconditioner = preconditioner;
   std::unique_ptr<DeformableBody> body;
   if (!ok(DeformableBody::create(std::move(desc), &body))) return run;
+  run.nodes = body->nodeCount();
   // Pinning the clamped face's vertices also pins its edge/face control points (degree > 1).
   body->setPinned(beam.fixedVertices.data(), static_cast<int64_t>(beam.fixedVertices.size()), true);
   auto tasks = TaskSystem::create(TaskHooks{}, workers);
@@ -47,13 +52,16 @@ BeamRun runBeam(int64_t tets, double tolerance, int maxIterations, int workers, 
   in.tasks = tasks.get();
   const double y0 = body->positions()[3 * beam.tipVertex + 1];
   const auto start = std::chrono::steady_clock::now();
+  const std::clock_t cpuStart = std::clock();
   int iterations = 0;
   for (int step = 0; step < 60; ++step) {
     ActorStats stats;
     body->step(in, &stats);
     iterations += stats.phase(Phase::Solve).iterations;
+    for (int p = 0; p < kPhaseCount; ++p) run.phaseMs[p] += stats.phases[p].ms / 60.0;
   }
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  run.processCpuSeconds = double(std::clock() - cpuStart) / CLOCKS_PER_SEC;
   run.tipDy = body->positions()[3 * beam.tipVertex + 1] - y0;
   run.cgIterations = iterations / 60.0;
   run.ok = true;
@@ -65,6 +73,12 @@ void report(benchmark::State& state, const BeamRun& run) {
   state.counters["hz"] = 60.0 / run.seconds;
   state.counters["cg_iters"] = run.cgIterations;
   state.counters["tip_dy"] = run.tipDy;
+  state.counters["tets"] = static_cast<double>(run.tets);
+  state.counters["nodes"] = run.nodes;
+  state.counters["process_cpu_s"] = run.processCpuSeconds;
+  const std::pair<Phase, const char*> phases[] = {
+      {Phase::Corotate, "corotate_ms"}, {Phase::Assemble, "assemble_ms"}, {Phase::Solve, "solve_ms"}, {Phase::Embed, "embed_ms"}};
+  for (const auto& [phase, name] : phases) state.counters[name] = run.phaseMs[static_cast<int>(phase)];
 }
 
 void BM_DeformLinearBeam(benchmark::State& state) {
@@ -86,9 +100,8 @@ void BM_DeformLinearBeamReference(benchmark::State& state) {
 }
 BENCHMARK(BM_DeformLinearBeamReference)->Arg(12288)->Arg(98304)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(1);
 
-// Quadratic elements on the 12288-tet beam (18785 nodes, as many as the 98304-tet linear
-// beam). Issue 6 asks for ~13K quadratic tets at 10 Hz; 12288 is the nearest beam of the
-// shared 4:1:1 family.
+// Quadratic elements: 13000 -> the 34x8x8-cell beam, 13056 tets (issue 6: ~13K quadratic
+// tets at 10 Hz, the thesis' GPU figure); 12288 is the 32x8x8 beam of the shared family.
 void BM_DeformQuadraticBeam(benchmark::State& state) {
   for (auto _ : state) {
     const BeamRun run = runBeam(state.range(0), DeformableSolverSettings{}.tolerance,
@@ -97,7 +110,18 @@ void BM_DeformQuadraticBeam(benchmark::State& state) {
     report(state, run);
   }
 }
-BENCHMARK(BM_DeformQuadraticBeam)->Arg(12288)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(1)->Repetitions(3);
+BENCHMARK(BM_DeformQuadraticBeam)->Arg(12288)->Arg(13000)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(1)->Repetitions(3);
+
+// The same with the aggregation multigrid instead of Auto's p-multigrid, to compare.
+void BM_DeformQuadraticBeamAggregationMultigrid(benchmark::State& state) {
+  for (auto _ : state) {
+    const BeamRun run = runBeam(state.range(0), DeformableSolverSettings{}.tolerance,
+                                DeformableSolverSettings{}.maxIterations, 2, 2, Preconditioner::Multigrid);
+    if (!run.ok) return state.SkipWithError("beam setup failed");
+    report(state, run);
+  }
+}
+BENCHMARK(BM_DeformQuadraticBeamAggregationMultigrid)->Arg(13000)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(1)->Repetitions(3);
 
 }  // namespace
 }  // namespace vp::bench

@@ -230,6 +230,117 @@ class Deformables(unittest.TestCase):
                 d.pin(np.array([2 ** 32], dtype=np.int64))
 
 
+@unittest.skipIf(np is None, "numpy is needed for the fluid grid checks")
+class Fluids(unittest.TestCase):
+    def setUp(self):
+        self.world = volphys.World(gravity=(0, -9.81, 0), frame_budget_ms=0)
+
+    def tearDown(self):
+        self.world.destroy()
+
+    def test_smoke_from_an_emitter_fills_fields_shaped_z_y_x(self):
+        # A box that is not a cube, so a transposed layout would change the shapes; the
+        # emitter sits at low x and low y, so smoke there tells that [k, j, i] is (z, y, x).
+        nx, ny, nz = 12, 16, 10
+        h = 1.0 / 16
+        emitter = volphys.Emitter(volphys.SphereRegion((2.5 * h, 3.5 * h, 5 * h), 2 * h), velocity=(0, 0.5, 0),
+                                  density_rate=2.0, temperature=2.0)
+        fluid = self.world.create_fluid("smoke", origin=(0, 0, 0), resolution=(nx, ny, nz), cell_size=h,
+                                        density=1.2, sides={"+y": "open"}, emitters=[emitter])
+        self.assertIsInstance(fluid, volphys.Fluid)
+        self.assertEqual(fluid.resolution, (nx, ny, nz))
+        self.assertEqual(fluid.kind, volphys.FluidKind.Smoke)
+        self.assertEqual(fluid.domain, ((0.0, 0.0, 0.0), h))
+        for _ in range(8):
+            self.world.step(DT)
+        density = fluid.smoke_density()
+        self.assertEqual(density.shape, (nz, ny, nx))
+        self.assertEqual(density.dtype, np.float32)
+        self.assertGreater(density.max(), 0.0)
+        self.assertGreater(density[:, :, :nx // 2].sum(), 10 * density[:, :, nx // 2:].sum())
+        self.assertGreater(density[:, :ny // 2, :].sum(), density[:, ny // 2:, :].sum())
+        self.assertEqual(fluid.temperature().shape, (nz, ny, nx))
+        self.assertEqual(fluid.field("pressure").shape, (nz, ny, nx))
+        np.testing.assert_array_equal(fluid.field(volphys.FluidField.SmokeDensity), density)
+        # The smoke total is density * cell volume summed over the cells.
+        self.assertAlmostEqual(fluid.amount, float(density.sum()) * h ** 3, delta=1e-4 * fluid.amount)
+
+        velocity = fluid.velocity_grid()
+        self.assertEqual(velocity.shape, (nz, ny, nx, 3))
+        self.assertGreater(velocity[..., 1].max(), 0.1)  # the emitter pushes up
+        probes = np.array([[2.5 * h, 6 * h, 5 * h], [0.5, 0.5, 0.3]], dtype=np.float32)
+        sampled = fluid.sample_velocity(probes)
+        self.assertEqual(sampled.shape, (2, 3))
+        self.assertGreater(sampled[0, 1], 0.0)
+
+        stats = fluid.stats()
+        self.assertEqual(stats.kind, volphys.ActorKind.Fluid)
+        self.assertGreater(stats.phases[volphys.Phase.Pressure].iterations, 0)
+        positions, normals, triangles = fluid.surface_mesh()
+        self.assertEqual(len(positions), 0)  # smoke has no surface
+        self.assertEqual(self.world.fluids(), [fluid])
+
+    def test_liquid_tank_has_a_free_surface_mesh(self):
+        n, h = 16, 1.0 / 16
+        fluid = self.world.create_fluid(
+            "liquid", origin=(0, 0, 0), resolution=(n, n, n), cell_size=h,
+            initial_liquid=[volphys.BoxRegion((0.5, 0.25, 0.5), (0.5, 0.25, 0.5))])
+        for _ in range(5):
+            self.world.step(DT)
+        self.assertEqual(fluid.kind, volphys.FluidKind.Liquid)
+        self.assertAlmostEqual(fluid.amount, 0.5, delta=0.02)
+        level_set = fluid.level_set()
+        self.assertEqual(level_set.shape, (n, n, n))
+        self.assertLess(level_set[:, 1, :].max(), 0.0)   # inside the liquid near the floor
+        self.assertGreater(level_set[:, -2, :].min(), 0.0)  # air near the top
+        positions, normals, triangles = fluid.surface_mesh()
+        self.assertGreater(len(triangles), 0)
+        self.assertEqual(positions.shape, normals.shape)
+        self.assertEqual(triangles.shape[1], 3)
+        self.assertTrue(0 <= triangles.min() and triangles.max() < len(positions))
+        # The free surface of a half-full tank at rest: flat at y = 0.5, normals up.
+        top = positions[:, 1] > 0.3
+        self.assertGreater(top.sum(), 0)
+        np.testing.assert_allclose(positions[top, 1], 0.5, atol=1.5 * h)
+        self.assertGreater(normals[top, 1].mean(), 0.9)
+
+    def test_bad_definitions_raise_naming_the_field_and_create_nothing(self):
+        with self.assertRaises(volphys.InvalidArgumentError) as cm:
+            self.world.create_fluid("smoke", resolution=(0, 16, 16))
+        self.assertIn("resolution", cm.exception.message)
+        with self.assertRaises(volphys.InvalidArgumentError) as cm:
+            self.world.create_fluid("liquid", initial_liquid=[volphys.SphereRegion((0.5, 0.5, 0.5), -1.0)])
+        self.assertIn("initialLiquid[0]", cm.exception.message)
+        with self.assertRaises(volphys.InvalidArgumentError) as cm:
+            self.world.create_fluid("smoke", pressure_tolerance=0.0)
+        self.assertIn("pressureTolerance", cm.exception.message)
+        with self.assertRaises(ValueError):
+            self.world.create_fluid("lava")
+        with self.assertRaises(ValueError):
+            self.world.create_fluid("smoke", sides={"up": "open"})
+        with self.assertRaises(TypeError):
+            self.world.create_fluid("smoke", viscosity=1.0)
+        self.assertEqual(self.world.fluids(), [])
+        with self.assertRaises(volphys.InvalidArgumentError):
+            self.world.find_fluid("none")
+
+    def test_scene_fluids_are_listed_and_found_by_name(self):
+        self.world.load_scene(os.path.join(REPO, "tests", "data", "scenes", "fluid_tank.json"))
+        smoke, tank = self.world.fluids()
+        self.assertEqual((smoke.kind, tank.kind), (volphys.FluidKind.Smoke, volphys.FluidKind.Liquid))
+        self.assertEqual(self.world.find_fluid("tank"), tank)
+        self.assertEqual(tank.domain, ((0.0, 0.0, 0.0), 0.0625))
+        self.assertEqual(tank.resolution, (16, 12, 16))
+
+    def test_destroyed_fluid_raises_invalid_id(self):
+        fluid = self.world.create_fluid("smoke", resolution=(4, 4, 4), cell_size=0.25)
+        with fluid:
+            self.assertTrue(fluid.is_valid)
+        self.assertFalse(fluid.is_valid)
+        with self.assertRaises(volphys.InvalidIdError):
+            fluid.smoke_density()
+
+
 class Errors(unittest.TestCase):
     def test_negative_radius_names_the_field(self):
         with volphys.World() as w:
@@ -351,7 +462,7 @@ class ImportChecks(unittest.TestCase):
         lib = volphys._lib
         for fn, st in (("vpDefaultWorldDef", T.vpWorldDef), ("vpDefaultStepStats", T.vpStepStats),
                        ("vpDefaultShapeDef", T.vpShapeDef), ("vpDefaultColliderDef", T.vpColliderDef),
-                       ("vpDefaultDeformableDef", T.vpDeformableDef)):
+                       ("vpDefaultDeformableDef", T.vpDeformableDef), ("vpDefaultFluidDef", T.vpFluidDef)):
             self.assertEqual(getattr(lib, fn)().structSize, ctypes.sizeof(st), st.__name__)
 
     def test_layout_mismatch_is_an_import_error(self):
@@ -399,6 +510,11 @@ class ImportChecks(unittest.TestCase):
             "assert p[3][1] < 1.0, p\n"
             "pos, nrm, tri = d.render_mesh()\n"
             "assert len(tri) == 4 and len(tri[0]) == 3, tri\n"
+            "f = w.create_fluid('smoke', resolution=(3, 4, 5), cell_size=0.25)\n"
+            "rho = f.smoke_density()\n"
+            "assert isinstance(rho, list) and len(rho) == 60 and isinstance(rho[0], float), rho\n"
+            "vel = f.velocity_grid()\n"
+            "assert len(vel) == 60 and len(vel[0]) == 3, vel\n"
             "w.destroy()\n"
             "print('ok')\n")
         r = self._python(code, {})

@@ -142,4 +142,59 @@ TEST(CApiFluid, GettersCheckCapacitiesAndArguments) {
   EXPECT_EQ(vpFluidIsValid(foreign), vpStatus_InvalidId);
 }
 
+TEST(CApiFluid, KindAndDomainAreThoseOfTheDefinition) {
+  ScopedWorld w;
+  vpFluidDef def = smallSmoke();
+  def.kind = vpFluidKind_Liquid;
+  def.origin = vpVec3{-1.0f, 0.5f, 2.0f};
+  def.cellSize = 0.125f;
+  vpFluidId fluid{};
+  ASSERT_VP_OK(vpFluidCreate(w.id, &def, &fluid));
+  vpFluidKind kind = vpFluidKind_Smoke;
+  vpVec3 origin{};
+  float cellSize = 0.0f;
+  ASSERT_VP_OK(vpFluidGetKind(fluid, &kind));
+  ASSERT_VP_OK(vpFluidGetDomain(fluid, &origin, &cellSize));
+  EXPECT_EQ(kind, vpFluidKind_Liquid);
+  EXPECT_EQ(origin.x, -1.0f);
+  EXPECT_EQ(origin.y, 0.5f);
+  EXPECT_EQ(origin.z, 2.0f);
+  EXPECT_EQ(cellSize, 0.125f);
+  ASSERT_VP_OK(vpFluidGetDomain(fluid, nullptr, nullptr));  // every output is optional
+  vpFluidDef smoke = smallSmoke();
+  vpFluidId other{};
+  ASSERT_VP_OK(vpFluidCreate(w.id, &smoke, &other));
+  ASSERT_VP_OK(vpFluidGetKind(other, &kind));
+  EXPECT_EQ(kind, vpFluidKind_Smoke);
+  ASSERT_VP_OK(vpFluidDestroy(fluid));
+  EXPECT_EQ(vpFluidGetKind(fluid, &kind), vpStatus_InvalidId);
+  EXPECT_EQ(vpFluidGetDomain(fluid, &origin, &cellSize), vpStatus_InvalidId);
+}
+
+TEST(CApiFluid, WorldListsItsFluidsInSlotOrder) {
+  ScopedWorld w;
+  vpFluidDef def = smallSmoke();
+  def.resolution[0] = def.resolution[1] = def.resolution[2] = 4;
+  vpFluidId a{}, b{}, c{};
+  ASSERT_VP_OK(vpFluidCreate(w.id, &def, &a));
+  ASSERT_VP_OK(vpFluidCreate(w.id, &def, &b));
+  ASSERT_VP_OK(vpFluidCreate(w.id, &def, &c));
+  ASSERT_VP_OK(vpFluidDestroy(b));
+  int32_t count = -1;
+  ASSERT_VP_OK(vpWorldGetFluidCount(w.id, &count));
+  ASSERT_EQ(count, 2);
+  vpFluidId ids[3] = {};
+  ASSERT_VP_OK(vpWorldGetFluids(w.id, ids, 3, &count));
+  ASSERT_EQ(count, 2);
+  EXPECT_TRUE(ids[0].index1 == a.index1 && ids[0].generation == a.generation);
+  EXPECT_TRUE(ids[1].index1 == c.index1 && ids[1].generation == c.generation);
+  EXPECT_EQ(vpFluidIsValid(ids[1]), vpStatus_Ok);
+  ASSERT_VP_OK(vpWorldGetFluids(w.id, ids, 1, &count));  // a short buffer gets a prefix
+  EXPECT_EQ(count, 1);
+  EXPECT_EQ(vpWorldGetFluids(w.id, nullptr, 2, &count), vpStatus_InvalidArgument);
+  EXPECT_EQ(vpWorldGetFluids(w.id, ids, -1, &count), vpStatus_InvalidArgument);
+  EXPECT_EQ(vpWorldGetFluidCount(w.id, nullptr), vpStatus_InvalidArgument);
+  EXPECT_EQ(vpWorldGetFluidCount(vpWorldId{}, &count), vpStatus_InvalidId);
+}
+
 }  // namespace

@@ -1,14 +1,19 @@
 #!/usr/bin/env python3
 """Checks what the sample programs write, run by ctest:
 
-  check_outputs.py host HOST_EXE OUT_DIR     runs the headless host for 7 frames with exports
+  check_outputs.py host HOST_EXE OUT_DIR [SCENE]
+                                             runs the headless host on SCENE (default: the
+                                             bundled default scene) for 7 frames with exports
                                              and snapshots every 3 frames, checks every file
+                                             against what the scene holds
   check_outputs.py viewer VIEWER_EXE PNG     runs the viewer for a few frames (the caller
                                              provides the display, e.g. xvfb-run), checks the
                                              screenshot is not blank
 """
 import csv
+import json
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -63,12 +68,55 @@ def read_ply(path):
     return [tuple(float(v) for v in r[:3]) for r in rows], len(faces)
 
 
-def check_host(exe, out):
+DEFAULT_SCENE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "sample_host", "scenes",
+                             "default.json")
+
+
+def read_scene(path):
+    """The scene as JSON; scene files may hold // and /* */ comments (outside strings)."""
+    with open(path) as f:
+        text = f.read()
+    pattern = r'("(?:\\.|[^"\\])*")|//[^\n]*|/\*.*?\*/'
+    return json.loads(re.sub(pattern, lambda m: m.group(1) or "", text, flags=re.S))
+
+
+def check_fluid_stats(rows):
+    """A scene with fluids reports their phases: time in advection every frame, and a pressure
+    solve that iterated (a warm-started solve of a fluid at rest may need no iteration in some
+    frames, so not necessarily in every one)."""
+    for row in rows:
+        if float(row["fluid_ms"]) <= 0 or float(row["fluid_advect_ms"]) <= 0:
+            fail("stats.csv frame %s: no fluid phases (fluid_ms %s, fluid_advect_ms %s)"
+                 % (row["frame"], row["fluid_ms"], row["fluid_advect_ms"]))
+    if not any(int(row["fluid_pressure_iters"]) > 0 for row in rows):
+        fail("stats.csv: the fluids' pressure solve never iterated")
+
+
+def check_liquid_meshes(out, fluid, names):
+    """A liquid's surface in every exported frame: a real triangle mesh with normals (read_ply
+    checks both) in world space, so inside the fluid's domain box."""
+    h = fluid.get("cellSize", 1.0 / 32)
+    lo = fluid.get("origin", [0, 0, 0])
+    hi = [lo[a] + h * fluid.get("resolution", [32, 32, 32])[a] for a in range(3)]
+    for name in names:
+        vertices, faces = read_ply(os.path.join(out, "meshes", name))
+        if faces < 10:
+            fail("%s: a liquid surface of only %d triangles" % (name, faces))
+        outside = [v for v in vertices if any(v[a] < lo[a] - h or v[a] > hi[a] + h for a in range(3))]
+        if outside:
+            fail("%s: %d vertices outside the domain %s..%s, e.g. %s" % (name, len(outside), lo, hi, outside[0]))
+
+
+def check_host(exe, out, scene_path=DEFAULT_SCENE):
     shutil.rmtree(out, ignore_errors=True)
+    scene = read_scene(scene_path)
+    deformables = len(scene.get("deformables", []))
+    fluids = scene.get("fluids", [])
+    liquids = [k for k, f in enumerate(fluids) if f.get("kind", "smoke") == "liquid"]
     # No frame budget: the motion checked below must not depend on the machine's speed (under
     # ASan on a loaded machine the budget can be spent before the solver runs at all).
-    r = subprocess.run([exe, "--frames", "7", "--budget", "0", "--export-every", "3", "--snapshot-every", "3",
-                        "--quiet", "--out", out],
+    r = subprocess.run([exe, "--scene", scene_path, "--frames", "7", "--budget", "0", "--export-every", "3",
+                        "--snapshot-every", "3", "--quiet", "--out", out],
                        capture_output=True, text=True, timeout=300)
     print(r.stdout + r.stderr)
     if r.returncode != 0:
@@ -77,18 +125,26 @@ def check_host(exe, out):
         rows = list(csv.DictReader(f))
     if len(rows) != 7:
         fail("stats.csv has %d rows, expected 7" % len(rows))
-    # Frames 0, 3, 6 (every 3rd, and the last) for both deformables of the default scene.
-    expected = ["deformable%d_f%05d.ply" % (d, f) for d in (0, 1) for f in (0, 3, 6)]
+    # Frames 0, 3, 6 (every 3rd, and the last) for every deformable and every liquid (named by
+    # its place among all the scene's fluids; smoke has no surface to export).
+    frames = (0, 3, 6)
+    liquid_files = ["fluid%d_f%05d.ply" % (k, f) for k in liquids for f in frames]
+    expected = ["deformable%d_f%05d.ply" % (d, f) for d in range(deformables) for f in frames] + liquid_files
     meshes = sorted(os.listdir(os.path.join(out, "meshes")))
     if meshes != sorted(expected):
         fail("meshes/ holds %s, expected %s" % (meshes, expected))
-    first, nf0 = read_ply(os.path.join(out, "meshes", "deformable0_f00000.ply"))
-    last, nf6 = read_ply(os.path.join(out, "meshes", "deformable0_f00006.ply"))
-    if len(first) != len(last) or nf0 != nf6:
-        fail("the render mesh changed its size between frames")
-    moved = max(abs(a[1] - b[1]) for a, b in zip(first, last))
-    if moved < 1e-3:
-        fail("the exported jelly did not move between frames 0 and 6 (max dy %g)" % moved)
+    if deformables:
+        first, nf0 = read_ply(os.path.join(out, "meshes", "deformable0_f00000.ply"))
+        last, nf6 = read_ply(os.path.join(out, "meshes", "deformable0_f00006.ply"))
+        if len(first) != len(last) or nf0 != nf6:
+            fail("the render mesh changed its size between frames")
+        moved = max(abs(a[1] - b[1]) for a, b in zip(first, last))
+        if moved < 1e-3:
+            fail("the exported jelly did not move between frames 0 and 6 (max dy %g)" % moved)
+    for k in liquids:
+        check_liquid_meshes(out, fluids[k], [n for n in liquid_files if n.startswith("fluid%d_" % k)])
+    if fluids:
+        check_fluid_stats(rows)
     shots = sorted(os.listdir(os.path.join(out, "snapshots")))
     if shots != ["frame_00000.png", "frame_00003.png", "frame_00006.png"]:
         fail("snapshots/ holds %s" % shots)
@@ -114,7 +170,10 @@ def check_viewer(exe, png):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 4 or sys.argv[1] not in ("host", "viewer"):
+    if sys.argv[1:2] == ["host"] and len(sys.argv) in (4, 5):
+        check_host(*sys.argv[2:])
+    elif sys.argv[1:2] == ["viewer"] and len(sys.argv) == 4:
+        check_viewer(sys.argv[2], sys.argv[3])
+    else:
         print(__doc__)
         sys.exit(2)
-    (check_host if sys.argv[1] == "host" else check_viewer)(sys.argv[2], sys.argv[3])

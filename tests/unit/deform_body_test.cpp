@@ -5,6 +5,7 @@
 #include <random>
 
 #include "deform/deformable_body.h"
+#include "deform_test_util.h"
 #include "geometry/box_tet_mesh.h"
 
 namespace vp {
@@ -197,10 +198,7 @@ TEST(DeformableBody, InvariantToTetVertexOrdering) {
     desc.solver.maxIterations = 2000;
     std::unique_ptr<DeformableBody> body;
     EXPECT_EQ(DeformableBody::create(desc, &body), Status::Ok) << lastError();
-    std::vector<int32_t> left;
-    for (int32_t i = 0; i < body->nodeCount(); ++i)
-      if (body->restPositions()[3 * i] == 0.0) left.push_back(i);
-    body->setPinned(left.data(), static_cast<int64_t>(left.size()), true);
+    deform_test::pinNodesAtX(*body, 0.0);
     auto tasks = TaskSystem::create(TaskHooks{}, 1);
     DeformableStepInput in;
     in.tasks = tasks.get();

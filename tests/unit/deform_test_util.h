@@ -4,6 +4,9 @@
 #include <Eigen/Dense>
 #include <cmath>
 #include <random>
+#include <vector>
+
+#include "deform/deformable_body.h"
 
 namespace vp::deform_test {
 
@@ -51,6 +54,14 @@ inline void randomBary(std::mt19937& rng, double bary[4]) {
   double s = 0.0;
   for (int i = 0; i < 4; ++i) s += (bary[i] = e(rng));
   for (int i = 0; i < 4; ++i) bary[i] /= s;
+}
+
+// Pins every node whose rest x is exactly `x` (a clamped face of a box mesh).
+inline void pinNodesAtX(DeformableBody& body, double x) {
+  std::vector<int32_t> nodes;
+  for (int32_t i = 0; i < body.nodeCount(); ++i)
+    if (body.restPositions()[3 * i] == x) nodes.push_back(i);
+  body.setPinned(nodes.data(), static_cast<int64_t>(nodes.size()), true);
 }
 
 }  // namespace vp::deform_test

@@ -4,6 +4,7 @@
 #include <random>
 
 #include "deform/deformable_body.h"
+#include "deform_test_util.h"
 #include "geometry/box_tet_mesh.h"
 #include "linalg/aggregation_multigrid.h"
 
@@ -23,10 +24,7 @@ struct BeamSystem {
     d.material.youngsModulus = 1e8;
     d.solver.preconditioner = Preconditioner::BlockJacobi;  // the test drives its own multigrid
     EXPECT_EQ(DeformableBody::create(d, &body), Status::Ok);
-    std::vector<int32_t> clamped;
-    for (int32_t i = 0; i < body->nodeCount(); ++i)
-      if (body->restPositions()[3 * i] == 0.0) clamped.push_back(i);
-    body->setPinned(clamped.data(), static_cast<int64_t>(clamped.size()), true);
+    deform_test::pinNodesAtX(*body, 0.0);
     DeformableStepInput in;
     in.tasks = tasks.get();
     ActorStats stats;
@@ -81,10 +79,7 @@ TEST(AggregationMultigrid, IterationsStayFlatUnderRefinement) {
     d.solver.preconditioner = pc;
     std::unique_ptr<DeformableBody> body;
     EXPECT_EQ(DeformableBody::create(d, &body), Status::Ok);
-    std::vector<int32_t> clamped;
-    for (int32_t i = 0; i < body->nodeCount(); ++i)
-      if (body->restPositions()[3 * i] == 0.0) clamped.push_back(i);
-    body->setPinned(clamped.data(), static_cast<int64_t>(clamped.size()), true);
+    deform_test::pinNodesAtX(*body, 0.0);
     auto tasks = TaskSystem::create(TaskHooks{}, 2);
     DeformableStepInput in;
     in.tasks = tasks.get();

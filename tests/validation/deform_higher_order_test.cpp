@@ -130,15 +130,47 @@ TEST(HigherOrderElements, CoarseCantileverLockingIsRelievedByHigherOrder) {
       EXPECT_LT(error[2], 0.03);
       EXPECT_LE(error[3], error[2] + 0.005);
     } else {
-      // Near-incompressible: measured 14.8% (quadratic) and 6.1% (cubic) here, 7.0% / 4.1% on
-      // 16x4x4 — converging, but not yet the issue's 5% on this mesh (a fully clamped face is
-      // stiffer than beam theory's clamp when ν → 0.5). What is asserted is the locking relief:
-      // linear is off by ~90%, higher order by a small fraction of that.
+      // Near-incompressible: 14.8% (quadratic) and 6.1% (cubic) off beam theory here. Part of
+      // that is not discretization: see NearIncompressibleCantileverAgainstA3DReference. What
+      // is asserted against beam theory is the locking relief: linear is off by ~90%, higher
+      // order by a small fraction of that.
       EXPECT_LT(error[2], 0.25 * error[1]);
       EXPECT_LT(error[3], 0.10 * error[1]);
       EXPECT_LT(error[3], error[2]);
     }
   }
+}
+
+// Is beam theory the right reference at ν = 0.49? Its clamp leaves the root section free to
+// contract laterally; the 3D clamp (every root node pinned) does not, and near the root the
+// material then behaves like a laterally constrained one, stiffer by up to 1/(1 − ν²): 1.10 at
+// ν = 0.3 but 1.32 at ν = 0.49, in the region of the largest bending moment. Converged cubic
+// solutions of the clamped 3D problem (8x2x2 -> 32x8x8 cubes, extrapolated at the observed
+// order ~1.75) lie 1.1% below beam theory at ν = 0.3 and 3.2% below at ν = 0.49. So the right
+// yardstick for discretization error is the 3D problem; here it is the cubic solution on
+// 16x4x4 cubes, itself within 0.9% of the extrapolated limit (computed once with 24x6x6 and
+// 32x8x8, too slow to repeat in a test).
+// Measured on 8x2x2: cubic 2.1% below that reference (2.9% below the extrapolated limit):
+// within issue 6's 5%. Quadratic: 11% below it (12% below the limit) — quadratic tets still
+// carry volumetric stiffness at λ/μ ≈ 50 on a 2-cube-deep section (7.0% on 16x4x4, 5.2% on
+// 24x6x6 against beam theory); that is reported, not asserted away.
+TEST(HigherOrderElements, NearIncompressibleCantileverAgainstA3DReference) {
+  Beam beam;
+  beam.nu = 0.49;
+  const double analytic = beam.analyticTipDeflection();
+  const double reference = staticTipDeflection(beam, 3, 16, 4, nullptr);
+  const double quadratic = staticTipDeflection(beam, 2, 8, 2, nullptr);
+  const double cubic = staticTipDeflection(beam, 3, 8, 2, nullptr);
+  std::printf("\n  nu = 0.49 cantilever, 8x2x2 cubes, against the cubic 16x4x4 solution of the clamped 3D problem\n");
+  std::printf("  3D reference %.6e m, beam theory %.6e m (reference %.2f%% stiffer)\n", reference, analytic,
+              100 * (analytic - reference) / analytic);
+  const double errorQuadratic = std::abs(quadratic - reference) / reference;
+  const double errorCubic = std::abs(cubic - reference) / reference;
+  std::printf("  quadratic %.6e m: %.2f%% off the reference; cubic %.6e m: %.2f%%\n", quadratic,
+              100 * errorQuadratic, cubic, 100 * errorCubic);
+  EXPECT_LT(reference, analytic) << "the 3D clamp should be stiffer than beam theory's";
+  EXPECT_LT(errorCubic, 0.05);
+  EXPECT_LT(errorCubic, errorQuadratic);
 }
 
 }  // namespace

@@ -21,6 +21,7 @@ namespace VolPhys
         [DllImport(Library)] public static extern int vpWorldIdIsNull(vpWorldId id);
         [DllImport(Library)] public static extern int vpColliderIdIsNull(vpColliderId id);
         [DllImport(Library)] public static extern int vpDeformableIdIsNull(vpDeformableId id);
+        [DllImport(Library)] public static extern int vpFluidIdIsNull(vpFluidId id);
 
         [DllImport(Library)] public static extern vpWorldDef vpDefaultWorldDef();
         [DllImport(Library)] public static extern Status vpWorldCreate(ref vpWorldDef def, out vpWorldId world);
@@ -75,6 +76,25 @@ namespace VolPhys
         [DllImport(Library)] public static extern Status vpWorldGetDeformableCount(vpWorldId world, out int count);
         [DllImport(Library)] public static extern Status vpWorldGetDeformables(vpWorldId world, [Out] vpDeformableId[] ids, int capacity, out int count);
         [DllImport(Library)] public static extern Status vpWorldFindDeformable(vpWorldId world, [MarshalAs(UnmanagedType.LPStr)] string name, out vpDeformableId deformable);
+
+        [DllImport(Library)] public static extern vpFluidDef vpDefaultFluidDef();
+        [DllImport(Library)] public static extern Status vpFluidCreate(vpWorldId world, ref vpFluidDef def, out vpFluidId fluid);
+        [DllImport(Library)] public static extern Status vpFluidDestroy(vpFluidId fluid);
+        [DllImport(Library)] public static extern Status vpFluidIsValid(vpFluidId fluid);
+        [DllImport(Library)] public static extern Status vpFluidGetResolution(vpFluidId fluid, out int nx, out int ny, out int nz);
+        [DllImport(Library)] public static extern Status vpFluidGetKind(vpFluidId fluid, out FluidKind kind);
+        [DllImport(Library)] public static extern Status vpFluidGetDomain(vpFluidId fluid, out vpVec3 origin, out float cellSize);
+        [DllImport(Library)] public static extern Status vpFluidGetField(vpFluidId fluid, FluidField field, [Out] float[] values, long capacity);
+        [DllImport(Library)] public static extern Status vpFluidGetVelocityGrid(vpFluidId fluid, [Out] float[] xyz, long capacity);
+        [DllImport(Library)] public static extern Status vpFluidSampleVelocity(vpFluidId fluid, vpVec3[] points, int count, [Out] vpVec3[] velocities);
+        [DllImport(Library)] public static extern Status vpFluidGetSurfaceMeshSize(vpFluidId fluid, out int vertexCount, out int triangleCount);
+        [DllImport(Library)] public static extern Status vpFluidGetSurfaceMesh(vpFluidId fluid, [Out] float[] positions, [Out] float[] normals,
+                                                                              int vertexCapacity, [Out] int[] triangles, int triangleCapacity);
+        [DllImport(Library)] public static extern Status vpFluidGetAmount(vpFluidId fluid, out float amount);
+        [DllImport(Library)] public static extern Status vpFluidGetStats(vpFluidId fluid, out vpActorStats stats);
+        [DllImport(Library)] public static extern Status vpWorldGetFluidCount(vpWorldId world, out int count);
+        [DllImport(Library)] public static extern Status vpWorldGetFluids(vpWorldId world, [Out] vpFluidId[] ids, int capacity, out int count);
+        [DllImport(Library)] public static extern Status vpWorldFindFluid(vpWorldId world, [MarshalAs(UnmanagedType.LPStr)] string name, out vpFluidId fluid);
 
         public static string LastError() { return Marshal.PtrToStringAnsi(vpGetLastError()) ?? ""; }
     }

@@ -25,6 +25,12 @@ namespace VolPhys
     public enum BodyType : int { Static = 0, Kinematic = 1, Dynamic = 2 }
     public enum ShapeType : int { Sphere = 0, Box = 1, Capsule = 2, Cylinder = 3, Plane = 4, ConvexHull = 5, TriangleMesh = 6 }
 
+    public enum FluidKind : int { Smoke = 0, Liquid = 1 }
+    public enum Advection : int { SemiLagrangian = 0, MacCormack = 1 }
+    public enum DomainSide : int { Wall = 0, Open = 1 }
+    public enum RegionType : int { Box = 0, Sphere = 1 }
+    public enum FluidField : int { SmokeDensity = 0, Temperature = 1, LevelSet = 2, Pressure = 3 }
+
     public static class Constants
     {
         public const int VersionMajor = 0, VersionMinor = 1, VersionPatch = 0;
@@ -71,6 +77,14 @@ namespace VolPhys
 
     [StructLayout(LayoutKind.Sequential)]
     public struct vpDeformableId
+    {
+        public uint index1, generation;
+        public vpWorldId world;
+        public bool IsNull { get { return index1 == 0; } }
+    }
+
+    [StructLayout(LayoutKind.Sequential)]
+    public struct vpFluidId
     {
         public uint index1, generation;
         public vpWorldId world;
@@ -196,6 +210,91 @@ namespace VolPhys
         public float solverTolerance;
         public int solverMaxIterations;
         public IntPtr userData;
+    }
+
+    /// <summary>A region in world coordinates: a box (centre, halfExtents) or a sphere (centre, radius).</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct vpFluidRegion
+    {
+        public RegionType type;
+        public vpVec3 centre;
+        public vpVec3 halfExtents;
+        public float radius;
+
+        public static vpFluidRegion Box(vpVec3 centre, vpVec3 halfExtents)
+        {
+            return new vpFluidRegion { type = RegionType.Box, centre = centre, halfExtents = halfExtents };
+        }
+
+        public static vpFluidRegion Sphere(vpVec3 centre, float radius)
+        {
+            return new vpFluidRegion { type = RegionType.Sphere, centre = centre, radius = radius };
+        }
+    }
+
+    [StructLayout(LayoutKind.Sequential)]
+    public struct vpFluidEmitter
+    {
+        public vpFluidRegion region;
+        public vpVec3 velocity;
+        public float densityRate;
+        public float temperature;
+    }
+
+    [StructLayout(LayoutKind.Sequential)]
+    public unsafe struct vpFluidDef
+    {
+        public uint structSize;
+        public FluidKind kind;
+        public vpVec3 origin;
+        public fixed int resolution[3];
+        public float cellSize;
+        // DomainSide per side (-x, +x, -y, +y, -z, +z): fixed buffers hold only primitives.
+        public fixed int sides[6];
+        public float density;
+        public Advection advection;
+        public float cflNumber;
+        public int maxSubsteps;
+        public float pressureTolerance;
+        public int pressureMaxIterations;
+        public float ambientTemperature;
+        public float densityBuoyancy;
+        public float thermalBuoyancy;
+        public float vorticityConfinement;
+        public float densityDissipation;
+        public float temperatureDissipation;
+        public IntPtr initialLiquid;
+        public int initialLiquidCount;
+        public IntPtr emitters;
+        public int emitterCount;
+        public IntPtr drains;
+        public int drainCount;
+        public int twoWayCoupling;
+        public IntPtr userData;
+
+        public void SetResolution(int nx, int ny, int nz)
+        {
+            fixed (int* r = resolution) { r[0] = nx; r[1] = ny; r[2] = nz; }
+        }
+
+        public int Resolution(int axis)
+        {
+            if (axis < 0 || axis > 2) throw new ArgumentOutOfRangeException("axis");
+            fixed (int* r = resolution) { return r[axis]; }
+        }
+
+        /// <summary>side: 0..5 for -x, +x, -y, +y, -z, +z.</summary>
+        public void SetSide(int side, DomainSide value)
+        {
+            if (side < 0 || side > 5) throw new ArgumentOutOfRangeException("side");
+            fixed (int* s = sides) { s[side] = (int)value; }
+        }
+
+        public DomainSide Side(int side)
+        {
+            if (side < 0 || side > 5) throw new ArgumentOutOfRangeException("side");
+            fixed (int* s = sides) { return (DomainSide)s[side]; }
+        }
     }
 
     [StructLayout(LayoutKind.Sequential)]

@@ -1,5 +1,5 @@
 // A VolPhys world owned by managed code: destroyed by Dispose (or, as a last resort, by the
-// finalizer). Colliders and deformables are value handles over their ids; after the world is
+// finalizer). Colliders, deformables and fluids are value handles over their ids; after the world is
 // gone their calls throw VolPhysException(InvalidId) instead of touching freed memory.
 using System;
 using System.Runtime.InteropServices;
@@ -88,6 +88,62 @@ namespace VolPhys
             vpDeformableId id;
             VolPhysException.Check(Native.vpDeformableCreate(Id, ref def, out id), "vpDeformableCreate");
             return new Deformable(id);
+        }
+
+        /// <summary>A fluid with its sources: the arrays are pinned for the call only (the library
+        /// copies them); null means none.</summary>
+        public Fluid CreateFluid(vpFluidDef def, vpFluidRegion[] initialLiquid = null, vpFluidEmitter[] emitters = null,
+                                 vpFluidRegion[] drains = null)
+        {
+            var pins = new GCHandle[3];
+            try
+            {
+                def.initialLiquid = Pin(initialLiquid, ref pins[0]);
+                def.initialLiquidCount = initialLiquid == null ? 0 : initialLiquid.Length;
+                def.emitters = Pin(emitters, ref pins[1]);
+                def.emitterCount = emitters == null ? 0 : emitters.Length;
+                def.drains = Pin(drains, ref pins[2]);
+                def.drainCount = drains == null ? 0 : drains.Length;
+                return CreateFluid(def);
+            }
+            finally
+            {
+                foreach (GCHandle h in pins) if (h.IsAllocated) h.Free();
+            }
+        }
+
+        static IntPtr Pin(object array, ref GCHandle handle)
+        {
+            if (array == null) return IntPtr.Zero;
+            handle = GCHandle.Alloc(array, GCHandleType.Pinned);
+            return handle.AddrOfPinnedObject();
+        }
+
+        /// <summary>A fluid from a def whose pointers the caller keeps valid during the call.</summary>
+        public Fluid CreateFluid(vpFluidDef def)
+        {
+            vpFluidId id;
+            VolPhysException.Check(Native.vpFluidCreate(Id, ref def, out id), "vpFluidCreate");
+            return new Fluid(id);
+        }
+
+        public Fluid FindFluid(string name)
+        {
+            vpFluidId id;
+            VolPhysException.Check(Native.vpWorldFindFluid(Id, name, out id), "vpWorldFindFluid");
+            return new Fluid(id);
+        }
+
+        /// <summary>The world's fluids in slot order.</summary>
+        public Fluid[] GetFluids()
+        {
+            int count;
+            VolPhysException.Check(Native.vpWorldGetFluidCount(Id, out count), "vpWorldGetFluidCount");
+            var ids = new vpFluidId[count];
+            VolPhysException.Check(Native.vpWorldGetFluids(Id, ids, count, out count), "vpWorldGetFluids");
+            var fluids = new Fluid[count];
+            for (int i = 0; i < count; ++i) fluids[i] = new Fluid(ids[i]);
+            return fluids;
         }
 
         public Collider FindCollider(string name)

@@ -10,9 +10,12 @@ import ctypes
 from . import _types as _T
 from ._api import call as _call, lib as _lib
 from ._arrays import HAVE_NUMPY
-from ._types import ActorKind, BodyType, LogLevel, Phase, ShapeType, Status
+from ._types import (ActorKind, Advection, BodyType, DomainSide, FluidField, FluidKind, LogLevel, Phase, ShapeType,
+                     Status)
 from .collider import Collider, Transform
 from .deformable import Deformable
+from .fluid import Fluid
+from .fluid_sources import BoxRegion, Emitter, SphereRegion
 from .log import set_log_callback
 from .errors import (BusyError, DivergedError, InternalError, InvalidArgumentError, InvalidIdError, IoError,
                      OutOfMemoryError, ParseError, UnsupportedError, VersionMismatchError, VolPhysError)
@@ -46,10 +49,11 @@ def status_name(status):
 
 
 __all__ = [
-    "World", "Collider", "Deformable", "Transform", "Shape", "Sphere", "Box", "Capsule", "Cylinder", "Plane",
-    "ConvexHull", "TriangleMesh", "StepStats", "ActorStats", "PhaseStats", "Status", "BodyType", "ShapeType",
-    "ActorKind", "Phase", "LogLevel", "VolPhysError", "InvalidArgumentError", "InvalidIdError",
-    "OutOfMemoryError", "UnsupportedError", "IoError", "ParseError", "BusyError", "DivergedError",
-    "VersionMismatchError", "InternalError", "library_version", "library_path", "build_info", "status_name",
-    "HAVE_NUMPY", "set_log_callback",
+    "World", "Collider", "Deformable", "Fluid", "BoxRegion", "SphereRegion", "Emitter", "Transform", "Shape",
+    "Sphere", "Box", "Capsule", "Cylinder", "Plane", "ConvexHull", "TriangleMesh", "StepStats", "ActorStats",
+    "PhaseStats", "Status", "BodyType", "ShapeType", "ActorKind", "Phase", "LogLevel", "FluidKind", "Advection",
+    "DomainSide", "FluidField", "VolPhysError", "InvalidArgumentError", "InvalidIdError", "OutOfMemoryError",
+    "UnsupportedError", "IoError", "ParseError", "BusyError", "DivergedError", "VersionMismatchError",
+    "InternalError", "library_version", "library_path", "build_info", "status_name", "HAVE_NUMPY",
+    "set_log_callback",
 ]

@@ -1,7 +1,7 @@
 """Function prototypes for every call in volphys.h, the status check, and the import-time
 check that these ctypes structs have the sizes the loaded library was built with."""
 import ctypes
-from ctypes import POINTER, c_char_p, c_float, c_int, c_int32, c_uint32, c_void_p
+from ctypes import POINTER, c_char_p, c_float, c_int, c_int32, c_int64, c_uint32, c_void_p
 
 from . import _types as T
 from ._library import load_library
@@ -23,6 +23,7 @@ _PROTOTYPES = {
     "vpWorldIdIsNull": (c_int, [T.vpWorldId]),
     "vpColliderIdIsNull": (c_int, [T.vpColliderId]),
     "vpDeformableIdIsNull": (c_int, [T.vpDeformableId]),
+    "vpFluidIdIsNull": (c_int, [T.vpFluidId]),
     "vpDefaultWorldDef": (T.vpWorldDef, []),
     "vpWorldCreate": (_S, [_P(T.vpWorldDef), _P(T.vpWorldId)]),
     "vpWorldDestroy": (_S, [T.vpWorldId]),
@@ -71,6 +72,23 @@ _PROTOTYPES = {
     "vpWorldFindDeformable": (_S, [T.vpWorldId, c_char_p, _P(T.vpDeformableId)]),
     "vpWorldGetDeformableCount": (_S, [T.vpWorldId, _P(c_int32)]),
     "vpWorldGetDeformables": (_S, [T.vpWorldId, _P(T.vpDeformableId), c_int32, _P(c_int32)]),
+    "vpDefaultFluidDef": (T.vpFluidDef, []),
+    "vpFluidCreate": (_S, [T.vpWorldId, _P(T.vpFluidDef), _P(T.vpFluidId)]),
+    "vpFluidDestroy": (_S, [T.vpFluidId]),
+    "vpFluidIsValid": (_S, [T.vpFluidId]),
+    "vpFluidGetResolution": (_S, [T.vpFluidId, _P(c_int32), _P(c_int32), _P(c_int32)]),
+    "vpFluidGetKind": (_S, [T.vpFluidId, _P(T.c_enum)]),
+    "vpFluidGetDomain": (_S, [T.vpFluidId, _P(T.vpVec3), _P(c_float)]),
+    "vpFluidGetField": (_S, [T.vpFluidId, _S, _P(c_float), c_int64]),
+    "vpFluidGetVelocityGrid": (_S, [T.vpFluidId, _P(c_float), c_int64]),
+    "vpFluidSampleVelocity": (_S, [T.vpFluidId, _P(T.vpVec3), c_int32, _P(T.vpVec3)]),
+    "vpFluidGetSurfaceMeshSize": (_S, [T.vpFluidId, _P(c_int32), _P(c_int32)]),
+    "vpFluidGetSurfaceMesh": (_S, [T.vpFluidId, _P(c_float), _P(c_float), c_int32, _P(c_int32), c_int32]),
+    "vpFluidGetAmount": (_S, [T.vpFluidId, _P(c_float)]),
+    "vpFluidGetStats": (_S, [T.vpFluidId, _P(T.vpActorStats)]),
+    "vpWorldGetFluidCount": (_S, [T.vpWorldId, _P(c_int32)]),
+    "vpWorldGetFluids": (_S, [T.vpWorldId, _P(T.vpFluidId), c_int32, _P(c_int32)]),
+    "vpWorldFindFluid": (_S, [T.vpWorldId, c_char_p, _P(T.vpFluidId)]),
     "vpGetBuildInfo": (_S, [_P(T.vpBuildInfo)]),
 }
 
@@ -115,7 +133,7 @@ def _check_struct_sizes():
     mismatches = []
     for fn, struct in (("vpDefaultWorldDef", T.vpWorldDef), ("vpDefaultStepStats", T.vpStepStats),
                        ("vpDefaultShapeDef", T.vpShapeDef), ("vpDefaultColliderDef", T.vpColliderDef),
-                       ("vpDefaultDeformableDef", T.vpDeformableDef)):
+                       ("vpDefaultDeformableDef", T.vpDeformableDef), ("vpDefaultFluidDef", T.vpFluidDef)):
         lib_size = getattr(lib, fn)().structSize
         if lib_size != ctypes.sizeof(struct):
             mismatches.append("%s: library %d bytes, ctypes %d bytes" % (struct.__name__, lib_size, ctypes.sizeof(struct)))

@@ -88,6 +88,16 @@ class OutBuffer:
         return [tuple(a[i * w:(i + 1) * w]) for i in range(self.rows)]
 
 
+def grid_result(out, cells_shape):
+    """An OutBuffer holding one row per grid cell (x fastest) as a numpy array shaped
+    cells_shape (+ (width,) when width > 1); without numpy, the flat C order (floats for
+    width 1, tuples otherwise)."""
+    if HAVE_NUMPY:
+        return out.array.reshape(tuple(cells_shape) + ((out.width,) if out.width > 1 else ()))
+    rows = out.result()
+    return [r[0] for r in rows] if out.width == 1 else rows
+
+
 def vec3(v, what="vector"):
     from ._types import vpVec3
     x, y, z = (float(c) for c in v)

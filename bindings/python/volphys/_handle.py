@@ -1,6 +1,9 @@
-"""ActorHandle: what Collider and Deformable share. It holds only the id: operations on a
+"""ActorHandle: what Collider, Deformable and Fluid share. It holds only the id: operations on a
 destroyed object (or one of a destroyed world) raise InvalidIdError from the library, they
 never crash."""
+import ctypes
+
+from . import _arrays
 from ._api import call, lib
 
 
@@ -38,3 +41,14 @@ class ActorHandle:
 
     def destroy(self):
         call(self._destroy_function, self._id)
+
+    def _read_mesh(self, size_function, mesh_function):
+        """A mesh through the ABI's size + fill pair: (positions (v,3) float32, normals (v,3)
+        float32, triangles (t,3) int32)."""
+        nv, nt = ctypes.c_int32(), ctypes.c_int32()
+        call(size_function, self._id, ctypes.byref(nv), ctypes.byref(nt))
+        pos = _arrays.OutBuffer(nv.value, 3, ctypes.c_float)
+        nrm = _arrays.OutBuffer(nv.value, 3, ctypes.c_float)
+        tri = _arrays.OutBuffer(nt.value, 3, ctypes.c_int32)
+        call(mesh_function, self._id, pos.ptr, nrm.ptr, nv.value, tri.ptr, nt.value)
+        return pos.result(), nrm.result(), tri.result()

@@ -78,6 +78,33 @@ class ShapeType(enum.IntEnum):
     TriangleMesh = 6
 
 
+class FluidKind(enum.IntEnum):
+    Smoke = 0
+    Liquid = 1
+
+
+class Advection(enum.IntEnum):
+    SemiLagrangian = 0
+    MacCormack = 1
+
+
+class DomainSide(enum.IntEnum):
+    Wall = 0
+    Open = 1
+
+
+class RegionType(enum.IntEnum):
+    Box = 0
+    Sphere = 1
+
+
+class FluidField(enum.IntEnum):
+    SmokeDensity = 0
+    Temperature = 1
+    LevelSet = 2
+    Pressure = 3
+
+
 class vpVersion(ctypes.Structure):
     _fields_ = [("major", c_int32), ("minor", c_int32), ("patch", c_int32)]
 
@@ -113,6 +140,10 @@ class vpColliderId(ctypes.Structure):
 
 
 class vpDeformableId(ctypes.Structure):
+    _fields_ = [("index1", c_uint32), ("generation", c_uint32), ("world", vpWorldId)]
+
+
+class vpFluidId(ctypes.Structure):
     _fields_ = [("index1", c_uint32), ("generation", c_uint32), ("world", vpWorldId)]
 
 
@@ -220,6 +251,45 @@ class vpDeformableDef(ctypes.Structure):
         ("friction", c_float),
         ("solverTolerance", c_float),
         ("solverMaxIterations", c_int32),
+        ("userData", c_void_p),
+    ]
+
+
+class vpFluidRegion(ctypes.Structure):
+    _fields_ = [("type", c_enum), ("centre", vpVec3), ("halfExtents", vpVec3), ("radius", c_float)]
+
+
+class vpFluidEmitter(ctypes.Structure):
+    _fields_ = [("region", vpFluidRegion), ("velocity", vpVec3), ("densityRate", c_float), ("temperature", c_float)]
+
+
+class vpFluidDef(ctypes.Structure):
+    _fields_ = [
+        ("structSize", c_uint32),
+        ("kind", c_enum),
+        ("origin", vpVec3),
+        ("resolution", c_int32 * 3),
+        ("cellSize", c_float),
+        ("sides", c_enum * 6),
+        ("density", c_float),
+        ("advection", c_enum),
+        ("cflNumber", c_float),
+        ("maxSubsteps", c_int32),
+        ("pressureTolerance", c_float),
+        ("pressureMaxIterations", c_int32),
+        ("ambientTemperature", c_float),
+        ("densityBuoyancy", c_float),
+        ("thermalBuoyancy", c_float),
+        ("vorticityConfinement", c_float),
+        ("densityDissipation", c_float),
+        ("temperatureDissipation", c_float),
+        ("initialLiquid", POINTER(vpFluidRegion)),
+        ("initialLiquidCount", c_int32),
+        ("emitters", POINTER(vpFluidEmitter)),
+        ("emitterCount", c_int32),
+        ("drains", POINTER(vpFluidRegion)),
+        ("drainCount", c_int32),
+        ("twoWayCoupling", c_int32),
         ("userData", c_void_p),
     ]
 

@@ -71,10 +71,4 @@ class Collider(ActorHandle):
     def shape_mesh(self):
         """The shape as a triangle mesh in the collider's local frame, for drawing:
         (positions (v,3) float32, normals (v,3) float32, triangles (t,3) int32)."""
-        nv, nt = ctypes.c_int32(), ctypes.c_int32()
-        call("vpColliderGetShapeMeshSize", self._id, ctypes.byref(nv), ctypes.byref(nt))
-        pos = _arrays.OutBuffer(nv.value, 3, ctypes.c_float)
-        nrm = _arrays.OutBuffer(nv.value, 3, ctypes.c_float)
-        tri = _arrays.OutBuffer(nt.value, 3, ctypes.c_int32)
-        call("vpColliderGetShapeMesh", self._id, pos.ptr, nrm.ptr, nv.value, tri.ptr, nt.value)
-        return pos.result(), nrm.result(), tri.result()
+        return self._read_mesh("vpColliderGetShapeMeshSize", "vpColliderGetShapeMesh")

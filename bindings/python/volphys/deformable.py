@@ -64,13 +64,7 @@ class Deformable(ActorHandle):
 
     def render_mesh(self):
         """(positions (v,3) float32, normals (v,3) float32, triangles (t,3) int32)."""
-        nv, nt = c_int32(), c_int32()
-        call("vpDeformableGetRenderMeshSize", self._id, ctypes.byref(nv), ctypes.byref(nt))
-        pos = _arrays.OutBuffer(nv.value, 3, c_float)
-        nrm = _arrays.OutBuffer(nv.value, 3, c_float)
-        tri = _arrays.OutBuffer(nt.value, 3, c_int32)
-        call("vpDeformableGetRenderMesh", self._id, pos.ptr, nrm.ptr, nv.value, tri.ptr, nt.value)
-        return pos.result(), nrm.result(), tri.result()
+        return self._read_mesh("vpDeformableGetRenderMeshSize", "vpDeformableGetRenderMesh")
 
     def stats(self):
         s = T.vpActorStats()

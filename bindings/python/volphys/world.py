@@ -1,4 +1,4 @@
-"""World: owns colliders and deformables; steps them under a frame budget."""
+"""World: owns colliders, deformables and fluids; steps them under a frame budget."""
 import ctypes
 from ctypes import c_int32
 
@@ -7,6 +7,8 @@ from . import _types as T
 from ._api import call, encode_path, lib
 from .collider import Collider
 from .deformable import Deformable
+from .fluid import Fluid
+from .fluid_sources import emitter_array, region_array
 from .stats import ActorStats, StepStats
 
 # Python keyword -> vpColliderDef field, for the plain float fields.
@@ -20,6 +22,42 @@ _DEFORMABLE_SCALARS = {
     "stiffness_damping": "stiffnessDamping", "friction": "friction", "solver_tolerance": "solverTolerance",
     "solver_max_iterations": "solverMaxIterations",
 }
+
+_FLUID_SCALARS = {
+    "cell_size": "cellSize", "density": "density", "cfl_number": "cflNumber", "max_substeps": "maxSubsteps",
+    "pressure_tolerance": "pressureTolerance", "pressure_max_iterations": "pressureMaxIterations",
+    "ambient_temperature": "ambientTemperature", "density_buoyancy": "densityBuoyancy",
+    "thermal_buoyancy": "thermalBuoyancy", "vorticity_confinement": "vorticityConfinement",
+    "density_dissipation": "densityDissipation", "temperature_dissipation": "temperatureDissipation",
+    "two_way_coupling": "twoWayCoupling",
+}
+_SIDE_NAMES = ("-x", "+x", "-y", "+y", "-z", "+z")
+
+
+def _enum_value(enum_type, value, what):
+    # Strings name members case-insensitively ("liquid", "open", "semi_lagrangian").
+    if isinstance(value, str):
+        key = value.replace("_", "").lower()
+        for member in enum_type:
+            if member.name.lower() == key:
+                return int(member)
+        raise ValueError("%s %r: expected one of %s" % (what, value, ", ".join(repr(m.name.lower()) for m in enum_type)))
+    return int(enum_type(value))
+
+
+def _fill_sides(d, sides):
+    """sides: six values in the order -x, +x, -y, +y, -z, +z, or a dict from those names to
+    'wall' / 'open' (sides not named stay walls)."""
+    if isinstance(sides, dict):
+        unknown = set(sides) - set(_SIDE_NAMES)
+        if unknown:
+            raise ValueError("sides: unknown side(s) %s; expected %s" % (sorted(unknown), ", ".join(_SIDE_NAMES)))
+        sides = [sides.get(name, T.DomainSide.Wall) for name in _SIDE_NAMES]
+    sides = list(sides)
+    if len(sides) != 6:
+        raise ValueError("sides: expected 6 values (-x, +x, -y, +y, -z, +z), got %d" % len(sides))
+    for i, side in enumerate(sides):
+        d.sides[i] = _enum_value(T.DomainSide, side, "sides[%d]" % i)
 
 
 def _body_type(value):
@@ -48,7 +86,7 @@ def _set_pose(d, position, rotation):
 
 class World:
     """A simulation world. Destroy it with destroy() or by leaving a `with` block; ids of its
-    colliders and deformables go stale then (using them raises InvalidIdError).
+    colliders, deformables and fluids go stale then (using them raises InvalidIdError).
 
     Arguments left as None keep vpDefaultWorldDef()'s values (gravity (0,-9.81,0), 1 worker,
     16 ms budget, 1/120 s rigid sub-step)."""
@@ -134,21 +172,20 @@ class World:
         return out
 
     # -------------------------------------------------------------- colliders
-    def colliders(self):
+    def _list(self, count_function, list_function, id_type, handle_type):
+        # Every kind is listed by a count call and a fill call, in slot order.
         n = c_int32()
-        call("vpWorldGetColliderCount", self._id, ctypes.byref(n))
-        ids = (T.vpColliderId * max(n.value, 1))()
+        call(count_function, self._id, ctypes.byref(n))
+        ids = (id_type * max(n.value, 1))()
         got = c_int32()
-        call("vpWorldGetColliders", self._id, ids, n.value, ctypes.byref(got))
-        return [Collider(self, T.vpColliderId.from_buffer_copy(ids[i])) for i in range(got.value)]
+        call(list_function, self._id, ids, n.value, ctypes.byref(got))
+        return [handle_type(self, id_type.from_buffer_copy(ids[i])) for i in range(got.value)]
+
+    def colliders(self):
+        return self._list("vpWorldGetColliderCount", "vpWorldGetColliders", T.vpColliderId, Collider)
 
     def deformables(self):
-        n = c_int32()
-        call("vpWorldGetDeformableCount", self._id, ctypes.byref(n))
-        ids = (T.vpDeformableId * max(n.value, 1))()
-        got = c_int32()
-        call("vpWorldGetDeformables", self._id, ids, n.value, ctypes.byref(got))
-        return [Deformable(self, T.vpDeformableId.from_buffer_copy(ids[i])) for i in range(got.value)]
+        return self._list("vpWorldGetDeformableCount", "vpWorldGetDeformables", T.vpDeformableId, Deformable)
 
     def find_collider(self, name):
         """The first collider the scene named `name`; InvalidArgumentError if none."""
@@ -217,3 +254,47 @@ class World:
         call("vpDeformableCreate", self._id, ctypes.byref(d), ctypes.byref(did))
         del keep
         return Deformable(self, did)
+
+    # -------------------------------------------------------------- fluids
+    def fluids(self):
+        return self._list("vpWorldGetFluidCount", "vpWorldGetFluids", T.vpFluidId, Fluid)
+
+    def find_fluid(self, name):
+        fid = T.vpFluidId()
+        call("vpWorldFindFluid", self._id, name.encode("utf-8"), ctypes.byref(fid))
+        return Fluid(self, fid)
+
+    def create_fluid(self, kind="smoke", origin=None, resolution=None, sides=None, advection=None,
+                     initial_liquid=(), emitters=(), drains=(), **scalars):
+        """A smoke or liquid actor filling the box from `origin` (low corner) of `resolution`
+        (nx, ny, nz) cells. kind: FluidKind or 'smoke' / 'liquid'. sides: see _fill_sides.
+        advection: Advection or 'semi_lagrangian' / 'mac_cormack'. initial_liquid, drains:
+        BoxRegion / SphereRegion; emitters: Emitter. Further keywords: cell_size, density,
+        cfl_number, max_substeps, pressure_tolerance, pressure_max_iterations,
+        ambient_temperature, density_buoyancy, thermal_buoyancy, vorticity_confinement,
+        density_dissipation, temperature_dissipation, two_way_coupling. Anything not given keeps
+        vpDefaultFluidDef()'s value."""
+        d = lib.vpDefaultFluidDef()
+        d.kind = _enum_value(T.FluidKind, kind, "kind")
+        if origin is not None:
+            d.origin = _arrays.vec3(origin)
+        if resolution is not None:
+            nx, ny, nz = (int(n) for n in resolution)
+            d.resolution[0], d.resolution[1], d.resolution[2] = nx, ny, nz
+        if sides is not None:
+            _fill_sides(d, sides)
+        if advection is not None:
+            d.advection = _enum_value(T.Advection, advection, "advection")
+        if "two_way_coupling" in scalars and scalars["two_way_coupling"] is not None:
+            scalars["two_way_coupling"] = int(bool(scalars["two_way_coupling"]))
+        _set_scalars(d, _FLUID_SCALARS, scalars)
+        liquid, d.initialLiquidCount = region_array(initial_liquid)
+        sources, d.emitterCount = emitter_array(emitters)
+        sinks, d.drainCount = region_array(drains)
+        d.initialLiquid = ctypes.cast(liquid, ctypes.POINTER(T.vpFluidRegion))
+        d.emitters = ctypes.cast(sources, ctypes.POINTER(T.vpFluidEmitter))
+        d.drains = ctypes.cast(sinks, ctypes.POINTER(T.vpFluidRegion))
+        fid = T.vpFluidId()
+        call("vpFluidCreate", self._id, ctypes.byref(d), ctypes.byref(fid))
+        del liquid, sources, sinks  # the library copied the sources
+        return Fluid(self, fid)

@@ -505,6 +505,10 @@ VP_API vpStatus vpFluidCreate(vpWorldId world, const vpFluidDef* def, vpFluidId*
 VP_API vpStatus vpFluidDestroy(vpFluidId fluid);
 VP_API vpStatus vpFluidIsValid(vpFluidId fluid); /* Ok or InvalidId */
 VP_API vpStatus vpFluidGetResolution(vpFluidId fluid, int32_t* outNx, int32_t* outNy, int32_t* outNz);
+/* What the fluid was created as, so a host can draw one it did not create (a scene's). Any
+ * output may be NULL. Cell (i, j, k) is centred at origin + cellSize * (i + 0.5, j + 0.5, k + 0.5). */
+VP_API vpStatus vpFluidGetKind(vpFluidId fluid, vpFluidKind* outKind);
+VP_API vpStatus vpFluidGetDomain(vpFluidId fluid, vpVec3* outOrigin, float* outCellSize);
 /* A copy of a cell-centred field, nx * ny * nz values (capacity in values). */
 VP_API vpStatus vpFluidGetField(vpFluidId fluid, vpFluidField field, float* outValues, int64_t capacity);
 /* The velocity at the cell centres, xyz per cell (capacity in cells). */
@@ -519,6 +523,9 @@ VP_API vpStatus vpFluidGetSurfaceMesh(vpFluidId fluid, float* outPositions, floa
 /* Liquid: volume in m^3 (0 for smoke). Smoke: total smoke (density * m^3; 0 for liquid). */
 VP_API vpStatus vpFluidGetAmount(vpFluidId fluid, float* outAmount);
 VP_API vpStatus vpFluidGetStats(vpFluidId fluid, vpActorStats* outStats);
+/* Number of fluids and their ids, in slot order (stable while none is destroyed). */
+VP_API vpStatus vpWorldGetFluidCount(vpWorldId world, int32_t* outCount);
+VP_API vpStatus vpWorldGetFluids(vpWorldId world, vpFluidId* outIds, int32_t capacity, int32_t* outCount);
 VP_API vpStatus vpWorldFindFluid(vpWorldId world, const char* name, vpFluidId* outFluid);
 
 /* ---------------------------------------------------------------- build information */

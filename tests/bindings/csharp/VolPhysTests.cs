@@ -58,7 +58,8 @@ static class VolPhysTests
         Type[] types = { typeof(vpVersion), typeof(vpVec3), typeof(vpQuat), typeof(vpTransform), typeof(vpWorldId),
                          typeof(vpColliderId), typeof(vpDeformableId), typeof(vpWorldDef), typeof(vpPhaseStats),
                          typeof(vpActorStats), typeof(vpStepStats), typeof(vpShapeDef), typeof(vpColliderDef),
-                         typeof(vpDeformableDef), typeof(vpBuildInfo) };
+                         typeof(vpDeformableDef), typeof(vpFluidId), typeof(vpFluidRegion), typeof(vpFluidEmitter),
+                         typeof(vpFluidDef), typeof(vpBuildInfo) };
         foreach (Type t in types)
         {
             Check(expected.ContainsKey(t.Name), t.Name + " is printed by the layout program");
@@ -82,6 +83,7 @@ static class VolPhysTests
         Check(Native.vpDefaultColliderDef().structSize == Marshal.SizeOf(typeof(vpColliderDef)), "vpColliderDef.structSize");
         Check(Native.vpDefaultDeformableDef().structSize == Marshal.SizeOf(typeof(vpDeformableDef)), "vpDeformableDef.structSize");
         Check(Native.vpDefaultStepStats().structSize == Marshal.SizeOf(typeof(vpStepStats)), "vpStepStats.structSize");
+        Check(Native.vpDefaultFluidDef().structSize == Marshal.SizeOf(typeof(vpFluidDef)), "vpFluidDef.structSize");
     }
 
     public static void TestVersionAndDefaults()
@@ -167,6 +169,63 @@ static class VolPhysTests
             {
                 Check(e.Message.Contains("shape.radius"), "message names the field: " + e.Message);
             }
+        }
+    }
+
+    public static void TestLiquidTankHasAVolumeAndASurface()
+    {
+        vpWorldDef worldDef = World.DefaultDef();
+        worldDef.frameBudgetMs = 0; // a cut pressure solve would make the volume machine-dependent
+        using (var world = new World(worldDef))
+        {
+            vpFluidDef def = Fluid.DefaultDef();
+            def.kind = FluidKind.Liquid;
+            def.SetResolution(16, 12, 8);
+            def.cellSize = 1.0f / 16;
+            Check(def.Resolution(1) == 12 && def.Side(3) == DomainSide.Wall, "fixed-buffer accessors");
+            // Half of a 1 x 0.75 x 0.5 m tank: 0.1875 m^3.
+            var tank = new[] { vpFluidRegion.Box(new vpVec3(0.5f, 0.1875f, 0.25f), new vpVec3(0.5f, 0.1875f, 0.25f)) };
+            Fluid liquid = world.CreateFluid(def, tank);
+            for (int i = 0; i < 5; ++i) world.Step(1.0f / 60.0f);
+            int nx, ny, nz;
+            liquid.GetResolution(out nx, out ny, out nz);
+            Check(nx == 16 && ny == 12 && nz == 8, string.Format("resolution {0} {1} {2}", nx, ny, nz));
+            Check(Math.Abs(liquid.Amount - 0.1875f) < 0.01f, "liquid volume " + liquid.Amount);
+            int vertices, triangles;
+            liquid.GetSurfaceMeshSize(out vertices, out triangles);
+            Check(vertices > 0 && triangles > 0, string.Format("surface of {0} vertices, {1} triangles", vertices, triangles));
+            float[] positions, normals;
+            int[] indices;
+            liquid.GetSurfaceMesh(out positions, out normals, out indices);
+            Check(positions.Length == 3 * vertices && indices.Length == 3 * triangles, "surface array lengths");
+            float[] levelSet = liquid.GetField(FluidField.LevelSet);
+            Check(levelSet.Length == nx * ny * nz && levelSet[nx * 1 + 3] < 0, "level set negative near the floor");
+            vpVec3[] sampled = liquid.SampleVelocity(new[] { new vpVec3(0.5f, 0.1f, 0.25f), new vpVec3(0.2f, 0.6f, 0.1f) });
+            Check(sampled.Length == 2 && !float.IsNaN(sampled[0].y) && Math.Abs(sampled[0].y) < 5, "sampled velocity " + sampled[0]);
+            float[] velocity = liquid.GetVelocityGrid();
+            Check(velocity.Length == 3 * nx * ny * nz, "velocity grid length " + velocity.Length);
+            Check(liquid.Kind == FluidKind.Liquid, "kind " + liquid.Kind);
+            vpVec3 origin;
+            float cellSize;
+            liquid.GetDomain(out origin, out cellSize);
+            Check(origin.x == 0 && cellSize == 1.0f / 16, "domain " + origin + " " + cellSize);
+            Check(liquid.Stats.kind == ActorKind.Fluid, "stats kind " + liquid.Stats.kind);
+            Fluid[] all = world.GetFluids();
+            Check(all.Length == 1 && all[0].Id.index1 == liquid.Id.index1, "world lists the fluid");
+
+            vpFluidDef bad = Fluid.DefaultDef();
+            bad.cellSize = -1;
+            try
+            {
+                world.CreateFluid(bad);
+                Check(false, "a negative cell size was accepted");
+            }
+            catch (VolPhysException e)
+            {
+                Check(e.Status == Status.InvalidArgument && e.Message.Contains("cellSize"), "message names the field: " + e.Message);
+            }
+            liquid.Destroy();
+            Check(!liquid.IsValid, "destroyed fluid is invalid");
         }
     }
 

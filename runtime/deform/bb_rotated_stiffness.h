@@ -1,0 +1,47 @@
+// The rotated stiffness R K_e Rᵀ of a BB element, block by block, without the 3N x 3N matrix.
+//
+// K_ab = (3nV/(4n²−1)) Σ_{c,d} G_{n−1}(α_a−e_c, α_b−e_d) · [λ g_c g_dᵀ + μ g_d g_cᵀ + μ (g_c·g_d) I]
+// (bb_element_matrices.h), so R K_ab Rᵀ is the same sum over the 16 "gradient pair" matrices
+// with rotated gradients h = R g (R I Rᵀ = I):
+//   P_cd = s V [λ h_c h_dᵀ + μ h_d h_cᵀ + μ (g_c·g_d) I],   R K_ab Rᵀ = Σ G_{n−1}(…) P_cd.
+// Per element and step only the 16 P_cd are computed (144 numbers instead of the 900 / 3600
+// of a rotated quadratic / cubic K); a block then costs 1 to 9 terms of 9 flops, and the
+// assembly no longer reads the stored rest K (7 KB / 29 KB per element) a second time.
+//
+// Arrays: R 3x3 row-major, grad 4x3 rest barycentric gradients, pairs 16 x 9 (pair c·4+d,
+// row-major 3x3), block 3x3 row-major.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace vp {
+
+// The G_{n−1} weights of every node pair (a, b) of a degree: terms of pair (a, b) are
+// [start[a·N+b], start[a·N+b+1]), each a gradient pair (c·4+d) and its weight.
+struct BBStiffnessTerms {
+  int degree = 0;
+  std::vector<int32_t> start;
+  std::vector<uint8_t> pair;
+  std::vector<double> weight;
+};
+
+// degree must be 1..3.
+BBStiffnessTerms bbStiffnessTerms(int degree);
+
+// pairs = the 16 P_cd above, with s = scale · 3n / (4n² − 1).
+void bbRotatedGradientPairs(int degree, const double R[9], const double grad[12], double volume, double lambda,
+                            double mu, double scale, double pairs[144]);
+
+// block += R K_ab Rᵀ (times the scale the pairs carry).
+inline void addBBRotatedBlock(const BBStiffnessTerms& terms, const double pairs[144], int nodeCount, int a, int b,
+                              double block[9]) {
+  const int32_t k = a * nodeCount + b;
+  for (int32_t t = terms.start[k]; t < terms.start[k + 1]; ++t) {
+    const double w = terms.weight[t];
+    const double* p = pairs + 9 * terms.pair[t];
+    for (int i = 0; i < 9; ++i) block[i] += w * p[i];
+  }
+}
+
+}  // namespace vp

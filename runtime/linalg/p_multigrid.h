@@ -1,0 +1,128 @@
+// p-multigrid: a V-cycle over the polynomial degrees of one mesh (cubic -> quadratic ->
+// linear), used as the CG preconditioner of the deformable solve for degree >= 2, or on its
+// own as a stationary solver (linalg/richardson_iteration.h). The levels come from
+// deform/degree_hierarchy.h: what this class needs of them is the per-node prolongations
+// (BB degree elevation), so it knows nothing about elements.
+//
+// Coarse operators are Galerkin products A_c = P̃ᵀ A P̃ with the constrained prolongation
+// P̃ = F_f P F_c (F: the per-node 3x3 constraint projectors CG filters with, 0 for pinned
+// nodes, I − nnᵀ for sliding contacts). Why Galerkin rather than re-discretizing each degree
+// with the same element rotations:
+//  - constraints: a coarse problem re-discretized from elements does not know which fine
+//    directions are filtered (a contact on one edge control point has no coarse node of
+//    its own), so its coarse correction would push constrained directions and the fine
+//    smoother would have to undo it; P̃ᵀAP̃ is by construction the fine problem restricted
+//    to the constrained coarse space, the best coarse correction in the energy norm;
+//  - everything the fine matrix holds (mass, Rayleigh damping, stiffness, with whatever
+//    scaling the integrator chose) reaches the coarse levels without this class knowing
+//    the integrator;
+//  - cost: one sparse triple product per step. The whole setup (products, smoother diagonals
+//    and λmax, coarsest multigrid) measured 186 ms against a 739 ms solve on the cubic beam of
+//    BM_DeformSolve (setup_ms), and ~8% of a quadratic step's CPU in a profile of
+//    BM_DeformQuadraticBeam/13000. Re-discretization was not implemented, so it is not
+//    measured against it: it would save part of that setup but not the constraint argument.
+// F_c of a coarse node projects onto the directions some fine node reading it may move in
+// (zero on a pinned face, whose control points are pinned at every degree; identity
+// wherever a free node reads it).
+//
+// Smoothers (both polynomials in D⁻¹A with the filtered block diagonal D, so they are
+// symmetric and parallel like an SpMV; the same one before and after the coarse correction
+// makes the V-cycle symmetric, hence a valid CG preconditioner):
+//  - Chebyshev: damps the eigenvalues of D⁻¹A in [λmax/range, λmax];
+//  - damped block-Jacobi: ω = 4/(3 λmax), as the aggregation multigrid's.
+// λmax by power iteration (refreshed every few updates: the corotated matrix changes slowly).
+// Coloured Gauss–Seidel was not tried: BB control points of degree 3 touch ~100 neighbours,
+// so a colouring needs many colours, each a sweep with poor locality.
+// Measured with BM_DeformSolve (cubic 5184-tet beam, 85K unknowns, PCG to 1e-6 from zero),
+// CG iterations for `sweeps` smoothing steps per side and c coarsest cycles (3 -> 2 -> 1):
+//                      c = 1    2    4    8   16
+//   Chebyshev, 2 steps     33   26   20   16   15
+//   Chebyshev, 1 step      38   31   29   27   27
+//   damped Jacobi, 1 step  39   35   33   32   32
+//   (c = 8: damped Jacobi 2 steps 24, Chebyshev 3 steps 14; 3 -> 1 directly, Chebyshev 2: 19)
+// A cycle costs 2·sweeps fine-level products (+1 for CG's own), the degree-2 level ~18% of
+// a fine product each, and the coarsest cycles little (the linear level has 1.3% of the fine
+// blocks). So Chebyshev needs fewer fine products than damped Jacobi for the same residual
+// (16 x 5 = 80 against 32 x 3 = 96 or 24 x 5 = 120; 3 steps: 14 x 7 = 98), the coarsest
+// level is worth 8 cycles, and 3 -> 2 -> 1
+// and 3 -> 1 cost about the same (16 x 5.7 against 19 x 5 products); the defaults are
+// Chebyshev, 2 steps, 8 cycles. Timings on the shared 2-core machine vary ±30% with the
+// other builds, which is why the choice rests on these counts.
+//
+// The coarsest level (degree 1) is solved with `coarseCycles` V-cycles of the aggregation
+// multigrid (rigid-body modes; linalg/aggregation_multigrid.h). Its node i must be fine node
+// i (the degree hierarchy numbers the mesh vertices first at every degree), so its positions
+// are the first entries of the fine positions.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/allocator.h"
+#include "core/task_system.h"
+#include "linalg/aggregation_multigrid.h"
+#include "linalg/block_sparse_matrix.h"
+#include "linalg/node_prolongation.h"
+
+namespace vp {
+
+enum class MultigridSmoother { Chebyshev, DampedJacobi };
+
+struct PMultigridSettings {
+  MultigridSmoother smoother = MultigridSmoother::Chebyshev;
+  int sweeps = 2;                // smoothing steps before and after the coarse correction
+  double chebyshevRange = 30.0;  // Chebyshev targets [λmax / range, λmax] of D⁻¹A
+  int coarseCycles = 8;          // aggregation-multigrid V-cycles on the coarsest level
+};
+
+class PMultigrid {
+ public:
+  // prolongations[l] maps level l+1 to level l; level 0 is `fine`. Builds the coarse
+  // patterns (the symbolic Galerkin products) and the coarsest level's multigrid.
+  void build(const BlockSparseMatrix<double>& fine, std::vector<NodeProlongation> prolongations,
+             const PMultigridSettings& settings = {});
+
+  // Recomputes filters, Galerkin operators, smoothers and the coarsest multigrid.
+  // positions: 3 per fine node; filters: 9 per fine node (row-major projector) or nullptr.
+  void update(TaskSystem& tasks, const BlockSparseMatrix<double>& fine, const double* positions,
+              const double* filters);
+
+  // z = V-cycle(r); r and z of size 3 * fine node count, not aliased.
+  void apply(TaskSystem& tasks, const double* r, double* z);
+
+  int levelCount() const { return static_cast<int>(levels_.size()); }
+  // The operator of level l (0: the fine matrix last passed to update).
+  const BlockSparseMatrix<double>& levelMatrix(int l) const { return *levels_[l].matrix; }
+  const PMultigridSettings& settings() const { return settings_; }
+
+ private:
+  enum : uint8_t { kIdentity = 0, kZero = 1, kGeneral = 2 };
+  struct Level {
+    int32_t nodes = 0;
+    const BlockSparseMatrix<double>* matrix = nullptr;  // level 0: the caller's
+    BlockSparseMatrix<double> galerkin;                 // levels >= 1
+    // From this level to the finer one (levels >= 1), and its transpose.
+    NodeProlongation P;
+    std::vector<int32_t> restrictStart, restrictFine;
+    std::vector<double> restrictWeight;
+    Array<double> filters;  // 9 per node
+    Array<uint8_t> filterKind;
+    Array<double> diagonalInverse;  // 9 per node, F D⁺ F
+    double lambdaMax = 1.0;
+    Array<double> rhs, z, residual, direction, product, post, smoothed;
+  };
+
+  void cycle(TaskSystem& tasks, int level, const double* r, double* z);
+  // out = S rhs, S the smoothing polynomial; leaves rhs − A out in L.residual when asked.
+  void smooth(TaskSystem& tasks, Level& L, const double* rhs, double* out, bool wantResidual);
+  void galerkin(TaskSystem& tasks, int level);
+  void estimateLambdaMax(TaskSystem& tasks, Level& L);
+  void coarsestSolve(TaskSystem& tasks, const double* r, double* z);
+
+  PMultigridSettings settings_;
+  std::vector<Level> levels_;
+  AggregationMultigrid coarsest_;
+  uint64_t updates_ = 0;
+};
+
+}  // namespace vp
