@@ -96,7 +96,7 @@ double triadGbps() {
   return 24.0 * kTriadElements / t / 1e9;
 }
 
-void BM_PressureSolve(benchmark::State& state, PressureSolver which, MultigridSmoother smoother,
+void BM_PressureSolve(benchmark::State& state, PressureSolver which, PoissonSmoother smoother,
                       PressureSceneKind kind) {
   const int n = static_cast<int>(state.range(0));
   const PressureScene* built = scene(kind, n);
@@ -138,14 +138,14 @@ void BM_PressureSolve(benchmark::State& state, PressureSolver which, MultigridSm
 void registerAll() {
   struct Variant {
     PressureSolver solver;
-    MultigridSmoother smoother;
+    PoissonSmoother smoother;
     const char* name;
   };
   const Variant variants[] = {
-      {PressureSolver::Mic0Pcg, MultigridSmoother::RedBlackGaussSeidel, "mic_pcg"},
-      {PressureSolver::VoxelMgpcg, MultigridSmoother::RedBlackGaussSeidel, "voxel_mgpcg"},
-      {PressureSolver::CutCellMgpcg, MultigridSmoother::RedBlackGaussSeidel, "cutcell_mgpcg"},
-      {PressureSolver::CutCellMgpcg, MultigridSmoother::DampedJacobi, "cutcell_mgpcg_jacobi"},
+      {PressureSolver::Mic0Pcg, PoissonSmoother::RedBlackGaussSeidel, "mic_pcg"},
+      {PressureSolver::VoxelMgpcg, PoissonSmoother::RedBlackGaussSeidel, "voxel_mgpcg"},
+      {PressureSolver::CutCellMgpcg, PoissonSmoother::RedBlackGaussSeidel, "cutcell_mgpcg"},
+      {PressureSolver::CutCellMgpcg, PoissonSmoother::DampedJacobi, "cutcell_mgpcg_jacobi"},
   };
   for (PressureSceneKind kind :
        {PressureSceneKind::SmokeSphere, PressureSceneKind::TankPlateSphere, PressureSceneKind::LiquidTank})

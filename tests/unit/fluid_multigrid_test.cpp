@@ -94,19 +94,19 @@ TEST(FluidMultigrid, CutCellCoarseCouplingsAverageTheFineFractions) {
 struct SymmetryCase {
   PressureSceneKind scene;
   PressureSolver solver;
-  MultigridSmoother smoother;
+  PoissonSmoother smoother;
 };
 
 // x . M y = y . M x for random filtered x, y (round-off only), and x . M x > 0.
 TEST(FluidMultigrid, VCycleIsSymmetricAndPositive) {
   auto tasks = TaskSystem::create(TaskHooks{}, 2);
   const SymmetryCase cases[] = {
-      {PressureSceneKind::SmokeSphere, PressureSolver::CutCellMgpcg, MultigridSmoother::RedBlackGaussSeidel},
-      {PressureSceneKind::SmokeSphere, PressureSolver::CutCellMgpcg, MultigridSmoother::DampedJacobi},
-      {PressureSceneKind::ClosedTank, PressureSolver::CutCellMgpcg, MultigridSmoother::RedBlackGaussSeidel},
-      {PressureSceneKind::TankPlateSphere, PressureSolver::VoxelMgpcg, MultigridSmoother::RedBlackGaussSeidel},
-      {PressureSceneKind::ClosedTank, PressureSolver::VoxelMgpcg, MultigridSmoother::DampedJacobi},
-      {PressureSceneKind::LiquidTank, PressureSolver::CutCellMgpcg, MultigridSmoother::RedBlackGaussSeidel},
+      {PressureSceneKind::SmokeSphere, PressureSolver::CutCellMgpcg, PoissonSmoother::RedBlackGaussSeidel},
+      {PressureSceneKind::SmokeSphere, PressureSolver::CutCellMgpcg, PoissonSmoother::DampedJacobi},
+      {PressureSceneKind::ClosedTank, PressureSolver::CutCellMgpcg, PoissonSmoother::RedBlackGaussSeidel},
+      {PressureSceneKind::TankPlateSphere, PressureSolver::VoxelMgpcg, PoissonSmoother::RedBlackGaussSeidel},
+      {PressureSceneKind::ClosedTank, PressureSolver::VoxelMgpcg, PoissonSmoother::DampedJacobi},
+      {PressureSceneKind::LiquidTank, PressureSolver::CutCellMgpcg, PoissonSmoother::RedBlackGaussSeidel},
   };
   for (const SymmetryCase& tc : cases) {
     SCOPED_TRACE(testing::Message() << testscene::sceneName(tc.scene) << " solver " << static_cast<int>(tc.solver)
