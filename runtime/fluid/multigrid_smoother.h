@@ -32,7 +32,7 @@
 
 namespace vp {
 
-enum class MultigridSmoother { RedBlackGaussSeidel, DampedJacobi };
+enum class PoissonSmoother { RedBlackGaussSeidel, DampedJacobi };
 
 // One red-black sweep (red then black; black then red when `reverse`). `fromZero`: the sweep
 // starts from x = 0 whatever x holds (every cell is written, non-fluid ones with 0).

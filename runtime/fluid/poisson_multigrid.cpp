@@ -13,7 +13,7 @@ namespace {
 // starts from 0 (both smoothers fold the clearing into their first sweep).
 void smooth(TaskSystem& tasks, const CutCellPoisson& op, const MultigridSettings& s, const double* b, double* x,
             std::vector<double>& scratch, int sweeps, bool adjoint, bool fromZero) {
-  if (s.smoother == MultigridSmoother::DampedJacobi) {
+  if (s.smoother == PoissonSmoother::DampedJacobi) {
     smoothJacobi(tasks, op, b, x, scratch.data(), s.jacobiWeight, sweeps, fromZero);
     return;
   }

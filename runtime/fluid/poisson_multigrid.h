@@ -38,7 +38,7 @@ enum class MultigridCoarsening {
 
 struct MultigridSettings {
   MultigridCoarsening coarsening = MultigridCoarsening::CutCell;
-  MultigridSmoother smoother = MultigridSmoother::RedBlackGaussSeidel;
+  PoissonSmoother smoother = PoissonSmoother::RedBlackGaussSeidel;
   int sweeps = 2;  // smoothing sweeps before and after the coarse correction, per level
   // 6/7 minimizes the largest high-frequency amplification of Jacobi for the 7-point Laplacian.
   double jacobiWeight = 6.0 / 7.0;

@@ -1,6 +1,8 @@
 // BM_PressureSolve/{mic_pcg,voxel_mgpcg,cutcell_mgpcg}/{scene}/{N}: the fluid pressure solve
 // on N^3 cut-cell scenes (tests/unit/fluid_pressure_scenes.h), from p = 0 to a relative residual
-// of 1e-6, and the memory bandwidth its kernels reach. cutcell_mgpcg_jacobi is the cut-cell
+// of 1e-6, and the memory bandwidth its kernels reach. Scenes: smoke_sphere, tank_plate_sphere
+// (open-top tank, no free surface) and liquid_tank (the same tank filled to 0.61 with a free
+// surface). cutcell_mgpcg_jacobi is the cut-cell
 // multigrid with the damped Jacobi smoother instead of red-black Gauss-Seidel.
 //
 // Counters
@@ -94,7 +96,7 @@ double triadGbps() {
   return 24.0 * kTriadElements / t / 1e9;
 }
 
-void BM_PressureSolve(benchmark::State& state, PressureSolver which, MultigridSmoother smoother,
+void BM_PressureSolve(benchmark::State& state, PressureSolver which, PoissonSmoother smoother,
                       PressureSceneKind kind) {
   const int n = static_cast<int>(state.range(0));
   const PressureScene* built = scene(kind, n);
@@ -136,16 +138,17 @@ void BM_PressureSolve(benchmark::State& state, PressureSolver which, MultigridSm
 void registerAll() {
   struct Variant {
     PressureSolver solver;
-    MultigridSmoother smoother;
+    PoissonSmoother smoother;
     const char* name;
   };
   const Variant variants[] = {
-      {PressureSolver::Mic0Pcg, MultigridSmoother::RedBlackGaussSeidel, "mic_pcg"},
-      {PressureSolver::VoxelMgpcg, MultigridSmoother::RedBlackGaussSeidel, "voxel_mgpcg"},
-      {PressureSolver::CutCellMgpcg, MultigridSmoother::RedBlackGaussSeidel, "cutcell_mgpcg"},
-      {PressureSolver::CutCellMgpcg, MultigridSmoother::DampedJacobi, "cutcell_mgpcg_jacobi"},
+      {PressureSolver::Mic0Pcg, PoissonSmoother::RedBlackGaussSeidel, "mic_pcg"},
+      {PressureSolver::VoxelMgpcg, PoissonSmoother::RedBlackGaussSeidel, "voxel_mgpcg"},
+      {PressureSolver::CutCellMgpcg, PoissonSmoother::RedBlackGaussSeidel, "cutcell_mgpcg"},
+      {PressureSolver::CutCellMgpcg, PoissonSmoother::DampedJacobi, "cutcell_mgpcg_jacobi"},
   };
-  for (PressureSceneKind kind : {PressureSceneKind::SmokeSphere, PressureSceneKind::TankPlateSphere})
+  for (PressureSceneKind kind :
+       {PressureSceneKind::SmokeSphere, PressureSceneKind::TankPlateSphere, PressureSceneKind::LiquidTank})
     for (const Variant& v : variants)
       for (int n : {64, 128, 192}) {
         const PressureSolver which = v.solver;

@@ -94,18 +94,19 @@ TEST(FluidMultigrid, CutCellCoarseCouplingsAverageTheFineFractions) {
 struct SymmetryCase {
   PressureSceneKind scene;
   PressureSolver solver;
-  MultigridSmoother smoother;
+  PoissonSmoother smoother;
 };
 
 // x . M y = y . M x for random filtered x, y (round-off only), and x . M x > 0.
 TEST(FluidMultigrid, VCycleIsSymmetricAndPositive) {
   auto tasks = TaskSystem::create(TaskHooks{}, 2);
   const SymmetryCase cases[] = {
-      {PressureSceneKind::SmokeSphere, PressureSolver::CutCellMgpcg, MultigridSmoother::RedBlackGaussSeidel},
-      {PressureSceneKind::SmokeSphere, PressureSolver::CutCellMgpcg, MultigridSmoother::DampedJacobi},
-      {PressureSceneKind::ClosedTank, PressureSolver::CutCellMgpcg, MultigridSmoother::RedBlackGaussSeidel},
-      {PressureSceneKind::TankPlateSphere, PressureSolver::VoxelMgpcg, MultigridSmoother::RedBlackGaussSeidel},
-      {PressureSceneKind::ClosedTank, PressureSolver::VoxelMgpcg, MultigridSmoother::DampedJacobi},
+      {PressureSceneKind::SmokeSphere, PressureSolver::CutCellMgpcg, PoissonSmoother::RedBlackGaussSeidel},
+      {PressureSceneKind::SmokeSphere, PressureSolver::CutCellMgpcg, PoissonSmoother::DampedJacobi},
+      {PressureSceneKind::ClosedTank, PressureSolver::CutCellMgpcg, PoissonSmoother::RedBlackGaussSeidel},
+      {PressureSceneKind::TankPlateSphere, PressureSolver::VoxelMgpcg, PoissonSmoother::RedBlackGaussSeidel},
+      {PressureSceneKind::ClosedTank, PressureSolver::VoxelMgpcg, PoissonSmoother::DampedJacobi},
+      {PressureSceneKind::LiquidTank, PressureSolver::CutCellMgpcg, PoissonSmoother::RedBlackGaussSeidel},
   };
   for (const SymmetryCase& tc : cases) {
     SCOPED_TRACE(testing::Message() << testscene::sceneName(tc.scene) << " solver " << static_cast<int>(tc.solver)
@@ -226,11 +227,12 @@ TEST(FluidMultigrid, BoundarySmoothingKeepsIterationCountsDown) {
 }
 
 // Every solver converges to the same pressure (up to the floating region's constant, which the
-// filter pins to zero mean for all of them).
+// filter pins to zero mean for all of them), with the free surface too: the multigrid builds its
+// levels from whatever Dirichlet parts the fine operator holds.
 TEST(FluidMultigrid, SameSolutionAsMic0Pcg) {
   auto tasks = TaskSystem::create(TaskHooks{}, 2);
-  for (PressureSceneKind kind :
-       {PressureSceneKind::SmokeSphere, PressureSceneKind::TankPlateSphere, PressureSceneKind::ClosedTank}) {
+  for (PressureSceneKind kind : {PressureSceneKind::SmokeSphere, PressureSceneKind::TankPlateSphere,
+                                 PressureSceneKind::ClosedTank, PressureSceneKind::LiquidTank}) {
     PressureScene scene;
     makeScene(*tasks, kind, 32, &scene);
     std::vector<double> reference;

@@ -4,6 +4,8 @@
 //   SmokeSphere      sphere of radius 0.2 (of the domain) below the centre, open top (+y)
 //   TankPlateSphere  thin plate (0.02 thick) slanted 30 degrees and a sphere, open top
 //   ClosedTank       the same colliders in a closed box: one floating (pure Neumann) region
+//   LiquidTank       the same colliders, open top, liquid below y = 0.61: free-surface
+//                    (ghost-fluid Dirichlet) faces inside the grid, air cells without rows
 #pragma once
 
 #include <Eigen/Geometry>
@@ -26,13 +28,14 @@
 namespace vp {
 namespace testscene {
 
-enum class PressureSceneKind { SmokeSphere, TankPlateSphere, ClosedTank };
+enum class PressureSceneKind { SmokeSphere, TankPlateSphere, ClosedTank, LiquidTank };
 
 inline const char* sceneName(PressureSceneKind kind) {
   switch (kind) {
     case PressureSceneKind::SmokeSphere: return "smoke_sphere";
     case PressureSceneKind::TankPlateSphere: return "tank_plate_sphere";
     case PressureSceneKind::ClosedTank: return "closed_tank";
+    case PressureSceneKind::LiquidTank: return "liquid_tank";
   }
   return "?";
 }
@@ -41,6 +44,7 @@ struct PressureScene {
   MacGrid grid;
   FaceFractionField fractions;
   std::vector<PreparedCollider> colliders;
+  std::vector<double> liquidPhi;  // LiquidTank only: the level set (negative in the liquid)
   CutCellPoisson poisson;
   std::vector<double> rhs;  // -netOutflow of the swirl velocity, 0 off fluid
 };
@@ -100,7 +104,16 @@ inline Status makePressureScene(TaskSystem& tasks, PressureSceneKind kind, int n
   }
   VP_TRY(computeFaceFractions(list.data(), static_cast<int>(list.size()), &scene->fractions));
   fillSwirl(scene->grid);
-  VP_TRY(buildCutCellPoisson(tasks, scene->grid, scene->fractions, &scene->poisson));
+  scene->liquidPhi.clear();
+  if (kind == PressureSceneKind::LiquidTank) {
+    scene->liquidPhi.resize(static_cast<size_t>(scene->grid.cellCount()));
+    for (int k = 0; k < n; ++k)
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i)
+          scene->liquidPhi[scene->grid.cellIndex(i, j, k)] = scene->grid.cellCentre(i, j, k).y() - 0.61;
+  }
+  VP_TRY(buildCutCellPoisson(tasks, scene->grid, scene->fractions, &scene->poisson,
+                             scene->liquidPhi.empty() ? nullptr : scene->liquidPhi.data()));
   scene->rhs.assign(static_cast<size_t>(scene->grid.cellCount()), 0.0);
   computeNetOutflow(tasks, scene->grid, scene->fractions, scene->poisson, scene->rhs.data());
   for (double& b : scene->rhs) b = -b;
