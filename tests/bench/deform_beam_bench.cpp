@@ -102,6 +102,12 @@ BENCHMARK(BM_DeformLinearBeamReference)->Arg(12288)->Arg(98304)->Unit(benchmark:
 
 // Quadratic elements: 13000 -> the 34x8x8-cell beam, 13056 tets (issue 6: ~13K quadratic
 // tets at 10 Hz, the thesis' GPU figure); 12288 is the 32x8x8 beam of the shared family.
+// Measured on the shared 2-core machine (other builds running, so wall-clock hz is a lower
+// bound): 12288 at load ~1.5-3: 10.6 Hz median (main before p-multigrid and the gradient-pair
+// assembly: 9.7 Hz recorded); run alternately with main's build under equal load (~4):
+// 5.3-5.9 against 3.7-4.7 Hz, ~1.4x. 13000 only got measured under load 4-7: 5.0 Hz median,
+// 7.1 Hz best, 10.3 s process CPU for 60 steps (8.5 CG iterations per step, against 20 and
+// 13.5 s with BM_DeformQuadraticBeamAggregationMultigrid).
 void BM_DeformQuadraticBeam(benchmark::State& state) {
   for (auto _ : state) {
     const BeamRun run = runBeam(state.range(0), DeformableSolverSettings{}.tolerance,
