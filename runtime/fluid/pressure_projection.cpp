@@ -57,6 +57,7 @@ Status projectVelocity(TaskSystem& tasks, MacGrid& grid, const FaceFractionField
   CgSettings cgSettings;
   cgSettings.relativeTolerance = settings.tolerance;
   cgSettings.maxIterations = settings.maxIterations;
+  cgSettings.minIterations = settings.minIterations;
   const CgResult result = solveConjugateGradient(tasks, system, state.rhs.data(), state.pressure.data(),
                                                  cgSettings, deadline, state.cg);
 

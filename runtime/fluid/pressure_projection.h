@@ -47,6 +47,7 @@ struct PressureSolveSettings {
   int maxIterations = 500;
   PressureSolver solver = PressureSolver::CutCellMgpcg;
   MultigridSettings multigrid{};  // smoother and cycle shape; its coarsening follows `solver`
+  int minIterations = 0;  // run even past the deadline (the fluid actor asks for some)
 };
 
 struct PressureSolveStats {

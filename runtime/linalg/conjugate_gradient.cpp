@@ -57,7 +57,7 @@ CgResult solveConjugateGradient(TaskSystem& tasks, const LinearSystem& sys, cons
   vec::copy(tasks, n, z, p);
   double rz = vec::dot(tasks, n, r, z);
   for (int it = 0; it < settings.maxIterations; ++it) {
-    if (deadline.expired()) {
+    if (it >= settings.minIterations && deadline.expired()) {
       result.budgetCut = true;
       break;
     }

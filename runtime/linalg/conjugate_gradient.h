@@ -24,6 +24,9 @@ namespace vp {
 struct CgSettings {
   double relativeTolerance = 1e-4;  // on |r| / |filtered b|
   int maxIterations = 200;
+  // Iterations run even after the deadline (for solves that must make some progress every
+  // frame, see PressureSolveSettings::minIterations); 0: the deadline is checked before each.
+  int minIterations = 0;
 };
 
 struct CgResult {
