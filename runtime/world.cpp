@@ -189,25 +189,34 @@ Status World::step(double dt) {
   // left of the frame when its turn comes, so time one actor does not use passes on to the
   // next.
   int remaining = static_cast<int>(deformables_.size() + fluids_.size());
-  deformables_.forEach([&](DeformableHandle h, DeformableBody& body) {
+  // Runs one actor's step under its share of the frame and records its stats.
+  auto runActor = [&](ActorKind kind, uint32_t index1, uint32_t generation, const auto& stepActor) {
     ActorStats a;
-    a.kind = ActorKind::Deformable;
-    a.index1 = h.index1;
-    a.generation = h.generation;
-    DeformableStepInput input;
-    input.dt = dt;
-    input.gravity = config_.gravity;
-    input.deadline = frame.share(1.0 / remaining--);
-    input.tasks = tasks_.get();
-    input.colliders = contactColliders;
-    input.collider = [this](uint32_t index1, uint32_t generation) -> const Collider* {
-      return colliders_.get(index1, generation);
-    };
+    a.kind = kind;
+    a.index1 = index1;
+    a.generation = generation;
+    const Deadline share = frame.share(1.0 / remaining--);
     const double start = frame.elapsedMs();
-    body.step(input, &a);
+    stepActor(share, &a);
     a.totalMs = frame.elapsedMs() - start;
-    if (a.diverged) log(LogLevel::Warning, "deformable (%u, %u) diverged; restored its previous state", h.index1, h.generation);
+    if (a.diverged)
+      log(LogLevel::Warning, "%s (%u, %u) diverged; %s", kind == ActorKind::Fluid ? "fluid" : "deformable", index1,
+          generation, kind == ActorKind::Fluid ? "its flow was reset to rest" : "restored its previous state");
     stats.actors.push_back(a);
+  };
+  deformables_.forEach([&](DeformableHandle h, DeformableBody& body) {
+    runActor(ActorKind::Deformable, h.index1, h.generation, [&](const Deadline& share, ActorStats* a) {
+      DeformableStepInput input;
+      input.dt = dt;
+      input.gravity = config_.gravity;
+      input.deadline = share;
+      input.tasks = tasks_.get();
+      input.colliders = contactColliders;
+      input.collider = [this](uint32_t index1, uint32_t generation) -> const Collider* {
+        return colliders_.get(index1, generation);
+      };
+      body.step(input, a);
+    });
   });
 
   std::vector<FluidCollider> fluidColliders;
@@ -218,21 +227,15 @@ Status World::step(double dt) {
     });
   fluidLoads_.clear();
   fluids_.forEach([&](FluidHandle h, FluidActor& fluid) {
-    ActorStats a;
-    a.kind = ActorKind::Fluid;
-    a.index1 = h.index1;
-    a.generation = h.generation;
-    FluidStepInput input;
-    input.dt = dt;
-    input.gravity = config_.gravity;
-    input.deadline = frame.share(1.0 / remaining--);
-    input.tasks = tasks_.get();
-    input.colliders = fluidColliders;
-    const double start = frame.elapsedMs();
-    fluid.step(input, &a, &fluidLoads_);
-    a.totalMs = frame.elapsedMs() - start;
-    if (a.diverged) log(LogLevel::Warning, "fluid (%u, %u) diverged; its flow was reset to rest", h.index1, h.generation);
-    stats.actors.push_back(a);
+    runActor(ActorKind::Fluid, h.index1, h.generation, [&](const Deadline& share, ActorStats* a) {
+      FluidStepInput input;
+      input.dt = dt;
+      input.gravity = config_.gravity;
+      input.deadline = share;
+      input.tasks = tasks_.get();
+      input.colliders = fluidColliders;
+      fluid.step(input, a, &fluidLoads_);
+    });
   });
 
   stats.totalMs = frame.elapsedMs();

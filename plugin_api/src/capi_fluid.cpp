@@ -215,12 +215,8 @@ vpStatus vpFluidGetVelocityGrid(vpFluidId id, float* outXyz, int64_t capacity) {
       for (int j = 0; j < g.spec.ny; ++j)
         for (int i = 0; i < g.spec.nx; ++i) {
           const size_t c = g.cellIndex(i, j, k);
-          for (int a = 0; a < 3; ++a) {
-            Eigen::Vector3i hi(i, j, k);
-            hi[a] += 1;
-            outXyz[3 * c + a] = static_cast<float>(
-                0.5 * (g.velocity[a][g.faceIndex(a, i, j, k)] + g.velocity[a][g.faceIndex(a, hi.x(), hi.y(), hi.z())]));
-          }
+          const Eigen::Vector3d u = g.cellVelocity(i, j, k);
+          for (int a = 0; a < 3; ++a) outXyz[3 * c + a] = static_cast<float>(u[a]);
         }
     return Status::Ok;
   });

@@ -91,16 +91,6 @@ Eigen::Vector3d trace(const VelocityField& field, const Eigen::Vector3d& x, cons
   return x - dt * field.sample(x - 0.5 * dt * u0);
 }
 
-Eigen::Vector3d velocityAtCell(const MacGrid& g, int i, int j, int k) {
-  Eigen::Vector3d u;
-  for (int a = 0; a < 3; ++a) {
-    Eigen::Vector3i hi(i, j, k);
-    hi[a] += 1;
-    u[a] = 0.5 * (g.velocity[a][g.faceIndex(a, i, j, k)] + g.velocity[a][g.faceIndex(a, hi.x(), hi.y(), hi.z())]);
-  }
-  return u;
-}
-
 // Lattice coordinate of world point x for the samples of a-faces (a = 3: cell centres).
 Eigen::Vector3d latticeCoordinate(const MacGridSpec& s, const Eigen::Vector3d& x, int a) {
   Eigen::Vector3d l = (x - s.origin) / s.h - Eigen::Vector3d::Constant(0.5);
@@ -168,7 +158,7 @@ void advectCellScalars(TaskSystem& tasks, const MacGrid& grid, double dt, Advect
   const VelocityField field(grid);
   forEachSample(tasks, d, [&](int i, int j, int k, size_t c) {
     const Eigen::Vector3d x = grid.cellCentre(i, j, k);
-    const Eigen::Vector3d u = velocityAtCell(grid, i, j, k);
+    const Eigen::Vector3d u = grid.cellVelocity(i, j, k);
     work.cellTrace[c] = latticeCoordinate(s, trace(field, x, u, dt), 3);
     if (maccormack) work.cellTrace[cells + c] = latticeCoordinate(s, trace(field, x, u, -dt), 3);
   });

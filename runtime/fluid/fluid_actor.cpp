@@ -220,7 +220,10 @@ void FluidActor::step(const FluidStepInput& input, ActorStats* stats, std::vecto
   }
   stats->phase(Phase::Fractions).ms += deadline.elapsedMs() - t0;
 
-  double speed = maxSpeed(tasks);
+  // Nothing outside step() writes the velocities, so the speed the last step ended with is
+  // the speed this one starts with.
+  if (speedAtEnd_ < 0.0) speedAtEnd_ = maxSpeed(tasks);
+  double speed = speedAtEnd_;
   for (const FluidCollider& c : input.colliders)
     if (c.geometry != nullptr && c.geometry->bounds.overlaps(Aabb{s.origin, s.origin + s.h * Eigen::Vector3d(s.nx, s.ny, s.nz)}))
       speed = std::max(speed, c.geometry->shape.linearVelocity.norm() +
@@ -273,13 +276,14 @@ void FluidActor::step(const FluidStepInput& input, ActorStats* stats, std::vecto
 
   // Non-finite or absurd speeds (the deformables' guard uses the same kind of bound) mean the
   // step blew up; nothing brings such a flow back.
-  const double endSpeed = maxSpeed(tasks);
-  const bool finite = std::isfinite(endSpeed) && endSpeed <= kMaxFluidSpeed;
+  speedAtEnd_ = maxSpeed(tasks);
+  const bool finite = std::isfinite(speedAtEnd_) && speedAtEnd_ <= kMaxFluidSpeed;
   if (!finite) {
     // Restart the flow from rest rather than hand NaNs or absurd loads to the host and the
     // rigid bodies.
     for (int a = 0; a < 3; ++a) std::fill(grid_.velocity[a].begin(), grid_.velocity[a].end(), 0.0);
     std::fill(pressure_.pressure.begin(), pressure_.pressure.end(), 0.0);
+    speedAtEnd_ = 0.0;
     stats->diverged = true;
     return;
   }

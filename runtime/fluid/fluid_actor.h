@@ -104,6 +104,7 @@ class FluidActor {
   FaceFractionField fractions_;
   std::vector<ColliderSnapshot> snapshots_;  // the colliders the fractions were computed for
   bool fractionsValid_ = false;
+  double speedAtEnd_ = -1.0;  // largest face speed after the last step; < 0 before the first
   std::vector<double> smokeDensity_, temperature_, phi_;
   PressureState pressure_;
   AdvectionWorkspace advection_;

@@ -67,6 +67,17 @@ struct MacGrid {
   // what semi-Lagrangian advection wants for back-traced points that leave the domain.
   double sampleComponent(int axis, const Eigen::Vector3d& point) const;
   Eigen::Vector3d sampleVelocity(const Eigen::Vector3d& point) const;
+  // The velocity at the centre of cell (i, j, k): each component the mean of the cell's two
+  // faces of that axis.
+  Eigen::Vector3d cellVelocity(int i, int j, int k) const {
+    Eigen::Vector3d u;
+    for (int a = 0; a < 3; ++a) {
+      Eigen::Vector3i hi(i, j, k);
+      hi[a] += 1;
+      u[a] = 0.5 * (velocity[a][faceIndex(a, i, j, k)] + velocity[a][faceIndex(a, hi.x(), hi.y(), hi.z())]);
+    }
+    return u;
+  }
   // The same for a cell-centred scalar (cellCount() values in cell order: pressure, smoke
   // density, temperature ...).
   double sampleCellCentred(const double* values, const Eigen::Vector3d& point) const;

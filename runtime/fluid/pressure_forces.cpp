@@ -57,7 +57,6 @@ void extendIntoSolid(const MacGrid& grid, const FaceFractionField& fractions, co
           local.air[l] = 1;  // p = 0
         }
       }
-  std::vector<double> next(unknown.size());
   for (int layer = 1; !unknown.empty(); ++layer) {
     std::vector<int64_t> still;
     std::vector<std::pair<int64_t, double>> found;

@@ -60,16 +60,6 @@ void applyVorticityConfinement(TaskSystem& tasks, MacGrid& grid, double epsilon,
   work.omega.resize(cells);
   work.force.resize(cells);
   const Eigen::Vector3i n(s.nx, s.ny, s.nz);
-  auto velocityAt = [&](int i, int j, int k) {
-    Eigen::Vector3d u;
-    for (int a = 0; a < 3; ++a) {
-      Eigen::Vector3i hi(i, j, k);
-      hi[a] += 1;
-      u[a] = 0.5 * (grid.velocity[a][grid.faceIndex(a, i, j, k)] +
-                    grid.velocity[a][grid.faceIndex(a, hi.x(), hi.y(), hi.z())]);
-    }
-    return u;
-  };
   // One-sided at the domain boundary: central differences over the clamped neighbours.
   auto neighbours = [&](int i, int j, int k, int a, Eigen::Vector3i* lo, Eigen::Vector3i* hi) {
     *lo = Eigen::Vector3i(i, j, k);
@@ -86,8 +76,8 @@ void applyVorticityConfinement(TaskSystem& tasks, MacGrid& grid, double epsilon,
         for (int a = 0; a < 3; ++a) {
           Eigen::Vector3i lo, hi;
           const double span = neighbours(i, j, k, a, &lo, &hi);
-          gradient.col(a) = span > 0.0 ? Eigen::Vector3d((velocityAt(hi.x(), hi.y(), hi.z()) -
-                                                           velocityAt(lo.x(), lo.y(), lo.z())) / span)
+          gradient.col(a) = span > 0.0 ? Eigen::Vector3d((grid.cellVelocity(hi.x(), hi.y(), hi.z()) -
+                                                           grid.cellVelocity(lo.x(), lo.y(), lo.z())) / span)
                                        : Eigen::Vector3d::Zero();
         }
         work.omega[grid.cellIndex(i, j, k)] = Eigen::Vector3d(gradient(2, 1) - gradient(1, 2),
