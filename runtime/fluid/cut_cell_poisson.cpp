@@ -5,6 +5,7 @@
 
 #include "core/parallel_for.h"
 #include "fluid/free_surface.h"
+#include "fluid/poisson_rows.h"
 
 namespace vp {
 namespace {
@@ -143,36 +144,36 @@ Status buildCutCellPoisson(TaskSystem& tasks, const MacGrid& grid, const FaceFra
     op->regionCellCount.push_back(count);
     op->fluidCellCount += count;
   }
+  computeRowSpans(tasks, op);
   return Status::Ok;
 }
 
+void computeRowSpans(TaskSystem& tasks, CutCellPoisson* op) {
+  const poisson_rows::Stencil s(*op);
+  op->rowSpan.assign(static_cast<size_t>(2 * s.rows()), 0);
+  int32_t* span = op->rowSpan.data();
+  parallelFor(tasks, s.rows(), s.rowGrain(), [&](int64_t begin, int64_t end) {
+    for (int64_t row = begin; row < end; ++row) {
+      const double* d = s.diagonal + s.nx * row;
+      int64_t first = 0, last = s.nx;
+      while (first < s.nx && !(d[first] > 0.0)) ++first;
+      while (last > first && !(d[last - 1] > 0.0)) --last;
+      span[2 * row] = static_cast<int32_t>(first);
+      span[2 * row + 1] = static_cast<int32_t>(last);
+    }
+  });
+}
+
 void applyCutCellPoisson(TaskSystem& tasks, const CutCellPoisson& op, const double* p, double* out) {
-  const MacGridSpec& g = op.grid;
-  const int64_t cells = static_cast<int64_t>(g.nx) * g.ny * g.nz;
-  const int64_t ux = g.nx + 1, vy = g.ny + 1;
-  const int64_t sx = 1, sy = g.nx, sz = static_cast<int64_t>(g.nx) * g.ny;
-  const double* cu = op.coupling[0].data();
-  const double* cv = op.coupling[1].data();
-  const double* cw = op.coupling[2].data();
-  parallelFor(tasks, cells, kCellGrain, [&](int64_t begin, int64_t end) {
-    for (int64_t c = begin; c < end; ++c) {
-      if (op.region[static_cast<size_t>(c)] < 0) {
-        out[c] = 0.0;
-        continue;
-      }
-      const int64_t i = c % g.nx, j = (c / g.nx) % g.ny, k = c / sz;
-      // Boundary faces have coupling 0, so the neighbour index is only read when it exists.
-      const int64_t fu = i + ux * (j + g.ny * k);
-      const int64_t fv = i + g.nx * (j + vy * k);
-      const int64_t fw = c;  // w-face (i, j, k) has the cell's index
-      double sum = op.diagonal[static_cast<size_t>(c)] * p[c];
-      if (cu[fu] != 0.0) sum -= cu[fu] * p[c - sx];
-      if (cu[fu + 1] != 0.0) sum -= cu[fu + 1] * p[c + sx];
-      if (cv[fv] != 0.0) sum -= cv[fv] * p[c - sy];
-      if (cv[fv + g.nx] != 0.0) sum -= cv[fv + g.nx] * p[c + sy];
-      if (cw[fw] != 0.0) sum -= cw[fw] * p[c - sz];
-      if (cw[fw + sz] != 0.0) sum -= cw[fw + sz] * p[c + sz];
-      out[c] = sum;
+  const poisson_rows::Stencil s(op);
+  poisson_rows::forEachRow(tasks, s, [&](int64_t j, int64_t k, int64_t c0) {
+    const int64_t row = j + s.ny * k;
+    double* o = out + c0;
+    poisson_rows::clearOutsideSpan(s, row, o);
+    const poisson_rows::Row r(s, j, k, p);
+    for (int64_t i = s.spanBegin(row), e = s.spanEnd(row); i < e; ++i) {
+      const double d = r.diagonal[i];
+      o[i] = d > 0.0 ? d * r.x[i] - r.neighbourSum(i) : 0.0;
     }
   });
 }

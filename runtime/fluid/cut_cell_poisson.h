@@ -50,6 +50,10 @@ struct CutCellPoisson {
   std::vector<uint8_t> regionFloating;  // per region: 1 when it has no Dirichlet face
   std::vector<int64_t> regionCellCount;
   int64_t fluidCellCount = 0;
+  // Per grid row (j + ny k): [begin, end) of the i of its fluid cells, first to last (begin ==
+  // end when the row has none). Kernels skip the rest of the row (poisson_rows.h); empty means
+  // "every row spans all its cells".
+  std::vector<int32_t> rowSpan;
 
   bool isFluid(size_t cell) const { return region[cell] >= 0; }
 };
@@ -71,6 +75,10 @@ double effectiveOpenFraction(const MacGrid& grid, const FaceFractionField& fract
 // set (cellCount values, free_surface.h) for the free-surface operator.
 Status buildCutCellPoisson(TaskSystem& tasks, const MacGrid& grid, const FaceFractionField& fractions,
                            CutCellPoisson* op, const double* liquidPhi = nullptr);
+
+// Fills op->rowSpan from op->diagonal (a cell is fluid when its diagonal is positive). Every
+// builder of a CutCellPoisson calls it last.
+void computeRowSpans(TaskSystem& tasks, CutCellPoisson* op);
 
 // out = L p over all cells (0 on non-fluid cells). p and out have cellCount entries.
 void applyCutCellPoisson(TaskSystem& tasks, const CutCellPoisson& op, const double* p, double* out);

@@ -175,6 +175,7 @@ Status coarsenCutCell(TaskSystem& tasks, const CutCellPoisson& fine, CutCellPois
   });
   assembleDiagonal(tasks, dirichlet, coarse);
   labelRegions(dirichlet, coarse);
+  computeRowSpans(tasks, coarse);
   return Status::Ok;
 }
 
@@ -219,6 +220,7 @@ Status coarsenVoxel(TaskSystem& tasks, const CutCellPoisson& fine, const std::ar
   });
   assembleDiagonal(tasks, dirichlet, coarse);
   labelRegions(dirichlet, coarse);
+  computeRowSpans(tasks, coarse);
   return Status::Ok;
 }
 

@@ -5,11 +5,17 @@
 #include <algorithm>
 
 #include "core/parallel_for.h"
+#include "fluid/poisson_rows.h"
 
 namespace vp {
 namespace {
 
-constexpr int64_t kCellsPerChunk = 4096;
+using poisson_rows::clearOutsideSpan;
+using poisson_rows::forEachRow;
+using poisson_rows::kCellsPerChunk;
+using poisson_rows::Row;
+using poisson_rows::Stencil;
+
 // Boundary lists are short (about 1% of the cells at 128^3) and swept 16 times per level and
 // cycle: chunks this large keep lists below it on the calling thread, where a dispatch to the
 // pool would cost more than the sweep.
@@ -18,75 +24,6 @@ constexpr int64_t kBoundaryCellsPerChunk = 16384;
 // on the worker count; the values never depend on it at all).
 constexpr int64_t kSlabsPerSweep = 16;
 
-// Raw arrays and strides of a level.
-struct Stencil {
-  const double* cu;
-  const double* cv;
-  const double* cw;
-  const double* diagonal;
-  int64_t nx, ny, nz, sz;
-
-  explicit Stencil(const CutCellPoisson& op)
-      : cu(op.coupling[0].data()), cv(op.coupling[1].data()), cw(op.coupling[2].data()),
-        diagonal(op.diagonal.data()), nx(op.grid.nx), ny(op.grid.ny), nz(op.grid.nz),
-        sz(static_cast<int64_t>(op.grid.nx) * op.grid.ny) {}
-
-  int64_t rows() const { return ny * nz; }
-  int64_t rowGrain() const { return nx >= kCellsPerChunk ? 1 : kCellsPerChunk / nx; }
-};
-
-// One grid row (j, k) of a level with its neighbour rows, set up once per row so the cell loop
-// has no index arithmetic beyond i (integer divisions per cell cost more than the memory
-// traffic). A neighbour row outside the grid is replaced by the row itself: its face coupling
-// is 0, so the product vanishes without a branch.
-struct Row {
-  const double* cu;      // cu[i], cu[i + 1]: the cell's -x and +x faces
-  const double* cvLow;   // -y faces of the row's cells
-  const double* cvHigh;  // +y faces
-  const double* cwLow;   // -z faces
-  const double* cwHigh;  // +z faces
-  const double* diagonal;
-  const double* x;
-  const double* xDown;   // row j - 1
-  const double* xUp;     // row j + 1
-  const double* xBack;   // row k - 1
-  const double* xFront;  // row k + 1
-  int64_t nx;
-
-  Row(const Stencil& s, int64_t j, int64_t k, const double* values) : nx(s.nx) {
-    const int64_t row = j + s.ny * k, c0 = s.nx * row;
-    cu = s.cu + (s.nx + 1) * row;
-    cvLow = s.cv + s.nx * (j + (s.ny + 1) * k);
-    cvHigh = cvLow + s.nx;
-    cwLow = s.cw + c0;
-    cwHigh = cwLow + s.sz;
-    diagonal = s.diagonal + c0;
-    x = xDown = xUp = xBack = xFront = nullptr;  // values == nullptr: coefficients only
-    if (values == nullptr) return;
-    x = values + c0;
-    xDown = j > 0 ? x - s.nx : x;
-    xUp = j + 1 < s.ny ? x + s.nx : x;
-    xBack = k > 0 ? x - s.sz : x;
-    xFront = k + 1 < s.nz ? x + s.sz : x;
-  }
-
-  // sum_f A_f x_nb over the six faces of cell i of the row.
-  double neighbourSum(int64_t i) const {
-    const double left = i > 0 ? x[i - 1] : 0.0;
-    const double right = i + 1 < nx ? x[i + 1] : 0.0;
-    return cu[i] * left + cu[i + 1] * right + cvLow[i] * xDown[i] + cvHigh[i] * xUp[i] + cwLow[i] * xBack[i] +
-           cwHigh[i] * xFront[i];
-  }
-};
-
-// Calls body(row, i0 of the row's cells) for every row in parallel.
-template <class Body>
-void forEachRow(TaskSystem& tasks, const Stencil& s, const Body& body) {
-  parallelFor(tasks, s.rows(), s.rowGrain(), [&](int64_t begin, int64_t end) {
-    for (int64_t row = begin; row < end; ++row) body(row % s.ny, row / s.ny, s.nx * row);
-  });
-}
-
 // Gauss-Seidel update of the cells of one colour in one row. kFromZero: the sweep starts from
 // x = 0 without x having been cleared, so the first colour ignores its neighbours (they are 0)
 // and both colours write every cell, non-fluid ones included (0), which makes a separate
@@ -94,10 +31,12 @@ void forEachRow(TaskSystem& tasks, const Stencil& s, const Body& body) {
 template <bool kFromZero>
 void updateRow(const Stencil& s, int64_t j, int64_t k, const double* b, double* x, int colour, bool firstColour) {
   const Row r(s, j, k, x);
-  const int64_t c0 = s.nx * (j + s.ny * k);
+  const int64_t row = j + s.ny * k, c0 = s.nx * row;
   double* xr = x + c0;
   const double* br = b + c0;
-  for (int64_t i = (j + k + colour) & 1; i < s.nx; i += 2) {
+  if (kFromZero && firstColour) clearOutsideSpan(s, row, xr);
+  const int64_t begin = s.spanBegin(row), end = s.spanEnd(row);
+  for (int64_t i = begin + ((begin + j + k + colour) & 1); i < end; i += 2) {
     const double d = r.diagonal[i];
     if (kFromZero) xr[i] = d > 0.0 ? (br[i] + (firstColour ? 0.0 : r.neighbourSum(i))) / d : 0.0;
     else if (d > 0.0) xr[i] = (br[i] + r.neighbourSum(i)) / d;
@@ -165,7 +104,9 @@ void smoothJacobi(TaskSystem& tasks, const CutCellPoisson& op, const double* b, 
     const bool first = fromZero && sweep == 0;
     forEachRow(tasks, s, [&](int64_t j, int64_t k, int64_t c0) {
       const Row r(s, j, k, first ? nullptr : in);
-      for (int64_t i = 0; i < s.nx; ++i) {
+      const int64_t row = j + s.ny * k;
+      clearOutsideSpan(s, row, out + c0);
+      for (int64_t i = s.spanBegin(row), e = s.spanEnd(row); i < e; ++i) {
         const double d = r.diagonal[i];
         if (!(d > 0.0)) out[c0 + i] = 0.0;
         else if (first) out[c0 + i] = weight * b[c0 + i] / d;
@@ -191,9 +132,12 @@ void smoothRedBlackCells(TaskSystem& tasks, const CutCellPoisson& op, const Boun
       for (int64_t n = begin; n < end; ++n) {
         const BoundaryCell& e = list[static_cast<size_t>(n)];
         const int64_t c = e.cell;
-        const double sum = s.cu[e.faceU] * x[e.neighbour[0]] + s.cu[e.faceU + 1] * x[e.neighbour[1]] +
-                           s.cv[e.faceV] * x[e.neighbour[2]] + s.cv[e.faceV + s.nx] * x[e.neighbour[3]] +
-                           s.cw[c] * x[e.neighbour[4]] + s.cw[c + s.sz] * x[e.neighbour[5]];
+        const unsigned in = e.insideFaces;
+        // A neighbour outside the grid is read as the cell itself; its face coupling is 0.
+        const double sum = s.cu[e.faceU] * x[(in & 1u) ? c - 1 : c] + s.cu[e.faceU + 1] * x[(in & 2u) ? c + 1 : c] +
+                           s.cv[e.faceV] * x[(in & 4u) ? c - s.nx : c] +
+                           s.cv[e.faceV + s.nx] * x[(in & 8u) ? c + s.nx : c] +
+                           s.cw[c] * x[(in & 16u) ? c - s.sz : c] + s.cw[c + s.sz] * x[(in & 32u) ? c + s.sz : c];
         x[c] = (b[c] + sum) / s.diagonal[c];
       }
     });
@@ -239,10 +183,11 @@ void findBoundaryCells(TaskSystem& tasks, const CutCellPoisson& op, double fullC
         for (int f = 0; f < 6; ++f) near = near || (inside[f] && cut[static_cast<size_t>(c + step[f])]);
         if (!near) continue;
         BoundaryCell e;
-        e.cell = c;
-        e.faceU = i + (s.nx + 1) * row;
-        e.faceV = i + s.nx * (j + (s.ny + 1) * k);
-        for (int f = 0; f < 6; ++f) e.neighbour[f] = inside[f] ? c + step[f] : c;
+        e.cell = static_cast<int32_t>(c);
+        e.faceU = static_cast<int32_t>(i + (s.nx + 1) * row);
+        e.faceV = static_cast<int32_t>(i + s.nx * (j + (s.ny + 1) * k));
+        e.insideFaces = 0;
+        for (int f = 0; f < 6; ++f) e.insideFaces = static_cast<uint8_t>(e.insideFaces | (inside[f] ? 1u << f : 0u));
         (*byColour)[static_cast<size_t>((i + j + k) & 1)].push_back(e);
       }
     }
@@ -252,7 +197,9 @@ void computeResidual(TaskSystem& tasks, const CutCellPoisson& op, const double* 
   const Stencil s(op);
   forEachRow(tasks, s, [&](int64_t j, int64_t k, int64_t c0) {
     const Row row(s, j, k, x);
-    for (int64_t i = 0; i < s.nx; ++i) {
+    const int64_t index = j + s.ny * k;
+    clearOutsideSpan(s, index, r + c0);
+    for (int64_t i = s.spanBegin(index), e = s.spanEnd(index); i < e; ++i) {
       const double d = row.diagonal[i];
       r[c0 + i] = d > 0.0 ? b[c0 + i] + row.neighbourSum(i) - d * row.x[i] : 0.0;
     }

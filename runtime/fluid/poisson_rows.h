@@ -1,0 +1,95 @@
+// Row-wise access to a CutCellPoisson's implicit 7-point operator, shared by the CG's operator
+// and the multigrid's smoothers and residual. The kernels walk grid rows (j, k) and, inside a
+// row, only the span of cells from its first to its last fluid cell: integer divisions per cell
+// cost more than the memory traffic, and rows (or row ends) of air above a liquid or inside a
+// solid hold no unknowns, so streaming them would only spend bandwidth.
+#pragma once
+
+#include <cstdint>
+
+#include "core/parallel_for.h"
+#include "fluid/cut_cell_poisson.h"
+
+namespace vp::poisson_rows {
+
+constexpr int64_t kCellsPerChunk = 4096;
+
+// Raw arrays and strides of a level.
+struct Stencil {
+  const double* cu;
+  const double* cv;
+  const double* cw;
+  const double* diagonal;
+  const int32_t* span;  // CutCellPoisson::rowSpan, or nullptr: every row spans all its cells
+  int64_t nx, ny, nz, sz;
+
+  explicit Stencil(const CutCellPoisson& op)
+      : cu(op.coupling[0].data()), cv(op.coupling[1].data()), cw(op.coupling[2].data()),
+        diagonal(op.diagonal.data()), span(op.rowSpan.empty() ? nullptr : op.rowSpan.data()), nx(op.grid.nx),
+        ny(op.grid.ny), nz(op.grid.nz), sz(static_cast<int64_t>(op.grid.nx) * op.grid.ny) {}
+
+  int64_t rows() const { return ny * nz; }
+  int64_t rowGrain() const { return nx >= kCellsPerChunk ? 1 : kCellsPerChunk / nx; }
+  // [begin, end) of the cells of row (j + ny k) that can hold fluid; empty when begin == end.
+  int64_t spanBegin(int64_t row) const { return span ? span[2 * row] : 0; }
+  int64_t spanEnd(int64_t row) const { return span ? span[2 * row + 1] : nx; }
+};
+
+// One grid row (j, k) with its neighbour rows, set up once per row. A neighbour row outside the
+// grid is replaced by the row itself: its face coupling is 0, so the product vanishes without a
+// branch.
+struct Row {
+  const double* cu;      // cu[i], cu[i + 1]: the cell's -x and +x faces
+  const double* cvLow;   // -y faces of the row's cells
+  const double* cvHigh;  // +y faces
+  const double* cwLow;   // -z faces
+  const double* cwHigh;  // +z faces
+  const double* diagonal;
+  const double* x;
+  const double* xDown;   // row j - 1
+  const double* xUp;     // row j + 1
+  const double* xBack;   // row k - 1
+  const double* xFront;  // row k + 1
+  int64_t nx;
+
+  Row(const Stencil& s, int64_t j, int64_t k, const double* values) : nx(s.nx) {
+    const int64_t row = j + s.ny * k, c0 = s.nx * row;
+    cu = s.cu + (s.nx + 1) * row;
+    cvLow = s.cv + s.nx * (j + (s.ny + 1) * k);
+    cvHigh = cvLow + s.nx;
+    cwLow = s.cw + c0;
+    cwHigh = cwLow + s.sz;
+    diagonal = s.diagonal + c0;
+    x = xDown = xUp = xBack = xFront = nullptr;  // values == nullptr: coefficients only
+    if (values == nullptr) return;
+    x = values + c0;
+    xDown = j > 0 ? x - s.nx : x;
+    xUp = j + 1 < s.ny ? x + s.nx : x;
+    xBack = k > 0 ? x - s.sz : x;
+    xFront = k + 1 < s.nz ? x + s.sz : x;
+  }
+
+  // sum_f A_f x_nb over the six faces of cell i of the row.
+  double neighbourSum(int64_t i) const {
+    const double left = i > 0 ? x[i - 1] : 0.0;
+    const double right = i + 1 < nx ? x[i + 1] : 0.0;
+    return cu[i] * left + cu[i + 1] * right + cvLow[i] * xDown[i] + cvHigh[i] * xUp[i] + cwLow[i] * xBack[i] +
+           cwHigh[i] * xFront[i];
+  }
+};
+
+// Calls body(j, k, index of the row's first cell) for every row in parallel.
+template <class Body>
+void forEachRow(TaskSystem& tasks, const Stencil& s, const Body& body) {
+  parallelFor(tasks, s.rows(), s.rowGrain(), [&](int64_t begin, int64_t end) {
+    for (int64_t row = begin; row < end; ++row) body(row % s.ny, row / s.ny, s.nx * row);
+  });
+}
+
+// Writes 0 to the cells of row `row` (first cell c0) outside its span.
+inline void clearOutsideSpan(const Stencil& s, int64_t row, double* rowValues) {
+  for (int64_t i = 0, e = s.spanBegin(row); i < e; ++i) rowValues[i] = 0.0;
+  for (int64_t i = s.spanEnd(row); i < s.nx; ++i) rowValues[i] = 0.0;
+}
+
+}  // namespace vp::poisson_rows
