@@ -149,7 +149,7 @@ Status buildCutCellPoisson(TaskSystem& tasks, const MacGrid& grid, const FaceFra
 }
 
 void computeRowSpans(TaskSystem& tasks, CutCellPoisson* op) {
-  const poisson_rows::Stencil s(*op);
+  const poisson_rows::Stencil<double> s(*op);
   op->rowSpan.assign(static_cast<size_t>(2 * s.rows()), 0);
   int32_t* span = op->rowSpan.data();
   parallelFor(tasks, s.rows(), s.rowGrain(), [&](int64_t begin, int64_t end) {
@@ -165,12 +165,12 @@ void computeRowSpans(TaskSystem& tasks, CutCellPoisson* op) {
 }
 
 void applyCutCellPoisson(TaskSystem& tasks, const CutCellPoisson& op, const double* p, double* out) {
-  const poisson_rows::Stencil s(op);
+  const poisson_rows::Stencil<double> s(op);
   poisson_rows::forEachRow(tasks, s, [&](int64_t j, int64_t k, int64_t c0) {
     const int64_t row = j + s.ny * k;
     double* o = out + c0;
     poisson_rows::clearOutsideSpan(s, row, o);
-    const poisson_rows::Row r(s, j, k, p);
+    const poisson_rows::Row<double> r(s, j, k, p);
     for (int64_t i = s.spanBegin(row), e = s.spanEnd(row); i < e; ++i) {
       const double d = r.diagonal[i];
       o[i] = d > 0.0 ? d * r.x[i] - r.neighbourSum(i) : 0.0;
@@ -178,7 +178,8 @@ void applyCutCellPoisson(TaskSystem& tasks, const CutCellPoisson& op, const doub
   });
 }
 
-void filterCutCellPoisson(const CutCellPoisson& op, double* values) {
+template <class T>
+void filterCutCellPoisson(const CutCellPoisson& op, T* values) {
   const size_t cells = op.region.size();
   const size_t regions = op.regionFloating.size();
   bool anyFloating = false;
@@ -197,9 +198,12 @@ void filterCutCellPoisson(const CutCellPoisson& op, double* values) {
   for (size_t r = 0; r < regions; ++r) mean[r] /= static_cast<double>(op.regionCellCount[r]);
   for (size_t c = 0; c < cells; ++c) {
     const int32_t r = op.region[c];
-    if (r >= 0 && op.regionFloating[r]) values[c] -= mean[r];
+    if (r >= 0 && op.regionFloating[r]) values[c] = static_cast<T>(values[c] - mean[r]);
   }
 }
+
+template void filterCutCellPoisson<double>(const CutCellPoisson&, double*);
+template void filterCutCellPoisson<float>(const CutCellPoisson&, float*);
 
 void computeNetOutflow(TaskSystem& tasks, const MacGrid& grid, const FaceFractionField& fractions,
                        const CutCellPoisson& op, double* outflow) {

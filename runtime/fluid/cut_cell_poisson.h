@@ -38,22 +38,28 @@
 
 namespace vp {
 
-struct CutCellPoisson {
+// The coefficients of the operator on a grid, in double (CutCellPoisson) or in single precision
+// (the multigrid's V-cycle, poisson_multigrid.h).
+template <class T>
+struct PoissonCoefficients {
   MacGridSpec grid;
   // Per face (face layout): A_f for faces between two cells of the grid, 0 for boundary faces
   // (their Dirichlet part is in the diagonal) and closed faces.
-  std::vector<double> coupling[3];
+  std::vector<T> coupling[3];
   // Per cell: sum of A_f over the cell's open faces, Dirichlet faces included; 0 off fluid.
-  std::vector<double> diagonal;
+  std::vector<T> diagonal;
+  // Per grid row (j + ny k): [begin, end) of the i of its fluid cells, first to last (begin ==
+  // end when the row has none). Kernels skip the rest of the row (poisson_rows.h); empty means
+  // "every row spans all its cells".
+  std::vector<int32_t> rowSpan;
+};
+
+struct CutCellPoisson : PoissonCoefficients<double> {
   // Per cell: connected fluid region id, -1 for cells that are not fluid.
   std::vector<int32_t> region;
   std::vector<uint8_t> regionFloating;  // per region: 1 when it has no Dirichlet face
   std::vector<int64_t> regionCellCount;
   int64_t fluidCellCount = 0;
-  // Per grid row (j + ny k): [begin, end) of the i of its fluid cells, first to last (begin ==
-  // end when the row has none). Kernels skip the rest of the row (poisson_rows.h); empty means
-  // "every row spans all its cells".
-  std::vector<int32_t> rowSpan;
 
   bool isFluid(size_t cell) const { return region[cell] >= 0; }
 };
@@ -83,8 +89,9 @@ void computeRowSpans(TaskSystem& tasks, CutCellPoisson* op);
 // out = L p over all cells (0 on non-fluid cells). p and out have cellCount entries.
 void applyCutCellPoisson(TaskSystem& tasks, const CutCellPoisson& op, const double* p, double* out);
 
-// In place: zero on non-fluid cells, zero mean on every floating region.
-void filterCutCellPoisson(const CutCellPoisson& op, double* values);
+// In place: zero on non-fluid cells, zero mean on every floating region (T: double or float).
+template <class T>
+void filterCutCellPoisson(const CutCellPoisson& op, T* values);
 
 // Per cell: the net outflow sum_f +-(A_f u_f + (1 - A_f) u_solid,f) through the cell's faces
 // (velocity times area / h^2; + on the high face of each axis), with Wall faces contributing

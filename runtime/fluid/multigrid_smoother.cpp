@@ -28,23 +28,23 @@ constexpr int64_t kSlabsPerSweep = 16;
 // x = 0 without x having been cleared, so the first colour ignores its neighbours (they are 0)
 // and both colours write every cell, non-fluid ones included (0), which makes a separate
 // clearing pass unnecessary.
-template <bool kFromZero>
-void updateRow(const Stencil& s, int64_t j, int64_t k, const double* b, double* x, int colour, bool firstColour) {
-  const Row r(s, j, k, x);
+template <bool kFromZero, class T>
+void updateRow(const Stencil<T>& s, int64_t j, int64_t k, const T* b, T* x, int colour, bool firstColour) {
+  const Row<T> r(s, j, k, x);
   const int64_t row = j + s.ny * k, c0 = s.nx * row;
-  double* xr = x + c0;
-  const double* br = b + c0;
+  T* xr = x + c0;
+  const T* br = b + c0;
   if (kFromZero && firstColour) clearOutsideSpan(s, row, xr);
   const int64_t begin = s.spanBegin(row), end = s.spanEnd(row);
   for (int64_t i = begin + ((begin + j + k + colour) & 1); i < end; i += 2) {
-    const double d = r.diagonal[i];
-    if (kFromZero) xr[i] = d > 0.0 ? (br[i] + (firstColour ? 0.0 : r.neighbourSum(i))) / d : 0.0;
-    else if (d > 0.0) xr[i] = (br[i] + r.neighbourSum(i)) / d;
+    const T d = r.diagonal[i];
+    if (kFromZero) xr[i] = d > T(0) ? (br[i] + (firstColour ? T(0) : r.neighbourSum(i))) / d : T(0);
+    else if (d > T(0)) xr[i] = (br[i] + r.neighbourSum(i)) / d;
   }
 }
 
-template <bool kFromZero>
-void updatePlane(const Stencil& s, int64_t k, const double* b, double* x, int colour, bool firstColour) {
+template <bool kFromZero, class T>
+void updatePlane(const Stencil<T>& s, int64_t k, const T* b, T* x, int colour, bool firstColour) {
   for (int64_t j = 0; j < s.ny; ++j) updateRow<kFromZero>(s, j, k, b, x, colour, firstColour);
 }
 
@@ -55,8 +55,8 @@ void updatePlane(const Stencil& s, int64_t k, const double* b, double* x, int co
 // take their second colour in a second phase, because in the first phase the neighbouring
 // slabs' first-colour updates still read those planes' old second-colour values, and then
 // the neighbours' first colour is all done.
-template <bool kFromZero>
-void fusedSweep(TaskSystem& tasks, const Stencil& s, const double* b, double* x, int first) {
+template <bool kFromZero, class T>
+void fusedSweep(TaskSystem& tasks, const Stencil<T>& s, const T* b, T* x, int first) {
   const int second = 1 - first;
   const int64_t slabPlanes = std::max<int64_t>(2, (s.nz + kSlabsPerSweep - 1) / kSlabsPerSweep);
   const int64_t slabs = (s.nz + slabPlanes - 1) / slabPlanes;
@@ -86,31 +86,34 @@ void fusedSweep(TaskSystem& tasks, const Stencil& s, const double* b, double* x,
 
 }  // namespace
 
-void smoothRedBlack(TaskSystem& tasks, const CutCellPoisson& op, const double* b, double* x, bool reverse,
+template <class T>
+void smoothRedBlack(TaskSystem& tasks, const PoissonCoefficients<T>& op, const T* b, T* x, bool reverse,
                     bool fromZero) {
-  const Stencil s(op);
+  const Stencil<T> s(op);
   if (fromZero) fusedSweep<true>(tasks, s, b, x, reverse ? 1 : 0);
   else fusedSweep<false>(tasks, s, b, x, reverse ? 1 : 0);
 }
 
-void smoothJacobi(TaskSystem& tasks, const CutCellPoisson& op, const double* b, double* x, double* scratch,
-                  double weight, int sweeps, bool fromZero) {
-  const Stencil s(op);
+template <class T>
+void smoothJacobi(TaskSystem& tasks, const PoissonCoefficients<T>& op, const T* b, T* x, T* scratch, double weight,
+                  int sweeps, bool fromZero) {
+  const Stencil<T> s(op);
+  const T w = static_cast<T>(weight);
   // Ping-pong between x and scratch, so a sweep is one pass and only an odd count copies back.
   // From zero the first sweep is w D^-1 b: no neighbour reads, nothing to clear.
-  const double* in = x;
-  double* out = fromZero ? x : scratch;  // the sweep from zero reads nothing: it may write x
+  const T* in = x;
+  T* out = fromZero ? x : scratch;  // the sweep from zero reads nothing: it may write x
   for (int sweep = 0; sweep < sweeps; ++sweep) {
     const bool first = fromZero && sweep == 0;
     forEachRow(tasks, s, [&](int64_t j, int64_t k, int64_t c0) {
-      const Row r(s, j, k, first ? nullptr : in);
+      const Row<T> r(s, j, k, first ? nullptr : in);
       const int64_t row = j + s.ny * k;
       clearOutsideSpan(s, row, out + c0);
       for (int64_t i = s.spanBegin(row), e = s.spanEnd(row); i < e; ++i) {
-        const double d = r.diagonal[i];
-        if (!(d > 0.0)) out[c0 + i] = 0.0;
-        else if (first) out[c0 + i] = weight * b[c0 + i] / d;
-        else out[c0 + i] = r.x[i] + weight * (b[c0 + i] + r.neighbourSum(i) - d * r.x[i]) / d;
+        const T d = r.diagonal[i];
+        if (!(d > T(0))) out[c0 + i] = T(0);
+        else if (first) out[c0 + i] = w * b[c0 + i] / d;
+        else out[c0 + i] = r.x[i] + w * (b[c0 + i] + r.neighbourSum(i) - d * r.x[i]) / d;
       }
     });
     in = out;
@@ -123,9 +126,10 @@ void smoothJacobi(TaskSystem& tasks, const CutCellPoisson& op, const double* b, 
   }
 }
 
-void smoothRedBlackCells(TaskSystem& tasks, const CutCellPoisson& op, const BoundaryCellLists& byColour,
-                         const double* b, double* x, bool reverse) {
-  const Stencil s(op);
+template <class T>
+void smoothRedBlackCells(TaskSystem& tasks, const PoissonCoefficients<T>& op, const BoundaryCellLists& byColour,
+                         const T* b, T* x, bool reverse) {
+  const Stencil<T> s(op);
   for (int half = 0; half < 2; ++half) {
     const std::vector<BoundaryCell>& list = byColour[static_cast<size_t>(reverse ? 1 - half : half)];
     parallelFor(tasks, static_cast<int64_t>(list.size()), kBoundaryCellsPerChunk, [&](int64_t begin, int64_t end) {
@@ -134,7 +138,7 @@ void smoothRedBlackCells(TaskSystem& tasks, const CutCellPoisson& op, const Boun
         const int64_t c = e.cell;
         const unsigned in = e.insideFaces;
         // A neighbour outside the grid is read as the cell itself; its face coupling is 0.
-        const double sum = s.cu[e.faceU] * x[(in & 1u) ? c - 1 : c] + s.cu[e.faceU + 1] * x[(in & 2u) ? c + 1 : c] +
+        const T sum = s.cu[e.faceU] * x[(in & 1u) ? c - 1 : c] + s.cu[e.faceU + 1] * x[(in & 2u) ? c + 1 : c] +
                            s.cv[e.faceV] * x[(in & 4u) ? c - s.nx : c] +
                            s.cv[e.faceV + s.nx] * x[(in & 8u) ? c + s.nx : c] +
                            s.cw[c] * x[(in & 16u) ? c - s.sz : c] + s.cw[c + s.sz] * x[(in & 32u) ? c + s.sz : c];
@@ -146,10 +150,10 @@ void smoothRedBlackCells(TaskSystem& tasks, const CutCellPoisson& op, const Boun
 
 void findBoundaryCells(TaskSystem& tasks, const CutCellPoisson& op, double fullCoupling,
                        BoundaryCellLists* byColour) {
-  const Stencil s(op);
+  const Stencil<double> s(op);
   std::vector<uint8_t> cut(static_cast<size_t>(s.rows() * s.nx), 0);
   forEachRow(tasks, s, [&](int64_t j, int64_t k, int64_t c0) {
-    const Row r(s, j, k, nullptr);
+    const Row<double> r(s, j, k, nullptr);
     for (int64_t i = 0; i < s.nx; ++i) {
       const double d = r.diagonal[i];
       if (!(d > 0.0)) continue;
@@ -193,17 +197,28 @@ void findBoundaryCells(TaskSystem& tasks, const CutCellPoisson& op, double fullC
     }
 }
 
-void computeResidual(TaskSystem& tasks, const CutCellPoisson& op, const double* b, const double* x, double* r) {
-  const Stencil s(op);
+template <class T>
+void computeResidual(TaskSystem& tasks, const PoissonCoefficients<T>& op, const T* b, const T* x, T* r) {
+  const Stencil<T> s(op);
   forEachRow(tasks, s, [&](int64_t j, int64_t k, int64_t c0) {
-    const Row row(s, j, k, x);
+    const Row<T> row(s, j, k, x);
     const int64_t index = j + s.ny * k;
     clearOutsideSpan(s, index, r + c0);
     for (int64_t i = s.spanBegin(index), e = s.spanEnd(index); i < e; ++i) {
-      const double d = row.diagonal[i];
-      r[c0 + i] = d > 0.0 ? b[c0 + i] + row.neighbourSum(i) - d * row.x[i] : 0.0;
+      const T d = row.diagonal[i];
+      r[c0 + i] = d > T(0) ? b[c0 + i] + row.neighbourSum(i) - d * row.x[i] : T(0);
     }
   });
 }
+
+#define VP_INSTANTIATE_SMOOTHERS(T)                                                                         \
+  template void smoothRedBlack<T>(TaskSystem&, const PoissonCoefficients<T>&, const T*, T*, bool, bool);         \
+  template void smoothJacobi<T>(TaskSystem&, const PoissonCoefficients<T>&, const T*, T*, T*, double, int, bool); \
+  template void smoothRedBlackCells<T>(TaskSystem&, const PoissonCoefficients<T>&, const BoundaryCellLists&,      \
+                                       const T*, T*, bool);                                                      \
+  template void computeResidual<T>(TaskSystem&, const PoissonCoefficients<T>&, const T*, const T*, T*);
+VP_INSTANTIATE_SMOOTHERS(double)
+VP_INSTANTIATE_SMOOTHERS(float)
+#undef VP_INSTANTIATE_SMOOTHERS
 
 }  // namespace vp

@@ -36,13 +36,16 @@ enum class PoissonSmoother { RedBlackGaussSeidel, DampedJacobi };
 
 // One red-black sweep (red then black; black then red when `reverse`). `fromZero`: the sweep
 // starts from x = 0 whatever x holds (every cell is written, non-fluid ones with 0).
-void smoothRedBlack(TaskSystem& tasks, const CutCellPoisson& op, const double* b, double* x, bool reverse,
+// T is double or float (the V-cycle runs in single precision, poisson_multigrid.h).
+template <class T>
+void smoothRedBlack(TaskSystem& tasks, const PoissonCoefficients<T>& op, const T* b, T* x, bool reverse,
                     bool fromZero = false);
 
 // `sweeps` damped Jacobi sweeps; `scratch` has the level's cell count; `fromZero` as for
 // smoothRedBlack.
-void smoothJacobi(TaskSystem& tasks, const CutCellPoisson& op, const double* b, double* x, double* scratch,
-                  double weight, int sweeps, bool fromZero = false);
+template <class T>
+void smoothJacobi(TaskSystem& tasks, const PoissonCoefficients<T>& op, const T* b, T* x, T* scratch, double weight,
+                  int sweeps, bool fromZero = false);
 
 // Boundary smoothing (McAdams et al. 2010): Gauss-Seidel restricted to the listed cells, split
 // by colour (red list then black list; black then red when `reverse`), so it parallelizes like
@@ -57,8 +60,9 @@ struct BoundaryCell {
 };
 using BoundaryCellLists = std::array<std::vector<BoundaryCell>, 2>;  // red, black
 
-void smoothRedBlackCells(TaskSystem& tasks, const CutCellPoisson& op, const BoundaryCellLists& byColour,
-                         const double* b, double* x, bool reverse);
+template <class T>
+void smoothRedBlackCells(TaskSystem& tasks, const PoissonCoefficients<T>& op, const BoundaryCellLists& byColour,
+                         const T* b, T* x, bool reverse);
 
 // The fluid cells within one face step of a cut cell, split by colour: red cells in
 // byColour[0], black in byColour[1], each in cell order. A cell is cut when a face inside the
@@ -70,6 +74,7 @@ void findBoundaryCells(TaskSystem& tasks, const CutCellPoisson& op, double fullC
                        BoundaryCellLists* byColour);
 
 // r = b - A x on fluid cells, 0 elsewhere.
-void computeResidual(TaskSystem& tasks, const CutCellPoisson& op, const double* b, const double* x, double* r);
+template <class T>
+void computeResidual(TaskSystem& tasks, const PoissonCoefficients<T>& op, const T* b, const T* x, T* r);
 
 }  // namespace vp

@@ -51,13 +51,14 @@ struct AxisWeights {
 
 // out = sum_t w.weight[t] * line(w.first + t), over rows of `count` values: one pass of the
 // separable restriction along y or z.
-template <class Line>
-void gatherRows(const AxisWeights& w, int64_t count, const Line& line, double* out) {
-  for (int64_t I = 0; I < count; ++I) out[I] = 0.0;
+template <class T, class Line>
+void gatherRows(const AxisWeights& w, int64_t count, const Line& line, T* out) {
+  for (int64_t I = 0; I < count; ++I) out[I] = T(0);
   for (int t = 0; t < 4; ++t) {
     if (w.weight[t] == 0.0) continue;
-    const double* in = line(w.first + t);
-    for (int64_t I = 0; I < count; ++I) out[I] += w.weight[t] * in[I];
+    const T weight = static_cast<T>(w.weight[t]);
+    const T* in = line(w.first + t);
+    for (int64_t I = 0; I < count; ++I) out[I] += weight * in[I];
   }
 }
 
@@ -103,8 +104,9 @@ void computeProlongationScale(TaskSystem& tasks, const CutCellPoisson& fine, con
   });
 }
 
+template <class T>
 void prolongateAdd(TaskSystem& tasks, const CutCellPoisson& fine, const CutCellPoisson& coarse,
-                   const TransferSides& sides, const double* scale, const double* coarseX, double* fineX) {
+                   const TransferSides& sides, const T* scale, const T* coarseX, T* fineX) {
   const int64_t nx = fine.grid.nx, ny = fine.grid.ny, nz = fine.grid.nz;
   const int64_t cx = coarse.grid.nx, cy = coarse.grid.ny, cz = coarse.grid.nz;
   // Written out rather than through forEachFineStencil: the sum stays in a register.
@@ -112,30 +114,30 @@ void prolongateAdd(TaskSystem& tasks, const CutCellPoisson& fine, const CutCellP
     for (int64_t row = begin; row < end; ++row) {
       const int64_t j = row % ny, k = row / ny;
       const AxisStencil sy(j, cy, sides, 1), sz(k, cz, sides, 2);
-      const double* lines[4];
-      double wyz[4];
+      const T* lines[4];
+      T wyz[4];
       for (int z = 0; z < 2; ++z)
         for (int y = 0; y < 2; ++y) {
           lines[2 * z + y] = coarseX + cx * (sy.index[y] + cy * sz.index[z]);
-          wyz[2 * z + y] = sy.weight[y] * sz.weight[z];
+          wyz[2 * z + y] = static_cast<T>(sy.weight[y] * sz.weight[z]);
         }
       for (int64_t i = 0; i < nx; ++i) {
         const int64_t c = i + nx * row;
-        const double s = scale[c];
-        if (s == 0.0) continue;
+        const T s = scale[c];
+        if (s == T(0)) continue;
         const AxisStencil sx(i, cx, sides, 0);
-        double sum = 0.0;
-        for (int l = 0; l < 4; ++l)
-          sum += wyz[l] * (sx.weight[0] * lines[l][sx.index[0]] + sx.weight[1] * lines[l][sx.index[1]]);
+        const T w0 = static_cast<T>(sx.weight[0]), w1 = static_cast<T>(sx.weight[1]);
+        T sum = T(0);
+        for (int l = 0; l < 4; ++l) sum += wyz[l] * (w0 * lines[l][sx.index[0]] + w1 * lines[l][sx.index[1]]);
         fineX[c] += s * sum;
       }
     }
   });
 }
 
+template <class T>
 void restrictResidual(TaskSystem& tasks, const CutCellPoisson& fine, const CutCellPoisson& coarse,
-                      const TransferSides& sides, const double* scale, const double* fineR, double* coarseB,
-                      std::vector<double>* scratch) {
+                      const TransferSides& sides, const T* scale, const T* fineR, T* coarseB, std::vector<T>* scratch) {
   const int64_t nx = fine.grid.nx, ny = fine.grid.ny, nz = fine.grid.nz;
   const int64_t cx = coarse.grid.nx, cy = coarse.grid.ny, cz = coarse.grid.nz;
   // R is P^T with P's weights a product over the axes, so it runs as three 1D gathers (x, then
@@ -147,17 +149,17 @@ void restrictResidual(TaskSystem& tasks, const CutCellPoisson& fine, const CutCe
   for (int64_t J = 0; J < cy; ++J) wy.emplace_back(J, ny, cy, sides, 1);
   for (int64_t K = 0; K < cz; ++K) wz.emplace_back(K, nz, cz, sides, 2);
   scratch->resize(static_cast<size_t>(cx * ny * nz + cx * cy * nz));
-  double* alongX = scratch->data();           // cx * ny * nz
-  double* alongY = alongX + cx * ny * nz;     // cx * cy * nz
+  T* alongX = scratch->data();           // cx * ny * nz
+  T* alongY = alongX + cx * ny * nz;     // cx * cy * nz
   parallelFor(tasks, ny * nz, kRowGrain, [&](int64_t begin, int64_t end) {
     for (int64_t row = begin; row < end; ++row) {
-      const double* r = fineR + nx * row;
-      const double* sc = scale + nx * row;
+      const T* r = fineR + nx * row;
+      const T* sc = scale + nx * row;
       for (int64_t I = 0; I < cx; ++I) {
         const AxisWeights& w = wx[static_cast<size_t>(I)];
-        double sum = 0.0;
+        T sum = T(0);
         for (int x = 0; x < 4; ++x)
-          if (w.weight[x] != 0.0) sum += w.weight[x] * sc[w.first + x] * r[w.first + x];
+          if (w.weight[x] != 0.0) sum += static_cast<T>(w.weight[x]) * sc[w.first + x] * r[w.first + x];
         alongX[I + cx * row] = sum;
       }
     }
@@ -172,13 +174,22 @@ void restrictResidual(TaskSystem& tasks, const CutCellPoisson& fine, const CutCe
   parallelFor(tasks, cy * cz, kRowGrain, [&](int64_t begin, int64_t end) {
     for (int64_t row = begin; row < end; ++row) {
       const int64_t J = row % cy, K = row / cy;
-      double* out = coarseB + cx * row;
+      T* out = coarseB + cx * row;
       gatherRows(wz[static_cast<size_t>(K)], cx, [&](int64_t k) { return alongY + cx * (J + cy * k); }, out);
       const double* diagonal = coarse.diagonal.data() + cx * row;
       for (int64_t I = 0; I < cx; ++I)
-        if (!(diagonal[I] > 0.0)) out[I] = 0.0;
+        if (!(diagonal[I] > 0.0)) out[I] = T(0);
     }
   });
 }
+
+#define VP_INSTANTIATE_TRANSFERS(T)                                                                        \
+  template void prolongateAdd<T>(TaskSystem&, const CutCellPoisson&, const CutCellPoisson&, const TransferSides&, \
+                                 const T*, const T*, T*);                                                      \
+  template void restrictResidual<T>(TaskSystem&, const CutCellPoisson&, const CutCellPoisson&,                   \
+                                    const TransferSides&, const T*, const T*, T*, std::vector<T>*);
+VP_INSTANTIATE_TRANSFERS(double)
+VP_INSTANTIATE_TRANSFERS(float)
+#undef VP_INSTANTIATE_TRANSFERS
 
 }  // namespace vp

@@ -33,12 +33,14 @@ void computeProlongationScale(TaskSystem& tasks, const CutCellPoisson& fine, con
                               const TransferSides& sides, std::vector<double>* scale);
 
 // fineX += P coarseX.
+// T: double or float (the V-cycle's precision, poisson_multigrid.h).
+template <class T>
 void prolongateAdd(TaskSystem& tasks, const CutCellPoisson& fine, const CutCellPoisson& coarse,
-                   const TransferSides& sides, const double* scale, const double* coarseX, double* fineX);
+                   const TransferSides& sides, const T* scale, const T* coarseX, T* fineX);
 
 // coarseB = P^T fineR. `scratch` holds the partial sums (resized, so reuse it across calls).
+template <class T>
 void restrictResidual(TaskSystem& tasks, const CutCellPoisson& fine, const CutCellPoisson& coarse,
-                      const TransferSides& sides, const double* scale, const double* fineR, double* coarseB,
-                      std::vector<double>* scratch);
+                      const TransferSides& sides, const T* scale, const T* fineR, T* coarseB, std::vector<T>* scratch);
 
 }  // namespace vp

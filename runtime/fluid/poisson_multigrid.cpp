@@ -12,8 +12,8 @@ namespace {
 
 // `sweeps` sweeps (adjoint order when `adjoint`); `fromZero`: x holds anything and the smoothing
 // starts from 0 (both smoothers fold the clearing into their first sweep).
-void smooth(TaskSystem& tasks, const CutCellPoisson& op, const MultigridSettings& s, const double* b, double* x,
-            std::vector<double>& scratch, int sweeps, bool adjoint, bool fromZero) {
+void smooth(TaskSystem& tasks, const PoissonCoefficients<float>& op, const MultigridSettings& s, const float* b,
+            float* x, std::vector<float>& scratch, int sweeps, bool adjoint, bool fromZero) {
   if (s.smoother == PoissonSmoother::DampedJacobi) {
     smoothJacobi(tasks, op, b, x, scratch.data(), s.jacobiWeight, sweeps, fromZero);
     return;
@@ -23,12 +23,32 @@ void smooth(TaskSystem& tasks, const CutCellPoisson& op, const MultigridSettings
 
 // Pre-smoothing (from zero): full sweeps then boundary sweeps; post-smoothing: the adjoint, in
 // reverse order.
-void smoothLevel(TaskSystem& tasks, const CutCellPoisson& op, const MultigridSettings& s,
-                 const BoundaryCellLists& boundary, const double* b, double* x,
-                 std::vector<double>& scratch, bool post) {
+void smoothLevel(TaskSystem& tasks, const PoissonCoefficients<float>& op, const MultigridSettings& s,
+                 const BoundaryCellLists& boundary, const float* b, float* x, std::vector<float>& scratch,
+                 bool post) {
   if (!post) smooth(tasks, op, s, b, x, scratch, s.sweeps, false, true);
   for (int i = 0; i < s.boundarySweeps; ++i) smoothRedBlackCells(tasks, op, boundary, b, x, post);
   if (post) smooth(tasks, op, s, b, x, scratch, s.sweeps, true, false);
+}
+
+void toSinglePrecision(TaskSystem& tasks, const CutCellPoisson& in, PoissonCoefficients<float>* out) {
+  out->grid = in.grid;
+  out->rowSpan = in.rowSpan;
+  auto convert = [&](const std::vector<double>& from, std::vector<float>& to) {
+    to.resize(from.size());
+    parallelFor(tasks, static_cast<int64_t>(from.size()), 4096, [&](int64_t begin, int64_t end) {
+      for (int64_t i = begin; i < end; ++i) to[i] = static_cast<float>(from[i]);
+    });
+  };
+  for (int a = 0; a < 3; ++a) convert(in.coupling[a], out->coupling[a]);
+  convert(in.diagonal, out->diagonal);
+}
+
+template <class From, class To>
+void convertVector(TaskSystem& tasks, int64_t count, const From* from, To* to) {
+  parallelFor(tasks, count, 4096, [&](int64_t begin, int64_t end) {
+    for (int64_t i = begin; i < end; ++i) to[i] = static_cast<To>(from[i]);
+  });
 }
 
 bool canCoarsen(const MacGridSpec& g, int coarsestSize) {
@@ -61,6 +81,7 @@ Status buildPoissonMultigrid(TaskSystem& tasks, const CutCellPoisson& fine, cons
   mg->coarse.resize(static_cast<size_t>(levels - 1));
   mg->coarseFloating.assign(static_cast<size_t>(levels - 1), 0);
   mg->prolongScale.resize(static_cast<size_t>(levels - 1));
+  mg->single.resize(static_cast<size_t>(levels));
   mg->boundaryCells.resize(static_cast<size_t>(levels));
   mg->x.resize(static_cast<size_t>(levels));
   mg->b.resize(static_cast<size_t>(levels));
@@ -72,8 +93,13 @@ Status buildPoissonMultigrid(TaskSystem& tasks, const CutCellPoisson& fine, cons
     else VP_TRY(coarsenVoxel(tasks, from, sides, &to));
     mg->coarseFloating[static_cast<size_t>(l - 1)] =
         std::any_of(to.regionFloating.begin(), to.regionFloating.end(), [](uint8_t f) { return f != 0; });
-    computeProlongationScale(tasks, from, to, mg->sides, &mg->prolongScale[static_cast<size_t>(l - 1)]);
+    computeProlongationScale(tasks, from, to, mg->sides, &mg->scaleScratch);
+    std::vector<float>& scale = mg->prolongScale[static_cast<size_t>(l - 1)];
+    scale.resize(mg->scaleScratch.size());
+    convertVector(tasks, static_cast<int64_t>(scale.size()), mg->scaleScratch.data(), scale.data());
   }
+  for (int l = 0; l < levels; ++l)
+    toSinglePrecision(tasks, l == 0 ? fine : mg->coarse[static_cast<size_t>(l - 1)], &mg->single[static_cast<size_t>(l)]);
   // Full coupling doubles per level: 4 full fine faces, halved (multigrid_coarsening.h); the
   // voxel levels' full coupling follows the same rule.
   double fullCoupling = 1.0;
@@ -85,10 +111,8 @@ Status buildPoissonMultigrid(TaskSystem& tasks, const CutCellPoisson& fine, cons
   for (int l = 0; l < levels; ++l) {
     const size_t cells = (l == 0 ? fine : mg->coarse[static_cast<size_t>(l - 1)]).diagonal.size();
     mg->r[static_cast<size_t>(l)].resize(cells);
-    if (l > 0) {
-      mg->x[static_cast<size_t>(l)].resize(cells);
-      mg->b[static_cast<size_t>(l)].resize(cells);
-    }
+    mg->x[static_cast<size_t>(l)].resize(cells);
+    mg->b[static_cast<size_t>(l)].resize(cells);
   }
   return Status::Ok;
 }
@@ -98,32 +122,37 @@ void applyPoissonMultigrid(TaskSystem& tasks, const CutCellPoisson& fine, Poisso
   const MultigridSettings& s = mg.settings;
   const int levels = mg.levelCount();
   auto op = [&](int l) -> const CutCellPoisson& { return l == 0 ? fine : mg.coarse[static_cast<size_t>(l - 1)]; };
-  auto xOf = [&](int l) { return l == 0 ? z : mg.x[static_cast<size_t>(l)].data(); };
-  auto bOf = [&](int l) { return l == 0 ? r : mg.b[static_cast<size_t>(l)].data(); };
-  auto filter = [&](int l, double* v) {
+  auto single = [&](int l) -> const PoissonCoefficients<float>& { return mg.single[static_cast<size_t>(l)]; };
+  auto xOf = [&](int l) { return mg.x[static_cast<size_t>(l)].data(); };
+  auto bOf = [&](int l) { return mg.b[static_cast<size_t>(l)].data(); };
+  auto filter = [&](int l, float* v) {
     if (l > 0 && mg.coarseFloating[static_cast<size_t>(l - 1)]) filterCutCellPoisson(op(l), v);
   };
-  auto scratchOf = [&](int l) -> std::vector<double>& { return mg.r[static_cast<size_t>(l)]; };
+  auto scratchOf = [&](int l) -> std::vector<float>& { return mg.r[static_cast<size_t>(l)]; };
+  const int64_t fineCells = static_cast<int64_t>(fine.diagonal.size());
+  convertVector(tasks, fineCells, r, bOf(0));
 
   // Every level's x starts from 0; the first smoothing sweep clears it (smooth, fromZero).
   for (int l = 0; l + 1 < levels; ++l) {
-    smoothLevel(tasks, op(l), s, mg.boundaryCells[static_cast<size_t>(l)], bOf(l), xOf(l), scratchOf(l), false);
-    double* residual = scratchOf(l).data();
-    computeResidual(tasks, op(l), bOf(l), xOf(l), residual);
-    double* coarseB = mg.b[static_cast<size_t>(l + 1)].data();
+    smoothLevel(tasks, single(l), s, mg.boundaryCells[static_cast<size_t>(l)], bOf(l), xOf(l), scratchOf(l), false);
+    float* residual = scratchOf(l).data();
+    computeResidual(tasks, single(l), bOf(l), xOf(l), residual);
+    float* coarseB = bOf(l + 1);
     restrictResidual(tasks, op(l), op(l + 1), mg.sides, mg.prolongScale[static_cast<size_t>(l)].data(), residual,
                      coarseB, &mg.restrictScratch);
     filter(l + 1, coarseB);
   }
   const int last = levels - 1;
-  smooth(tasks, op(last), s, bOf(last), xOf(last), scratchOf(last), s.coarsestSweeps, false, true);
-  smooth(tasks, op(last), s, bOf(last), xOf(last), scratchOf(last), s.coarsestSweeps, true, false);
+  smooth(tasks, single(last), s, bOf(last), xOf(last), scratchOf(last), s.coarsestSweeps, false, true);
+  smooth(tasks, single(last), s, bOf(last), xOf(last), scratchOf(last), s.coarsestSweeps, true, false);
   filter(last, xOf(last));
   for (int l = last - 1; l >= 0; --l) {
-    prolongateAdd(tasks, op(l), op(l + 1), mg.sides, mg.prolongScale[static_cast<size_t>(l)].data(), xOf(l + 1), xOf(l));
-    smoothLevel(tasks, op(l), s, mg.boundaryCells[static_cast<size_t>(l)], bOf(l), xOf(l), scratchOf(l), true);
+    prolongateAdd(tasks, op(l), op(l + 1), mg.sides, mg.prolongScale[static_cast<size_t>(l)].data(), xOf(l + 1),
+                  xOf(l));
+    smoothLevel(tasks, single(l), s, mg.boundaryCells[static_cast<size_t>(l)], bOf(l), xOf(l), scratchOf(l), true);
     filter(l, xOf(l));
   }
+  convertVector(tasks, fineCells, xOf(0), z);
 }
 
 }  // namespace vp

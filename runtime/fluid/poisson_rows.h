@@ -14,16 +14,17 @@ namespace vp::poisson_rows {
 
 constexpr int64_t kCellsPerChunk = 4096;
 
-// Raw arrays and strides of a level.
+// Raw arrays and strides of a level (T: double or float).
+template <class T>
 struct Stencil {
-  const double* cu;
-  const double* cv;
-  const double* cw;
-  const double* diagonal;
-  const int32_t* span;  // CutCellPoisson::rowSpan, or nullptr: every row spans all its cells
+  const T* cu;
+  const T* cv;
+  const T* cw;
+  const T* diagonal;
+  const int32_t* span;  // PoissonCoefficients::rowSpan, or nullptr: every row spans all its cells
   int64_t nx, ny, nz, sz;
 
-  explicit Stencil(const CutCellPoisson& op)
+  explicit Stencil(const PoissonCoefficients<T>& op)
       : cu(op.coupling[0].data()), cv(op.coupling[1].data()), cw(op.coupling[2].data()),
         diagonal(op.diagonal.data()), span(op.rowSpan.empty() ? nullptr : op.rowSpan.data()), nx(op.grid.nx),
         ny(op.grid.ny), nz(op.grid.nz), sz(static_cast<int64_t>(op.grid.nx) * op.grid.ny) {}
@@ -38,21 +39,22 @@ struct Stencil {
 // One grid row (j, k) with its neighbour rows, set up once per row. A neighbour row outside the
 // grid is replaced by the row itself: its face coupling is 0, so the product vanishes without a
 // branch.
+template <class T>
 struct Row {
-  const double* cu;      // cu[i], cu[i + 1]: the cell's -x and +x faces
-  const double* cvLow;   // -y faces of the row's cells
-  const double* cvHigh;  // +y faces
-  const double* cwLow;   // -z faces
-  const double* cwHigh;  // +z faces
-  const double* diagonal;
-  const double* x;
-  const double* xDown;   // row j - 1
-  const double* xUp;     // row j + 1
-  const double* xBack;   // row k - 1
-  const double* xFront;  // row k + 1
+  const T* cu;      // cu[i], cu[i + 1]: the cell's -x and +x faces
+  const T* cvLow;   // -y faces of the row's cells
+  const T* cvHigh;  // +y faces
+  const T* cwLow;   // -z faces
+  const T* cwHigh;  // +z faces
+  const T* diagonal;
+  const T* x;
+  const T* xDown;   // row j - 1
+  const T* xUp;     // row j + 1
+  const T* xBack;   // row k - 1
+  const T* xFront;  // row k + 1
   int64_t nx;
 
-  Row(const Stencil& s, int64_t j, int64_t k, const double* values) : nx(s.nx) {
+  Row(const Stencil<T>& s, int64_t j, int64_t k, const T* values) : nx(s.nx) {
     const int64_t row = j + s.ny * k, c0 = s.nx * row;
     cu = s.cu + (s.nx + 1) * row;
     cvLow = s.cv + s.nx * (j + (s.ny + 1) * k);
@@ -70,26 +72,27 @@ struct Row {
   }
 
   // sum_f A_f x_nb over the six faces of cell i of the row.
-  double neighbourSum(int64_t i) const {
-    const double left = i > 0 ? x[i - 1] : 0.0;
-    const double right = i + 1 < nx ? x[i + 1] : 0.0;
+  T neighbourSum(int64_t i) const {
+    const T left = i > 0 ? x[i - 1] : T(0);
+    const T right = i + 1 < nx ? x[i + 1] : T(0);
     return cu[i] * left + cu[i + 1] * right + cvLow[i] * xDown[i] + cvHigh[i] * xUp[i] + cwLow[i] * xBack[i] +
            cwHigh[i] * xFront[i];
   }
 };
 
 // Calls body(j, k, index of the row's first cell) for every row in parallel.
-template <class Body>
-void forEachRow(TaskSystem& tasks, const Stencil& s, const Body& body) {
+template <class T, class Body>
+void forEachRow(TaskSystem& tasks, const Stencil<T>& s, const Body& body) {
   parallelFor(tasks, s.rows(), s.rowGrain(), [&](int64_t begin, int64_t end) {
     for (int64_t row = begin; row < end; ++row) body(row % s.ny, row / s.ny, s.nx * row);
   });
 }
 
-// Writes 0 to the cells of row `row` (first cell c0) outside its span.
-inline void clearOutsideSpan(const Stencil& s, int64_t row, double* rowValues) {
-  for (int64_t i = 0, e = s.spanBegin(row); i < e; ++i) rowValues[i] = 0.0;
-  for (int64_t i = s.spanEnd(row); i < s.nx; ++i) rowValues[i] = 0.0;
+// Writes 0 to the values of row `row` (rowValues: its first cell) outside its span.
+template <class T, class V>
+void clearOutsideSpan(const Stencil<T>& s, int64_t row, V* rowValues) {
+  for (int64_t i = 0, e = s.spanBegin(row); i < e; ++i) rowValues[i] = V(0);
+  for (int64_t i = s.spanEnd(row); i < s.nx; ++i) rowValues[i] = V(0);
 }
 
 }  // namespace vp::poisson_rows

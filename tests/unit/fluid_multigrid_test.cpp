@@ -97,7 +97,10 @@ struct SymmetryCase {
   PoissonSmoother smoother;
 };
 
-// x . M y = y . M x for random filtered x, y (round-off only), and x . M x > 0.
+// x . M y = y . M x for random filtered x, y (round-off only), and x . M x > 0. The V-cycle runs in
+// single precision (poisson_multigrid.h), so "round-off" is float's: measured up to 3.1e-9 of
+// |x| |M y| here. A cycle whose post-smoothing is not the adjoint of its pre-smoothing differs by
+// 2.4e-6 to 5.7e-5 of it (measured on these scenes): the bound 1e-7 lies between the two.
 TEST(FluidMultigrid, VCycleIsSymmetricAndPositive) {
   auto tasks = TaskSystem::create(TaskHooks{}, 2);
   const SymmetryCase cases[] = {
@@ -134,7 +137,7 @@ TEST(FluidMultigrid, VCycleIsSymmetricAndPositive) {
       filterCutCellPoisson(scene.poisson, mx.data());
       filterCutCellPoisson(scene.poisson, my.data());
       const double scale = std::sqrt(dot(x, x) * dot(my, my));
-      EXPECT_NEAR(dot(x, my), dot(y, mx), 1e-12 * scale);
+      EXPECT_NEAR(dot(x, my), dot(y, mx), 1e-7 * scale);
       EXPECT_GT(dot(x, mx), 1e-3 * std::sqrt(dot(x, x) * dot(mx, mx)));
     }
   }
