@@ -78,12 +78,19 @@ Status buildCutCellPoisson(TaskSystem& tasks, const MacGrid& grid, const FaceFra
   }
   const int64_t cells = grid.cellCount();
   op->diagonal.assign(static_cast<size_t>(cells), 0.0);
+  if (liquidPhi != nullptr) op->air.assign(static_cast<size_t>(cells), 0);
+  else op->air.clear();
   parallelFor(tasks, cells, kCellGrain, [&](int64_t begin, int64_t end) {
     for (int64_t c = begin; c < end; ++c) {
       const int i = static_cast<int>(c % g.nx), j = static_cast<int>((c / g.nx) % g.ny),
                 k = static_cast<int>(c / (static_cast<int64_t>(g.nx) * g.ny));
       if (liquidPhi != nullptr && !isLiquid(liquidPhi[c])) {
         op->diagonal[static_cast<size_t>(c)] = 0.0;  // air: p = 0, no row
+        bool open = false;
+        forEachFace(i, j, k, [&](int a, bool, int fi, int fj, int fk, int, int, int) {
+          open = open || effectiveOpenFraction(grid, fractions, a, fi, fj, fk) > 0.0;
+        });
+        op->air[static_cast<size_t>(c)] = open ? 1 : 0;
         continue;
       }
       double sum = 0.0;

@@ -60,6 +60,10 @@ struct CutCellPoisson : PoissonCoefficients<double> {
   std::vector<uint8_t> regionFloating;  // per region: 1 when it has no Dirichlet face
   std::vector<int64_t> regionCellCount;
   int64_t fluidCellCount = 0;
+  // Per cell, with a free surface only (else empty): 1 for an air cell (level set >= 0) that is
+  // not wholly inside a solid. The voxel-label multigrid baseline makes coarse cells over air
+  // Dirichlet (multigrid_coarsening.h); the operator itself does not need it.
+  std::vector<uint8_t> air;
 
   bool isFluid(size_t cell) const { return region[cell] >= 0; }
 };

@@ -32,6 +32,7 @@ void sizeLevel(const MacGridSpec& spec, CutCellPoisson* op) {
   op->coupling[1].assign(static_cast<size_t>(d.nx * (d.ny + 1) * d.nz), 0.0);
   op->coupling[2].assign(static_cast<size_t>(d.nx * d.ny * (d.nz + 1)), 0.0);
   op->diagonal.assign(static_cast<size_t>(d.cells()), 0.0);
+  op->air.clear();
 }
 
 // Diagonal = couplings of the six faces + Dirichlet part; couplings must be set.
@@ -185,14 +186,24 @@ Status coarsenVoxel(TaskSystem& tasks, const CutCellPoisson& fine, const std::ar
   const Dims f(fine.grid);
   sizeLevel(coarseGridSpec(fine.grid), coarse);
   const Dims c(coarse->grid);
+  // McAdams et al.'s labels: a coarse cell is air (Dirichlet) when any child is, else fluid
+  // when any child is, else solid.
+  const bool freeSurface = !fine.air.empty();
   std::vector<uint8_t> fluid(static_cast<size_t>(c.cells()), 0);
+  if (freeSurface) coarse->air.assign(static_cast<size_t>(c.cells()), 0);
+  else coarse->air.clear();
   parallelFor(tasks, c.ny * c.nz, kRowGrain, [&](int64_t begin, int64_t end) {
     for (int64_t row = begin; row < end; ++row) {
       const int64_t J = row % c.ny, K = row / c.ny;
       for (int64_t I = 0; I < c.nx; ++I) {
-        bool any = false;
-        forEachChild(f, I, J, K, [&](int64_t child) { any = any || fine.diagonal[static_cast<size_t>(child)] > 0.0; });
-        fluid[static_cast<size_t>(c.cell(I, J, K))] = any ? 1 : 0;
+        bool anyFluid = false, anyAir = false;
+        forEachChild(f, I, J, K, [&](int64_t child) {
+          anyFluid = anyFluid || fine.diagonal[static_cast<size_t>(child)] > 0.0;
+          anyAir = anyAir || (freeSurface && fine.air[static_cast<size_t>(child)] != 0);
+        });
+        const size_t cell = static_cast<size_t>(c.cell(I, J, K));
+        fluid[cell] = anyFluid && !anyAir ? 1 : 0;
+        if (anyAir) coarse->air[cell] = 1;
       }
     }
   });
@@ -208,11 +219,18 @@ Status coarsenVoxel(TaskSystem& tasks, const CutCellPoisson& fine, const std::ar
         for (int a = 0; a < 3; ++a) {
           if (C[a] == 0 && sides[2 * a] == DomainSide::Open) open += kVoxelCoupling;
           if (C[a] == c.along(a) - 1 && sides[2 * a + 1] == DomainSide::Open) open += kVoxelCoupling;
+          // A face to an air neighbour is Dirichlet (p = 0 at the neighbour's centre).
+          if (freeSurface && C[a] + 1 < c.along(a)) {
+            int64_t high[3] = {I, J, K};
+            ++high[a];
+            if (coarse->air[static_cast<size_t>(c.cell(high[0], high[1], high[2]))]) open += kVoxelCoupling;
+          }
           if (C[a] == 0) continue;
           int64_t low[3] = {I, J, K};
           --low[a];
-          if (fluid[static_cast<size_t>(c.cell(low[0], low[1], low[2]))])
-            coarse->coupling[a][static_cast<size_t>(c.face(a, I, J, K))] = kVoxelCoupling;
+          const size_t lowCell = static_cast<size_t>(c.cell(low[0], low[1], low[2]));
+          if (fluid[lowCell]) coarse->coupling[a][static_cast<size_t>(c.face(a, I, J, K))] = kVoxelCoupling;
+          else if (freeSurface && coarse->air[lowCell]) open += kVoxelCoupling;
         }
         dirichlet[static_cast<size_t>(cell)] = open;
       }

@@ -110,6 +110,7 @@ TEST(FluidMultigrid, VCycleIsSymmetricAndPositive) {
       {PressureSceneKind::TankPlateSphere, PressureSolver::VoxelMgpcg, PoissonSmoother::RedBlackGaussSeidel},
       {PressureSceneKind::ClosedTank, PressureSolver::VoxelMgpcg, PoissonSmoother::DampedJacobi},
       {PressureSceneKind::LiquidTank, PressureSolver::CutCellMgpcg, PoissonSmoother::RedBlackGaussSeidel},
+      {PressureSceneKind::LiquidTank, PressureSolver::VoxelMgpcg, PoissonSmoother::RedBlackGaussSeidel},
   };
   for (const SymmetryCase& tc : cases) {
     SCOPED_TRACE(testing::Message() << testscene::sceneName(tc.scene) << " solver " << static_cast<int>(tc.solver)
