@@ -634,6 +634,12 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
     slideFriction_.resize(kept);
     lap(Phase::Contacts);
     if (!changed) break;
+    // Out of time: a re-solve would run no iteration, and the multigrid refresh before it is
+    // the costliest part of a pass. The last solve's velocities stand.
+    if (in.deadline.expired()) {
+      cg.budgetCut = true;
+      break;
+    }
     // The multigrids bake the constraint filters into their smoothers and coarse spaces: with
     // the filters of the pass before, a released node or a newly sliding contact's tangent
     // lies in the preconditioner's null space, CG cannot reduce the residual there and the
