@@ -12,6 +12,8 @@ packages=(
   libosmesa6-dev libstb-dev libgl-dev libglfw3-dev xvfb xauth libgl1-mesa-dri
   # plots (Python example, output checks) and the C# bindings
   python3-matplotlib python3-pil mono-mcs mono-runtime
+  # the default scene's jelly: /usr/share/assimp/models/Collada/duck.dae (a box without it)
+  assimp-testmodels
 )
 
 missing=()

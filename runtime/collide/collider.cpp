@@ -118,6 +118,11 @@ void Collider::trackVelocity() {
 // Rotation has the same problem (a flat floating box rolls itself over without it); its added
 // inertia is taken as the body's own inertia I scaled by k = m_a / m, which gives
 //     tau_applied = (tau + k I alpha_last) / (1 + k).
+// Except for a sphere: pressure acts along its normals, through its centre, so the fluid
+// exerts no torque on it and it has no added inertia. The model would still feed k/(1+k) of
+// every spin change back as torque the next step: a spin given by a contact (a paddle's
+// friction) came back tripled in all, and a floating ball pushed by a paddle was spun up and
+// rolled out of its tank.
 void Collider::prepareFluidLoad(double dt, const Vec3& gravity) {
   if (desc_.bodyType != BodyType::Dynamic) return;
   const double inverseMass = body_->getInvMass();
@@ -125,7 +130,7 @@ void Collider::prepareFluidLoad(double dt, const Vec3& gravity) {
   const double m = 1.0 / inverseMass, ma = fluidAddedMass_;
   const Vec3 lastAcceleration = lastVelocityChange_ / dt;
   appliedFluidForce_ = m / (m + ma) * (fluidForce_ + ma * (lastAcceleration - gravity));
-  const double k = ma / m;
+  const double k = desc_.shape.type == ShapeType::Sphere ? 0.0 : ma / m;
   const btMatrix3x3& invInertia = body_->getInvInertiaTensorWorld();
   const btVector3 alpha(btScalar(lastSpinChange_.x() / dt), btScalar(lastSpinChange_.y() / dt),
                         btScalar(lastSpinChange_.z() / dt));

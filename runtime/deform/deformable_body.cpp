@@ -366,6 +366,20 @@ void DeformableBody::updateRenderMesh(TaskSystem& tasks) {
   computeVertexNormals(renderPositions_, renderRest_.triangles, &renderNormals_);
 }
 
+void DeformableBody::updateMultigridFilters(TaskSystem& tasks) {
+  parallelFor(tasks, nodeCount_, 1024, [&](int64_t begin, int64_t end) {
+    for (int64_t i = begin; i < end; ++i) {
+      Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> F(&nodeFilters_[9 * i]);
+      if (constrained_[i] == kFixed) F.setZero();
+      else if (constrained_[i] == kContact) F = Mat3::Identity() - Eigen::Map<const Vec3>(&contactNormal_[3 * i]) *
+                                                                    Eigen::Map<const Vec3>(&contactNormal_[3 * i]).transpose();
+      else F.setIdentity();
+    }
+  });
+  if (useMultigrid_) multigrid_.update(tasks, matrix_, x_.data(), nodeFilters_.data());
+  else pMultigrid_.update(tasks, matrix_, x_.data(), nodeFilters_.data());
+}
+
 void DeformableBody::contactImpulses(TaskSystem& tasks, std::vector<Vec3>* impulses) {
   // (A v' − b) at a constrained node is the impulse the constraint applied there.
   cg_.q.resize(vNext_.size());
@@ -528,17 +542,7 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
   system.size = n3;
   system.apply = [&](const double* x, double* y) { matrix_.multiply(tasks, x, y); };
   if (useMultigrid_ || usePMultigrid_) {
-    parallelFor(tasks, nodeCount_, 1024, [&](int64_t begin, int64_t end) {
-      for (int64_t i = begin; i < end; ++i) {
-        Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> F(&nodeFilters_[9 * i]);
-        if (constrained_[i] == kFixed) F.setZero();
-        else if (constrained_[i] == kContact) F = Mat3::Identity() - Eigen::Map<const Vec3>(&contactNormal_[3 * i]) *
-                                                                      Eigen::Map<const Vec3>(&contactNormal_[3 * i]).transpose();
-        else F.setIdentity();
-      }
-    });
-    if (useMultigrid_) multigrid_.update(tasks, matrix_, x_.data(), nodeFilters_.data());
-    else pMultigrid_.update(tasks, matrix_, x_.data(), nodeFilters_.data());
+    updateMultigridFilters(tasks);
     lap(Phase::Assemble);  // the preconditioner's setup is part of building the system
   }
   system.precondition = [&](const double* r, double* z) {
@@ -630,6 +634,21 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
     slideFriction_.resize(kept);
     lap(Phase::Contacts);
     if (!changed) break;
+    // Out of time: a re-solve would run no iteration, and the multigrid refresh before it is
+    // the costliest part of a pass. The last solve's velocities stand.
+    if (in.deadline.expired()) {
+      cg.budgetCut = true;
+      break;
+    }
+    // The multigrids bake the constraint filters into their smoothers and coarse spaces: with
+    // the filters of the pass before, a released node or a newly sliding contact's tangent
+    // lies in the preconditioner's null space, CG cannot reduce the residual there and the
+    // solve stalls (relative residual ~1 after hundreds of iterations). Block-Jacobi is not
+    // filtered and needs nothing.
+    if (useMultigrid_ || usePMultigrid_) {
+      updateMultigridFilters(tasks);
+      lap(Phase::Assemble);
+    }
     cg = solveConjugateGradient(tasks, system, rhs_.data(), vNext_.data(), settings, in.deadline, cg_);
     solve.iterations += cg.iterations;
     lap(Phase::Solve);

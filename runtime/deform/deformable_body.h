@@ -97,6 +97,9 @@ class DeformableBody {
   template <class AddBlock>
   void gatherRows(TaskSystem& tasks, int64_t grain, const AddBlock& addBlock);
   void updateRenderMesh(TaskSystem& tasks);
+  // The multigrid preconditioners' constraint filters from constrained_, and their setup
+  // redone with them (called whenever the constraint set changes within a step).
+  void updateMultigridFilters(TaskSystem& tasks);
   // Constraint impulse of each contact from the solved velocities: A v' − b at its node.
   void contactImpulses(TaskSystem& tasks, std::vector<Vec3>* impulses);
   Status checkNode(const char* what, int32_t node) const;

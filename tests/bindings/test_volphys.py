@@ -399,7 +399,7 @@ class Scenes(unittest.TestCase):
     def test_default_scene_loads_and_runs(self):
         with volphys.World() as w:
             w.load_scene(DEFAULT_SCENE)
-            names = ["ground", "tank_west", "tank_east", "tank_north", "tank_south", "paddle",
+            names = ["ground", "tank_west", "tank_east", "tank_north", "tank_south", "paddle", "buoy",
                      "chimney_ball", "crate", "pill", "can", "gem"]
             self.assertEqual(len(w.colliders()), len(names))
             ball = w.find_collider("crate")

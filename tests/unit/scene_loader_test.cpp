@@ -5,6 +5,7 @@
 #include <fstream>
 #include <string>
 
+#include "geometry_test_files.h"
 #include "scene/scene_loader.h"
 #include "world.h"
 
@@ -35,17 +36,13 @@ TEST(SceneLoader, LoadsAValidSceneFile) {
 }
 
 TEST(SceneLoader, TriangleMeshFromAFileRelativeToTheScene) {
-  const std::string dir = ::testing::TempDir();
-  {
-    std::ofstream obj(dir + "/floor.obj");
-    obj << "v -3 0 -3\nv 3 0 -3\nv -3 0 3\nv 3 0 3\nf 1 3 2\nf 2 3 4\n";
-    std::ofstream scene(dir + "/mesh_scene.json");
-    scene << R"({"colliders": [
+  const test::TempDir dir;
+  dir.write("floor.obj", "v -3 0 -3\nv 3 0 -3\nv -3 0 3\nv 3 0 3\nf 1 3 2\nf 2 3 4\n");
+  const std::string scene = dir.write("mesh_scene.json", R"({"colliders": [
       {"name": "floor", "shape": {"type": "triangleMesh", "file": "floor.obj", "scale": [2, 1, 2]}},
-      {"bodyType": "dynamic", "shape": {"type": "sphere", "radius": 0.25}, "position": [4, 1, 0]}]})";
-  }
+      {"bodyType": "dynamic", "shape": {"type": "sphere", "radius": 0.25}, "position": [4, 1, 0]}]})");
   auto world = makeWorld();
-  ASSERT_EQ(loadScene(*world, dir + "/mesh_scene.json"), Status::Ok) << lastError();
+  ASSERT_EQ(loadScene(*world, scene), Status::Ok) << lastError();
   ColliderHandle h;
   ASSERT_TRUE(world->findCollider("floor", &h));
   EXPECT_EQ(world->collider(h)->desc().shape.triangles.size(), 2u);
@@ -177,16 +174,15 @@ TEST(SceneLoader, DeformableWithPinsAndAnAttachment) {
 }
 
 // A closed unit cube as an OBJ surface, and a scene with one deformable whose extra keys are
-// `deformable` (JSON text without braces).
-std::string writeCubeScene(const std::string& name, const std::string& deformable) {
-  const std::string dir = ::testing::TempDir();
-  std::ofstream obj(dir + "/unit_cube.obj");
-  obj << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
-         "f 1 4 3\nf 1 3 2\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 4 8 7\nf 4 7 3\nf 1 5 8\nf 1 8 4\n"
-         "f 2 3 7\nf 2 7 6\n";
-  std::ofstream scene(dir + "/" + name);
-  scene << R"({"deformables": [{"name": "jelly", )" << deformable << "}]}";
-  return dir + "/" + name;
+// `deformable` (JSON text without braces), in a folder of this test's own: in the shared
+// temporary folder, test processes running at the same time rewrote each other's cube while
+// the loader read it.
+std::string writeCubeScene(const test::TempDir& dir, const std::string& name, const std::string& deformable) {
+  dir.write("unit_cube.obj",
+            "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+            "f 1 4 3\nf 1 3 2\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 4 8 7\nf 4 7 3\nf 1 5 8\nf 1 8 4\n"
+            "f 2 3 7\nf 2 7 6\n");
+  return dir.write(name, std::string(R"({"deformables": [{"name": "jelly", )") + deformable + "}]}");
 }
 
 double extentX(const DeformableBody& body) {
@@ -199,8 +195,9 @@ double extentX(const DeformableBody& body) {
 }
 
 TEST(SceneLoader, DeformableScaleAppliesToTheSurfaceFile) {
+  const test::TempDir dir;
   auto world = makeWorld();
-  const std::string path = writeCubeScene("scaled_cube.json", R"("surfaceFile": "unit_cube.obj", "scale": 0.5)");
+  const std::string path = writeCubeScene(dir, "scaled_cube.json", R"("surfaceFile": "unit_cube.obj", "scale": 0.5)");
   ASSERT_EQ(loadScene(*world, path), Status::Ok) << lastError();
   DeformableHandle h;
   ASSERT_TRUE(world->findDeformable("jelly", &h));
@@ -208,11 +205,12 @@ TEST(SceneLoader, DeformableScaleAppliesToTheSurfaceFile) {
 }
 
 TEST(SceneLoader, IfFileMissingStandsInOnlyWhenTheFileIsAbsent) {
+  const test::TempDir dir;
   const char* fallback = R"("ifFileMissing": {"box": {"cells": [2, 1, 1], "size": [3, 1, 1]}}, "density": 500)";
   {
     auto world = makeWorld();  // the file is there: the fallback is ignored
     const std::string path =
-        writeCubeScene("present.json", std::string(R"("surfaceFile": "unit_cube.obj", )") + fallback);
+        writeCubeScene(dir, "present.json", std::string(R"("surfaceFile": "unit_cube.obj", )") + fallback);
     ASSERT_EQ(loadScene(*world, path), Status::Ok) << lastError();
     DeformableHandle h;
     ASSERT_TRUE(world->findDeformable("jelly", &h));
@@ -220,7 +218,7 @@ TEST(SceneLoader, IfFileMissingStandsInOnlyWhenTheFileIsAbsent) {
   }
   {
     auto world = makeWorld();  // the file is absent: the box, with the other keys kept
-    const std::string path = writeCubeScene(
+    const std::string path = writeCubeScene(dir,
         "absent.json", std::string(R"("surfaceFile": "/no/such/duck.dae", "scale": 9, )") + fallback);
     ASSERT_EQ(loadScene(*world, path), Status::Ok) << lastError();
     DeformableHandle h;
@@ -232,7 +230,7 @@ TEST(SceneLoader, IfFileMissingStandsInOnlyWhenTheFileIsAbsent) {
   }
   {
     auto world = makeWorld();
-    const std::string path = writeCubeScene("no_file.json", R"("box": {"cells": [1, 1, 1], "size": [1, 1, 1]},
+    const std::string path = writeCubeScene(dir, "no_file.json", R"("box": {"cells": [1, 1, 1], "size": [1, 1, 1]},
                                             "ifFileMissing": {"box": {"cells": [1, 1, 1], "size": [1, 1, 1]}})");
     EXPECT_EQ(loadScene(*world, path), Status::ParseError);
     EXPECT_NE(std::string(lastError()).find("$.deformables[0].ifFileMissing: needs a surfaceFile or tetFile"),
