@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "core/parallel_for.h"
+#include "fluid/cut_cell_poisson.h"
 #include "fluid/grid_sampling.h"
 
 namespace vp {
@@ -145,8 +146,53 @@ void advectVelocity(TaskSystem& tasks, MacGrid& grid, double dt, AdvectionScheme
   for (int a = 0; a < 3; ++a) grid.velocity[a].swap(work.advected[a]);
 }
 
+void buildCellOpenFaces(TaskSystem& tasks, const MacGrid& grid, const FaceFractionField& fractions, CellOpenFaces* out) {
+  const MacGridSpec& s = grid.spec;
+  const Eigen::Vector3i d(s.nx, s.ny, s.nz);
+  const size_t cells = static_cast<size_t>(grid.cellCount());
+  out->faces.resize(cells);
+  out->blockOpen.resize(cells);
+  forEachSample(tasks, d, [&](int i, int j, int k, size_t c) {
+    uint8_t bits = 0;
+    for (int a = 0; a < 3; ++a)
+      for (int high = 0; high < 2; ++high) {
+        Eigen::Vector3i f(i, j, k);
+        f[a] += high;
+        if (effectiveOpenFraction(grid, fractions, a, f.x(), f.y(), f.z()) > 0.0)
+          bits |= static_cast<uint8_t>((1u << (2 * a + high)) | kCellIsFluid);
+      }
+    out->faces[c] = bits;
+  });
+  const size_t stride[3] = {1, static_cast<size_t>(s.nx), static_cast<size_t>(s.nx) * s.ny};
+  forEachSample(tasks, d, [&](int i, int j, int k, size_t c) {
+    const int at[3] = {i, j, k};
+    uint8_t open = 1;
+    for (int a = 0; a < 3 && open; ++a) {
+      if (d[a] == 1) continue;  // one cell along a: no inner faces
+      if (at[a] + 1 >= d[a]) {  // never the lowest cell of a block
+        open = 0;
+        break;
+      }
+      // The block's inner faces normal to a: the high faces of its 4 cells at the lower a.
+      const int b1 = (a + 1) % 3, b2 = (a + 2) % 3;
+      for (int q = 0; q < 4 && open; ++q) {
+        const int o1 = q & 1, o2 = q >> 1;
+        if ((o1 && d[b1] == 1) || (o2 && d[b2] == 1)) continue;
+        if (at[b1] + o1 >= d[b1] || at[b2] + o2 >= d[b2]) {
+          open = 0;
+          break;
+        }
+        const size_t cell = c + o1 * stride[b1] + o2 * stride[b2];
+        if (!(out->faces[cell] & (1u << (2 * a + 1)))) open = 0;
+      }
+    }
+    out->blockOpen[c] = open;
+  });
+}
+
 void advectCellScalars(TaskSystem& tasks, const MacGrid& grid, double dt, AdvectionScheme scheme,
-                       std::vector<double>* const* fields, int fieldCount, AdvectionWorkspace& work) {
+                       std::vector<double>* const* fields, int fieldCount, AdvectionWorkspace& work,
+                       const CellOpenFaces* openFaces, const double* solidValues) {
   if (fieldCount <= 0) return;
   const MacGridSpec& s = grid.spec;
   const Eigen::Vector3i d(s.nx, s.ny, s.nz);
@@ -165,11 +211,21 @@ void advectCellScalars(TaskSystem& tasks, const MacGrid& grid, double dt, Advect
   work.forward.resize(cells);
   std::vector<double>& out = work.advected[0];
   out.resize(cells);
+  const uint8_t* faces = openFaces != nullptr ? openFaces->faces.data() : nullptr;
+  const uint8_t* blockOpen = openFaces != nullptr ? openFaces->blockOpen.data() : nullptr;
+  auto sample = [&](const double* values, const Eigen::Vector3d& at, SampleRange* range) {
+    return faces != nullptr ? connectedTrilinearSample(values, d, at, faces, blockOpen, range)
+                            : trilinearSample(values, d, at, range);
+  };
   for (int which = 0; which < fieldCount; ++which) {
     std::vector<double>& old = *fields[which];
+    // Cells with no open face (inside a solid) are not advected: they hold the solid value.
+    auto solid = [&](size_t c) { return faces != nullptr && !(faces[c] & kCellIsFluid); };
+    const double solidValue = solidValues != nullptr ? solidValues[which] : 0.0;
+    auto solidResult = [&](size_t c) { return solidValues != nullptr ? solidValue : old[c]; };
     if (!maccormack) {
       forEachSample(tasks, d, [&](int, int, int, size_t c) {
-        out[c] = trilinearSample(old.data(), d, work.cellTrace[c]);
+        out[c] = solid(c) ? solidResult(c) : sample(old.data(), work.cellTrace[c], nullptr);
       });
       old.swap(out);
       continue;
@@ -177,12 +233,20 @@ void advectCellScalars(TaskSystem& tasks, const MacGrid& grid, double dt, Advect
     work.rangeLo.resize(cells);
     work.rangeHi.resize(cells);
     forEachSample(tasks, d, [&](int, int, int, size_t c) {
+      if (solid(c)) {
+        work.forward[c] = work.rangeLo[c] = work.rangeHi[c] = solidResult(c);
+        return;
+      }
       SampleRange range;
-      work.forward[c] = trilinearSample(old.data(), d, work.cellTrace[c], &range);
+      work.forward[c] = sample(old.data(), work.cellTrace[c], &range);
       work.rangeLo[c] = range.lo, work.rangeHi[c] = range.hi;
     });
     forEachSample(tasks, d, [&](int, int, int, size_t c) {
-      const double backAgain = trilinearSample(work.forward.data(), d, work.cellTrace[cells + c]);
+      if (solid(c)) {
+        out[c] = work.forward[c];
+        return;
+      }
+      const double backAgain = sample(work.forward.data(), work.cellTrace[cells + c], nullptr);
       out[c] = std::clamp(work.forward[c] + 0.5 * (old[c] - backAgain), work.rangeLo[c], work.rangeHi[c]);
     });
     old.swap(out);

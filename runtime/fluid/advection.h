@@ -12,11 +12,21 @@
 // creates new extrema (the scheme stays stable). Twice the cost, much less dissipation.
 //
 // Points traced out of the domain take the boundary's values (clamped sampling).
+//
+// Cell-centred scalars can be sampled through the open faces only (CellOpenFaces): a sample
+// then uses, of its 8 cells, those connected to the fluid cell nearest the sample point by
+// open faces inside the 2 x 2 x 2 block (connectedTrilinearSample in grid_sampling.h), and
+// cells with no open face take a fixed solid value instead of being advected. Plain
+// trilinear stencils reach across a collider one cell thick (two cells diagonal to each
+// other can lie on its two sides), so smoke would be interpolated through it. Blocks away
+// from colliders have every inner face open and cost one flag test more.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "core/task_system.h"
+#include "fluid/face_fraction_field.h"
 #include "fluid/fluid_desc.h"
 #include "fluid/mac_grid.h"
 
@@ -29,12 +39,25 @@ struct AdvectionWorkspace {
   std::vector<Eigen::Vector3d> cellTrace;  // per cell: where its centre came from
 };
 
+// Per-cell open faces for advection that does not interpolate across solids (layout in
+// grid_sampling.h: faces bits and kCellIsFluid, blockOpen flags).
+struct CellOpenFaces {
+  std::vector<uint8_t> faces;
+  std::vector<uint8_t> blockOpen;
+};
+
+// From the effective open fractions (cut_cell_poisson.h: Wall faces and slivers closed).
+void buildCellOpenFaces(TaskSystem& tasks, const MacGrid& grid, const FaceFractionField& fractions, CellOpenFaces* out);
+
 // Replaces grid.velocity by itself advected over dt.
 void advectVelocity(TaskSystem& tasks, MacGrid& grid, double dt, AdvectionScheme scheme, AdvectionWorkspace& work);
 
 // Advects cell-centred scalars (each cellCount() values, cell order) by grid.velocity over dt.
 // All fields share the traced points, so pass them together.
+// openFaces (optional): sample through open faces only; cells with no open face are then set
+// to solidValues[field] (or keep their value when solidValues is null).
 void advectCellScalars(TaskSystem& tasks, const MacGrid& grid, double dt, AdvectionScheme scheme,
-                       std::vector<double>* const* fields, int fieldCount, AdvectionWorkspace& work);
+                       std::vector<double>* const* fields, int fieldCount, AdvectionWorkspace& work,
+                       const CellOpenFaces* openFaces = nullptr, const double* solidValues = nullptr);
 
 }  // namespace vp

@@ -7,6 +7,7 @@
 
 #include "core/log.h"
 #include "core/parallel_for.h"
+#include "fluid/cut_cell_components.h"
 #include "fluid/fluid_sources.h"
 #include "fluid/level_set_solid_extension.h"
 #include "fluid/liquid_volume.h"
@@ -108,9 +109,18 @@ void FluidActor::advectAndSource(TaskSystem& tasks, const Vec3& gravity, double 
   double t0 = deadline.elapsedMs();
   advectVelocity(tasks, grid_, h, solver.advection, advection_);
   if (desc_.kind == FluidKind::Smoke) {
+    // Smoke and heat move through open faces only: a plain trilinear stencil reaches across a
+    // plate one cell thick. Cells inside solids hold no smoke and the ambient temperature.
+    if (fractionsChanged_) {
+      buildCellOpenFaces(tasks, grid_, fractions_, &openFaces_);
+      fractionsChanged_ = false;
+    }
     std::vector<double>* scalars[2] = {&smokeDensity_, &temperature_};
-    advectCellScalars(tasks, grid_, h, solver.advection, scalars, 2, advection_);
+    const double solidValues[2] = {0.0, desc_.smoke.ambientTemperature};
+    advectCellScalars(tasks, grid_, h, solver.advection, scalars, 2, advection_, &openFaces_, solidValues);
   } else {
+    // The level set is extended into solids on purpose (level_set_solid_extension.h) and
+    // sampled as it is.
     std::vector<double>* scalars[1] = {&phi_};
     advectCellScalars(tasks, grid_, h, solver.advection, scalars, 1, advection_);
   }
@@ -159,17 +169,26 @@ Status FluidActor::updateFractions(const std::vector<FluidCollider>& colliders) 
   bool sameSet = fractionsValid_ && now.size() == snapshots_.size();
   for (size_t i = 0; sameSet && i < now.size(); ++i)
     sameSet = now[i].index1 == snapshots_[i].index1 && now[i].generation == snapshots_[i].generation;
+  // Every recomputed region also gets its split cut cells' minor pieces closed
+  // (cut_cell_components.h): without it a plate one cell thick leaks.
   if (!sameSet) {
     // A collider came or went: a full recompute is simpler than tracking the union of
     // everything that changed, and it happens only on such events.
     VP_TRY(computeFaceFractions(geometry.data(), count, &fractions_));
+    for (const PreparedCollider* c : geometry)
+      VP_TRY(closeSplitCellPieces(*tasks_, geometry.data(), count, c->bounds, &fractions_, nullptr));
+    fractionsChanged_ = true;
   } else {
     for (size_t i = 0; i < now.size(); ++i) {
       const ColliderSnapshot& a = snapshots_[i];
       const ColliderSnapshot& b = now[i];
       const bool moved = a.translation != b.translation || a.rotation.coeffs() != b.rotation.coeffs() ||
                          a.linearVelocity != b.linearVelocity || a.angularVelocity != b.angularVelocity;
-      if (moved) VP_TRY(updateFaceFractions(geometry.data(), count, a.bounds, b.bounds, &fractions_));
+      if (!moved) continue;
+      VP_TRY(updateFaceFractions(geometry.data(), count, a.bounds, b.bounds, &fractions_));
+      VP_TRY(closeSplitCellPieces(*tasks_, geometry.data(), count, a.bounds, &fractions_, nullptr));
+      VP_TRY(closeSplitCellPieces(*tasks_, geometry.data(), count, b.bounds, &fractions_, nullptr));
+      fractionsChanged_ = true;
     }
   }
   snapshots_ = std::move(now);

@@ -3,9 +3,12 @@
 // dynamic ones.
 //
 // One world step of dt:
-//   Fractions  face fractions brought up to date where colliders moved (incremental)
+//   Fractions  face fractions brought up to date where colliders moved (incremental), and
+//              the faces of cells that a thin collider splits closed except around the
+//              cell's main piece (cut_cell_components.h)
 //   then sub-steps of dt/n, n = ceil(max speed * dt / (cfl h)) capped at maxSubsteps:
-//   Advect     velocity (and smoke density/temperature, or the liquid level set)
+//   Advect     velocity (and smoke density/temperature, or the liquid level set); smoke is
+//              sampled through open faces only (advection.h)
 //   Forces     emitters, drains, buoyancy + vorticity confinement (smoke) or gravity (liquid)
 //   Pressure   cut-cell projection, budgeted (each sub-step gets an equal share of what is
 //              left of the actor's deadline), warm-started from the last pressure
@@ -104,10 +107,12 @@ class FluidActor {
   FaceFractionField fractions_;
   std::vector<ColliderSnapshot> snapshots_;  // the colliders the fractions were computed for
   bool fractionsValid_ = false;
+  bool fractionsChanged_ = true;  // since the advection's open-face masks were built
   double speedAtEnd_ = -1.0;  // largest face speed after the last step; < 0 before the first
   std::vector<double> smokeDensity_, temperature_, phi_;
   PressureState pressure_;
   AdvectionWorkspace advection_;
+  CellOpenFaces openFaces_;  // smoke: which faces advection may interpolate through
   VorticityWorkspace vorticity_;
   FluidSurface surface_;
   TaskSystem* tasks_ = nullptr;  // the world's, for on-request work (surface extraction)
