@@ -77,12 +77,16 @@ struct PMultigridSettings {
 
 class PMultigrid {
  public:
-  // prolongations[l] maps level l+1 to level l; level 0 is `fine`. Builds the coarse
-  // patterns (the symbolic Galerkin products) and the coarsest level's multigrid.
+  // prolongations[l] maps level l+1 to level l; level 0 is `fine`.
+  // Galerkin coarse operators (rediscretized empty): builds the coarse patterns (the
+  // symbolic products). Re-discretized ones: rediscretized[l-1] is level l's operator,
+  // assembled by the caller at that level's degree (deform/degree_level_assembly.h); the
+  // caller refills it before every update, which restricts it in place to the constrained
+  // coarse space. Either way builds the coarsest level's multigrid.
   void build(const BlockSparseMatrix<double>& fine, std::vector<NodeProlongation> prolongations,
-             const PMultigridSettings& settings = {});
+             const PMultigridSettings& settings = {}, std::vector<BlockSparseMatrix<double>*> rediscretized = {});
 
-  // Recomputes filters, Galerkin operators, smoothers and the coarsest multigrid.
+  // Recomputes filters, coarse operators, smoothers and the coarsest multigrid.
   // positions: 3 per fine node; filters: 9 per fine node (row-major projector) or nullptr.
   void update(TaskSystem& tasks, const BlockSparseMatrix<double>& fine, const double* positions,
               const double* filters);
@@ -91,6 +95,7 @@ class PMultigrid {
   void apply(TaskSystem& tasks, const double* r, double* z);
 
   int levelCount() const { return static_cast<int>(levels_.size()); }
+  bool rediscretized() const { return rediscretized_; }
   // The operator of level l (0: the fine matrix last passed to update).
   const BlockSparseMatrix<double>& levelMatrix(int l) const { return *levels_[l].matrix; }
   const PMultigridSettings& settings() const { return settings_; }
@@ -99,8 +104,9 @@ class PMultigrid {
   enum : uint8_t { kIdentity = 0, kZero = 1, kGeneral = 2 };
   struct Level {
     int32_t nodes = 0;
-    const BlockSparseMatrix<double>* matrix = nullptr;  // level 0: the caller's
-    BlockSparseMatrix<double> galerkin;                 // levels >= 1
+    const BlockSparseMatrix<double>* matrix = nullptr;  // level 0: the caller's fine matrix
+    BlockSparseMatrix<double>* coarse = nullptr;        // levels >= 1: &galerkin or the caller's
+    BlockSparseMatrix<double> galerkin;                 // levels >= 1, Galerkin operators
     // From this level to the finer one (levels >= 1), and its transpose.
     NodeProlongation P;
     std::vector<int32_t> restrictStart, restrictFine;
@@ -115,11 +121,14 @@ class PMultigrid {
   void cycle(TaskSystem& tasks, int level, const double* r, double* z);
   // out = S rhs, S the smoothing polynomial; leaves rhs − A out in L.residual when asked.
   void smooth(TaskSystem& tasks, Level& L, const double* rhs, double* out, bool wantResidual);
-  void galerkin(TaskSystem& tasks, int level);
+  void coarseFilters(TaskSystem& tasks, int level);
+  void coarseOperator(TaskSystem& tasks, int level);
+  static void constrainRow(Level& L, int64_t row);
   void estimateLambdaMax(TaskSystem& tasks, Level& L);
   void coarsestSolve(TaskSystem& tasks, const double* r, double* z);
 
   PMultigridSettings settings_;
+  bool rediscretized_ = false;
   std::vector<Level> levels_;
   AggregationMultigrid coarsest_;
   uint64_t updates_ = 0;

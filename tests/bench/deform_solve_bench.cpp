@@ -29,6 +29,7 @@
 #include "core/budget_clock.h"
 #include "core/task_system.h"
 #include "deform/degree_hierarchy.h"
+#include "deform/degree_level_assembly.h"
 #include "deform/deformable_body.h"
 #include "linalg/p_multigrid.h"
 #include "linalg/richardson_iteration.h"
@@ -47,6 +48,7 @@ struct CubicBeamSystem {
   std::unique_ptr<DeformableBody> body;
   std::unique_ptr<TaskSystem> tasks = TaskSystem::create(TaskHooks{}, 2);
   std::vector<double> rhs, filters;
+  double massScale = 1.0;  // of the step matrix, for re-discretized coarse levels
   bool ok = false;
 
   explicit CubicBeamSystem(int degree) {
@@ -63,6 +65,7 @@ struct CubicBeamSystem {
     in.tasks = tasks.get();
     ActorStats stats;
     body->step(in, &stats);  // at rest: the matrix of the rest configuration
+    massScale = 1.0 + in.dt * body->desc().material.massDamping;
     const int32_t n = body->nodeCount();
     rhs.assign(3 * static_cast<size_t>(n), 0.0);
     filters.assign(9 * static_cast<size_t>(n), 0.0);
@@ -103,7 +106,8 @@ void report(benchmark::State& state, double setupMs, double solveMs, const CgRes
   if (!result.converged) state.SkipWithError("did not reach 1e-6");
 }
 
-void runSolve(benchmark::State& state, Method method, std::vector<int> degrees, PMultigridSettings settings) {
+void runSolve(benchmark::State& state, Method method, std::vector<int> degrees, PMultigridSettings settings,
+              PMultigridCoarseOperator coarseOperator = PMultigridCoarseOperator::Galerkin) {
   const CubicBeamSystem& sys = cubicSystem();
   if (!sys.ok) return state.SkipWithError("cubic beam setup failed");
   const BlockSparseMatrix<double>& A = sys.body->stepMatrix();
@@ -111,6 +115,7 @@ void runSolve(benchmark::State& state, Method method, std::vector<int> degrees, 
   const int64_t n = 3 * static_cast<int64_t>(A.blockRows);
   state.counters["blocks"] = static_cast<double>(A.blockCount());
   PMultigrid mg;
+  std::vector<DegreeLevelAssembly> rediscretized;
   AggregationMultigrid amg;
   if (method == Method::AmgPcg) amg.build(A);
   if (method == Method::PmgPcg || method == Method::Pmg) {
@@ -119,7 +124,16 @@ void runSolve(benchmark::State& state, Method method, std::vector<int> degrees, 
     if (!ok(buildDegreeHierarchy(degrees, sys.body->elementNodes().data(), sys.body->elementCount(),
                                  sys.body->nodeCount(), &h)))
       return state.SkipWithError("hierarchy failed");
-    mg.build(A, std::move(h.prolongations), settings);
+    std::vector<BlockSparseMatrix<double>*> coarse;
+    if (coarseOperator == PMultigridCoarseOperator::Rediscretized) {
+      rediscretized.resize(h.levels.size() - 1);
+      for (size_t l = 1; l < h.levels.size(); ++l) {
+        rediscretized[l - 1].build(h.levels[l], h.levels[0].degree, sys.body->restVolumes().data(),
+                                   sys.body->elementCount(), sys.body->desc().material.density);
+        coarse.push_back(&rediscretized[l - 1].matrix());
+      }
+    }
+    mg.build(A, std::move(h.prolongations), settings, std::move(coarse));
     state.counters["build_ms"] = msSince(start);
     for (int l = 1; l < mg.levelCount(); ++l)
       state.counters["blocks_level" + std::to_string(l)] = static_cast<double>(mg.levelMatrix(l).blockCount());
@@ -136,6 +150,8 @@ void runSolve(benchmark::State& state, Method method, std::vector<int> degrees, 
     } else if (method == Method::AmgPcg) {
       amg.update(*sys.tasks, A, sys.body->positions().data(), sys.filters.data());
     } else {
+      for (DegreeLevelAssembly& level : rediscretized)
+        level.assemble(*sys.tasks, sys.body->elementGradientPairs().data(), sys.massScale);
       mg.update(*sys.tasks, A, sys.body->positions().data(), sys.filters.data());
     }
     const double setupMs = msSince(start);
@@ -161,9 +177,10 @@ void runSolve(benchmark::State& state, Method method, std::vector<int> degrees, 
   }
 }
 
-void registerSolve(const std::string& name, Method method, std::vector<int> degrees, PMultigridSettings settings) {
+void registerSolve(const std::string& name, Method method, std::vector<int> degrees, PMultigridSettings settings,
+                   PMultigridCoarseOperator coarseOperator = PMultigridCoarseOperator::Galerkin) {
   benchmark::RegisterBenchmark(("BM_DeformSolve/" + name + "/cubic").c_str(),
-                               [=](benchmark::State& state) { runSolve(state, method, degrees, settings); })
+                               [=](benchmark::State& state) { runSolve(state, method, degrees, settings, coarseOperator); })
       ->Unit(benchmark::kMillisecond)
       ->UseManualTime()
       ->Iterations(1)
@@ -183,6 +200,11 @@ const bool registered = [] {
   registerSolve("pcg", Method::Pcg, {}, defaults);
   registerSolve("pmg_pcg", Method::PmgPcg, {3, 2, 1}, defaults);
   registerSolve("pmg", Method::Pmg, {3, 2, 1}, defaults);
+  // Coarse operators re-discretized at each degree instead of Galerkin products.
+  const auto rediscretized = PMultigridCoarseOperator::Rediscretized;
+  registerSolve("pmg_pcg_rediscretized", Method::PmgPcg, {3, 2, 1}, defaults, rediscretized);
+  registerSolve("pmg_rediscretized", Method::Pmg, {3, 2, 1}, defaults, rediscretized);
+  registerSolve("pmg_pcg_3to1_rediscretized", Method::PmgPcg, {3, 1}, defaults, rediscretized);
   // What Auto picked for cubic elements before p-multigrid: aggregation multigrid directly.
   registerSolve("amg_pcg", Method::AmgPcg, {}, defaults);
   // The choices behind the defaults.
