@@ -107,7 +107,7 @@ void report(benchmark::State& state, double setupMs, double solveMs, const CgRes
 }
 
 void runSolve(benchmark::State& state, Method method, std::vector<int> degrees, PMultigridSettings settings,
-              PMultigridCoarseOperator coarseOperator = PMultigridCoarseOperator::Galerkin) {
+              PMultigridCoarseOperator coarseOperator) {
   const CubicBeamSystem& sys = cubicSystem();
   if (!sys.ok) return state.SkipWithError("cubic beam setup failed");
   const BlockSparseMatrix<double>& A = sys.body->stepMatrix();
@@ -178,7 +178,7 @@ void runSolve(benchmark::State& state, Method method, std::vector<int> degrees, 
 }
 
 void registerSolve(const std::string& name, Method method, std::vector<int> degrees, PMultigridSettings settings,
-                   PMultigridCoarseOperator coarseOperator = PMultigridCoarseOperator::Galerkin) {
+                   PMultigridCoarseOperator coarseOperator = DeformableSolverSettings{}.pMultigridCoarseOperator) {
   benchmark::RegisterBenchmark(("BM_DeformSolve/" + name + "/cubic").c_str(),
                                [=](benchmark::State& state) { runSolve(state, method, degrees, settings, coarseOperator); })
       ->Unit(benchmark::kMillisecond)
@@ -200,11 +200,11 @@ const bool registered = [] {
   registerSolve("pcg", Method::Pcg, {}, defaults);
   registerSolve("pmg_pcg", Method::PmgPcg, {3, 2, 1}, defaults);
   registerSolve("pmg", Method::Pmg, {3, 2, 1}, defaults);
-  // Coarse operators re-discretized at each degree instead of Galerkin products.
-  const auto rediscretized = PMultigridCoarseOperator::Rediscretized;
-  registerSolve("pmg_pcg_rediscretized", Method::PmgPcg, {3, 2, 1}, defaults, rediscretized);
-  registerSolve("pmg_rediscretized", Method::Pmg, {3, 2, 1}, defaults, rediscretized);
-  registerSolve("pmg_pcg_3to1_rediscretized", Method::PmgPcg, {3, 1}, defaults, rediscretized);
+  // Galerkin coarse operators instead of the default re-discretized ones.
+  const auto galerkin = PMultigridCoarseOperator::Galerkin;
+  registerSolve("pmg_pcg_galerkin", Method::PmgPcg, {3, 2, 1}, defaults, galerkin);
+  registerSolve("pmg_galerkin", Method::Pmg, {3, 2, 1}, defaults, galerkin);
+  registerSolve("pmg_pcg_3to1_galerkin", Method::PmgPcg, {3, 1}, defaults, galerkin);
   // What Auto picked for cubic elements before p-multigrid: aggregation multigrid directly.
   registerSolve("amg_pcg", Method::AmgPcg, {}, defaults);
   // The choices behind the defaults.
