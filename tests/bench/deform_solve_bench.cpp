@@ -4,19 +4,21 @@
 //   BM_DeformSolve/pmg/cubic       the V-cycle alone as a solver (Richardson)
 //   BM_DeformSolve/amg_pcg/cubic   CG with the aggregation multigrid on the cubic matrix
 // and variants of the cycle (BM_DeformSolve/pmg_pcg_<variant>/cubic) for the choices made in
-// linalg/p_multigrid.h. The system: the shared 4 x 1 x 1 m beam (beam_mesh.h) at 24x6x6 cells
-// = 5184 cubic tets, E = 1e8, ν = 0.3, ρ = 1000, x = 0 clamped, the backward-Euler matrix of
-// a 1/60 s step (M + h β K + h² K, β = 0.01), right-hand side the step's gravity impulse,
-// started from zero, 2 worker threads. Time = preconditioner setup for this matrix (the
-// p-multigrid's Galerkin products and smoothers, the coarsest aggregation multigrid; the
-// block-Jacobi inverses) + the solve; the one-off symbolic build (at actor creation) is
-// the counter build_ms. Counters: iters, setup_ms, solve_ms, residual.
+// linalg/p_multigrid.h; the p-multigrid's coarse operators are the default re-discretized
+// ones, _galerkin variants take Galerkin products. The system: the shared 4 x 1 x 1 m beam
+// (beam_mesh.h) at 24x6x6 cells = 5184 cubic tets, E = 1e8, ν = 0.3, ρ = 1000, x = 0 clamped,
+// the backward-Euler matrix of a 1/60 s step (M + h β K + h² K, β = 0.01), right-hand side
+// the step's gravity impulse, started from zero, 2 worker threads. Time = preconditioner
+// setup for this matrix (the coarse operators — re-discretized levels assembled from the
+// step's gradient pairs, or the Galerkin products —, smoothers, the coarsest aggregation
+// multigrid; the block-Jacobi inverses) + the solve; the one-off symbolic build (at actor
+// creation) is the counter build_ms. Counters: iters, setup_ms, solve_ms, residual.
 //
-// Measured on the 2-core dev machine while three other engineers built (load average ~6-7 on
-// 2 cores, so times are inflated and vary ±30%; iteration counts are exact), medians of 5:
-//   pcg 4372 ms (598 it), pmg_pcg 960 ms (16 it; 186 ms of it setup), pmg 2027 ms (42 cycles),
-//   amg_pcg 1427 ms (57 it): pmg_pcg 4.6x faster than pcg (5.1x in an earlier run at
-//   3219 / 636 ms), the standalone cycle 2.2x, aggregation multigrid alone 3.1x.
+// Measured on the 2-core dev machine in one run (random interleaving, load 1.2-1.3), medians
+// of 5: pcg 2275 ms (598 it), pmg_pcg 381 ms (16 it; 58 ms of it setup), pmg_pcg_galerkin
+// 446 ms (16 it; 90 ms setup), pmg 969 ms (42 cycles), pmg_galerkin 1031 ms, amg_pcg 644 ms
+// (57 it): pmg_pcg 6.0x faster than pcg, the standalone cycle 2.3x, aggregation multigrid
+// alone 3.5x. (Earlier, under load 6-7: pcg 4372 ms, Galerkin pmg_pcg 960 ms, 4.6x.)
 // The iteration counts of the cycle's variants are in linalg/p_multigrid.h.
 #include <benchmark/benchmark.h>
 
