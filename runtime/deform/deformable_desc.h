@@ -43,8 +43,8 @@ enum class Preconditioner : int {
 // Below this many nodes the multigrid's setup costs more than the CG iterations it saves.
 constexpr int kMultigridMinNodes = 400;
 
-// How p-multigrid gets its coarse operators. Re-discretized is the default: the same CG
-// iterations within 1-4%, half the preconditioner setup (measured in linalg/p_multigrid.h).
+// How p-multigrid gets its coarse operators. Re-discretized is the default: 0-4% more CG
+// iterations than Galerkin, a half to a third less setup (measured in linalg/p_multigrid.h).
 enum class PMultigridCoarseOperator : int {
   Galerkin = 0,       // P̃ᵀ A P̃ with the constrained prolongation
   Rediscretized = 1,  // assembled at each coarse degree with the fine level's element rotations

@@ -37,11 +37,11 @@
 //     tumbling onto a plane)          13.6 ms/step, 10.5 s CPU  5.0 ms/step, 7.8 s CPU
 //   BM_DeformQuadraticBeam/13000      8.47 it/step, setup      8.58 it/step, setup
 //     (quadratic, 2 -> 1, pinned)     16.8 ms/step, 10.2 Hz    10.2 ms/step, 10.4 Hz
-// (BM_DeformContact and BM_DeformQuadraticBeam: the step's assemble phase, which is mostly
-// this setup; quiet machine, load 0.3: BM_DeformSolve setup 64 against 44 ms.) The conforming coarse
-// space costs 0-4% more iterations; the cheaper setup more than pays for it, most where
-// contacts change the constraint set within a step, since every active-set pass that does
-// sets the cycle up again. So re-discretized is the default. The smoother and cycle figures
+// (BM_DeformContact and BM_DeformQuadraticBeam: the step's assemble phase, mostly this
+// setup. On a quiet machine, load 0.3: BM_DeformSolve setup 64 against 44 ms.) The
+// conforming coarse space costs 0-4% more iterations; the cheaper setup more than pays for
+// it, most where contacts change the constraint set within a step, since every active-set
+// pass that does sets the cycle up again. So re-discretized is the default. The smoother and cycle figures
 // below were taken with Galerkin operators; with re-discretized ones the same runs give the
 // same counts to ±1 iteration.
 // Either way, all levels' node filters are the caller's CG filters at update time: after a

@@ -38,10 +38,10 @@ struct DeformedBody {
   std::unique_ptr<DeformableBody> body;
   std::unique_ptr<TaskSystem> tasks = TaskSystem::create(TaskHooks{}, 2);
 
-  // A jittered box, then every node moved by a rotation plus a random non-affine
-  // displacement, so each element gets its own rotation; the stiffness (scale 1, no mass) and
-  // the gradient pairs of that state are assembled.
-  explicit DeformedBody(int degree) {
+  // A jittered box, at rest (every rotation I) or with every node moved by a rotation plus a
+  // random non-affine displacement, so each element gets its own rotation; the stiffness
+  // (scale 1, no mass) and the gradient pairs of that state are assembled.
+  DeformedBody(int degree, bool deformed) {
     DeformableDesc d;
     d.degree = degree;
     d.mesh = makeBoxTetMesh({3, 2, 1}, Vec3(3, 2, 1), Vec3::Zero());
@@ -52,6 +52,11 @@ struct DeformedBody {
     d.material.poissonRatio = 0.45;
     d.solver.preconditioner = Preconditioner::BlockJacobi;
     EXPECT_EQ(DeformableBody::create(d, &body), Status::Ok) << lastError();
+    Array<double> forces;
+    if (!deformed) {
+      body->elasticForces(*tasks, &forces);
+      return;
+    }
     const Eigen::Matrix3d R = deform_test::randomRotation(rng);
     std::uniform_real_distribution<double> bend(-0.2, 0.2);
     std::vector<double> x(body->restPositions().begin(), body->restPositions().end());
@@ -62,34 +67,36 @@ struct DeformedBody {
       for (int k = 0; k < 3; ++k) x[3 * i + k] = p[k];
     }
     EXPECT_EQ(body->setPositions(x.data(), static_cast<int64_t>(x.size())), Status::Ok);
-    Array<double> forces;
     body->elasticForces(*tasks, &forces);
   }
 };
 
-// Pᵀ K_n P = K_m for any per-element rotations: elevation represents a degree-m field exactly
-// at degree n, and a rotation acting per node commutes with it. Checked for 3 -> 2, 3 -> 1 and
-// 2 -> 1 on a deformed, rotated body (no constraints).
+// Pᵀ K_n P = K_m: elevation represents a degree-m field exactly at degree n. At rest (linear
+// elasticity, no rotation) and for any per-element rotations, since a rotation acting per node
+// commutes with the elevation. Checked for 3 -> 2, 3 -> 1 and 2 -> 1, no constraints.
 TEST(DegreeLevelAssembly, StiffnessIsTheGalerkinProductOfTheFineStiffness) {
-  for (const std::vector<int>& degrees : {std::vector<int>{3, 2, 1}, std::vector<int>{3, 1}, std::vector<int>{2, 1}}) {
-    const DeformedBody sys(degrees[0]);
-    DegreeHierarchy h;
-    ASSERT_EQ(buildDegreeHierarchy(degrees, sys.body->elementNodes().data(), sys.body->elementCount(),
-                                   sys.body->nodeCount(), &h),
-              Status::Ok);
-    Eigen::MatrixXd fine = dense(sys.body->stepMatrix());
-    for (size_t l = 1; l < h.levels.size(); ++l) {
-      DegreeLevelAssembly level;
-      level.build(h.levels[l], degrees[0], sys.body->restVolumes().data(), sys.body->elementCount(),
-                  sys.body->desc().material.density);
-      level.assemble(*sys.tasks, sys.body->elementGradientPairs().data(), 0.0);
-      const Eigen::MatrixXd P = dense(h.prolongations[l - 1]);
-      const Eigen::MatrixXd galerkin = P.transpose() * fine * P;
-      const Eigen::MatrixXd assembled = dense(level.matrix());
-      EXPECT_LT((assembled - galerkin).norm(), 1e-12 * galerkin.norm())
-          << "degrees " << degrees[0] << " -> " << h.levels[l].degree;
-      EXPECT_GT(galerkin.norm(), 0.0);
-      fine = galerkin;
+  for (const bool deformed : {false, true}) {
+    for (const std::vector<int>& degrees : {std::vector<int>{3, 2, 1}, std::vector<int>{3, 1}, std::vector<int>{2, 1}}) {
+      SCOPED_TRACE(deformed ? "deformed and rotated" : "at rest");
+      const DeformedBody sys(degrees[0], deformed);
+      DegreeHierarchy h;
+      ASSERT_EQ(buildDegreeHierarchy(degrees, sys.body->elementNodes().data(), sys.body->elementCount(),
+                                     sys.body->nodeCount(), &h),
+                Status::Ok);
+      Eigen::MatrixXd fine = dense(sys.body->stepMatrix());
+      for (size_t l = 1; l < h.levels.size(); ++l) {
+        DegreeLevelAssembly level;
+        level.build(h.levels[l], degrees[0], sys.body->restVolumes().data(), sys.body->elementCount(),
+                    sys.body->desc().material.density);
+        level.assemble(*sys.tasks, sys.body->elementGradientPairs().data(), 0.0);
+        const Eigen::MatrixXd P = dense(h.prolongations[l - 1]);
+        const Eigen::MatrixXd galerkin = P.transpose() * fine * P;
+        const Eigen::MatrixXd assembled = dense(level.matrix());
+        EXPECT_LT((assembled - galerkin).norm(), 1e-12 * galerkin.norm())
+            << "degrees " << degrees[0] << " -> " << h.levels[l].degree;
+        EXPECT_GT(galerkin.norm(), 0.0);
+        fine = galerkin;
+      }
     }
   }
 }
@@ -97,7 +104,7 @@ TEST(DegreeLevelAssembly, StiffnessIsTheGalerkinProductOfTheFineStiffness) {
 // The mass part is the lumped BB mass of the coarse degree: ρV / C(m+3, 3) per element node,
 // scaled by the integrator's mass factor; it carries the body's whole mass at every degree.
 TEST(DegreeLevelAssembly, MassIsTheLumpedMassOfTheCoarseDegree) {
-  const DeformedBody sys(3);
+  const DeformedBody sys(3, true);
   DegreeHierarchy h;
   ASSERT_EQ(buildDegreeHierarchy({3, 2, 1}, sys.body->elementNodes().data(), sys.body->elementCount(),
                                  sys.body->nodeCount(), &h),
