@@ -16,23 +16,8 @@
 namespace vp {
 namespace {
 
-using Mat3R = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
-
-Eigen::MatrixXd dense(const BlockSparseMatrix<double>& m) {
-  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(3 * m.blockRows, 3 * m.blockRows);
-  for (int32_t r = 0; r < m.blockRows; ++r)
-    for (int32_t k = m.rowStart[r]; k < m.rowStart[r + 1]; ++k)
-      d.block<3, 3>(3 * r, 3 * m.columns[k]) = Eigen::Map<const Mat3R>(&m.values[9 * static_cast<int64_t>(k)]);
-  return d;
-}
-
-Eigen::MatrixXd dense(const NodeProlongation& P) {
-  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(3 * P.fineNodes, 3 * P.coarseNodes);
-  for (int32_t i = 0; i < P.fineNodes; ++i)
-    for (int32_t k = P.rowStart[i]; k < P.rowStart[i + 1]; ++k)
-      d.block<3, 3>(3 * i, 3 * P.columns[k]) = P.weights[k] * Eigen::Matrix3d::Identity();
-  return d;
-}
+using deform_test::denseMatrix;
+using deform_test::denseProlongation;
 
 struct DeformedBody {
   std::unique_ptr<DeformableBody> body;
@@ -83,15 +68,15 @@ TEST(DegreeLevelAssembly, StiffnessIsTheGalerkinProductOfTheFineStiffness) {
       ASSERT_EQ(buildDegreeHierarchy(degrees, sys.body->elementNodes().data(), sys.body->elementCount(),
                                      sys.body->nodeCount(), &h),
                 Status::Ok);
-      Eigen::MatrixXd fine = dense(sys.body->stepMatrix());
+      Eigen::MatrixXd fine = denseMatrix(sys.body->stepMatrix());
       for (size_t l = 1; l < h.levels.size(); ++l) {
         DegreeLevelAssembly level;
         level.build(h.levels[l], degrees[0], sys.body->restVolumes().data(), sys.body->elementCount(),
                     sys.body->desc().material.density);
         level.assemble(*sys.tasks, sys.body->elementGradientPairs().data(), 0.0);
-        const Eigen::MatrixXd P = dense(h.prolongations[l - 1]);
+        const Eigen::MatrixXd P = denseProlongation(h.prolongations[l - 1]);
         const Eigen::MatrixXd galerkin = P.transpose() * fine * P;
-        const Eigen::MatrixXd assembled = dense(level.matrix());
+        const Eigen::MatrixXd assembled = denseMatrix(level.matrix());
         EXPECT_LT((assembled - galerkin).norm(), 1e-12 * galerkin.norm())
             << "degrees " << degrees[0] << " -> " << h.levels[l].degree;
         EXPECT_GT(galerkin.norm(), 0.0);
@@ -117,7 +102,7 @@ TEST(DegreeLevelAssembly, MassIsTheLumpedMassOfTheCoarseDegree) {
     level.build(h.levels[l], 3, sys.body->restVolumes().data(), sys.body->elementCount(),
                 sys.body->desc().material.density);
     level.assemble(*sys.tasks, zeroPairs.data(), 1.5);
-    const Eigen::MatrixXd M = dense(level.matrix());
+    const Eigen::MatrixXd M = denseMatrix(level.matrix());
     EXPECT_NEAR(M.trace() / 3.0, 1.5 * bodyMass, 1e-12 * bodyMass);
     EXPECT_LT((M - Eigen::MatrixXd(M.diagonal().asDiagonal())).norm(), 1e-15 * M.norm()) << "lumped: diagonal";
     double levelMass = 0.0;

@@ -155,22 +155,12 @@ TEST(PMultigrid, CoarseOperatorsAreConstrainedGalerkinProducts) {
   PMultigrid mg;
   sys.setUp(&mg);
   ASSERT_EQ(mg.levelCount(), 3);
-  auto dense = [](const BlockSparseMatrix<double>& m) {
-    Eigen::MatrixXd d = Eigen::MatrixXd::Zero(3 * m.blockRows, 3 * m.blockRows);
-    for (int32_t r = 0; r < m.blockRows; ++r)
-      for (int32_t k = m.rowStart[r]; k < m.rowStart[r + 1]; ++k)
-        d.block<3, 3>(3 * r, 3 * m.columns[k]) = Eigen::Map<const Mat3R>(&m.values[9 * static_cast<int64_t>(k)]);
-    return d;
-  };
-  Eigen::MatrixXd A = dense(mg.levelMatrix(0));
+  Eigen::MatrixXd A = deform_test::denseMatrix(mg.levelMatrix(0));
   Eigen::MatrixXd Ff = Eigen::MatrixXd::Zero(A.rows(), A.cols());
   for (int32_t i = 0; i < sys.body->nodeCount(); ++i) Ff.block<3, 3>(3 * i, 3 * i) = Eigen::Map<const Mat3R>(&sys.filters[9 * i]);
   for (int l = 1; l < 3; ++l) {
     const NodeProlongation& P = sys.hierarchy.prolongations[l - 1];
-    Eigen::MatrixXd Pd = Eigen::MatrixXd::Zero(3 * P.fineNodes, 3 * P.coarseNodes);
-    for (int32_t i = 0; i < P.fineNodes; ++i)
-      for (int32_t k = P.rowStart[i]; k < P.rowStart[i + 1]; ++k)
-        Pd.block<3, 3>(3 * i, 3 * P.columns[k]) = P.weights[k] * Eigen::Matrix3d::Identity();
+    const Eigen::MatrixXd Pd = deform_test::denseProlongation(P);
     // The coarse filter projects onto the span of its fine readers' allowed directions.
     Eigen::MatrixXd Fc = Eigen::MatrixXd::Zero(3 * P.coarseNodes, 3 * P.coarseNodes);
     for (int32_t a = 0; a < P.coarseNodes; ++a) {
@@ -186,7 +176,7 @@ TEST(PMultigrid, CoarseOperatorsAreConstrainedGalerkinProducts) {
     const Eigen::MatrixXd Pt = Ff * Pd * Fc;
     const Eigen::MatrixXd expected = Pt.transpose() * A * Pt;
     // (Filtered-out directions carry a positive diagonal that no cycle sees: compare on F_c.)
-    const Eigen::MatrixXd actual = Fc * dense(mg.levelMatrix(l)) * Fc;
+    const Eigen::MatrixXd actual = Fc * deform_test::denseMatrix(mg.levelMatrix(l)) * Fc;
     EXPECT_LT((actual - expected).norm(), 1e-12 * expected.norm()) << "level " << l;
     A = expected;
     Ff = Fc;
@@ -206,22 +196,12 @@ TEST(PMultigrid, RediscretizedCoarseOperatorsAreGalerkinOnTheConformingCoarseSpa
     sys.setUp(&mg);
     ASSERT_TRUE(mg.rediscretized());
     ASSERT_EQ(mg.levelCount(), static_cast<int>(degrees.size()));
-    auto dense = [](const BlockSparseMatrix<double>& m) {
-      Eigen::MatrixXd d = Eigen::MatrixXd::Zero(3 * m.blockRows, 3 * m.blockRows);
-      for (int32_t r = 0; r < m.blockRows; ++r)
-        for (int32_t k = m.rowStart[r]; k < m.rowStart[r + 1]; ++k)
-          d.block<3, 3>(3 * r, 3 * m.columns[k]) = Eigen::Map<const Mat3R>(&m.values[9 * static_cast<int64_t>(k)]);
-      return d;
-    };
     Eigen::MatrixXd Ff = Eigen::MatrixXd::Zero(sys.size(), sys.size());
     for (int32_t i = 0; i < sys.body->nodeCount(); ++i) Ff.block<3, 3>(3 * i, 3 * i) = Eigen::Map<const Mat3R>(&sys.filters[9 * i]);
-    Eigen::MatrixXd A = Ff * dense(mg.levelMatrix(0)) * Ff;
+    Eigen::MatrixXd A = Ff * deform_test::denseMatrix(mg.levelMatrix(0)) * Ff;
     for (int l = 1; l < mg.levelCount(); ++l) {
       const NodeProlongation& P = sys.hierarchy.prolongations[l - 1];
-      Eigen::MatrixXd Pd = Eigen::MatrixXd::Zero(3 * P.fineNodes, 3 * P.coarseNodes);
-      for (int32_t i = 0; i < P.fineNodes; ++i)
-        for (int32_t k = P.rowStart[i]; k < P.rowStart[i + 1]; ++k)
-          Pd.block<3, 3>(3 * i, 3 * P.columns[k]) = P.weights[k] * Eigen::Matrix3d::Identity();
+      const Eigen::MatrixXd Pd = deform_test::denseProlongation(P);
       // F_c: the null space of Σ (I − F_i) over the fine readers i of each coarse node.
       Eigen::MatrixXd Fc = Eigen::MatrixXd::Zero(3 * P.coarseNodes, 3 * P.coarseNodes);
       int constrainedCoarse = 0;
@@ -241,7 +221,7 @@ TEST(PMultigrid, RediscretizedCoarseOperatorsAreGalerkinOnTheConformingCoarseSpa
       const Eigen::MatrixXd expected = conforming.transpose() * A * conforming;
       // Times F_c on the right only: the level's own filter must be F_c, or rows outside it
       // remain (the σ it puts on filtered-out directions is block diagonal and drops out).
-      const Eigen::MatrixXd actual = dense(mg.levelMatrix(l)) * Fc;
+      const Eigen::MatrixXd actual = deform_test::denseMatrix(mg.levelMatrix(l)) * Fc;
       EXPECT_LT((actual - expected).norm(), 1e-12 * expected.norm()) << "level " << l;
       A = expected;
       Ff = Fc;
