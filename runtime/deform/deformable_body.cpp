@@ -14,6 +14,7 @@
 #include "deform/corotated_element.h"
 #include "deform/deformation_gradient.h"
 #include "deform/degree_hierarchy.h"
+#include "deform/degree_level_assembly.h"
 #include "deform/polar_decomposition.h"
 #include "geometry/tet_mesh_boundary.h"
 #include "deform/linear_tet_corotation.h"
@@ -129,19 +130,7 @@ Status DeformableBody::create(DeformableDesc desc, std::unique_ptr<DeformableBod
     r[0] = q.w(), r[1] = q.x(), r[2] = q.y(), r[3] = q.z();
   }
   // Node -> (element, corner) incidence, in element order, for the gather assembly.
-  b.incidenceStart_.assign(static_cast<size_t>(b.nodeCount_) + 1, 0);
-  for (int64_t k = 0; k < N * elements; ++k) b.incidenceStart_[b.elementNodes_[k] + 1]++;
-  for (int32_t i = 0; i < b.nodeCount_; ++i) b.incidenceStart_[i + 1] += b.incidenceStart_[i];
-  b.incidentElement_.resize(static_cast<size_t>(N * elements));
-  b.incidentCorner_.resize(static_cast<size_t>(N * elements));
-  {
-    std::vector<int32_t> fill(b.incidenceStart_.begin(), b.incidenceStart_.end() - 1);
-    for (int64_t k = 0; k < N * elements; ++k) {
-      const int32_t slot = fill[b.elementNodes_[k]]++;
-      b.incidentElement_[slot] = static_cast<int32_t>(k / N);
-      b.incidentCorner_[slot] = static_cast<uint8_t>(k % N);
-    }
-  }
+  b.incidence_.build(b.nodeCount_, b.elementNodes_.data(), elements, N);
   b.elementForce_.resize(3 * static_cast<size_t>(N * elements));
   if (degree == 1) b.rotatedGradients_.resize(12 * static_cast<size_t>(elements));
   else {
@@ -158,7 +147,17 @@ Status DeformableBody::create(DeformableDesc desc, std::unique_ptr<DeformableBod
   if (b.usePMultigrid_) {
     DegreeHierarchy hierarchy;
     VP_TRY(buildDegreeHierarchy(pMultigridDegrees(degree), b.elementNodes_.data(), elements, b.nodeCount_, &hierarchy));
-    b.pMultigrid_.build(b.matrix_, std::move(hierarchy.prolongations), pMultigridSettings(degree));
+    std::vector<BlockSparseMatrix<double>*> rediscretized;
+    if (desc.solver.pMultigridCoarseOperator == PMultigridCoarseOperator::Rediscretized) {
+      b.degreeLevels_.resize(hierarchy.levels.size() - 1);
+      for (size_t l = 1; l < hierarchy.levels.size(); ++l) {
+        b.degreeLevels_[l - 1].build(hierarchy.levels[l], degree, b.restVolume_.data(), elements,
+                                     desc.material.density);
+        rediscretized.push_back(&b.degreeLevels_[l - 1].matrix());
+      }
+    }
+    b.pMultigrid_.build(b.matrix_, std::move(hierarchy.prolongations), pMultigridSettings(degree),
+                        std::move(rediscretized));
   }
   if (b.useMultigrid_ || b.usePMultigrid_) b.nodeFilters_.assign(9 * static_cast<size_t>(b.nodeCount_), 0.0);
   const size_t n3 = b.restX_.size();
@@ -366,7 +365,7 @@ void DeformableBody::updateRenderMesh(TaskSystem& tasks) {
   computeVertexNormals(renderPositions_, renderRest_.triangles, &renderNormals_);
 }
 
-void DeformableBody::updateMultigridFilters(TaskSystem& tasks) {
+void DeformableBody::updateMultigridFilters(TaskSystem& tasks, double massScale) {
   parallelFor(tasks, nodeCount_, 1024, [&](int64_t begin, int64_t end) {
     for (int64_t i = begin; i < end; ++i) {
       Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> F(&nodeFilters_[9 * i]);
@@ -376,8 +375,11 @@ void DeformableBody::updateMultigridFilters(TaskSystem& tasks) {
       else F.setIdentity();
     }
   });
-  if (useMultigrid_) multigrid_.update(tasks, matrix_, x_.data(), nodeFilters_.data());
-  else pMultigrid_.update(tasks, matrix_, x_.data(), nodeFilters_.data());
+  if (useMultigrid_) return multigrid_.update(tasks, matrix_, x_.data(), nodeFilters_.data());
+  // Re-discretized levels: this step's rotations and scalings, from the fine assembly (and
+  // afresh for every update, which constrains them in place).
+  for (DegreeLevelAssembly& level : degreeLevels_) level.assemble(tasks, gradientPairs_.data(), massScale);
+  pMultigrid_.update(tasks, matrix_, x_.data(), nodeFilters_.data());
 }
 
 void DeformableBody::contactImpulses(TaskSystem& tasks, std::vector<Vec3>* impulses) {
@@ -404,9 +406,9 @@ void DeformableBody::gatherRows(TaskSystem& tasks, int64_t grain, const AddBlock
       double f[3] = {0.0, 0.0, 0.0};
       for (int32_t k = matrix_.rowStart[i]; k < matrix_.rowStart[i + 1]; ++k)
         std::fill_n(&matrix_.values[9 * static_cast<int64_t>(k)], 9, 0.0);
-      for (int32_t k = incidenceStart_[i]; k < incidenceStart_[i + 1]; ++k) {
-        const int64_t e = incidentElement_[k];
-        const int a = incidentCorner_[k];
+      for (int32_t k = incidence_.start[i]; k < incidence_.start[i + 1]; ++k) {
+        const int64_t e = incidence_.element[k];
+        const int a = incidence_.corner[k];
         for (int c = 0; c < 3; ++c) f[c] += elementForce_[3 * (N * e + a) + c];
         for (int b = 0; b < N; ++b)
           addBlock(e, a, b, &matrix_.values[9 * static_cast<int64_t>(scatter_[N * N * e + N * a + b])]);
@@ -542,7 +544,7 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
   system.size = n3;
   system.apply = [&](const double* x, double* y) { matrix_.multiply(tasks, x, y); };
   if (useMultigrid_ || usePMultigrid_) {
-    updateMultigridFilters(tasks);
+    updateMultigridFilters(tasks, massScale);
     lap(Phase::Assemble);  // the preconditioner's setup is part of building the system
   }
   system.precondition = [&](const double* r, double* z) {
@@ -646,7 +648,7 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
     // solve stalls (relative residual ~1 after hundreds of iterations). Block-Jacobi is not
     // filtered and needs nothing.
     if (useMultigrid_ || usePMultigrid_) {
-      updateMultigridFilters(tasks);
+      updateMultigridFilters(tasks, massScale);
       lap(Phase::Assemble);
     }
     cg = solveConjugateGradient(tasks, system, rhs_.data(), vNext_.data(), settings, in.deadline, cg_);

@@ -21,6 +21,8 @@
 #include "deform/deformable_desc.h"
 #include "deform/bb_rotated_stiffness.h"
 #include "deform/deformable_contacts.h"
+#include "deform/degree_level_assembly.h"
+#include "deform/element_incidence.h"
 #include "geometry/embedding.h"
 #include "linalg/aggregation_multigrid.h"
 #include "linalg/block_sparse_matrix.h"
@@ -89,6 +91,11 @@ class DeformableBody {
   const BlockSparseMatrix<double>& stepMatrix() const { return matrix_; }
   // Which preconditioner the solve uses (Auto resolved).
   Preconditioner preconditioner() const;
+  const Array<double>& restVolumes() const { return restVolume_; }
+  // Degree > 1: the 16 rotated gradient pairs per element of the last assembly, with its
+  // stiffness scale (deform/bb_rotated_stiffness.h); p-multigrid's re-discretized levels are
+  // assembled from them (deform/degree_level_assembly.h).
+  const Array<double>& elementGradientPairs() const { return gradientPairs_; }
 
  private:
   DeformableBody() = default;
@@ -98,8 +105,9 @@ class DeformableBody {
   void gatherRows(TaskSystem& tasks, int64_t grain, const AddBlock& addBlock);
   void updateRenderMesh(TaskSystem& tasks);
   // The multigrid preconditioners' constraint filters from constrained_, and their setup
-  // redone with them (called whenever the constraint set changes within a step).
-  void updateMultigridFilters(TaskSystem& tasks);
+  // redone with them (called whenever the constraint set changes within a step); massScale
+  // scales the re-discretized p-multigrid levels' mass as the fine system's.
+  void updateMultigridFilters(TaskSystem& tasks, double massScale);
   // Constraint impulse of each contact from the solved velocities: A v' − b at its node.
   void contactImpulses(TaskSystem& tasks, std::vector<Vec3>* impulses);
   Status checkNode(const char* what, int32_t node) const;
@@ -128,9 +136,7 @@ class DeformableBody {
   Array<double> rotations_;         // 4 per element, quaternion (w,x,y,z) warm start
   Array<uint8_t> pinned_;
   std::vector<Attachment> attachments_;
-  Array<int32_t> incidenceStart_;   // per node, into incidentElement_/incidentCorner_
-  Array<int32_t> incidentElement_;  // (element, corner) pairs touching each node, grouped by node
-  Array<uint8_t> incidentCorner_;
+  ElementIncidence incidence_;      // (element, corner) pairs touching each node
   Array<double> elementForce_;      // 3 * nodesPerElement per element, this step
   Array<double> rotatedGradients_;  // 12 per element, this step
   BlockSparseMatrix<double> matrix_;
@@ -156,6 +162,7 @@ class DeformableBody {
   AggregationMultigrid multigrid_;
   bool usePMultigrid_ = false;
   PMultigrid pMultigrid_;
+  std::vector<DegreeLevelAssembly> degreeLevels_;  // p-multigrid's re-discretized levels, if chosen
   Array<double> nodeFilters_;  // 9 per node: the CG filter as a 3x3 projector, for the multigrids
 };
 

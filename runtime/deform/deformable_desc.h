@@ -43,10 +43,19 @@ enum class Preconditioner : int {
 // Below this many nodes the multigrid's setup costs more than the CG iterations it saves.
 constexpr int kMultigridMinNodes = 400;
 
+// How p-multigrid gets its coarse operators. Re-discretized is the default: 0-4% more CG
+// iterations than Galerkin, a half to a third less setup (measured in linalg/p_multigrid.h).
+enum class PMultigridCoarseOperator : int {
+  Galerkin = 0,       // P̃ᵀ A P̃ with the constrained prolongation
+  Rediscretized = 1,  // assembled at each coarse degree with the fine level's element rotations
+                      // (deform/degree_level_assembly.h), restricted to the constrained space
+};
+
 struct DeformableSolverSettings {
   double tolerance = 1e-3;  // relative residual of the implicit solve
   int maxIterations = 200;
   Preconditioner preconditioner = Preconditioner::Auto;
+  PMultigridCoarseOperator pMultigridCoarseOperator = PMultigridCoarseOperator::Rediscretized;
 };
 
 struct DeformableDesc {

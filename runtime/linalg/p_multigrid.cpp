@@ -1,6 +1,7 @@
 #include "linalg/p_multigrid.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 
 #include <Eigen/Dense>
@@ -34,10 +35,12 @@ inline Vec3d filtered(uint8_t kind, const double* F, const Vec3d& x) {
 }  // namespace
 
 void PMultigrid::build(const BlockSparseMatrix<double>& fine, std::vector<NodeProlongation> prolongations,
-                       const PMultigridSettings& settings) {
+                       const PMultigridSettings& settings, std::vector<BlockSparseMatrix<double>*> rediscretized) {
   settings_ = settings;
   levels_.clear();
   updates_ = 0;
+  rediscretized_ = !rediscretized.empty();
+  assert(!rediscretized_ || rediscretized.size() == prolongations.size());
   levels_.resize(prolongations.size() + 1);
   levels_[0].nodes = fine.blockRows;
   levels_[0].matrix = &fine;
@@ -59,9 +62,15 @@ void PMultigrid::build(const BlockSparseMatrix<double>& fine, std::vector<NodePr
         L.restrictFine[slot] = i;
         L.restrictWeight[slot] = L.P.weights[k];
       }
+    if (rediscretized_) {
+      assert(rediscretized[l - 1]->blockRows == L.nodes);
+      L.coarse = rediscretized[l - 1];
+      L.matrix = L.coarse;
+      continue;
+    }
     // Symbolic Galerkin product: coarse a couples b when a fine block (i, j) has a ∈ P(i),
     // b ∈ P(j).
-    const BlockSparseMatrix<double>& A = l == 1 ? fine : levels_[l - 1].galerkin;
+    const BlockSparseMatrix<double>& A = *levels_[l - 1].matrix;
     BlockSparseMatrix<double>& C = L.galerkin;
     C.blockRows = L.nodes;
     C.rowStart.assign(static_cast<size_t>(L.nodes) + 1, 0);
@@ -88,6 +97,7 @@ void PMultigrid::build(const BlockSparseMatrix<double>& fine, std::vector<NodePr
     C.values.assign(9 * C.columns.size(), 0.0);
     C.diagonal.resize(static_cast<size_t>(L.nodes));
     for (int32_t a = 0; a < L.nodes; ++a) C.diagonal[a] = C.find(a, a);
+    L.coarse = &C;
     L.matrix = &C;
   }
   for (Level& L : levels_) {
@@ -100,42 +110,91 @@ void PMultigrid::build(const BlockSparseMatrix<double>& fine, std::vector<NodePr
   coarsest_.build(*levels_.back().matrix);
 }
 
-void PMultigrid::galerkin(TaskSystem& tasks, int level) {
+void PMultigrid::coarseFilters(TaskSystem& tasks, int level) {
   Level& L = levels_[level];
   const Level& Fl = levels_[level - 1];
-  const BlockSparseMatrix<double>& A = *Fl.matrix;
-  BlockSparseMatrix<double>& C = L.galerkin;
-  // Coarse filters: the projector onto the directions some fine reader may move in (the
-  // range of Σ F_i over the fine nodes reading the coarse node): I where any reader is free,
-  // 0 where all are pinned, the tangent plane where all slide on the same plane. Directions
-  // outside it prolongate to zero, so dropping them loses nothing and keeps the coarse
-  // diagonal blocks invertible on what remains.
+  // Galerkin: the projector onto the directions some fine reader may move in (the range of
+  // Σ F_i over the fine nodes reading the coarse node): I where any reader is free, 0 where
+  // all are pinned, the tangent plane where all slide on the same plane. Directions outside
+  // it prolongate to zero, so dropping them loses nothing and keeps the coarse diagonal
+  // blocks invertible on what remains; the product P̃ᵀAP̃ truncates each coarse function at
+  // the constrained fine nodes it reaches.
+  // Re-discretized: an assembled operator cannot truncate, so a coarse node may only move
+  // where every reader may (the intersection of the ranges: the null space of Σ (I − F_i)).
+  // Then P F_c maps into the constrained fine space, and the coarse operator is the exact
+  // Galerkin operator of that smaller, conforming coarse space; for a pinned face it is the
+  // coarse degree's own clamp (its control points on the face pinned).
   parallelFor(tasks, L.nodes, kNodeGrain, [&](int64_t begin, int64_t end) {
     for (int64_t a = begin; a < end; ++a) {
       Eigen::Map<Mat3R> F(&L.filters[9 * a]);
-      bool anyFree = false;
+      bool decided = false;  // identity or zero, found while summing
       Eigen::Matrix3d S = Eigen::Matrix3d::Zero();
-      for (int32_t t = L.restrictStart[a]; t < L.restrictStart[a + 1] && !anyFree; ++t) {
+      for (int32_t t = L.restrictStart[a]; t < L.restrictStart[a + 1] && !decided; ++t) {
         const int64_t i = L.restrictFine[t];
-        anyFree = Fl.filterKind[i] == kIdentity;
-        if (Fl.filterKind[i] == kGeneral) S += Eigen::Map<const Mat3R>(&Fl.filters[9 * i]);
+        const uint8_t kind = Fl.filterKind[i];
+        if (rediscretized_) {
+          decided = kind == kZero;
+          if (kind == kGeneral) S += Eigen::Matrix3d::Identity() - Eigen::Map<const Mat3R>(&Fl.filters[9 * i]);
+        } else {
+          decided = kind == kIdentity;
+          if (kind == kGeneral) S += Eigen::Map<const Mat3R>(&Fl.filters[9 * i]);
+        }
       }
-      if (anyFree) {
-        F.setIdentity();
-        L.filterKind[a] = kIdentity;
+      // Union: the eigenvectors of S with a positive eigenvalue; intersection: with a zero one.
+      const bool identity = rediscretized_ ? !decided && S.isZero(0.0) : decided;
+      const bool zero = rediscretized_ ? decided : !decided && S.isZero(0.0);
+      if (identity || zero) {
+        if (identity) F.setIdentity();
+        else F.setZero();
+        L.filterKind[a] = identity ? kIdentity : kZero;
         continue;
       }
       Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(S);
       const double cutoff = 1e-9 * std::max(eig.eigenvalues().cwiseAbs().maxCoeff(), 1e-300);
-      Eigen::Matrix3d range = Eigen::Matrix3d::Zero();
+      F.setZero();
       int rank = 0;
       for (int k = 0; k < 3; ++k)
-        if (eig.eigenvalues()[k] > cutoff) range += eig.eigenvectors().col(k) * eig.eigenvectors().col(k).transpose(), ++rank;
-      F = range;
+        if ((eig.eigenvalues()[k] > cutoff) != rediscretized_)
+          F += eig.eigenvectors().col(k) * eig.eigenvectors().col(k).transpose(), ++rank;
       L.filterKind[a] = rank == 3 ? kIdentity : rank == 0 ? kZero : kGeneral;
       if (rank == 3) F.setIdentity();
     }
   });
+}
+
+void PMultigrid::constrainRow(Level& L, int64_t a) {
+  // Block (a, b) becomes F_a C_ab F_b. Filtered-out directions get a positive diagonal (σ,
+  // the block's mean diagonal) so the coarsest multigrid, which inverts diagonal blocks
+  // before filtering them, sees an invertible block; every cycle projects those directions
+  // away, so σ never acts.
+  BlockSparseMatrix<double>& C = *L.coarse;
+  const bool rowFiltered = L.filterKind[a] != kIdentity;
+  for (int32_t k = C.rowStart[a]; k < C.rowStart[a + 1]; ++k) {
+    const int32_t b = C.columns[k];
+    Eigen::Map<Mat3R> block(&C.values[9 * static_cast<int64_t>(k)]);
+    if (rowFiltered) block = Eigen::Map<const Mat3R>(&L.filters[9 * a]) * block;
+    if (L.filterKind[b] != kIdentity) block = block * Eigen::Map<const Mat3R>(&L.filters[9 * static_cast<int64_t>(b)]);
+  }
+  if (rowFiltered) {
+    Eigen::Map<Mat3R> diagonal(&C.values[9 * static_cast<int64_t>(C.diagonal[a])]);
+    const double trace = diagonal.trace();
+    const double sigma = trace > 0.0 ? trace / 3.0 : 1.0;
+    diagonal += sigma * (Mat3R::Identity() - Eigen::Map<const Mat3R>(&L.filters[9 * a]));
+  }
+}
+
+void PMultigrid::coarseOperator(TaskSystem& tasks, int level) {
+  Level& L = levels_[level];
+  if (rediscretized_) {
+    // The caller's operator of this degree, restricted to the constrained coarse space.
+    parallelFor(tasks, L.nodes, kNodeGrain, [&](int64_t begin, int64_t end) {
+      for (int64_t a = begin; a < end; ++a) constrainRow(L, a);
+    });
+    return;
+  }
+  const Level& Fl = levels_[level - 1];
+  const BlockSparseMatrix<double>& A = *Fl.matrix;
+  BlockSparseMatrix<double>& C = L.galerkin;
   // C_ab = F_a Σ w_ia w_jb F_i A_ij F_j F_b, one coarse row per task (no races, fixed order).
   parallelFor(tasks, L.nodes, kGalerkinGrain, [&](int64_t begin, int64_t end) {
     // Coarse column -> block index of the current row; every entry is reset to -1 after its
@@ -163,22 +222,8 @@ void PMultigrid::galerkin(TaskSystem& tasks, int level) {
             Eigen::Map<Mat3R>(&C.values[9 * static_cast<int64_t>(slot[L.P.columns[s]])]) += (wi * L.P.weights[s]) * B;
         }
       }
-      for (int32_t k = C.rowStart[a]; k < C.rowStart[a + 1]; ++k) {
-        const int32_t b = C.columns[k];
-        Eigen::Map<Mat3R> block(&C.values[9 * static_cast<int64_t>(k)]);
-        if (L.filterKind[a] != kIdentity) block = Eigen::Map<const Mat3R>(&L.filters[9 * a]) * block;
-        if (L.filterKind[b] != kIdentity) block = block * Eigen::Map<const Mat3R>(&L.filters[9 * static_cast<int64_t>(b)]);
-        slot[b] = -1;
-      }
-      // Filtered-out directions get a positive diagonal (σ, the block's mean diagonal) so the
-      // coarsest multigrid, which inverts diagonal blocks before filtering them, sees an
-      // invertible block; every cycle projects those directions away, so σ never acts.
-      if (L.filterKind[a] != kIdentity) {
-        Eigen::Map<Mat3R> diagonal(&C.values[9 * static_cast<int64_t>(C.diagonal[a])]);
-        const double trace = diagonal.trace();
-        const double sigma = trace > 0.0 ? trace / 3.0 : 1.0;
-        diagonal += sigma * (Mat3R::Identity() - Eigen::Map<const Mat3R>(&L.filters[9 * a]));
-      }
+      for (int32_t k = C.rowStart[a]; k < C.rowStart[a + 1]; ++k) slot[C.columns[k]] = -1;
+      constrainRow(L, a);
     }
   });
 }
@@ -227,7 +272,10 @@ void PMultigrid::update(TaskSystem& tasks, const BlockSparseMatrix<double>& fine
       top.filterKind[i] = F.isIdentity(0.0) ? kIdentity : F.isZero(0.0) ? kZero : kGeneral;
     }
   });
-  for (int l = 1; l < levelCount(); ++l) galerkin(tasks, l);
+  for (int l = 1; l < levelCount(); ++l) {
+    coarseFilters(tasks, l);
+    coarseOperator(tasks, l);
+  }
   const bool refresh = updates_++ % kLambdaRefresh == 0;
   for (int l = 0; l < levelCount(); ++l) {
     Level& L = levels_[l];

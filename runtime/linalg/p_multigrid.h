@@ -4,26 +4,48 @@
 // deform/degree_hierarchy.h: what this class needs of them is the per-node prolongations
 // (BB degree elevation), so it knows nothing about elements.
 //
-// Coarse operators are Galerkin products A_c = P̃ᵀ A P̃ with the constrained prolongation
-// P̃ = F_f P F_c (F: the per-node 3x3 constraint projectors CG filters with, 0 for pinned
-// nodes, I − nnᵀ for sliding contacts). Why Galerkin rather than re-discretizing each degree
-// with the same element rotations:
-//  - constraints: a coarse problem re-discretized from elements does not know which fine
-//    directions are filtered (a contact on one edge control point has no coarse node of
-//    its own), so its coarse correction would push constrained directions and the fine
-//    smoother would have to undo it; P̃ᵀAP̃ is by construction the fine problem restricted
-//    to the constrained coarse space, the best coarse correction in the energy norm;
-//  - everything the fine matrix holds (mass, Rayleigh damping, stiffness, with whatever
-//    scaling the integrator chose) reaches the coarse levels without this class knowing
-//    the integrator;
-//  - cost: one sparse triple product per step. The whole setup (products, smoother diagonals
-//    and λmax, coarsest multigrid) measured 186 ms against a 739 ms solve on the cubic beam of
-//    BM_DeformSolve (setup_ms), and ~8% of a quadratic step's CPU in a profile of
-//    BM_DeformQuadraticBeam/13000. Re-discretization was not implemented, so it is not
-//    measured against it: it would save part of that setup but not the constraint argument.
-// F_c of a coarse node projects onto the directions some fine node reading it may move in
-// (zero on a pinned face, whose control points are pinned at every degree; identity
-// wherever a free node reads it).
+// Coarse operators, two kinds (DeformableSolverSettings::pMultigridCoarseOperator picks; F
+// below is the per-node 3x3 projector CG filters with: 0 pinned, I − nnᵀ sliding, else I):
+//  - re-discretized (the default): the caller assembles each coarse level at its own degree
+//    with the fine level's element rotations and integrator scalings
+//    (deform/degree_level_assembly.h), and update() restricts it in place to the constrained
+//    coarse space. Its stiffness is the Galerkin product Pᵀ K P exactly, for any rotations
+//    (elevation is exact and commutes with a per-element rotation); its mass is the coarse
+//    degree's lumped mass rather than the elevated fine one. An assembled operator cannot
+//    truncate a coarse function at the constrained fine nodes it reaches, so a coarse node
+//    may move only where every fine node reading it may: F_c projects onto the intersection
+//    of their ranges (the null space of Σ (I − F_i)). A pinned face then pins the coarse
+//    degree's own control points on it, P F_c maps into the constrained fine space, and the
+//    constrained coarse operator is the Galerkin operator of that conforming coarse space
+//    (tests/unit/linalg_p_multigrid_test.cpp checks it densely). With the union rule below
+//    instead, the coarse nodes on a clamped face's edges stayed free in a coarse problem
+//    that believes the face moves with them: 39 CG iterations instead of 16 on
+//    BM_DeformSolve, and the cycle alone did not converge.
+//  - Galerkin: A_c = P̃ᵀ A P̃ with the constrained prolongation P̃ = F_f P F_c, F_c the
+//    projector onto the directions some fine reader may move in (the range of Σ F_i: I where
+//    any reader is free, 0 where all are pinned). The product truncates coarse functions at
+//    constrained fine nodes: a larger coarse space, the best correction in the energy norm
+//    over it, at the price of one sparse triple product per level and update.
+// Measured on the 2-core machine, the two in the same runs (random interleaving, load
+// 0.5-1.5), medians; the rest of the setup (smoother diagonals, λmax, coarsest multigrid) is
+// common to both:
+//                                     Galerkin                 re-discretized
+//   BM_DeformSolve/pmg_pcg/cubic      16 it, setup 90 ms,      16 it, setup 58 ms,
+//     (pinned face, PCG to 1e-6)      446 ms in all            381 ms in all
+//   BM_DeformSolve/pmg/cubic          42 cycles, 1031 ms       42 cycles, 969 ms
+//   BM_DeformContact (cubic cube      11.66 it/step, setup     12.18 it/step, setup
+//     tumbling onto a plane)          13.6 ms/step, 10.5 s CPU  5.0 ms/step, 7.8 s CPU
+//   BM_DeformQuadraticBeam/13000      8.47 it/step, setup      8.58 it/step, setup
+//     (quadratic, 2 -> 1, pinned)     16.8 ms/step, 10.2 Hz    10.2 ms/step, 10.4 Hz
+// (BM_DeformContact and BM_DeformQuadraticBeam: the step's assemble phase, mostly this
+// setup. On a quiet machine, load 0.3: BM_DeformSolve setup 64 against 44 ms.) The
+// conforming coarse space costs 0-4% more iterations; the cheaper setup more than pays for
+// it, most where contacts change the constraint set within a step, since every active-set
+// pass that does sets the cycle up again. So re-discretized is the default. The smoother and cycle figures
+// below were taken with Galerkin operators; with re-discretized ones the same runs give the
+// same counts to ±1 iteration.
+// Either way, all levels' node filters are the caller's CG filters at update time: after a
+// change of constraints the cycle must be updated before it is applied again.
 //
 // Smoothers (both polynomials in D⁻¹A with the filtered block diagonal D, so they are
 // symmetric and parallel like an SpMV; the same one before and after the coarse correction
@@ -34,7 +56,8 @@
 // Coloured Gauss–Seidel was not tried: BB control points of degree 3 touch ~100 neighbours,
 // so a colouring needs many colours, each a sweep with poor locality.
 // Measured with BM_DeformSolve (cubic 5184-tet beam, 85K unknowns, PCG to 1e-6 from zero),
-// CG iterations for `sweeps` smoothing steps per side and c coarsest cycles (3 -> 2 -> 1):
+// CG iterations for `sweeps` smoothing steps per side and c coarsest cycles (3 -> 2 -> 1),
+// Galerkin coarse operators:
 //                      c = 1    2    4    8   16
 //   Chebyshev, 2 steps     33   26   20   16   15
 //   Chebyshev, 1 step      38   31   29   27   27
@@ -77,12 +100,16 @@ struct PMultigridSettings {
 
 class PMultigrid {
  public:
-  // prolongations[l] maps level l+1 to level l; level 0 is `fine`. Builds the coarse
-  // patterns (the symbolic Galerkin products) and the coarsest level's multigrid.
+  // prolongations[l] maps level l+1 to level l; level 0 is `fine`.
+  // Galerkin coarse operators (rediscretized empty): builds the coarse patterns (the
+  // symbolic products). Re-discretized ones: rediscretized[l-1] is level l's operator,
+  // assembled by the caller at that level's degree (deform/degree_level_assembly.h); the
+  // caller refills it before every update, which restricts it in place to the constrained
+  // coarse space. Either way builds the coarsest level's multigrid.
   void build(const BlockSparseMatrix<double>& fine, std::vector<NodeProlongation> prolongations,
-             const PMultigridSettings& settings = {});
+             const PMultigridSettings& settings = {}, std::vector<BlockSparseMatrix<double>*> rediscretized = {});
 
-  // Recomputes filters, Galerkin operators, smoothers and the coarsest multigrid.
+  // Recomputes filters, coarse operators, smoothers and the coarsest multigrid.
   // positions: 3 per fine node; filters: 9 per fine node (row-major projector) or nullptr.
   void update(TaskSystem& tasks, const BlockSparseMatrix<double>& fine, const double* positions,
               const double* filters);
@@ -91,6 +118,7 @@ class PMultigrid {
   void apply(TaskSystem& tasks, const double* r, double* z);
 
   int levelCount() const { return static_cast<int>(levels_.size()); }
+  bool rediscretized() const { return rediscretized_; }
   // The operator of level l (0: the fine matrix last passed to update).
   const BlockSparseMatrix<double>& levelMatrix(int l) const { return *levels_[l].matrix; }
   const PMultigridSettings& settings() const { return settings_; }
@@ -99,8 +127,9 @@ class PMultigrid {
   enum : uint8_t { kIdentity = 0, kZero = 1, kGeneral = 2 };
   struct Level {
     int32_t nodes = 0;
-    const BlockSparseMatrix<double>* matrix = nullptr;  // level 0: the caller's
-    BlockSparseMatrix<double> galerkin;                 // levels >= 1
+    const BlockSparseMatrix<double>* matrix = nullptr;  // level 0: the caller's fine matrix
+    BlockSparseMatrix<double>* coarse = nullptr;        // levels >= 1: &galerkin or the caller's
+    BlockSparseMatrix<double> galerkin;                 // levels >= 1, Galerkin operators
     // From this level to the finer one (levels >= 1), and its transpose.
     NodeProlongation P;
     std::vector<int32_t> restrictStart, restrictFine;
@@ -115,11 +144,14 @@ class PMultigrid {
   void cycle(TaskSystem& tasks, int level, const double* r, double* z);
   // out = S rhs, S the smoothing polynomial; leaves rhs − A out in L.residual when asked.
   void smooth(TaskSystem& tasks, Level& L, const double* rhs, double* out, bool wantResidual);
-  void galerkin(TaskSystem& tasks, int level);
+  void coarseFilters(TaskSystem& tasks, int level);
+  void coarseOperator(TaskSystem& tasks, int level);
+  static void constrainRow(Level& L, int64_t row);
   void estimateLambdaMax(TaskSystem& tasks, Level& L);
   void coarsestSolve(TaskSystem& tasks, const double* r, double* z);
 
   PMultigridSettings settings_;
+  bool rediscretized_ = false;
   std::vector<Level> levels_;
   AggregationMultigrid coarsest_;
   uint64_t updates_ = 0;

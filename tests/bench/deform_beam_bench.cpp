@@ -29,7 +29,8 @@ struct BeamRun {
 };
 
 BeamRun runBeam(int64_t tets, double tolerance, int maxIterations, int workers, int degree = 1,
-               Preconditioner preconditioner = Preconditioner::Auto) {
+               Preconditioner preconditioner = Preconditioner::Auto,
+               PMultigridCoarseOperator coarse = DeformableSolverSettings{}.pMultigridCoarseOperator) {
   BeamRun run;
   BeamCells cells;
   if (!beamCellsNearTetCount(tets, &cells)) return run;
@@ -40,6 +41,7 @@ BeamRun runBeam(int64_t tets, double tolerance, int maxIterations, int workers, 
   desc.solver.tolerance = tolerance;
   desc.solver.maxIterations = maxIterations;
   desc.solver.preconditioner = preconditioner;
+  desc.solver.pMultigridCoarseOperator = coarse;
   std::unique_ptr<DeformableBody> body;
   if (!ok(DeformableBody::create(std::move(desc), &body))) return run;
   run.nodes = body->nodeCount();
@@ -117,6 +119,17 @@ void BM_DeformQuadraticBeam(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_DeformQuadraticBeam)->Arg(12288)->Arg(13000)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(1)->Repetitions(3);
+
+// Galerkin coarse operators instead of the default re-discretized ones, to compare.
+void BM_DeformQuadraticBeamGalerkin(benchmark::State& state) {
+  for (auto _ : state) {
+    const BeamRun run = runBeam(state.range(0), DeformableSolverSettings{}.tolerance, DeformableSolverSettings{}.maxIterations,
+                                2, 2, Preconditioner::Auto, PMultigridCoarseOperator::Galerkin);
+    if (!run.ok) return state.SkipWithError("beam setup failed");
+    report(state, run);
+  }
+}
+BENCHMARK(BM_DeformQuadraticBeamGalerkin)->Arg(13000)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(1)->Repetitions(3);
 
 // The same with the aggregation multigrid instead of Auto's p-multigrid, to compare.
 void BM_DeformQuadraticBeamAggregationMultigrid(benchmark::State& state) {

@@ -4,19 +4,21 @@
 //   BM_DeformSolve/pmg/cubic       the V-cycle alone as a solver (Richardson)
 //   BM_DeformSolve/amg_pcg/cubic   CG with the aggregation multigrid on the cubic matrix
 // and variants of the cycle (BM_DeformSolve/pmg_pcg_<variant>/cubic) for the choices made in
-// linalg/p_multigrid.h. The system: the shared 4 x 1 x 1 m beam (beam_mesh.h) at 24x6x6 cells
-// = 5184 cubic tets, E = 1e8, ν = 0.3, ρ = 1000, x = 0 clamped, the backward-Euler matrix of
-// a 1/60 s step (M + h β K + h² K, β = 0.01), right-hand side the step's gravity impulse,
-// started from zero, 2 worker threads. Time = preconditioner setup for this matrix (the
-// p-multigrid's Galerkin products and smoothers, the coarsest aggregation multigrid; the
-// block-Jacobi inverses) + the solve; the one-off symbolic build (at actor creation) is
-// the counter build_ms. Counters: iters, setup_ms, solve_ms, residual.
+// linalg/p_multigrid.h; the p-multigrid's coarse operators are the default re-discretized
+// ones, _galerkin variants take Galerkin products. The system: the shared 4 x 1 x 1 m beam
+// (beam_mesh.h) at 24x6x6 cells = 5184 cubic tets, E = 1e8, ν = 0.3, ρ = 1000, x = 0 clamped,
+// the backward-Euler matrix of a 1/60 s step (M + h β K + h² K, β = 0.01), right-hand side
+// the step's gravity impulse, started from zero, 2 worker threads. Time = preconditioner
+// setup for this matrix (the coarse operators — re-discretized levels assembled from the
+// step's gradient pairs, or the Galerkin products —, smoothers, the coarsest aggregation
+// multigrid; the block-Jacobi inverses) + the solve; the one-off symbolic build (at actor
+// creation) is the counter build_ms. Counters: iters, setup_ms, solve_ms, residual.
 //
-// Measured on the 2-core dev machine while three other engineers built (load average ~6-7 on
-// 2 cores, so times are inflated and vary ±30%; iteration counts are exact), medians of 5:
-//   pcg 4372 ms (598 it), pmg_pcg 960 ms (16 it; 186 ms of it setup), pmg 2027 ms (42 cycles),
-//   amg_pcg 1427 ms (57 it): pmg_pcg 4.6x faster than pcg (5.1x in an earlier run at
-//   3219 / 636 ms), the standalone cycle 2.2x, aggregation multigrid alone 3.1x.
+// Measured on the 2-core dev machine in one run (random interleaving, load 1.2-1.3), medians
+// of 5: pcg 2275 ms (598 it), pmg_pcg 381 ms (16 it; 58 ms of it setup), pmg_pcg_galerkin
+// 446 ms (16 it; 90 ms setup), pmg 969 ms (42 cycles), pmg_galerkin 1031 ms, amg_pcg 644 ms
+// (57 it): pmg_pcg 6.0x faster than pcg, the standalone cycle 2.3x, aggregation multigrid
+// alone 3.5x. (Earlier, under load 6-7: pcg 4372 ms, Galerkin pmg_pcg 960 ms, 4.6x.)
 // The iteration counts of the cycle's variants are in linalg/p_multigrid.h.
 #include <benchmark/benchmark.h>
 
@@ -29,6 +31,7 @@
 #include "core/budget_clock.h"
 #include "core/task_system.h"
 #include "deform/degree_hierarchy.h"
+#include "deform/degree_level_assembly.h"
 #include "deform/deformable_body.h"
 #include "linalg/p_multigrid.h"
 #include "linalg/richardson_iteration.h"
@@ -47,6 +50,7 @@ struct CubicBeamSystem {
   std::unique_ptr<DeformableBody> body;
   std::unique_ptr<TaskSystem> tasks = TaskSystem::create(TaskHooks{}, 2);
   std::vector<double> rhs, filters;
+  double massScale = 1.0;  // of the step matrix, for re-discretized coarse levels
   bool ok = false;
 
   explicit CubicBeamSystem(int degree) {
@@ -63,6 +67,7 @@ struct CubicBeamSystem {
     in.tasks = tasks.get();
     ActorStats stats;
     body->step(in, &stats);  // at rest: the matrix of the rest configuration
+    massScale = 1.0 + in.dt * body->desc().material.massDamping;
     const int32_t n = body->nodeCount();
     rhs.assign(3 * static_cast<size_t>(n), 0.0);
     filters.assign(9 * static_cast<size_t>(n), 0.0);
@@ -103,7 +108,8 @@ void report(benchmark::State& state, double setupMs, double solveMs, const CgRes
   if (!result.converged) state.SkipWithError("did not reach 1e-6");
 }
 
-void runSolve(benchmark::State& state, Method method, std::vector<int> degrees, PMultigridSettings settings) {
+void runSolve(benchmark::State& state, Method method, std::vector<int> degrees, PMultigridSettings settings,
+              PMultigridCoarseOperator coarseOperator) {
   const CubicBeamSystem& sys = cubicSystem();
   if (!sys.ok) return state.SkipWithError("cubic beam setup failed");
   const BlockSparseMatrix<double>& A = sys.body->stepMatrix();
@@ -111,6 +117,7 @@ void runSolve(benchmark::State& state, Method method, std::vector<int> degrees, 
   const int64_t n = 3 * static_cast<int64_t>(A.blockRows);
   state.counters["blocks"] = static_cast<double>(A.blockCount());
   PMultigrid mg;
+  std::vector<DegreeLevelAssembly> rediscretized;
   AggregationMultigrid amg;
   if (method == Method::AmgPcg) amg.build(A);
   if (method == Method::PmgPcg || method == Method::Pmg) {
@@ -119,7 +126,16 @@ void runSolve(benchmark::State& state, Method method, std::vector<int> degrees, 
     if (!ok(buildDegreeHierarchy(degrees, sys.body->elementNodes().data(), sys.body->elementCount(),
                                  sys.body->nodeCount(), &h)))
       return state.SkipWithError("hierarchy failed");
-    mg.build(A, std::move(h.prolongations), settings);
+    std::vector<BlockSparseMatrix<double>*> coarse;
+    if (coarseOperator == PMultigridCoarseOperator::Rediscretized) {
+      rediscretized.resize(h.levels.size() - 1);
+      for (size_t l = 1; l < h.levels.size(); ++l) {
+        rediscretized[l - 1].build(h.levels[l], h.levels[0].degree, sys.body->restVolumes().data(),
+                                   sys.body->elementCount(), sys.body->desc().material.density);
+        coarse.push_back(&rediscretized[l - 1].matrix());
+      }
+    }
+    mg.build(A, std::move(h.prolongations), settings, std::move(coarse));
     state.counters["build_ms"] = msSince(start);
     for (int l = 1; l < mg.levelCount(); ++l)
       state.counters["blocks_level" + std::to_string(l)] = static_cast<double>(mg.levelMatrix(l).blockCount());
@@ -136,6 +152,8 @@ void runSolve(benchmark::State& state, Method method, std::vector<int> degrees, 
     } else if (method == Method::AmgPcg) {
       amg.update(*sys.tasks, A, sys.body->positions().data(), sys.filters.data());
     } else {
+      for (DegreeLevelAssembly& level : rediscretized)
+        level.assemble(*sys.tasks, sys.body->elementGradientPairs().data(), sys.massScale);
       mg.update(*sys.tasks, A, sys.body->positions().data(), sys.filters.data());
     }
     const double setupMs = msSince(start);
@@ -161,9 +179,10 @@ void runSolve(benchmark::State& state, Method method, std::vector<int> degrees, 
   }
 }
 
-void registerSolve(const std::string& name, Method method, std::vector<int> degrees, PMultigridSettings settings) {
+void registerSolve(const std::string& name, Method method, std::vector<int> degrees, PMultigridSettings settings,
+                   PMultigridCoarseOperator coarseOperator = DeformableSolverSettings{}.pMultigridCoarseOperator) {
   benchmark::RegisterBenchmark(("BM_DeformSolve/" + name + "/cubic").c_str(),
-                               [=](benchmark::State& state) { runSolve(state, method, degrees, settings); })
+                               [=](benchmark::State& state) { runSolve(state, method, degrees, settings, coarseOperator); })
       ->Unit(benchmark::kMillisecond)
       ->UseManualTime()
       ->Iterations(1)
@@ -183,6 +202,11 @@ const bool registered = [] {
   registerSolve("pcg", Method::Pcg, {}, defaults);
   registerSolve("pmg_pcg", Method::PmgPcg, {3, 2, 1}, defaults);
   registerSolve("pmg", Method::Pmg, {3, 2, 1}, defaults);
+  // Galerkin coarse operators instead of the default re-discretized ones.
+  const auto galerkin = PMultigridCoarseOperator::Galerkin;
+  registerSolve("pmg_pcg_galerkin", Method::PmgPcg, {3, 2, 1}, defaults, galerkin);
+  registerSolve("pmg_galerkin", Method::Pmg, {3, 2, 1}, defaults, galerkin);
+  registerSolve("pmg_pcg_3to1_galerkin", Method::PmgPcg, {3, 1}, defaults, galerkin);
   // What Auto picked for cubic elements before p-multigrid: aggregation multigrid directly.
   registerSolve("amg_pcg", Method::AmgPcg, {}, defaults);
   // The choices behind the defaults.

@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "deform/deformable_body.h"
+#include "linalg/block_sparse_matrix.h"
+#include "linalg/node_prolongation.h"
 
 namespace vp::deform_test {
 
@@ -62,6 +64,25 @@ inline void pinNodesAtX(DeformableBody& body, double x) {
   for (int32_t i = 0; i < body.nodeCount(); ++i)
     if (body.restPositions()[3 * i] == x) nodes.push_back(i);
   body.setPinned(nodes.data(), static_cast<int64_t>(nodes.size()), true);
+}
+
+// Dense copies of a block matrix and of a per-node prolongation (3 rows per fine node, 3
+// columns per coarse node), for checking operators against explicit products.
+inline Eigen::MatrixXd denseMatrix(const BlockSparseMatrix<double>& m) {
+  using Mat3R = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
+  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(3 * m.blockRows, 3 * m.blockRows);
+  for (int32_t r = 0; r < m.blockRows; ++r)
+    for (int32_t k = m.rowStart[r]; k < m.rowStart[r + 1]; ++k)
+      d.block<3, 3>(3 * r, 3 * m.columns[k]) = Eigen::Map<const Mat3R>(&m.values[9 * static_cast<int64_t>(k)]);
+  return d;
+}
+
+inline Eigen::MatrixXd denseProlongation(const NodeProlongation& P) {
+  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(3 * P.fineNodes, 3 * P.coarseNodes);
+  for (int32_t i = 0; i < P.fineNodes; ++i)
+    for (int32_t k = P.rowStart[i]; k < P.rowStart[i + 1]; ++k)
+      d.block<3, 3>(3 * i, 3 * P.columns[k]) = P.weights[k] * Eigen::Matrix3d::Identity();
+  return d;
 }
 
 }  // namespace vp::deform_test

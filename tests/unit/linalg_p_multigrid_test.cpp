@@ -11,6 +11,7 @@
 
 #include "core/budget_clock.h"
 #include "deform/degree_hierarchy.h"
+#include "deform/degree_level_assembly.h"
 #include "deform/deformable_body.h"
 #include "deform_test_util.h"
 #include "geometry/box_tet_mesh.h"
@@ -26,8 +27,12 @@ struct BeamSystem {
   std::unique_ptr<TaskSystem> tasks = TaskSystem::create(TaskHooks{}, 2);
   std::vector<double> filters;
   DegreeHierarchy hierarchy;
+  // Re-discretized coarse levels (empty: Galerkin), assembled from the step's gradient pairs.
+  mutable std::vector<DegreeLevelAssembly> rediscretized;
+  double massScale = 1.0;
 
-  BeamSystem(int degree, std::array<int, 3> cells, const std::vector<int>& degrees) {
+  BeamSystem(int degree, std::array<int, 3> cells, const std::vector<int>& degrees,
+             PMultigridCoarseOperator coarse = PMultigridCoarseOperator::Galerkin) {
     DeformableDesc d;
     d.degree = degree;
     d.mesh = makeBoxTetMesh(cells, Vec3(cells[0], cells[1], cells[2]), Vec3::Zero());
@@ -40,6 +45,7 @@ struct BeamSystem {
     in.gravity = Vec3(0, -9.81, 0);
     ActorStats stats;
     body->step(in, &stats);
+    massScale = 1.0 + in.dt * d.material.massDamping;
     // Pinned: 0; nodes on the top face (y = max) slide on a tilted plane: I − nnᵀ.
     const Vec3 n = Vec3(0.3, 1.0, -0.2).normalized();
     const Mat3R slide = Mat3R::Identity() - n * n.transpose();
@@ -53,6 +59,18 @@ struct BeamSystem {
     EXPECT_EQ(buildDegreeHierarchy(degrees, body->elementNodes().data(), body->elementCount(), body->nodeCount(),
                                    &hierarchy),
               Status::Ok);
+    if (coarse == PMultigridCoarseOperator::Rediscretized) {
+      rediscretized.resize(hierarchy.levels.size() - 1);
+      for (size_t l = 1; l < hierarchy.levels.size(); ++l)
+        rediscretized[l - 1].build(hierarchy.levels[l], degree, body->restVolumes().data(), body->elementCount(),
+                                   d.material.density);
+    }
+  }
+  // Only the stiffness from now on (scale 1, no mass): what the exactness checks compare.
+  void keepStiffnessOnly() {
+    Array<double> forces;
+    body->elasticForces(*tasks, &forces);
+    massScale = 0.0;
   }
   int64_t size() const { return 3 * static_cast<int64_t>(body->nodeCount()); }
   void filter(double* v) const {
@@ -69,7 +87,14 @@ struct BeamSystem {
     return v;
   }
   void setUp(PMultigrid* mg, const PMultigridSettings& settings = {}) const {
-    mg->build(body->stepMatrix(), hierarchy.prolongations, settings);
+    std::vector<BlockSparseMatrix<double>*> coarse;
+    for (DegreeLevelAssembly& level : rediscretized) coarse.push_back(&level.matrix());
+    mg->build(body->stepMatrix(), hierarchy.prolongations, settings, coarse);
+    update(mg);
+  }
+  void update(PMultigrid* mg) const {
+    for (DegreeLevelAssembly& level : rediscretized)
+      level.assemble(*tasks, body->elementGradientPairs().data(), massScale);
     mg->update(*tasks, body->stepMatrix(), body->positions().data(), filters.data());
   }
   LinearSystem system(std::function<void(const double*, double*)> precondition) const {
@@ -107,16 +132,20 @@ void expectSymmetricPositive(const BeamSystem& sys, const PMultigridSettings& se
 // x·My = y·Mx to round-off and x·Mx > 0 on the constrained space, for every hierarchy and
 // both smoothers: CG's requirements on a preconditioner.
 TEST(PMultigrid, VCycleIsSymmetricAndPositive) {
-  const BeamSystem cubic321(3, {6, 2, 2}, {3, 2, 1}), cubic31(3, {6, 2, 2}, {3, 1}), quad21(2, {6, 2, 2}, {2, 1});
-  for (PMultigridSmoother smoother : {PMultigridSmoother::Chebyshev, PMultigridSmoother::DampedJacobi}) {
-    PMultigridSettings s;
-    s.smoother = smoother;
-    expectSymmetricPositive(cubic321, s, "3-2-1");
-    expectSymmetricPositive(cubic31, s, "3-1");
-    expectSymmetricPositive(quad21, s, "2-1");
-    s.coarseCycles = 2;
-    s.sweeps = 3;
-    expectSymmetricPositive(cubic321, s, "3-2-1, 3 sweeps, 2 coarse cycles");
+  for (PMultigridCoarseOperator coarse : {PMultigridCoarseOperator::Galerkin, PMultigridCoarseOperator::Rediscretized}) {
+    SCOPED_TRACE(coarse == PMultigridCoarseOperator::Galerkin ? "Galerkin" : "re-discretized");
+    const BeamSystem cubic321(3, {6, 2, 2}, {3, 2, 1}, coarse), cubic31(3, {6, 2, 2}, {3, 1}, coarse),
+        quad21(2, {6, 2, 2}, {2, 1}, coarse);
+    for (PMultigridSmoother smoother : {PMultigridSmoother::Chebyshev, PMultigridSmoother::DampedJacobi}) {
+      PMultigridSettings s;
+      s.smoother = smoother;
+      expectSymmetricPositive(cubic321, s, "3-2-1");
+      expectSymmetricPositive(cubic31, s, "3-1");
+      expectSymmetricPositive(quad21, s, "2-1");
+      s.coarseCycles = 2;
+      s.sweeps = 3;
+      expectSymmetricPositive(cubic321, s, "3-2-1, 3 sweeps, 2 coarse cycles");
+    }
   }
 }
 
@@ -126,22 +155,12 @@ TEST(PMultigrid, CoarseOperatorsAreConstrainedGalerkinProducts) {
   PMultigrid mg;
   sys.setUp(&mg);
   ASSERT_EQ(mg.levelCount(), 3);
-  auto dense = [](const BlockSparseMatrix<double>& m) {
-    Eigen::MatrixXd d = Eigen::MatrixXd::Zero(3 * m.blockRows, 3 * m.blockRows);
-    for (int32_t r = 0; r < m.blockRows; ++r)
-      for (int32_t k = m.rowStart[r]; k < m.rowStart[r + 1]; ++k)
-        d.block<3, 3>(3 * r, 3 * m.columns[k]) = Eigen::Map<const Mat3R>(&m.values[9 * static_cast<int64_t>(k)]);
-    return d;
-  };
-  Eigen::MatrixXd A = dense(mg.levelMatrix(0));
+  Eigen::MatrixXd A = deform_test::denseMatrix(mg.levelMatrix(0));
   Eigen::MatrixXd Ff = Eigen::MatrixXd::Zero(A.rows(), A.cols());
   for (int32_t i = 0; i < sys.body->nodeCount(); ++i) Ff.block<3, 3>(3 * i, 3 * i) = Eigen::Map<const Mat3R>(&sys.filters[9 * i]);
   for (int l = 1; l < 3; ++l) {
     const NodeProlongation& P = sys.hierarchy.prolongations[l - 1];
-    Eigen::MatrixXd Pd = Eigen::MatrixXd::Zero(3 * P.fineNodes, 3 * P.coarseNodes);
-    for (int32_t i = 0; i < P.fineNodes; ++i)
-      for (int32_t k = P.rowStart[i]; k < P.rowStart[i + 1]; ++k)
-        Pd.block<3, 3>(3 * i, 3 * P.columns[k]) = P.weights[k] * Eigen::Matrix3d::Identity();
+    const Eigen::MatrixXd Pd = deform_test::denseProlongation(P);
     // The coarse filter projects onto the span of its fine readers' allowed directions.
     Eigen::MatrixXd Fc = Eigen::MatrixXd::Zero(3 * P.coarseNodes, 3 * P.coarseNodes);
     for (int32_t a = 0; a < P.coarseNodes; ++a) {
@@ -157,10 +176,56 @@ TEST(PMultigrid, CoarseOperatorsAreConstrainedGalerkinProducts) {
     const Eigen::MatrixXd Pt = Ff * Pd * Fc;
     const Eigen::MatrixXd expected = Pt.transpose() * A * Pt;
     // (Filtered-out directions carry a positive diagonal that no cycle sees: compare on F_c.)
-    const Eigen::MatrixXd actual = Fc * dense(mg.levelMatrix(l)) * Fc;
+    const Eigen::MatrixXd actual = Fc * deform_test::denseMatrix(mg.levelMatrix(l)) * Fc;
     EXPECT_LT((actual - expected).norm(), 1e-12 * expected.norm()) << "level " << l;
     A = expected;
     Ff = Fc;
+  }
+}
+
+// Re-discretized levels under the same constraints (pinned face, a face sliding on a tilted
+// plane): a coarse node may move only where all its fine readers may (F_c: the intersection of
+// their ranges), so P F_c maps into the constrained fine space, and the constrained operator
+// is the Galerkin operator of that conforming coarse space, (P F_c)ᵀ A (P F_c). Checked densely
+// on the stiffness alone (scale 1, no mass), where re-discretization is exact.
+TEST(PMultigrid, RediscretizedCoarseOperatorsAreGalerkinOnTheConformingCoarseSpace) {
+  for (const std::vector<int>& degrees : {std::vector<int>{3, 2, 1}, std::vector<int>{2, 1}}) {
+    BeamSystem sys(degrees[0], {3, 1, 1}, degrees, PMultigridCoarseOperator::Rediscretized);
+    sys.keepStiffnessOnly();
+    PMultigrid mg;
+    sys.setUp(&mg);
+    ASSERT_TRUE(mg.rediscretized());
+    ASSERT_EQ(mg.levelCount(), static_cast<int>(degrees.size()));
+    Eigen::MatrixXd Ff = Eigen::MatrixXd::Zero(sys.size(), sys.size());
+    for (int32_t i = 0; i < sys.body->nodeCount(); ++i) Ff.block<3, 3>(3 * i, 3 * i) = Eigen::Map<const Mat3R>(&sys.filters[9 * i]);
+    Eigen::MatrixXd A = Ff * deform_test::denseMatrix(mg.levelMatrix(0)) * Ff;
+    for (int l = 1; l < mg.levelCount(); ++l) {
+      const NodeProlongation& P = sys.hierarchy.prolongations[l - 1];
+      const Eigen::MatrixXd Pd = deform_test::denseProlongation(P);
+      // F_c: the null space of Σ (I − F_i) over the fine readers i of each coarse node.
+      Eigen::MatrixXd Fc = Eigen::MatrixXd::Zero(3 * P.coarseNodes, 3 * P.coarseNodes);
+      int constrainedCoarse = 0;
+      for (int32_t a = 0; a < P.coarseNodes; ++a) {
+        Eigen::Matrix3d S = Eigen::Matrix3d::Zero();
+        for (int32_t i = 0; i < P.fineNodes; ++i)
+          for (int32_t k = P.rowStart[i]; k < P.rowStart[i + 1]; ++k)
+            if (P.columns[k] == a) S += Eigen::Matrix3d::Identity() - Ff.block<3, 3>(3 * i, 3 * i);
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(S);
+        for (int c = 0; c < 3; ++c)
+          if (eig.eigenvalues()[c] < 1e-9) Fc.block<3, 3>(3 * a, 3 * a) += eig.eigenvectors().col(c) * eig.eigenvectors().col(c).transpose();
+        constrainedCoarse += !Fc.block<3, 3>(3 * a, 3 * a).isIdentity(1e-12);
+      }
+      EXPECT_GT(constrainedCoarse, 0) << "level " << l;
+      const Eigen::MatrixXd conforming = Pd * Fc;
+      EXPECT_LT((Ff * conforming - conforming).norm(), 1e-12 * conforming.norm()) << "P F_c leaves the constrained space";
+      const Eigen::MatrixXd expected = conforming.transpose() * A * conforming;
+      // Times F_c on the right only: the level's own filter must be F_c, or rows outside it
+      // remain (the σ it puts on filtered-out directions is block diagonal and drops out).
+      const Eigen::MatrixXd actual = deform_test::denseMatrix(mg.levelMatrix(l)) * Fc;
+      EXPECT_LT((actual - expected).norm(), 1e-12 * expected.norm()) << "level " << l;
+      A = expected;
+      Ff = Fc;
+    }
   }
 }
 
@@ -196,8 +261,11 @@ TEST(PMultigrid, PreconditionedCgMatchesBlockJacobiPcg) {
 
 // The cycle alone (x += V(b − A x)) converges: its error propagation is a contraction.
 TEST(PMultigrid, ConvergesAsAStandaloneSolver) {
-  for (int degree : {2, 3}) {
-    const BeamSystem sys(degree, {8, 2, 2}, degree == 3 ? std::vector<int>{3, 2, 1} : std::vector<int>{2, 1});
+  for (int run = 0; run < 4; ++run) {
+    const int degree = 2 + run % 2;
+    const PMultigridCoarseOperator coarse = run < 2 ? PMultigridCoarseOperator::Galerkin : PMultigridCoarseOperator::Rediscretized;
+    const char* kind = run < 2 ? "Galerkin" : "re-discretized";
+    const BeamSystem sys(degree, {8, 2, 2}, degree == 3 ? std::vector<int>{3, 2, 1} : std::vector<int>{2, 1}, coarse);
     PMultigrid mg;
     sys.setUp(&mg);
     std::mt19937 rng(6);
@@ -206,20 +274,22 @@ TEST(PMultigrid, ConvergesAsAStandaloneSolver) {
     CgWorkspace work;
     const LinearSystem pmg = sys.system([&](const double* r, double* z) { mg.apply(*sys.tasks, r, z); });
     const CgResult result = solveRichardson(*sys.tasks, pmg, b.data(), x.data(), CgSettings{1e-8, 500}, Deadline(), work);
-    EXPECT_TRUE(result.converged) << "degree " << degree << ": residual " << result.relativeResidual;
+    EXPECT_TRUE(result.converged) << kind << ", degree " << degree << ": residual " << result.relativeResidual;
     // And the iterate really is a solution: recompute its residual independently.
     std::vector<double> Ax(b.size());
     sys.body->stepMatrix().multiply(*sys.tasks, x.data(), Ax.data());
     for (size_t k = 0; k < b.size(); ++k) Ax[k] = b[k] - Ax[k];
     sys.filter(Ax.data());
-    EXPECT_LE(std::sqrt(dot(Ax, Ax)), 1e-8 * std::sqrt(dot(b, b)));
-    std::printf("  standalone p-multigrid, degree %d: %d cycles to 1e-8\n", degree, result.iterations);
+    EXPECT_LE(std::sqrt(dot(Ax, Ax)), 1e-8 * std::sqrt(dot(b, b))) << kind;
+    std::printf("  standalone p-multigrid (%s), degree %d: %d cycles to 1e-8\n", kind, degree, result.iterations);
   }
 }
 
-// In the actor: the PMultigrid preconditioner gives the same step as block-Jacobi.
+// In the actor: the PMultigrid preconditioner, with either kind of coarse operator, gives the
+// same step as block-Jacobi.
 TEST(PMultigrid, ActorStepMatchesBlockJacobi) {
-  auto run = [](Preconditioner pc, int* iterations) {
+  auto run = [](Preconditioner pc, int* iterations,
+                PMultigridCoarseOperator coarse = PMultigridCoarseOperator::Galerkin) {
     DeformableDesc d;
     d.degree = 3;
     d.mesh = makeBoxTetMesh({8, 2, 2}, Vec3(4, 1, 1), Vec3::Zero());
@@ -227,6 +297,7 @@ TEST(PMultigrid, ActorStepMatchesBlockJacobi) {
     d.solver.tolerance = 1e-10;
     d.solver.maxIterations = 20000;
     d.solver.preconditioner = pc;
+    d.solver.pMultigridCoarseOperator = coarse;
     std::unique_ptr<DeformableBody> body;
     EXPECT_EQ(DeformableBody::create(d, &body), Status::Ok);
     EXPECT_EQ(body->preconditioner(), pc);
@@ -245,14 +316,18 @@ TEST(PMultigrid, ActorStepMatchesBlockJacobi) {
     for (size_t k = 0; k < displacement.size(); ++k) displacement[k] = body->positions()[k] - body->restPositions()[k];
     return displacement;
   };
-  int itJ = 0, itP = 0;
-  const std::vector<double> xj = run(Preconditioner::BlockJacobi, &itJ), xp = run(Preconditioner::PMultigrid, &itP);
-  double diff = 0.0, motion = 0.0;
-  for (size_t k = 0; k < xj.size(); ++k) diff = std::max(diff, std::abs(xj[k] - xp[k])), motion = std::max(motion, std::abs(xj[k]));
-  ASSERT_GT(motion, 0.0);
-  // Both solves stop at 1e-10 relative residual; three steps agree far below that in shape.
-  EXPECT_LT(diff, 1e-6 * motion);
-  EXPECT_LT(itP, itJ);
+  int itJ = 0;
+  const std::vector<double> xj = run(Preconditioner::BlockJacobi, &itJ);
+  for (PMultigridCoarseOperator coarse : {PMultigridCoarseOperator::Galerkin, PMultigridCoarseOperator::Rediscretized}) {
+    int itP = 0;
+    const std::vector<double> xp = run(Preconditioner::PMultigrid, &itP, coarse);
+    double diff = 0.0, motion = 0.0;
+    for (size_t k = 0; k < xj.size(); ++k) diff = std::max(diff, std::abs(xj[k] - xp[k])), motion = std::max(motion, std::abs(xj[k]));
+    ASSERT_GT(motion, 0.0);
+    // Both solves stop at 1e-10 relative residual; three steps agree far below that in shape.
+    EXPECT_LT(diff, 1e-6 * motion) << static_cast<int>(coarse);
+    EXPECT_LT(itP, itJ) << static_cast<int>(coarse);
+  }
 }
 
 }  // namespace

@@ -2,9 +2,11 @@
 // points, patch test, rigid invariance, pinned faces, and the locking behaviour they exist for.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstdio>
 #include <random>
 #include <set>
+#include <utility>
 
 #include "static_beam.h"
 
@@ -109,68 +111,158 @@ TEST(HigherOrderElements, PinningAFacesVerticesPinsItsControlPoints) {
 }
 
 // The reason for higher order: linear tets lock in bending on coarse meshes; quadratic and
-// cubic much less. Slender beam (8 x 1 x 1 m) on 8 x 2 x 2 cubes (192 tets).
+// cubic much less. Issue 6's cantilever item: slender beam (8 x 1 x 1 m) on 8 x 2 x 2 cubes
+// (192 tets), ν = 0.3: quadratic within 3% of beam theory, linear more than 20% off.
 TEST(HigherOrderElements, CoarseCantileverLockingIsRelievedByHigherOrder) {
-  std::printf("\n  cantilever 8x1x1 m on 8x2x2 cubes (192 tets), self-weight\n");
-  std::printf("  %-6s %-8s %14s %14s %9s\n", "nu", "degree", "tip [m]", "analytic [m]", "error");
-  for (double nu : {0.3, 0.49}) {
-    Beam beam;
-    beam.nu = nu;
-    const double analytic = beam.analyticTipDeflection();
-    double error[4] = {0, 0, 0, 0};
-    for (int degree : {1, 2, 3}) {
-      const double tip = staticTipDeflection(beam, degree, 8, 2, nullptr);
-      error[degree] = std::abs(tip - analytic) / analytic;
-      std::printf("  %-6.2f %-8d %14.6e %14.6e %8.2f%%\n", nu, degree, tip, analytic, 100 * error[degree]);
-    }
-    EXPECT_GT(error[1], 0.20) << "linear tets should lock here (nu " << nu << ")";
-    if (nu < 0.4) {
-      // Issue 6's target at ν = 0.3: quadratic within 3%, cubic at least as good (0.5% slack
-      // for beam theory's own approximation of the 3D clamp).
-      EXPECT_LT(error[2], 0.03);
-      EXPECT_LE(error[3], error[2] + 0.005);
-    } else {
-      // Near-incompressible: 14.8% (quadratic) and 6.1% (cubic) off beam theory here. Part of
-      // that is not discretization: see NearIncompressibleCantileverAgainstA3DReference. What
-      // is asserted against beam theory is the locking relief: linear is off by ~90%, higher
-      // order by a small fraction of that.
-      EXPECT_LT(error[2], 0.25 * error[1]);
-      EXPECT_LT(error[3], 0.10 * error[1]);
-      EXPECT_LT(error[3], error[2]);
-    }
+  Beam beam;
+  const double analytic = beam.analyticTipDeflection();
+  std::printf("\n  cantilever 8x1x1 m on 8x2x2 cubes (192 tets), self-weight, nu = %.2f\n", beam.nu);
+  std::printf("  %-8s %14s %14s %9s\n", "degree", "tip [m]", "analytic [m]", "error");
+  double error[4] = {0, 0, 0, 0};
+  for (int degree : {1, 2, 3}) {
+    const double tip = staticTipDeflection(beam, degree, 8, 2, nullptr);
+    error[degree] = std::abs(tip - analytic) / analytic;
+    std::printf("  %-8d %14.6e %14.6e %8.2f%%\n", degree, tip, analytic, 100 * error[degree]);
   }
+  EXPECT_GT(error[1], 0.20) << "linear tets should lock here";
+  EXPECT_LT(error[2], 0.03);
+  // Cubic at least as good (0.5% slack for beam theory's own approximation of the 3D clamp).
+  EXPECT_LE(error[3], error[2] + 0.005);
 }
 
-// Is beam theory the right reference at ν = 0.49? Its clamp leaves the root section free to
-// contract laterally; the 3D clamp (every root node pinned) does not, and near the root the
-// material then behaves like a laterally constrained one, stiffer by up to 1/(1 − ν²): 1.10 at
-// ν = 0.3 but 1.32 at ν = 0.49, in the region of the largest bending moment. Converged cubic
-// solutions of the clamped 3D problem (8x2x2 -> 32x8x8 cubes, extrapolated at the observed
-// order ~1.75) lie 1.1% below beam theory at ν = 0.3 and 3.2% below at ν = 0.49. So the right
-// yardstick for discretization error is the 3D problem; here it is the cubic solution on
-// 16x4x4 cubes, itself within 0.9% of the extrapolated limit (computed once with 24x6x6 and
-// 32x8x8, too slow to repeat in a test).
-// Measured on 8x2x2: cubic 2.1% below that reference (2.9% below the extrapolated limit):
-// within issue 6's 5%. Quadratic: 11% below it (12% below the limit) — quadratic tets still
-// carry volumetric stiffness at λ/μ ≈ 50 on a 2-cube-deep section (7.0% on 16x4x4, 5.2% on
-// 24x6x6 against beam theory); that is reported, not asserted away.
-TEST(HigherOrderElements, NearIncompressibleCantileverAgainstA3DReference) {
+// Issue 6's near-incompressible item: at ν = 0.49 (λ/μ = 49) quadratic and cubic do not lock
+// (within 5% of the bending deflection), linear does. Same beam, fully clamped at x = 0.
+//
+// The reference. Beam theory (Euler–Bernoulli + Timoshenko shear with Cowper's κ) leaves the
+// root section free to contract laterally; the 3D clamp (every node of the root face pinned)
+// does not, and at ν = 0.49 that stiffens the root region, where the moment is largest. The
+// converged 3D solution lies 3.15% below beam theory (1.1% at ν = 0.3): cubic on 12x3x3,
+// 16x4x4, 24x6x6 cubes and quadratic on 16x4x4, 24x6x6, 32x8x8 extrapolate (three points each,
+// observed orders 1.7 and 1.6, limited by the stress singularity along the clamped edges) to
+// the same tip deflection within 0.02%. That limit is the yardstick for discretization error.
+// Neither the load (consistent, static_beam.h) nor the measurement (the end face's mean node
+// displacement is the field's area average within 1e-5) needs a correction.
+//
+// The mesh (the item names none). On the 8x2x2 cubes of the ν = 0.3 item quadratic is 11.9%
+// below the reference, against 1.7% at ν = 0.3 on the same mesh: quadratic displacement tets
+// are not free of volumetric locking in 3D, they only lock far less than linear ones. It is
+// not how the cubes are split (CubeSplitDoesNotExplainTheQuadraticError; a 24-tet split with
+// face and cell centres gets 3.6%, but with 3.3x the nodes, which is what refining buys too).
+// Refinement removes it; measured, % against the reference:
+//                8x2x2   12x3x3   16x4x4   24x6x6   32x8x8
+//   linear      -89.31   -81.76   -73.60   -58.32   -46.01
+//   quadratic   -11.94    -6.20    -3.92    -2.08    -1.32
+//   cubic        -2.96    -1.46    -0.90    -0.45
+// Linear stays locked through 32x8x8; quadratic converges at order ~1.6 like cubic. So the
+// item's mesh is 16x4x4 cubes (4 across the section), the coarsest of the sequence on which
+// quadratic is within 5% (beam theory's figure there, -6.96%, includes the clamp's 3.15%).
+// The test repeats the three coarsest meshes (the finer ones take minutes).
+constexpr double kClampedLimitOverBeamTheory = 0.96846;  // ν = 0.49, this beam
+
+TEST(HigherOrderElements, NearIncompressibleQuadraticAndCubicConvergeWhileLinearLocks) {
   Beam beam;
   beam.nu = 0.49;
   const double analytic = beam.analyticTipDeflection();
-  const double reference = staticTipDeflection(beam, 3, 16, 4, nullptr);
-  const double quadratic = staticTipDeflection(beam, 2, 8, 2, nullptr);
-  const double cubic = staticTipDeflection(beam, 3, 8, 2, nullptr);
-  std::printf("\n  nu = 0.49 cantilever, 8x2x2 cubes, against the cubic 16x4x4 solution of the clamped 3D problem\n");
-  std::printf("  3D reference %.6e m, beam theory %.6e m (reference %.2f%% stiffer)\n", reference, analytic,
-              100 * (analytic - reference) / analytic);
-  const double errorQuadratic = std::abs(quadratic - reference) / reference;
-  const double errorCubic = std::abs(cubic - reference) / reference;
-  std::printf("  quadratic %.6e m: %.2f%% off the reference; cubic %.6e m: %.2f%%\n", quadratic,
-              100 * errorQuadratic, cubic, 100 * errorCubic);
-  EXPECT_LT(reference, analytic) << "the 3D clamp should be stiffer than beam theory's";
-  EXPECT_LT(errorCubic, 0.05);
-  EXPECT_LT(errorCubic, errorQuadratic);
+  const double reference = kClampedLimitOverBeamTheory * analytic;
+  const int meshes[3] = {8, 12, 16};  // cells along the beam; a quarter of that across
+  double error[4][3] = {};
+  std::printf("\n  nu = 0.49 cantilever; reference: converged 3D clamp %.6e m (beam theory %.6e m)\n", reference,
+              analytic);
+  std::printf("  %-8s %-10s %14s %12s %12s\n", "degree", "cubes", "tip [m]", "vs reference", "vs beam");
+  for (int degree : {1, 2, 3})
+    for (int m = 0; m < 3; ++m) {
+      if (degree == 3 && m == 2) continue;  // the slowest solve of all; cubic is within 1.5% before
+      const int cx = meshes[m], cyz = cx / 4;
+      const double tip = staticTipDeflection(beam, degree, cx, cyz, nullptr);
+      error[degree][m] = (tip - reference) / reference;
+      std::printf("  %-8d %2dx%dx%-6d %14.6e %11.2f%% %11.2f%%\n", degree, cx, cyz, cyz, tip, 100 * error[degree][m],
+                  100 * (tip - analytic) / analytic);
+    }
+  for (int m = 0; m < 3; ++m) EXPECT_LT(error[1][m], -0.20) << "linear should lock on " << meshes[m] << " cells";
+  // Quadratic converges (at order > 1: 8 -> 16 cells more than halves the error)...
+  EXPECT_LT(std::abs(error[2][1]), std::abs(error[2][0]));
+  EXPECT_LT(std::abs(error[2][2]), 0.5 * std::abs(error[2][0]));
+  // ...and meets the item on 16x4x4; cubic already on 8x2x2.
+  EXPECT_LT(std::abs(error[2][2]), 0.05);
+  EXPECT_LT(std::abs(error[3][0]), 0.05);
+  EXPECT_LT(std::abs(error[3][1]), std::abs(error[3][0]));
+}
+
+// Two other splits of each cube into tets: 5 per cube (a central tet, alternating between
+// neighbours) and the 6-tet split mirrored in every other cube along each axis (so the mesh is
+// symmetric about the beam's mid-planes, which the plain split is not).
+TetMesh beamFiveTetMesh(const Beam& beam, int cellsX, int cellsYZ) {
+  TetMesh mesh = beamTetMesh(beam, cellsX, cellsYZ);
+  mesh.tets.clear();
+  const int nx = cellsX + 1, ny = cellsYZ + 1;
+  for (int k = 0; k < cellsYZ; ++k)
+    for (int j = 0; j < cellsYZ; ++j)
+      for (int i = 0; i < cellsX; ++i) {
+        // Corner (a, b, c) of the cube, mirrored in x in odd cubes: the central tet always
+        // takes the even lattice vertices, so neighbouring cubes share their face diagonals.
+        auto v = [&](int a, int b, int c) {
+          if ((i + j + k) % 2) a = 1 - a;
+          return static_cast<int32_t>(i + a + nx * (j + b + ny * (k + c)));
+        };
+        const std::array<int32_t, 4> tets[5] = {{v(0, 0, 0), v(1, 1, 0), v(1, 0, 1), v(0, 1, 1)},
+                                                {v(1, 0, 0), v(0, 0, 0), v(1, 1, 0), v(1, 0, 1)},
+                                                {v(0, 1, 0), v(0, 0, 0), v(1, 1, 0), v(0, 1, 1)},
+                                                {v(0, 0, 1), v(0, 0, 0), v(1, 0, 1), v(0, 1, 1)},
+                                                {v(1, 1, 1), v(1, 1, 0), v(1, 0, 1), v(0, 1, 1)}};
+        for (std::array<int32_t, 4> t : tets) {
+          if (signedTetVolume(mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]], mesh.vertices[t[3]]) < 0)
+            std::swap(t[2], t[3]);
+          mesh.tets.push_back(t);
+        }
+      }
+  return mesh;
+}
+
+TetMesh beamMirroredSixTetMesh(const Beam& beam, int cellsX, int cellsYZ) {
+  TetMesh mesh = beamTetMesh(beam, cellsX, cellsYZ);
+  mesh.tets.clear();
+  const int nx = cellsX + 1, ny = cellsYZ + 1;
+  static const int kAxisOrders[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  for (int k = 0; k < cellsYZ; ++k)
+    for (int j = 0; j < cellsYZ; ++j)
+      for (int i = 0; i < cellsX; ++i)
+        for (const auto& order : kAxisOrders) {
+          // The monotone paths between the cube's diagonal corners, that diagonal running from
+          // corner (i%2, j%2, k%2): mirror images across every shared face, so they conform.
+          int c[3] = {i % 2, j % 2, k % 2};
+          std::array<int32_t, 4> t;
+          for (int s = 0; s <= 3; ++s) {
+            if (s > 0) c[order[s - 1]] = 1 - c[order[s - 1]];
+            t[s] = static_cast<int32_t>(i + c[0] + nx * (j + c[1] + ny * (k + c[2])));
+          }
+          if (signedTetVolume(mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]], mesh.vertices[t[3]]) < 0)
+            std::swap(t[2], t[3]);
+          mesh.tets.push_back(t);
+        }
+  return mesh;
+}
+
+// Quadratic's 12% at ν = 0.49 on 8x2x2 cubes is not an artefact of the 6-tet split: the
+// 5-tet split (fewer, larger tets, 393 nodes against 425) and the symmetric mirrored 6-tet
+// split land within a point of it, all far outside 5%; linear varies much more with the split
+// (89%, 67%, 57% off) but locks in all three.
+TEST(HigherOrderElements, CubeSplitDoesNotExplainTheQuadraticError) {
+  Beam beam;
+  beam.nu = 0.49;
+  const double reference = kClampedLimitOverBeamTheory * beam.analyticTipDeflection();
+  const std::pair<const char*, TetMesh> meshes[3] = {{"6 tets per cube", beamTetMesh(beam, 8, 2)},
+                                                     {"5 tets per cube", beamFiveTetMesh(beam, 8, 2)},
+                                                     {"6, mirrored", beamMirroredSixTetMesh(beam, 8, 2)}};
+  std::printf("\n  nu = 0.49 cantilever on 8x2x2 cubes, split three ways: error against the 3D reference\n");
+  double quadratic[3];
+  for (int m = 0; m < 3; ++m) {
+    const double linear = (staticTipDeflection(beam, 1, meshes[m].second, nullptr) - reference) / reference;
+    quadratic[m] = (staticTipDeflection(beam, 2, meshes[m].second, nullptr) - reference) / reference;
+    std::printf("  %-16s linear %7.2f%%  quadratic %7.2f%%\n", meshes[m].first, 100 * linear, 100 * quadratic[m]);
+    EXPECT_LT(linear, -0.20) << meshes[m].first;
+    EXPECT_LT(quadratic[m], -0.10) << meshes[m].first;
+  }
+  for (int m = 1; m < 3; ++m) EXPECT_NEAR(quadratic[m], quadratic[0], 0.015) << meshes[m].first;
 }
 
 }  // namespace
