@@ -109,50 +109,67 @@ Status buildCutCellPoisson(TaskSystem& tasks, const MacGrid& grid, const FaceFra
     }
   });
 
-  // Fluid regions by flood fill through open interior faces (serial: a breadth-first search is
-  // sequential, and it is O(cells) once per solve).
+  labelFluidRegions(op);
+  computeRowSpans(tasks, op);
+  return Status::Ok;
+}
+
+namespace {
+
+// Calls visit(axis, face index, neighbour cell index or -1 outside the grid) for the six faces
+// of cell c.
+template <class Visit>
+void forEachCellFace(const MacGridSpec& g, int64_t c, const Visit& visit) {
+  const int64_t nx = g.nx, ny = g.ny, nz = g.nz, sz = nx * ny;
+  const int64_t i = c % nx, j = (c / nx) % ny, k = c / sz;
+  const int64_t fu = i + (nx + 1) * (j + ny * k), fv = i + nx * (j + (ny + 1) * k);
+  visit(0, fu, i > 0 ? c - 1 : -1);
+  visit(0, fu + 1, i + 1 < nx ? c + 1 : -1);
+  visit(1, fv, j > 0 ? c - nx : -1);
+  visit(1, fv + nx, j + 1 < ny ? c + nx : -1);
+  visit(2, c, k > 0 ? c - sz : -1);
+  visit(2, c + sz, k + 1 < nz ? c + sz : -1);
+}
+
+}  // namespace
+
+double dirichletPart(const CutCellPoisson& op, int64_t cell) {
+  const double diag = op.diagonal[static_cast<size_t>(cell)];
+  if (!(diag > 0.0)) return 0.0;
+  double rest = diag;
+  forEachCellFace(op.grid, cell, [&](int a, int64_t face, int64_t) { rest -= op.coupling[a][static_cast<size_t>(face)]; });
+  return rest > 1e-12 * diag ? rest : 0.0;
+}
+
+void labelFluidRegions(CutCellPoisson* op) {
+  const int64_t cells = static_cast<int64_t>(op->diagonal.size());
   op->region.assign(static_cast<size_t>(cells), -1);
   op->regionFloating.clear();
   op->regionCellCount.clear();
   op->fluidCellCount = 0;
   std::vector<int64_t> queue;
   for (int64_t seed = 0; seed < cells; ++seed) {
-    if (op->region[seed] >= 0 || !(op->diagonal[seed] > 0.0)) continue;
+    if (op->region[static_cast<size_t>(seed)] >= 0 || !(op->diagonal[static_cast<size_t>(seed)] > 0.0)) continue;
     const int32_t id = static_cast<int32_t>(op->regionFloating.size());
     bool floating = true;
-    int64_t count = 0;
     queue.clear();
     queue.push_back(seed);
-    op->region[seed] = id;
+    op->region[static_cast<size_t>(seed)] = id;
     for (size_t head = 0; head < queue.size(); ++head) {
       const int64_t c = queue[head];
-      ++count;
-      const int i = static_cast<int>(c % g.nx), j = static_cast<int>((c / g.nx) % g.ny),
-                k = static_cast<int>(c / (static_cast<int64_t>(g.nx) * g.ny));
-      forEachFace(i, j, k, [&](int a, bool, int fi, int fj, int fk, int ni, int nj, int nk) {
-        const double open = effectiveOpenFraction(grid, fractions, a, fi, fj, fk);
-        if (!(open > 0.0)) return;
-        if (!inside(g, ni, nj, nk)) {
-          floating = false;  // an open domain side: Dirichlet
-          return;
-        }
-        const size_t n = grid.cellIndex(ni, nj, nk);
-        if (liquidPhi != nullptr && !isLiquid(liquidPhi[n])) {
-          floating = false;  // the free surface: Dirichlet
-          return;
-        }
-        if (op->region[n] < 0) {
-          op->region[n] = id;
-          queue.push_back(static_cast<int64_t>(n));
+      if (dirichletPart(*op, c) > 0.0) floating = false;
+      forEachCellFace(op->grid, c, [&](int a, int64_t face, int64_t nb) {
+        if (nb < 0 || !(op->coupling[a][static_cast<size_t>(face)] > 0.0)) return;
+        if (op->region[static_cast<size_t>(nb)] < 0) {
+          op->region[static_cast<size_t>(nb)] = id;
+          queue.push_back(nb);
         }
       });
     }
     op->regionFloating.push_back(floating ? 1 : 0);
-    op->regionCellCount.push_back(count);
-    op->fluidCellCount += count;
+    op->regionCellCount.push_back(static_cast<int64_t>(queue.size()));
+    op->fluidCellCount += static_cast<int64_t>(queue.size());
   }
-  computeRowSpans(tasks, op);
-  return Status::Ok;
 }
 
 void computeRowSpans(TaskSystem& tasks, CutCellPoisson* op) {

@@ -86,6 +86,17 @@ double effectiveOpenFraction(const MacGrid& grid, const FaceFractionField& fract
 Status buildCutCellPoisson(TaskSystem& tasks, const MacGrid& grid, const FaceFractionField& fractions,
                            CutCellPoisson* op, const double* liquidPhi = nullptr);
 
+// Per cell: diagonal minus the couplings of the cell's faces (open domain sides, free-surface
+// faces); 0 on non-fluid cells and where the difference is round-off (below 1e-12 of the
+// diagonal).
+double dirichletPart(const CutCellPoisson& op, int64_t cell);
+
+// Fills op->region, regionFloating, regionCellCount and fluidCellCount from the couplings and
+// diagonal: regions by flood fill through positive couplings, floating when none of a region's
+// cells has a Dirichlet part. Serial (a breadth-first search is sequential; O(cells) once per
+// build). Every builder of a CutCellPoisson calls it.
+void labelFluidRegions(CutCellPoisson* op);
+
 // Fills op->rowSpan from op->diagonal (a cell is fluid when its diagonal is positive). Every
 // builder of a CutCellPoisson calls it last.
 void computeRowSpans(TaskSystem& tasks, CutCellPoisson* op);

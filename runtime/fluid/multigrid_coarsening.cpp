@@ -56,47 +56,6 @@ void assembleDiagonal(TaskSystem& tasks, const std::vector<double>& dirichlet, C
   });
 }
 
-// Regions by flood fill through positive couplings; a region floats when none of its cells has
-// a Dirichlet part. Serial like buildCutCellPoisson's, and on coarse levels only (1/8 the cells).
-void labelRegions(const std::vector<double>& dirichlet, CutCellPoisson* op) {
-  const Dims d(op->grid);
-  const int64_t cells = d.cells();
-  op->region.assign(static_cast<size_t>(cells), -1);
-  op->regionFloating.clear();
-  op->regionCellCount.clear();
-  op->fluidCellCount = 0;
-  std::vector<int64_t> queue;
-  for (int64_t seed = 0; seed < cells; ++seed) {
-    if (op->region[static_cast<size_t>(seed)] >= 0 || !(op->diagonal[static_cast<size_t>(seed)] > 0.0)) continue;
-    const int32_t id = static_cast<int32_t>(op->regionFloating.size());
-    bool floating = true;
-    queue.clear();
-    queue.push_back(seed);
-    op->region[static_cast<size_t>(seed)] = id;
-    for (size_t head = 0; head < queue.size(); ++head) {
-      const int64_t c = queue[head];
-      if (dirichlet[static_cast<size_t>(c)] > 0.0) floating = false;
-      const int64_t i = c % d.nx, j = (c / d.nx) % d.ny, k = c / (d.nx * d.ny);
-      for (int a = 0; a < 3; ++a)
-        for (int high = 0; high < 2; ++high) {
-          int64_t f[3] = {i, j, k};
-          f[a] += high;
-          if (!(op->coupling[a][static_cast<size_t>(d.face(a, f[0], f[1], f[2]))] > 0.0)) continue;
-          int64_t n[3] = {i, j, k};
-          n[a] += high ? 1 : -1;
-          const size_t nb = static_cast<size_t>(d.cell(n[0], n[1], n[2]));
-          if (op->region[nb] < 0) {
-            op->region[nb] = id;
-            queue.push_back(static_cast<int64_t>(nb));
-          }
-        }
-    }
-    op->regionFloating.push_back(floating ? 1 : 0);
-    op->regionCellCount.push_back(static_cast<int64_t>(queue.size()));
-    op->fluidCellCount += static_cast<int64_t>(queue.size());
-  }
-}
-
 // Calls visit(child cell index) for the children of coarse cell (I, J, K) that exist.
 template <class Visit>
 void forEachChild(const Dims& fine, int64_t I, int64_t J, int64_t K, const Visit& visit) {
@@ -106,21 +65,6 @@ void forEachChild(const Dims& fine, int64_t I, int64_t J, int64_t K, const Visit
 }
 
 }  // namespace
-
-double dirichletPart(const CutCellPoisson& op, int64_t cell) {
-  const double diag = op.diagonal[static_cast<size_t>(cell)];
-  if (!(diag > 0.0)) return 0.0;
-  const Dims d(op.grid);
-  const int64_t i = cell % d.nx, j = (cell / d.nx) % d.ny, k = cell / (d.nx * d.ny);
-  double rest = diag;
-  for (int a = 0; a < 3; ++a)
-    for (int high = 0; high < 2; ++high) {
-      int64_t f[3] = {i, j, k};
-      f[a] += high;
-      rest -= op.coupling[a][static_cast<size_t>(d.face(a, f[0], f[1], f[2]))];
-    }
-  return rest > 1e-12 * diag ? rest : 0.0;
-}
 
 MacGridSpec coarseGridSpec(const MacGridSpec& fine) {
   MacGridSpec c = fine;
@@ -175,7 +119,7 @@ Status coarsenCutCell(TaskSystem& tasks, const CutCellPoisson& fine, CutCellPois
     }
   });
   assembleDiagonal(tasks, dirichlet, coarse);
-  labelRegions(dirichlet, coarse);
+  labelFluidRegions(coarse);
   computeRowSpans(tasks, coarse);
   return Status::Ok;
 }
@@ -237,7 +181,7 @@ Status coarsenVoxel(TaskSystem& tasks, const CutCellPoisson& fine, const std::ar
     }
   });
   assembleDiagonal(tasks, dirichlet, coarse);
-  labelRegions(dirichlet, coarse);
+  labelFluidRegions(coarse);
   computeRowSpans(tasks, coarse);
   return Status::Ok;
 }

@@ -36,10 +36,6 @@
 
 namespace vp {
 
-// Per cell: diagonal minus the couplings of the cell's faces; 0 on non-fluid cells and where
-// the difference is round-off (below 1e-12 of the diagonal).
-double dirichletPart(const CutCellPoisson& op, int64_t cell);
-
 // The coarse grid spec of `fine` (ceil halves, h doubled, same origin).
 MacGridSpec coarseGridSpec(const MacGridSpec& fine);
 

@@ -31,24 +31,22 @@ void smoothLevel(TaskSystem& tasks, const PoissonCoefficients<float>& op, const 
   if (post) smooth(tasks, op, s, b, x, scratch, s.sweeps, true, false);
 }
 
-void toSinglePrecision(TaskSystem& tasks, const CutCellPoisson& in, PoissonCoefficients<float>* out) {
-  out->grid = in.grid;
-  out->rowSpan = in.rowSpan;
-  auto convert = [&](const std::vector<double>& from, std::vector<float>& to) {
-    to.resize(from.size());
-    parallelFor(tasks, static_cast<int64_t>(from.size()), 4096, [&](int64_t begin, int64_t end) {
-      for (int64_t i = begin; i < end; ++i) to[i] = static_cast<float>(from[i]);
-    });
-  };
-  for (int a = 0; a < 3; ++a) convert(in.coupling[a], out->coupling[a]);
-  convert(in.diagonal, out->diagonal);
-}
-
 template <class From, class To>
 void convertVector(TaskSystem& tasks, int64_t count, const From* from, To* to) {
   parallelFor(tasks, count, 4096, [&](int64_t begin, int64_t end) {
     for (int64_t i = begin; i < end; ++i) to[i] = static_cast<To>(from[i]);
   });
+}
+
+void toSinglePrecision(TaskSystem& tasks, const CutCellPoisson& in, PoissonCoefficients<float>* out) {
+  out->grid = in.grid;
+  out->rowSpan = in.rowSpan;
+  auto convert = [&](const std::vector<double>& from, std::vector<float>& to) {
+    to.resize(from.size());
+    convertVector(tasks, static_cast<int64_t>(from.size()), from.data(), to.data());
+  };
+  for (int a = 0; a < 3; ++a) convert(in.coupling[a], out->coupling[a]);
+  convert(in.diagonal, out->diagonal);
 }
 
 bool canCoarsen(const MacGridSpec& g, int coarsestSize) {

@@ -1,14 +1,17 @@
 """Where a fluid starts, enters and leaves: regions (box, sphere) and emitters, turned into
 vpFluidRegion / vpFluidEmitter when a fluid is created. Coordinates are world space."""
+import abc
+
 from . import _arrays
 from . import _types as T
 
 
-class Region:
+class Region(abc.ABC):
     """Base of BoxRegion and SphereRegion."""
 
+    @abc.abstractmethod
     def _to_c(self):
-        raise NotImplementedError
+        """The vpFluidRegion this region becomes."""
 
 
 class BoxRegion(Region):
