@@ -28,6 +28,9 @@ struct ActorStats {
   uint32_t generation = 0;
   double totalMs = 0.0;
   bool diverged = false;  // the step blew up and the actor was restored to its previous state
+  // Seconds this step advanced the actor: the frame's dt, 0 for a fluid the budget's pacing
+  // deferred, several frames' dt for one that catches up (fluid_pacing.h).
+  double simulatedDt = 0.0;
   std::array<PhaseStats, kPhaseCount> phases{};
 
   PhaseStats& phase(Phase p) { return phases[static_cast<int>(p)]; }
@@ -42,6 +45,7 @@ struct StepStats {
   bool budgetCut = false;
   int colliderCount = 0;
   int rigidSubsteps = 0;
+  int fluidInterval = 1;  // frames per fluid step chosen by the pacing for the next frames
   std::vector<ActorStats> actors;  // [0] is the rigid pseudo-actor
 };
 

@@ -84,8 +84,9 @@ Status World::createFluid(FluidDesc desc, FluidHandle* out) {
 }
 
 Status World::destroyFluid(FluidHandle handle) {
-  if (!fluids_.remove(handle.index1, handle.generation))
-    return fail(Status::InvalidId, "fluid id (%u, %u) is stale or null", handle.index1, handle.generation);
+  std::unique_ptr<FluidActor> fluid = fluids_.remove(handle.index1, handle.generation);
+  if (!fluid) return fail(Status::InvalidId, "fluid id (%u, %u) is stale or null", handle.index1, handle.generation);
+  fluidBacklog_.erase(fluid.get());
   return Status::Ok;
 }
 
@@ -151,6 +152,7 @@ Status World::step(double dt) {
   // consistent); the budget is spent by the iterative solvers of the actors that follow.
   ActorStats rigid;
   rigid.kind = ActorKind::Rigid;
+  rigid.simulatedDt = dt;
   {
     const double start = frame.elapsedMs();
     std::vector<Collider*> kinematics, loaded;
@@ -158,16 +160,21 @@ Status World::step(double dt) {
       if (c.bodyType() == BodyType::Kinematic) kinematics.push_back(&c);
     });
     // Loads of several fluids on one body add up; a body destroyed since is skipped.
-    for (const FluidColliderLoad& l : fluidLoads_)
-      if (Collider* c = colliders_.get(l.index1, l.generation); c != nullptr) {
-        c->clearFluidLoad();
-        loaded.push_back(c);
-      }
+    // In the fluids' slot order, so the sums do not depend on the backlog map's order.
+    auto forEachFluidLoad = [&](const auto& visit) {
+      fluids_.forEach([&](FluidHandle, const FluidActor& fluid) {
+        if (const auto it = fluidBacklog_.find(&fluid); it != fluidBacklog_.end())
+          for (const FluidColliderLoad& l : it->second.loads)
+            if (Collider* c = colliders_.get(l.index1, l.generation); c != nullptr) visit(*c, l.load);
+      });
+    };
+    forEachFluidLoad([&](Collider& c, const PressureLoad&) {
+      c.clearFluidLoad();
+      loaded.push_back(&c);
+    });
     std::sort(loaded.begin(), loaded.end());
     loaded.erase(std::unique(loaded.begin(), loaded.end()), loaded.end());
-    for (const FluidColliderLoad& l : fluidLoads_)
-      if (Collider* c = colliders_.get(l.index1, l.generation); c != nullptr)
-        c->addFluidLoad(l.load.force, l.load.torque, l.load.addedMass);
+    forEachFluidLoad([](Collider& c, const PressureLoad& l) { c.addFluidLoad(l.force, l.torque, l.addedMass); });
     colliders_.forEach([](ColliderHandle, Collider& c) { c.trackVelocity(); });
     for (Collider* c : loaded) c->prepareFluidLoad(dt, config_.gravity);
     stats.rigidSubsteps = collision_.step(dt, config_.rigidMaxSubstep, kinematics.data(),
@@ -195,6 +202,7 @@ Status World::step(double dt) {
     a.kind = kind;
     a.index1 = index1;
     a.generation = generation;
+    a.simulatedDt = dt;
     const Deadline share = frame.share(1.0 / remaining--);
     const double start = frame.elapsedMs();
     stepActor(share, &a);
@@ -225,20 +233,45 @@ Status World::step(double dt) {
       if (c.geometry())
         fluidColliders.push_back(FluidCollider{h.index1, h.generation, c.geometry(), c.bodyType() == BodyType::Dynamic});
     });
-  fluidLoads_.clear();
+  // Fluid pacing (fluid_pacing.h): a fluid that is not due this frame keeps its time for
+  // later and its last loads; it still takes its turn in the budget shares, unused.
+  double fluidStepsMs = 0.0;
+  int fluidSteps = 0, ordinal = 0;
   fluids_.forEach([&](FluidHandle h, FluidActor& fluid) {
+    FluidBacklog& backlog = fluidBacklog_[&fluid];
+    backlog.pendingDt += dt;
+    if (!fluidPacing_.due(stats.stepIndex, ordinal++, static_cast<int>(fluids_.size()), backlog.waitedFrames)) {
+      ++backlog.waitedFrames;
+      ActorStats deferred;
+      deferred.kind = ActorKind::Fluid;
+      deferred.index1 = h.index1;
+      deferred.generation = h.generation;
+      deferred.simulatedDt = 0.0;
+      stats.actors.push_back(deferred);
+      --remaining;
+      return;
+    }
     runActor(ActorKind::Fluid, h.index1, h.generation, [&](const Deadline& share, ActorStats* a) {
       FluidStepInput input;
-      input.dt = dt;
+      input.dt = backlog.pendingDt;
       input.gravity = config_.gravity;
       input.deadline = share;
       input.tasks = tasks_.get();
       input.colliders = fluidColliders;
-      fluid.step(input, a, &fluidLoads_);
+      backlog.loads.clear();
+      fluid.step(input, a, &backlog.loads);
+      a->simulatedDt = input.dt;
     });
+    fluidStepsMs += stats.actors.back().totalMs;
+    ++fluidSteps;
+    backlog.pendingDt = 0.0;
+    backlog.waitedFrames = 0;
   });
 
   stats.totalMs = frame.elapsedMs();
+  fluidPacing_.observe(config_.frameBudgetMs, stats.totalMs - fluidStepsMs, fluidStepsMs, fluidSteps,
+                       static_cast<int>(fluids_.size()));
+  stats.fluidInterval = fluidPacing_.interval();
   for (const ActorStats& a : stats.actors)
     for (const PhaseStats& p : a.phases) stats.budgetCut = stats.budgetCut || p.budgetCut;
   stats_ = std::move(stats);

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <memory>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "collide/collider.h"
@@ -14,6 +15,7 @@
 #include "core/task_system.h"
 #include "deform/deformable_body.h"
 #include "fluid/fluid_actor.h"
+#include "fluid_pacing.h"
 #include "step_stats.h"
 
 namespace vp {
@@ -87,7 +89,15 @@ class World {
   SlotMap<Collider> colliders_;
   SlotMap<DeformableBody> deformables_;
   SlotMap<FluidActor> fluids_;
-  std::vector<FluidColliderLoad> fluidLoads_;  // from the last step's fluids, applied in the next rigid step
+  // A fluid's time not yet simulated (the pacing let it skip frames) and the loads of its last
+  // step, which act on the rigid bodies every frame until it steps again.
+  struct FluidBacklog {
+    double pendingDt = 0.0;
+    int waitedFrames = 0;
+    std::vector<FluidColliderLoad> loads;
+  };
+  std::unordered_map<const FluidActor*, FluidBacklog> fluidBacklog_;
+  FluidPacing fluidPacing_;
   StepStats stats_;
   std::atomic<bool> stepping_{false};
 };

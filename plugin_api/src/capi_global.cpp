@@ -40,7 +40,10 @@ const char* vpStatusName(vpStatus status) { return statusName(static_cast<Status
 vpStatus vpCheckHeaderVersion(uint32_t headerVersion, uint32_t worldDefSize) {
   return guarded(__func__, [&] {
     const uint32_t major = headerVersion >> 16, minor = (headerVersion >> 8) & 0xFF;
-    if (major != VP_VERSION_MAJOR || minor > VP_VERSION_MINOR)
+    // Before 1.0 a minor version may change struct layouts (semantic versioning's 0.x rule),
+    // so only the same minor is served; from 1.0 on, older minors are.
+    const bool minorServed = VP_VERSION_MAJOR == 0 ? minor == VP_VERSION_MINOR : minor <= VP_VERSION_MINOR;
+    if (major != VP_VERSION_MAJOR || !minorServed)
       return fail(Status::VersionMismatch, "header version %u.%u is not served by library version %d.%d.%d", major,
                   minor, VP_VERSION_MAJOR, VP_VERSION_MINOR, VP_VERSION_PATCH);
     return checkStructSize("vpWorldDef", worldDefSize, sizeof(vpWorldDef));

@@ -121,6 +121,7 @@ vpStatus vpWorldGetStepStats(vpWorldId id, vpStepStats* out) {
     out->actorCount = static_cast<int32_t>(s.actors.size());
     out->colliderCount = s.colliderCount;
     out->rigidSubsteps = s.rigidSubsteps;
+    out->fluidInterval = s.fluidInterval;
     return Status::Ok;
   });
 }

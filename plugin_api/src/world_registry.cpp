@@ -109,6 +109,7 @@ void fillActorStats(const ActorStats& in, vpActorStats* out) {
   out->index1 = in.index1;
   out->totalMs = static_cast<float>(in.totalMs);
   out->diverged = in.diverged ? 1 : 0;
+  out->simulatedDt = static_cast<float>(in.simulatedDt);
   static_assert(kPhaseCount == vpPhase_Count && kPhaseCount <= VP_MAX_PHASES, "phase tables must match");
   for (int p = 0; p < kPhaseCount; ++p) {
     const PhaseStats& ph = in.phases[p];

@@ -13,6 +13,11 @@ TEST(CApiWorld, VersionAndHeaderCheck) {
   EXPECT_TRUE(lastErrorContains("header version"));
   EXPECT_EQ(vpCheckHeaderVersion(VP_HEADER_VERSION, sizeof(vpWorldDef) - 4), vpStatus_VersionMismatch);
   EXPECT_TRUE(lastErrorContains("vpWorldDef.structSize"));
+  // 0.x: a header of another minor version may lay the structs out differently.
+  if (VP_VERSION_MAJOR == 0) {
+    EXPECT_EQ(vpCheckHeaderVersion(VP_HEADER_VERSION - (1u << 8), sizeof(vpWorldDef)), vpStatus_VersionMismatch);
+    EXPECT_TRUE(lastErrorContains("header version"));
+  }
 }
 
 TEST(CApiWorld, CreateStepDestroy) {

@@ -92,6 +92,22 @@ def check_fluid_stats(rows):
         fail("stats.csv: the fluids' pressure solve never iterated")
 
 
+def check_actor_columns(rows, deformables, fluids):
+    """Every actor has its own columns; without a budget every fluid steps every frame, so its
+    simulated time is the frame's dt (1/60 s, the host's default) and the pacing interval 1."""
+    names = ["deformable%d_ms" % d for d in range(deformables)]
+    names += [c % k for k in range(fluids) for c in ("fluid%d_ms", "fluid%d_sim_dt")]
+    missing = [n for n in names if n not in rows[0]]
+    if missing:
+        fail("stats.csv lacks the per-actor columns %s" % missing)
+    for row in rows:
+        if any(float(row["deformable%d_ms" % d]) <= 0 for d in range(deformables)):
+            fail("stats.csv frame %s: a deformable took no time" % row["frame"])
+        if any(abs(float(row["fluid%d_sim_dt" % k]) - 1 / 60) > 1e-5 for k in range(fluids)) \
+                or row["fluid_interval"] != "1":
+            fail("stats.csv frame %s: unbudgeted fluids did not step every frame" % row["frame"])
+
+
 def check_liquid_meshes(out, fluid, names):
     """A liquid's surface in every exported frame: a real triangle mesh with normals (read_ply
     checks both) in world space, so inside the fluid's domain box."""
@@ -145,6 +161,7 @@ def check_host(exe, out, scene_path=DEFAULT_SCENE):
         check_liquid_meshes(out, fluids[k], [n for n in liquid_files if n.startswith("fluid%d_" % k)])
     if fluids:
         check_fluid_stats(rows)
+    check_actor_columns(rows, deformables, len(fluids))
     shots = sorted(os.listdir(os.path.join(out, "snapshots")))
     if shots != ["frame_00000.png", "frame_00003.png", "frame_00006.png"]:
         fail("snapshots/ holds %s" % shots)

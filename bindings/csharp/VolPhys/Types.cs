@@ -33,7 +33,7 @@ namespace VolPhys
 
     public static class Constants
     {
-        public const int VersionMajor = 0, VersionMinor = 1, VersionPatch = 0;
+        public const int VersionMajor = 0, VersionMinor = 2, VersionPatch = 0;
         public const uint HeaderVersion = (VersionMajor << 16) | (VersionMinor << 8) | VersionPatch;
         public const int MaxPhases = 16;
     }
@@ -125,6 +125,7 @@ namespace VolPhys
         public int diverged;
         // vpPhaseStats[VP_MAX_PHASES] as raw storage: C# fixed buffers hold only primitives.
         public fixed int phases[Constants.MaxPhases * 4];
+        public float simulatedDt;
 
         public vpPhaseStats Phase(Phase phase)
         {
@@ -146,6 +147,7 @@ namespace VolPhys
         public int actorCount;
         public int colliderCount;
         public int rigidSubsteps;
+        public int fluidInterval;
     }
 
     [StructLayout(LayoutKind.Sequential)]

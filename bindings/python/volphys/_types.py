@@ -8,7 +8,7 @@ import enum
 from ctypes import c_float, c_int32, c_uint16, c_uint32, c_uint64, c_void_p, c_char_p, c_double, c_size_t, POINTER
 
 VP_VERSION_MAJOR = 0
-VP_VERSION_MINOR = 1
+VP_VERSION_MINOR = 2
 VP_VERSION_PATCH = 0
 VP_HEADER_VERSION = (VP_VERSION_MAJOR << 16) | (VP_VERSION_MINOR << 8) | VP_VERSION_PATCH
 VP_MAX_PHASES = 16
@@ -174,6 +174,7 @@ class vpActorStats(ctypes.Structure):
         ("totalMs", c_float),
         ("diverged", c_int32),
         ("phases", vpPhaseStats * VP_MAX_PHASES),
+        ("simulatedDt", c_float),
     ]
 
 
@@ -188,6 +189,7 @@ class vpStepStats(ctypes.Structure):
         ("actorCount", c_int32),
         ("colliderCount", c_int32),
         ("rigidSubsteps", c_int32),
+        ("fluidInterval", c_int32),
     ]
 
 

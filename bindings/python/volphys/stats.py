@@ -15,11 +15,12 @@ class StepStats:
     actor_count: int
     collider_count: int
     rigid_substeps: int
+    fluid_interval: int  # each fluid steps every fluid_interval steps (budget pacing)
 
     @classmethod
     def _from_c(cls, s):
         return cls(s.stepIndex, s.dt, s.totalMs, s.budgetMs, bool(s.budgetCut), s.actorCount,
-                   s.colliderCount, s.rigidSubsteps)
+                   s.colliderCount, s.rigidSubsteps, s.fluidInterval)
 
 
 @dataclass(frozen=True)
@@ -36,6 +37,7 @@ class ActorStats:
     index1: int
     total_ms: float
     diverged: bool
+    simulated_dt: float  # 0 for a fluid the budget's pacing deferred
     phases: Dict[Phase, PhaseStats] = field(default_factory=dict)
 
     @classmethod
@@ -47,4 +49,4 @@ class ActorStats:
             kind = ActorKind(s.kind)
         except ValueError:
             kind = s.kind
-        return cls(kind, s.index1, s.totalMs, bool(s.diverged), phases)
+        return cls(kind, s.index1, s.totalMs, bool(s.diverged), s.simulatedDt, phases)

@@ -51,7 +51,7 @@ extern "C" {
 /* ---------------------------------------------------------------- version */
 
 #define VP_VERSION_MAJOR 0
-#define VP_VERSION_MINOR 1
+#define VP_VERSION_MINOR 2
 #define VP_VERSION_PATCH 0
 /* Major changes break the ABI; minor ones only add. */
 #define VP_HEADER_VERSION ((VP_VERSION_MAJOR << 16) | (VP_VERSION_MINOR << 8) | VP_VERSION_PATCH)
@@ -178,7 +178,11 @@ typedef struct vpWorldDef {
                                   actors run in slot order and each may use an equal share of
                                   what is left of the budget when its turn comes, so time one does
                                   not use passes on to the next. A cut solver keeps its best
-                                  iterate, sets budgetCut, and warm-starts next step. */
+                                  iterate, sets budgetCut, and warm-starts next step. Fluid work
+                                  that cannot be cut (advection, fractions) is paced instead:
+                                  when the measured fluid steps do not fit, each fluid steps
+                                  every k-th step (k <= 4, fluids staggered) with the time it
+                                  skipped (vpStepStats.fluidInterval, vpActorStats.simulatedDt). */
   float rigidMaxSubstep;       /* Bullet sub-step length bound in seconds; default 1/120 */
   vpEnqueueTaskFn* enqueueTask;/* both NULL: built-in thread pool with workerCount threads */
   vpFinishTaskFn* finishTask;
@@ -242,6 +246,8 @@ typedef struct vpActorStats {
   float totalMs;
   int32_t diverged;   /* the step blew up; the actor was restored to its previous state */
   vpPhaseStats phases[VP_MAX_PHASES]; /* indexed by vpPhase */
+  float simulatedDt;  /* seconds this step advanced the actor: the step's dt; for a fluid 0 when
+                         the budget's pacing deferred it, several steps' dt when it catches up */
 } vpActorStats;
 
 typedef struct vpStepStats {
@@ -254,6 +260,8 @@ typedef struct vpStepStats {
   int32_t actorCount;  /* entries available through vpWorldGetActorStats */
   int32_t colliderCount;
   int32_t rigidSubsteps;
+  int32_t fluidInterval; /* under a tight budget each fluid steps every fluidInterval steps with
+                            the time it skipped, fluids staggered (1 = every step; README) */
 } vpStepStats;
 
 VP_API vpStepStats vpDefaultStepStats(void);

@@ -24,10 +24,11 @@ int main(void) {
   SIZE(vpPhaseStats); FIELD(vpPhaseStats, ms); FIELD(vpPhaseStats, iterations); FIELD(vpPhaseStats, residual);
   FIELD(vpPhaseStats, budgetCut);
   SIZE(vpActorStats); FIELD(vpActorStats, kind); FIELD(vpActorStats, index1); FIELD(vpActorStats, totalMs);
-  FIELD(vpActorStats, diverged); FIELD(vpActorStats, phases);
+  FIELD(vpActorStats, diverged); FIELD(vpActorStats, phases); FIELD(vpActorStats, simulatedDt);
   SIZE(vpStepStats); FIELD(vpStepStats, structSize); FIELD(vpStepStats, stepIndex); FIELD(vpStepStats, dt);
   FIELD(vpStepStats, totalMs); FIELD(vpStepStats, budgetMs); FIELD(vpStepStats, budgetCut);
   FIELD(vpStepStats, actorCount); FIELD(vpStepStats, colliderCount); FIELD(vpStepStats, rigidSubsteps);
+  FIELD(vpStepStats, fluidInterval);
   SIZE(vpShapeDef); FIELD(vpShapeDef, structSize); FIELD(vpShapeDef, type); FIELD(vpShapeDef, radius);
   FIELD(vpShapeDef, halfHeight); FIELD(vpShapeDef, halfExtents); FIELD(vpShapeDef, normal); FIELD(vpShapeDef, offset);
   FIELD(vpShapeDef, points); FIELD(vpShapeDef, pointCount); FIELD(vpShapeDef, indices);
