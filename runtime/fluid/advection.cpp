@@ -2,6 +2,7 @@
 #include "fluid/advection.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/parallel_for.h"
 #include "fluid/cut_cell_poisson.h"
@@ -113,13 +114,16 @@ void forEachSample(TaskSystem& tasks, const Eigen::Vector3i& d, const Body& body
 
 }  // namespace
 
-void advectVelocity(TaskSystem& tasks, MacGrid& grid, double dt, AdvectionScheme scheme, AdvectionWorkspace& work) {
+void advectVelocity(TaskSystem& tasks, MacGrid& grid, double dt, AdvectionScheme scheme, AdvectionWorkspace& work,
+                    const FaceSkipMask& skip) {
   const MacGridSpec& s = grid.spec;
   const bool maccormack = scheme == AdvectionScheme::MacCormack;
   const VelocityField field(grid);
   for (int a = 0; a < 3; ++a) {
     const Eigen::Vector3i d = grid.faceDims(a);
     const std::vector<double>& old = grid.velocity[a];
+    const uint8_t* marks = skip.marks != nullptr ? skip.marks[a].data() : nullptr;
+    auto skipped = [&](size_t f) { return marks != nullptr && marks[f] == skip.skipMark; };
     std::vector<double>& out = work.advected[a];
     out.resize(old.size());
     std::vector<double>& fwd = maccormack ? work.forward : out;
@@ -129,6 +133,11 @@ void advectVelocity(TaskSystem& tasks, MacGrid& grid, double dt, AdvectionScheme
       work.rangeHi.resize(old.size());
     }
     forEachSample(tasks, d, [&](int i, int j, int k, size_t f) {
+      if (skipped(f)) {
+        fwd[f] = old[f];
+        if (maccormack) work.rangeLo[f] = work.rangeHi[f] = old[f];
+        return;
+      }
       const Eigen::Vector3d x = grid.faceCentre(a, i, j, k);
       const Eigen::Vector3d back = trace(field, x, field.atFace(a, i, j, k, old[f]), dt);
       SampleRange range;
@@ -137,6 +146,10 @@ void advectVelocity(TaskSystem& tasks, MacGrid& grid, double dt, AdvectionScheme
     });
     if (!maccormack) continue;
     forEachSample(tasks, d, [&](int i, int j, int k, size_t f) {
+      if (skipped(f)) {
+        out[f] = old[f];
+        return;
+      }
       const Eigen::Vector3d x = grid.faceCentre(a, i, j, k);
       const Eigen::Vector3d ahead = trace(field, x, field.atFace(a, i, j, k, old[f]), -dt);
       const double backAgain = trilinearSample(fwd.data(), d, latticeCoordinate(s, ahead, a));
@@ -192,7 +205,7 @@ void buildCellOpenFaces(TaskSystem& tasks, const MacGrid& grid, const FaceFracti
 
 void advectCellScalars(TaskSystem& tasks, const MacGrid& grid, double dt, AdvectionScheme scheme,
                        std::vector<double>* const* fields, int fieldCount, AdvectionWorkspace& work,
-                       const CellOpenFaces* openFaces, const double* solidValues) {
+                       const CellOpenFaces* openFaces, const double* solidValues, double keepBeyond) {
   if (fieldCount <= 0) return;
   const MacGridSpec& s = grid.spec;
   const Eigen::Vector3i d(s.nx, s.ny, s.nz);
@@ -202,7 +215,15 @@ void advectCellScalars(TaskSystem& tasks, const MacGrid& grid, double dt, Advect
   // MacCormack, ahead (where the backward step samples the forward result).
   work.cellTrace.resize(maccormack ? 2 * cells : cells);
   const VelocityField field(grid);
+  // Decided from the first field's old values once: the fields are swapped as they are done.
+  work.kept.assign(keepBeyond > 0.0 ? cells : 0, 0);
+  const double* first = fields[0]->data();
+  auto kept = [&](size_t c) { return keepBeyond > 0.0 && work.kept[c]; };
   forEachSample(tasks, d, [&](int i, int j, int k, size_t c) {
+    if (keepBeyond > 0.0 && std::abs(first[c]) >= keepBeyond) {
+      work.kept[c] = 1;
+      return;
+    }
     const Eigen::Vector3d x = grid.cellCentre(i, j, k);
     const Eigen::Vector3d u = grid.cellVelocity(i, j, k);
     work.cellTrace[c] = latticeCoordinate(s, trace(field, x, u, dt), 3);
@@ -225,7 +246,7 @@ void advectCellScalars(TaskSystem& tasks, const MacGrid& grid, double dt, Advect
     auto solidResult = [&](size_t c) { return solidValues != nullptr ? solidValue : old[c]; };
     if (!maccormack) {
       forEachSample(tasks, d, [&](int, int, int, size_t c) {
-        out[c] = solid(c) ? solidResult(c) : sample(old.data(), work.cellTrace[c], nullptr);
+        out[c] = solid(c) ? solidResult(c) : kept(c) ? old[c] : sample(old.data(), work.cellTrace[c], nullptr);
       });
       old.swap(out);
       continue;
@@ -233,8 +254,8 @@ void advectCellScalars(TaskSystem& tasks, const MacGrid& grid, double dt, Advect
     work.rangeLo.resize(cells);
     work.rangeHi.resize(cells);
     forEachSample(tasks, d, [&](int, int, int, size_t c) {
-      if (solid(c)) {
-        work.forward[c] = work.rangeLo[c] = work.rangeHi[c] = solidResult(c);
+      if (solid(c) || kept(c)) {
+        work.forward[c] = work.rangeLo[c] = work.rangeHi[c] = solid(c) ? solidResult(c) : old[c];
         return;
       }
       SampleRange range;
@@ -242,7 +263,7 @@ void advectCellScalars(TaskSystem& tasks, const MacGrid& grid, double dt, Advect
       work.rangeLo[c] = range.lo, work.rangeHi[c] = range.hi;
     });
     forEachSample(tasks, d, [&](int, int, int, size_t c) {
-      if (solid(c)) {
+      if (solid(c) || kept(c)) {
         out[c] = work.forward[c];
         return;
       }

@@ -37,6 +37,7 @@ struct AdvectionWorkspace {
   std::vector<double> advected[3];  // new velocity, per axis
   std::vector<double> forward, rangeLo, rangeHi;
   std::vector<Eigen::Vector3d> cellTrace;  // per cell: where its centre came from
+  std::vector<uint8_t> kept;               // per cell: left as it was (keepBeyond)
 };
 
 // Per-cell open faces for advection that does not interpolate across solids (layout in
@@ -49,15 +50,31 @@ struct CellOpenFaces {
 // From the effective open fractions (cut_cell_poisson.h: Wall faces and slivers closed).
 void buildCellOpenFaces(TaskSystem& tasks, const MacGrid& grid, const FaceFractionField& fractions, CellOpenFaces* out);
 
+// Faces that nothing downstream reads can be left out of advection: face f normal to axis a
+// with marks[a][f] == skipMark keeps its value. A liquid passes its velocity extrapolation's
+// marks: air faces beyond the extrapolated layers are zeroed after every projection and lie
+// farther from the liquid than a sub-step's trace reaches (a third of the tank's faces in the
+// default scene).
+struct FaceSkipMask {
+  const std::vector<uint8_t>* marks = nullptr;  // 3 arrays, one per axis; null: advect all
+  uint8_t skipMark = 0;
+};
+
 // Replaces grid.velocity by itself advected over dt.
-void advectVelocity(TaskSystem& tasks, MacGrid& grid, double dt, AdvectionScheme scheme, AdvectionWorkspace& work);
+void advectVelocity(TaskSystem& tasks, MacGrid& grid, double dt, AdvectionScheme scheme, AdvectionWorkspace& work,
+                    const FaceSkipMask& skip = {});
 
 // Advects cell-centred scalars (each cellCount() values, cell order) by grid.velocity over dt.
 // All fields share the traced points, so pass them together.
 // openFaces (optional): sample through open faces only; cells with no open face are then set
 // to solidValues[field] (or keep their value when solidValues is null).
+// keepBeyond (optional, > 0): cells where |first field| >= keepBeyond keep their values. For a
+// level set that is redistanced after advection, cells farther from the surface than the
+// step can move it (plus the interpolation stencil) keep their sign, and redistancing
+// rewrites their magnitude anyway.
 void advectCellScalars(TaskSystem& tasks, const MacGrid& grid, double dt, AdvectionScheme scheme,
                        std::vector<double>* const* fields, int fieldCount, AdvectionWorkspace& work,
-                       const CellOpenFaces* openFaces = nullptr, const double* solidValues = nullptr);
+                       const CellOpenFaces* openFaces = nullptr, const double* solidValues = nullptr,
+                       double keepBeyond = 0.0);
 
 }  // namespace vp

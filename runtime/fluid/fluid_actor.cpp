@@ -103,11 +103,19 @@ void FluidActor::extrapolateLiquidVelocity(TaskSystem& tasks) {
   }
 }
 
-void FluidActor::advectAndSource(TaskSystem& tasks, const Vec3& gravity, double h, ActorStats* stats,
-                                 const Deadline& deadline) {
+void FluidActor::advectAndSource(TaskSystem& tasks, const Vec3& gravity, double h, double maxDisplacement,
+                                 ActorStats* stats, const Deadline& deadline) {
   const FluidSolverSettings& solver = desc_.solver;
+  const double cell = grid_.spec.h;
   double t0 = deadline.elapsedMs();
-  advectVelocity(tasks, grid_, h, solver.advection, advection_);
+  // A liquid's air faces beyond the extrapolated layers are zeroed after the projection and
+  // out of reach of the liquid while a sub-step moves things at most cflNumber cells (the
+  // layers' premise); when maxSubsteps caps the sub-steps, everything is advected.
+  FaceSkipMask skip;
+  if (desc_.kind == FluidKind::Liquid && !extrapolation_.mark[0].empty() &&
+      maxDisplacement <= solver.cflNumber * cell)
+    skip = FaceSkipMask{extrapolation_.mark, kExtrapolationUnreached};
+  advectVelocity(tasks, grid_, h, solver.advection, advection_, skip);
   if (desc_.kind == FluidKind::Smoke) {
     // Smoke and heat move through open faces only: a plain trilinear stencil reaches across a
     // plate one cell thick. Cells inside solids hold no smoke and the ambient temperature.
@@ -121,8 +129,11 @@ void FluidActor::advectAndSource(TaskSystem& tasks, const Vec3& gravity, double 
   } else {
     // The level set is extended into solids on purpose (level_set_solid_extension.h) and
     // sampled as it is.
+    // Cells farther from the surface than the sub-step moves it, plus the forward and backward
+    // traces' interpolation stencils, keep their sign, and redistancing rewrites their value.
     std::vector<double>* scalars[1] = {&phi_};
-    advectCellScalars(tasks, grid_, h, solver.advection, scalars, 1, advection_);
+    advectCellScalars(tasks, grid_, h, solver.advection, scalars, 1, advection_, nullptr, nullptr,
+                      maxDisplacement + 3.0 * cell);
   }
   stats->phase(Phase::Advect).ms += deadline.elapsedMs() - t0;
 
@@ -186,8 +197,17 @@ Status FluidActor::updateFractions(const std::vector<FluidCollider>& colliders) 
                          a.linearVelocity != b.linearVelocity || a.angularVelocity != b.angularVelocity;
       if (!moved) continue;
       VP_TRY(updateFaceFractions(geometry.data(), count, a.bounds, b.bounds, &fractions_));
-      VP_TRY(closeSplitCellPieces(*tasks_, geometry.data(), count, a.bounds, &fractions_, nullptr));
-      VP_TRY(closeSplitCellPieces(*tasks_, geometry.data(), count, b.bounds, &fractions_, nullptr));
+      // A collider moving a little per step (a paddle) has nearly the same box before and
+      // after: one pass over their union instead of two over the overlap.
+      if (a.bounds.overlaps(b.bounds)) {
+        Aabb both;
+        both.lo = a.bounds.lo.cwiseMin(b.bounds.lo);
+        both.hi = a.bounds.hi.cwiseMax(b.bounds.hi);
+        VP_TRY(closeSplitCellPieces(*tasks_, geometry.data(), count, both, &fractions_, nullptr));
+      } else {
+        VP_TRY(closeSplitCellPieces(*tasks_, geometry.data(), count, a.bounds, &fractions_, nullptr));
+        VP_TRY(closeSplitCellPieces(*tasks_, geometry.data(), count, b.bounds, &fractions_, nullptr));
+      }
       fractionsChanged_ = true;
     }
   }
@@ -263,7 +283,7 @@ void FluidActor::step(const FluidStepInput& input, ActorStats* stats, std::vecto
   pressureSettings.minIterations = std::min(4, solver.pressureMaxIterations);
   PhaseStats& pressurePhase = stats->phase(Phase::Pressure);
   for (int sub = 0; sub < substeps; ++sub) {
-    advectAndSource(tasks, input.gravity, h, stats, deadline);
+    advectAndSource(tasks, input.gravity, h, speed * h, stats, deadline);
 
     t0 = deadline.elapsedMs();
     PressureSolveStats ps;

@@ -90,7 +90,9 @@ class FluidActor {
   explicit FluidActor(FluidDesc desc) : desc_(std::move(desc)) {}
   Status updateFractions(const std::vector<FluidCollider>& colliders);
   double maxSpeed(TaskSystem& tasks) const;
-  void advectAndSource(TaskSystem& tasks, const Vec3& gravity, double dt, ActorStats* stats, const Deadline& deadline);
+  // maxDisplacement: the farthest the flow (and colliders) move anything in this sub-step.
+  void advectAndSource(TaskSystem& tasks, const Vec3& gravity, double dt, double maxDisplacement, ActorStats* stats,
+                       const Deadline& deadline);
   void keepLevelSetHealthy(TaskSystem& tasks);
   void extrapolateLiquidVelocity(TaskSystem& tasks);
   const double* liquidPhi() const { return desc_.kind == FluidKind::Liquid ? phi_.data() : nullptr; }
