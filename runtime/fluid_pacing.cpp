@@ -4,13 +4,6 @@
 #include <algorithm>
 
 namespace vp {
-namespace {
-
-double smoothed(double average, double sample) {
-  return average < 0.0 ? sample : average + FluidPacing::kSmoothing * (sample - average);
-}
-
-}  // namespace
 
 void FluidPacing::observe(double budgetMs, double otherMs, double fluidStepsMs, int fluidSteps, int fluidCount) {
   otherMs_ = smoothed(otherMs_, otherMs);

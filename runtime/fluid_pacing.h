@@ -31,6 +31,10 @@ class FluidPacing {
   static constexpr double kSmoothing = 0.2;   // weight of the newest frame in the averages
 
   int interval() const { return interval_; }
+  // The running average the policy keeps of a measured cost (average < 0: none yet).
+  static double smoothed(double average, double sample) {
+    return average < 0.0 ? sample : average + kSmoothing * (sample - average);
+  }
   // Whether the fluid at position `ordinal` of `fluidCount` in the world's slot order steps on
   // `frame`, having waited `waitedFrames` frames since its last step. The fluids' offsets are
   // spread over the interval (two fluids at interval 4 step on frames 0 and 2 mod 4, not 0 and
@@ -39,7 +43,8 @@ class FluidPacing {
     const uint64_t offset = static_cast<uint64_t>(ordinal) * interval_ / static_cast<uint64_t>(fluidCount);
     return waitedFrames + 1 >= kMaxInterval || (frame + offset) % static_cast<uint64_t>(interval_) == 0;
   }
-  // After a frame: the budget it ran under, the ms spent outside fluid steps, the total ms of
+  // After a frame: the budget it ran under, the ms spent outside fluid steps that the budget
+  // cannot shrink (the world leaves out the deformables' iterative solves), the total ms of
   // the fluid steps taken and how many there were, and how many fluids the world has.
   void observe(double budgetMs, double otherMs, double fluidStepsMs, int fluidSteps, int fluidCount);
 

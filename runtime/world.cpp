@@ -191,19 +191,33 @@ Status World::step(double dt) {
     if (c.geometry()) contactColliders.push_back(ContactCollider{c.geometry(), c.desc().friction});
   });
 
-  // Phase 3: deformables, then fluids. Budget policy: the actors run in a fixed order
-  // (deformables, then fluids, each in slot order) and each gets an equal share of what is
-  // left of the frame when its turn comes, so time one actor does not use passes on to the
-  // next.
-  int remaining = static_cast<int>(deformables_.size() + fluids_.size());
+  // Phase 3: deformables, then fluids. Budget policy: the fluids due this frame are decided
+  // first (fluid pacing, fluid_pacing.h: a fluid not due keeps its time for later and its
+  // last loads). Their expected step time (each fluid's smoothed measured cost) is held back
+  // from the deformables, which run in slot order, each with an equal share of what is left
+  // of the frame before that reserve when its turn comes; then the due fluids run, each with
+  // an equal share of what is left. Time one actor does not use passes on to the next.
+  std::vector<FluidActor*> dueFluids;
+  double reserveMs = 0.0;
+  {
+    int ordinal = 0;
+    fluids_.forEach([&](FluidHandle, FluidActor& fluid) {
+      FluidBacklog& backlog = fluidBacklog_[&fluid];
+      backlog.pendingDt += dt;
+      if (fluidPacing_.due(stats.stepIndex, ordinal++, static_cast<int>(fluids_.size()), backlog.waitedFrames)) {
+        dueFluids.push_back(&fluid);
+        reserveMs += std::max(backlog.expectedStepMs, 0.0);
+      }
+    });
+  }
   // Runs one actor's step under its share of the frame and records its stats.
-  auto runActor = [&](ActorKind kind, uint32_t index1, uint32_t generation, const auto& stepActor) {
+  auto runActor = [&](ActorKind kind, uint32_t index1, uint32_t generation, const Deadline& share,
+                      const auto& stepActor) {
     ActorStats a;
     a.kind = kind;
     a.index1 = index1;
     a.generation = generation;
     a.simulatedDt = dt;
-    const Deadline share = frame.share(1.0 / remaining--);
     const double start = frame.elapsedMs();
     stepActor(share, &a);
     a.totalMs = frame.elapsedMs() - start;
@@ -212,8 +226,10 @@ Status World::step(double dt) {
           generation, kind == ActorKind::Fluid ? "its flow was reset to rest" : "restored its previous state");
     stats.actors.push_back(a);
   };
+  int deformablesLeft = static_cast<int>(deformables_.size());
   deformables_.forEach([&](DeformableHandle h, DeformableBody& body) {
-    runActor(ActorKind::Deformable, h.index1, h.generation, [&](const Deadline& share, ActorStats* a) {
+    const Deadline share = frame.share(1.0 / deformablesLeft--, reserveMs);
+    runActor(ActorKind::Deformable, h.index1, h.generation, share, [&](const Deadline& share, ActorStats* a) {
       DeformableStepInput input;
       input.dt = dt;
       input.gravity = config_.gravity;
@@ -233,14 +249,11 @@ Status World::step(double dt) {
       if (c.geometry())
         fluidColliders.push_back(FluidCollider{h.index1, h.generation, c.geometry(), c.bodyType() == BodyType::Dynamic});
     });
-  // Fluid pacing (fluid_pacing.h): a fluid that is not due this frame keeps its time for
-  // later and its last loads; it still takes its turn in the budget shares, unused.
   double fluidStepsMs = 0.0;
-  int fluidSteps = 0, ordinal = 0;
+  int fluidsLeft = static_cast<int>(dueFluids.size());
   fluids_.forEach([&](FluidHandle h, FluidActor& fluid) {
     FluidBacklog& backlog = fluidBacklog_[&fluid];
-    backlog.pendingDt += dt;
-    if (!fluidPacing_.due(stats.stepIndex, ordinal++, static_cast<int>(fluids_.size()), backlog.waitedFrames)) {
+    if (std::find(dueFluids.begin(), dueFluids.end(), &fluid) == dueFluids.end()) {
       ++backlog.waitedFrames;
       ActorStats deferred;
       deferred.kind = ActorKind::Fluid;
@@ -248,10 +261,10 @@ Status World::step(double dt) {
       deferred.generation = h.generation;
       deferred.simulatedDt = 0.0;
       stats.actors.push_back(deferred);
-      --remaining;
       return;
     }
-    runActor(ActorKind::Fluid, h.index1, h.generation, [&](const Deadline& share, ActorStats* a) {
+    const Deadline share = frame.share(1.0 / fluidsLeft--);
+    runActor(ActorKind::Fluid, h.index1, h.generation, share, [&](const Deadline& share, ActorStats* a) {
       FluidStepInput input;
       input.dt = backlog.pendingDt;
       input.gravity = config_.gravity;
@@ -262,14 +275,22 @@ Status World::step(double dt) {
       fluid.step(input, a, &backlog.loads);
       a->simulatedDt = input.dt;
     });
-    fluidStepsMs += stats.actors.back().totalMs;
-    ++fluidSteps;
+    const double stepMs = stats.actors.back().totalMs;
+    fluidStepsMs += stepMs;
+    backlog.expectedStepMs = FluidPacing::smoothed(backlog.expectedStepMs, stepMs);
     backlog.pendingDt = 0.0;
     backlog.waitedFrames = 0;
   });
 
   stats.totalMs = frame.elapsedMs();
-  fluidPacing_.observe(config_.frameBudgetMs, stats.totalMs - fluidStepsMs, fluidStepsMs, fluidSteps,
+  // The deformables' iterative solves take whatever share they are given (and a cut solve
+  // catches up later), so they are not part of the cost the fluids must fit beside; a fluid
+  // step cannot be cut. The fluids' rate therefore comes before the solves' accuracy.
+  double elasticMs = 0.0;
+  for (const ActorStats& a : stats.actors)
+    if (a.kind == ActorKind::Deformable) elasticMs += a.phase(Phase::Solve).ms;
+  fluidPacing_.observe(config_.frameBudgetMs, stats.totalMs - fluidStepsMs - elasticMs, fluidStepsMs,
+                       static_cast<int>(dueFluids.size()),
                        static_cast<int>(fluids_.size()));
   stats.fluidInterval = fluidPacing_.interval();
   for (const ActorStats& a : stats.actors)

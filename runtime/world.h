@@ -89,11 +89,13 @@ class World {
   SlotMap<Collider> colliders_;
   SlotMap<DeformableBody> deformables_;
   SlotMap<FluidActor> fluids_;
-  // A fluid's time not yet simulated (the pacing let it skip frames) and the loads of its last
-  // step, which act on the rigid bodies every frame until it steps again.
+  // A fluid's time not yet simulated (the pacing let it skip frames), the loads of its last
+  // step, which act on the rigid bodies every frame until it steps again, and its smoothed
+  // step cost, which the frame holds back for it from the deformables.
   struct FluidBacklog {
     double pendingDt = 0.0;
     int waitedFrames = 0;
+    double expectedStepMs = -1.0;  // < 0: it has not stepped yet
     std::vector<FluidColliderLoad> loads;
   };
   std::unordered_map<const FluidActor*, FluidBacklog> fluidBacklog_;

@@ -24,12 +24,14 @@ double Deadline::remainingMs() const {
 
 double Deadline::elapsedMs() const { return (clock_.seconds() - start_) * 1e3; }
 
-Deadline Deadline::share(double fraction) const {
+Deadline Deadline::share(double fraction) const { return share(fraction, 0.0); }
+
+Deadline Deadline::share(double fraction, double reserveMs) const {
   Deadline d = *this;
   if (unlimited()) return d;
   double now = clock_.seconds();
   d.start_ = now;
-  d.end_ = now + std::max(0.0, end_ - now) * std::clamp(fraction, 0.0, 1.0);
+  d.end_ = now + std::max(0.0, end_ - now - std::max(reserveMs, 0.0) * 1e-3) * std::clamp(fraction, 0.0, 1.0);
   return d;
 }
 

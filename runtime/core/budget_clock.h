@@ -28,6 +28,8 @@ class Deadline {
   bool unlimited() const { return end_ == std::numeric_limits<double>::infinity(); }
   // A sub-deadline that ends after `fraction` of what remains (for sharing a budget).
   Deadline share(double fraction) const;
+  // The same after holding back `reserveMs` of what remains for work that comes later.
+  Deadline share(double fraction, double reserveMs) const;
   const Clock& clock() const { return clock_; }
 
  private:

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "fluid_pacing.h"
+#include "geometry/box_tet_mesh.h"
 #include "world.h"
 
 namespace vp {
@@ -189,6 +190,52 @@ TEST(FluidPacing, ADeferredFluidEmitsForAllTheTimeItSimulates) {
     ASSERT_LT(simulated[k], frames * dt);  // some time is still pending: the check is not trivial
     EXPECT_NEAR(tight.world->fluid(paced[k])->totalSmoke(), reference * simulated[k] / (frames * dt), 1e-12 * reference);
   }
+}
+
+TEST(FluidPacing, TheDeformablesLeaveTheDueFluidsTheirExpectedTime) {
+  // One smoke fluid and one pinned bar whose solve never converges (it always takes all the
+  // time it is given, ~210 iterations to converge). The budget holds the fluid every frame
+  // (interval 1); from the second
+  // frame on the bar's share ends the fluid's smoothed cost before the frame's end.
+  const double dt = 1.0 / 60.0, budgetMs = 10.0;
+  TickClock clock;
+  WorldConfig config;
+  config.frameBudgetMs = budgetMs;
+  config.clock = Clock{&TickClock::read, &clock};
+  std::unique_ptr<World> world;
+  ASSERT_EQ(World::create(config, &world), Status::Ok);
+  DeformableDesc bar;
+  bar.mesh = makeBoxTetMesh({12, 3, 3}, Vec3(3, 0.5, 0.5), Vec3::Zero());
+  bar.material.youngsModulus = 1e7;
+  bar.solver.tolerance = 1e-12;
+  bar.solver.maxIterations = 100000;
+  bar.solver.preconditioner = Preconditioner::BlockJacobi;
+  DeformableHandle barHandle;
+  ASSERT_EQ(world->createDeformable(std::move(bar), &barHandle), Status::Ok);
+  DeformableBody& body = *world->deformable(barHandle);
+  std::vector<int32_t> left;  // a pinned end makes the bar sag: the solve has work to do
+  for (int32_t i = 0; i < body.nodeCount(); ++i)
+    if (body.restPositions()[3 * i] == 0.0) left.push_back(i);
+  body.setPinned(left.data(), static_cast<int64_t>(left.size()), true);
+  FluidHandle fluid;
+  ASSERT_EQ(world->createFluid(smallSmoke(0.0, false), &fluid), Status::Ok);
+  double expected = -1.0;  // the policy's smoothing of the fluid's measured cost, replayed
+  for (int f = 0; f < 6; ++f) {
+    ASSERT_EQ(world->step(dt), Status::Ok);
+    const StepStats& s = world->lastStats();
+    ASSERT_EQ(s.fluidInterval, 1);
+    const ActorStats& deformable = s.actors[1];
+    const ActorStats& smoke = s.actors[2];
+    ASSERT_GT(smoke.simulatedDt, 0.0);
+    EXPECT_TRUE(deformable.phase(Phase::Solve).budgetCut);
+    // The bar runs until its share ends, plus one iteration's few clock readings (a smoke step
+    // here reads the clock 10 times: 1 ms).
+    constexpr double kOneIterationMs = 0.35;
+    const double reserve = std::max(expected, 0.0);
+    EXPECT_NEAR(deformable.totalMs, budgetMs - reserve, kOneIterationMs) << "frame " << f;
+    expected = FluidPacing::smoothed(expected, smoke.totalMs);
+  }
+  EXPECT_GT(expected, 0.9);  // the reserve is several times the tolerance above
 }
 
 }  // namespace

@@ -43,6 +43,15 @@ TEST(Deadline, ShareSplitsWhatRemains) {
   EXPECT_FALSE(d.expired());
 }
 
+TEST(Deadline, ShareAfterAReserveSplitsWhatRemainsBeyondIt) {
+  FakeClock fake;
+  Deadline d(fake.clock(), 20.0);
+  fake.now += 0.004;  // 16 ms remain, 6 held back: half of 10
+  EXPECT_NEAR(d.share(0.5, 6.0).remainingMs(), 5.0, 1e-9);
+  EXPECT_NEAR(d.share(0.5, 30.0).remainingMs(), 0.0, 1e-12);  // a reserve beyond the budget leaves nothing
+  EXPECT_TRUE(Deadline(fake.clock(), 0.0).share(0.5, 6.0).unlimited());
+}
+
 TEST(Deadline, SteadyClockByDefault) {
   Deadline d(Clock{}, 1e4);
   EXPECT_FALSE(d.expired());

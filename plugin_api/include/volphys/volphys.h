@@ -174,10 +174,11 @@ typedef struct vpWorldDef {
   vpVec3 gravity;              /* default (0, -9.81, 0) */
   int32_t workerCount;         /* worker threads incl. the caller, 1..64; default 1 */
   float frameBudgetMs;         /* per-step budget for iterative solvers; 0 = unlimited; default 16.
-                                  Sharing: the Bullet step is not budgeted; then the iterating
-                                  actors run in slot order and each may use an equal share of
-                                  what is left of the budget when its turn comes, so time one does
-                                  not use passes on to the next. A cut solver keeps its best
+                                  Sharing: the Bullet step is not budgeted; then the deformables
+                                  run in slot order, each with an equal share of what is left
+                                  after holding back the expected time of the fluids due this
+                                  step, then those fluids, each with an equal share of what is
+                                  left; time one does not use passes on to the next. A cut solver keeps its best
                                   iterate, sets budgetCut, and warm-starts next step. Fluid work
                                   that cannot be cut (advection, fractions) is paced instead:
                                   when the measured fluid steps do not fit, each fluid steps
