@@ -103,8 +103,21 @@ void FluidActor::extrapolateLiquidVelocity(TaskSystem& tasks) {
   }
 }
 
-void FluidActor::advectAndSource(TaskSystem& tasks, const Vec3& gravity, double h, ActorStats* stats,
-                                 const Deadline& deadline) {
+void FluidActor::diffuseVelocity(TaskSystem& tasks, double dt, const Deadline& deadline, ActorStats* stats) {
+  const double t0 = deadline.elapsedMs();
+  ViscosityStats vs;
+  if (Status s = applyViscosity(tasks, grid_, fractions_, liquidPhi(), desc_.kinematicViscosity, dt, deadline,
+                                ViscositySettings{}, viscosity_, &vs);
+      !ok(s))
+    log(LogLevel::Error, "fluid '%s': viscosity failed: %s", desc_.name.c_str(), lastError());
+  PhaseStats& phase = stats->phase(Phase::Viscosity);
+  phase.iterations += vs.iterations;
+  phase.residual = std::max(phase.residual, vs.relativeResidual);
+  phase.budgetCut = phase.budgetCut || vs.budgetCut;
+  phase.ms += deadline.elapsedMs() - t0;
+}
+
+void FluidActor::advectAndSource(TaskSystem& tasks, double h, ActorStats* stats, const Deadline& deadline) {
   const FluidSolverSettings& solver = desc_.solver;
   double t0 = deadline.elapsedMs();
   advectVelocity(tasks, grid_, h, solver.advection, advection_);
@@ -129,22 +142,14 @@ void FluidActor::advectAndSource(TaskSystem& tasks, const Vec3& gravity, double 
   t0 = deadline.elapsedMs();
   if (desc_.kind == FluidKind::Smoke) {
     applySmokeEmitters(grid_, desc_.emitters, h, smokeDensity_, temperature_);
-    applyBuoyancy(tasks, grid_, smokeDensity_, temperature_, desc_.smoke, gravity, h);
-    applyVorticityConfinement(tasks, grid_, desc_.smoke.vorticityConfinement, h, vorticity_);
     dissipate(smokeDensity_, desc_.smoke.densityDissipation, h);
     dissipate(temperature_, desc_.smoke.temperatureDissipation, h);
-  } else {
-    if (!desc_.emitters.empty() || !desc_.drains.empty()) {
-      // Sources change the volume on purpose: the target follows them.
-      const double before = vp::liquidVolume(tasks, grid_.spec, phi_.data(), cellWeights_.data());
-      applyLiquidEmitters(grid_, desc_.emitters, phi_);
-      applyDrains(grid_, desc_.drains, phi_);
-      targetVolume_ += vp::liquidVolume(tasks, grid_.spec, phi_.data(), cellWeights_.data()) - before;
-    }
-    for (int a = 0; a < 3; ++a) {
-      if (gravity[a] == 0.0) continue;
-      for (double& u : grid_.velocity[a]) u += h * gravity[a];
-    }
+  } else if (!desc_.emitters.empty() || !desc_.drains.empty()) {
+    // Sources change the volume on purpose: the target follows them.
+    const double before = vp::liquidVolume(tasks, grid_.spec, phi_.data(), cellWeights_.data());
+    applyLiquidEmitters(grid_, desc_.emitters, phi_);
+    applyDrains(grid_, desc_.drains, phi_);
+    targetVolume_ += vp::liquidVolume(tasks, grid_.spec, phi_.data(), cellWeights_.data()) - before;
   }
   stats->phase(Phase::Forces).ms += deadline.elapsedMs() - t0;
 
@@ -153,6 +158,21 @@ void FluidActor::advectAndSource(TaskSystem& tasks, const Vec3& gravity, double 
     keepLevelSetHealthy(tasks);
     stats->phase(Phase::Surface).ms += deadline.elapsedMs() - t0;
   }
+}
+
+void FluidActor::applyBodyForces(TaskSystem& tasks, const Vec3& gravity, double h, ActorStats* stats,
+                                 const Deadline& deadline) {
+  const double t0 = deadline.elapsedMs();
+  if (desc_.kind == FluidKind::Smoke) {
+    applyBuoyancy(tasks, grid_, smokeDensity_, temperature_, desc_.smoke, gravity, h);
+    applyVorticityConfinement(tasks, grid_, desc_.smoke.vorticityConfinement, h, vorticity_);
+  } else {
+    for (int a = 0; a < 3; ++a) {
+      if (gravity[a] == 0.0) continue;
+      for (double& u : grid_.velocity[a]) u += h * gravity[a];
+    }
+  }
+  stats->phase(Phase::Forces).ms += deadline.elapsedMs() - t0;
 }
 
 Status FluidActor::updateFractions(const std::vector<FluidCollider>& colliders) {
@@ -263,7 +283,9 @@ void FluidActor::step(const FluidStepInput& input, ActorStats* stats, std::vecto
   pressureSettings.minIterations = std::min(4, solver.pressureMaxIterations);
   PhaseStats& pressurePhase = stats->phase(Phase::Pressure);
   for (int sub = 0; sub < substeps; ++sub) {
-    advectAndSource(tasks, input.gravity, h, stats, deadline);
+    advectAndSource(tasks, h, stats, deadline);
+    if (desc_.kinematicViscosity > 0.0) diffuseVelocity(tasks, h, deadline.share(1.0 / (3 * (substeps - sub))), stats);
+    applyBodyForces(tasks, input.gravity, h, stats, deadline);
 
     t0 = deadline.elapsedMs();
     PressureSolveStats ps;
