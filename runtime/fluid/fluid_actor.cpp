@@ -142,8 +142,6 @@ void FluidActor::advectAndSource(TaskSystem& tasks, double h, ActorStats* stats,
   t0 = deadline.elapsedMs();
   if (desc_.kind == FluidKind::Smoke) {
     applySmokeEmitters(grid_, desc_.emitters, h, smokeDensity_, temperature_);
-    dissipate(smokeDensity_, desc_.smoke.densityDissipation, h);
-    dissipate(temperature_, desc_.smoke.temperatureDissipation, h);
   } else if (!desc_.emitters.empty() || !desc_.drains.empty()) {
     // Sources change the volume on purpose: the target follows them.
     const double before = vp::liquidVolume(tasks, grid_.spec, phi_.data(), cellWeights_.data());
@@ -160,12 +158,14 @@ void FluidActor::advectAndSource(TaskSystem& tasks, double h, ActorStats* stats,
   }
 }
 
-void FluidActor::applyBodyForces(TaskSystem& tasks, const Vec3& gravity, double h, ActorStats* stats,
-                                 const Deadline& deadline) {
+void FluidActor::applyForces(TaskSystem& tasks, const Vec3& gravity, double h, ActorStats* stats,
+                             const Deadline& deadline) {
   const double t0 = deadline.elapsedMs();
   if (desc_.kind == FluidKind::Smoke) {
     applyBuoyancy(tasks, grid_, smokeDensity_, temperature_, desc_.smoke, gravity, h);
     applyVorticityConfinement(tasks, grid_, desc_.smoke.vorticityConfinement, h, vorticity_);
+    dissipate(smokeDensity_, desc_.smoke.densityDissipation, h);
+    dissipate(temperature_, desc_.smoke.temperatureDissipation, h);
   } else {
     for (int a = 0; a < 3; ++a) {
       if (gravity[a] == 0.0) continue;
@@ -285,7 +285,7 @@ void FluidActor::step(const FluidStepInput& input, ActorStats* stats, std::vecto
   for (int sub = 0; sub < substeps; ++sub) {
     advectAndSource(tasks, h, stats, deadline);
     if (desc_.kinematicViscosity > 0.0) diffuseVelocity(tasks, h, deadline.share(1.0 / (3 * (substeps - sub))), stats);
-    applyBodyForces(tasks, input.gravity, h, stats, deadline);
+    applyForces(tasks, input.gravity, h, stats, deadline);
 
     t0 = deadline.elapsedMs();
     PressureSolveStats ps;
