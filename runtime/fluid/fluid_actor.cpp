@@ -111,9 +111,9 @@ void FluidActor::diffuseVelocity(TaskSystem& tasks, double dt, const Deadline& d
       !ok(s))
     log(LogLevel::Error, "fluid '%s': viscosity failed: %s", desc_.name.c_str(), lastError());
   PhaseStats& phase = stats->phase(Phase::Viscosity);
-  phase.iterations += vs.iterations;
-  phase.residual = std::max(phase.residual, vs.relativeResidual);
-  phase.budgetCut = phase.budgetCut || vs.budgetCut;
+  phase.iterations += vs.solve.iterations;
+  phase.residual = std::max(phase.residual, vs.solve.relativeResidual);
+  phase.budgetCut = phase.budgetCut || vs.solve.budgetCut;
   phase.ms += deadline.elapsedMs() - t0;
 }
 

@@ -195,12 +195,7 @@ Status applyViscosity(TaskSystem& tasks, MacGrid& grid, const FaceFractionField&
     for (int64_t u = begin; u < end; ++u)
       grid.velocity[axisOf(w, u)][static_cast<size_t>(w.face[static_cast<size_t>(u)])] = w.velocity[static_cast<size_t>(u)];
   });
-  if (stats != nullptr) {
-    stats->iterations = result.iterations;
-    stats->relativeResidual = result.relativeResidual;
-    stats->converged = result.converged;
-    stats->budgetCut = result.budgetCut;
-  }
+  if (stats != nullptr) stats->solve = result;
   return Status::Ok;
 }
 

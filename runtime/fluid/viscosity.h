@@ -59,11 +59,8 @@ struct ViscositySettings {
 };
 
 struct ViscosityStats {
-  int iterations = 0;
-  double relativeResidual = 0.0;
-  bool converged = false;
-  bool budgetCut = false;
-  int64_t unknowns = 0;
+  CgResult solve;        // iterations, residual, converged, cut by the budget
+  int64_t unknowns = 0;  // faces solved for (0 when nu = 0: nothing was done)
 };
 
 // Per-step buffers kept between steps so a viscous fluid does not reallocate every frame.

@@ -75,8 +75,8 @@ TEST(FluidViscosity, ShearWaveDecaysAtTheDiscreteBackwardEulerRate) {
   int iterations = 0;
   for (int s = 0; s < steps; ++s) {
     const ViscosityStats stats = slab.step(nu, dt, tight);
-    EXPECT_TRUE(stats.converged);
-    iterations = std::max(iterations, stats.iterations);
+    EXPECT_TRUE(stats.solve.converged);
+    iterations = std::max(iterations, stats.solve.iterations);
   }
   const double amplitude = std::pow(perStep, steps);
   std::printf("shear wave m=%d: amplitude %.6g after %d steps at nu dt/h^2 = %.2f, <= %d CG iterations a step\n",
@@ -109,7 +109,7 @@ TEST(FluidViscosity, ZeroViscosityLeavesTheVelocityBitForBit) {
   const MacGrid before = slab.grid;
   const ViscosityStats stats = slab.step(0.0, 1.0 / 60.0, ViscositySettings{});
   EXPECT_EQ(stats.unknowns, 0);
-  EXPECT_EQ(stats.iterations, 0);
+  EXPECT_EQ(stats.solve.iterations, 0);
   for (int a = 0; a < 3; ++a)
     EXPECT_EQ(std::memcmp(before.velocity[a].data(), slab.grid.velocity[a].data(),
                           before.velocity[a].size() * sizeof(double)),
