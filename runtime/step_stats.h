@@ -9,7 +9,7 @@
 namespace vp {
 
 enum class Phase : int {
-  Rigid = 0, Corotate, Assemble, Contacts, Solve, Embed, Advect, Forces, Fractions, Pressure, Surface, Count
+  Rigid = 0, Corotate, Assemble, Contacts, Solve, Embed, Advect, Forces, Fractions, Pressure, Surface, Viscosity, Count
 };
 constexpr int kPhaseCount = static_cast<int>(Phase::Count);
 

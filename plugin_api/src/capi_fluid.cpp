@@ -43,6 +43,7 @@ Status translateFluidDef(const vpFluidDef& d, FluidDesc* desc) {
   desc->grid.h = d.cellSize;
   for (int s = 0; s < 6; ++s) desc->sides[s] = static_cast<DomainSide>(rawEnum(d.sides[s]));
   desc->density = d.density;
+  desc->kinematicViscosity = d.kinematicViscosity;
   desc->solver.advection = static_cast<AdvectionScheme>(rawEnum(d.advection));
   desc->solver.cflNumber = d.cflNumber;
   desc->solver.maxSubsteps = d.maxSubsteps;
@@ -94,6 +95,7 @@ vpFluidDef vpDefaultFluidDef(void) {
   d.cellSize = 1.0f / 32.0f;
   for (int s = 0; s < 6; ++s) d.sides[s] = vpDomainSide_Wall;
   d.density = static_cast<float>(defaults.density);
+  d.kinematicViscosity = static_cast<float>(defaults.kinematicViscosity);
   d.advection = vpAdvection_MacCormack;
   d.cflNumber = static_cast<float>(defaults.solver.cflNumber);
   d.maxSubsteps = defaults.solver.maxSubsteps;

@@ -103,8 +103,22 @@ void FluidActor::extrapolateLiquidVelocity(TaskSystem& tasks) {
   }
 }
 
-void FluidActor::advectAndSource(TaskSystem& tasks, const Vec3& gravity, double h, double maxDisplacement,
-                                 ActorStats* stats, const Deadline& deadline) {
+void FluidActor::diffuseVelocity(TaskSystem& tasks, double dt, const Deadline& deadline, ActorStats* stats) {
+  const double t0 = deadline.elapsedMs();
+  ViscosityStats vs;
+  if (Status s = applyViscosity(tasks, grid_, fractions_, liquidPhi(), desc_.kinematicViscosity, dt, deadline,
+                                ViscositySettings{}, viscosity_, &vs);
+      !ok(s))
+    log(LogLevel::Error, "fluid '%s': viscosity failed: %s", desc_.name.c_str(), lastError());
+  PhaseStats& phase = stats->phase(Phase::Viscosity);
+  phase.iterations += vs.solve.iterations;
+  phase.residual = std::max(phase.residual, vs.solve.relativeResidual);
+  phase.budgetCut = phase.budgetCut || vs.solve.budgetCut;
+  phase.ms += deadline.elapsedMs() - t0;
+}
+
+void FluidActor::advectAndSource(TaskSystem& tasks, double h, double maxDisplacement, ActorStats* stats,
+                                 const Deadline& deadline) {
   const FluidSolverSettings& solver = desc_.solver;
   const double cell = grid_.spec.h;
   double t0 = deadline.elapsedMs();
@@ -140,22 +154,12 @@ void FluidActor::advectAndSource(TaskSystem& tasks, const Vec3& gravity, double 
   t0 = deadline.elapsedMs();
   if (desc_.kind == FluidKind::Smoke) {
     applySmokeEmitters(grid_, desc_.emitters, h, smokeDensity_, temperature_);
-    applyBuoyancy(tasks, grid_, smokeDensity_, temperature_, desc_.smoke, gravity, h);
-    applyVorticityConfinement(tasks, grid_, desc_.smoke.vorticityConfinement, h, vorticity_);
-    dissipate(smokeDensity_, desc_.smoke.densityDissipation, h);
-    dissipate(temperature_, desc_.smoke.temperatureDissipation, h);
-  } else {
-    if (!desc_.emitters.empty() || !desc_.drains.empty()) {
-      // Sources change the volume on purpose: the target follows them.
-      const double before = vp::liquidVolume(tasks, grid_.spec, phi_.data(), cellWeights_.data());
-      applyLiquidEmitters(grid_, desc_.emitters, phi_);
-      applyDrains(grid_, desc_.drains, phi_);
-      targetVolume_ += vp::liquidVolume(tasks, grid_.spec, phi_.data(), cellWeights_.data()) - before;
-    }
-    for (int a = 0; a < 3; ++a) {
-      if (gravity[a] == 0.0) continue;
-      for (double& u : grid_.velocity[a]) u += h * gravity[a];
-    }
+  } else if (!desc_.emitters.empty() || !desc_.drains.empty()) {
+    // Sources change the volume on purpose: the target follows them.
+    const double before = vp::liquidVolume(tasks, grid_.spec, phi_.data(), cellWeights_.data());
+    applyLiquidEmitters(grid_, desc_.emitters, phi_);
+    applyDrains(grid_, desc_.drains, phi_);
+    targetVolume_ += vp::liquidVolume(tasks, grid_.spec, phi_.data(), cellWeights_.data()) - before;
   }
   stats->phase(Phase::Forces).ms += deadline.elapsedMs() - t0;
 
@@ -164,6 +168,23 @@ void FluidActor::advectAndSource(TaskSystem& tasks, const Vec3& gravity, double 
     keepLevelSetHealthy(tasks);
     stats->phase(Phase::Surface).ms += deadline.elapsedMs() - t0;
   }
+}
+
+void FluidActor::applyForces(TaskSystem& tasks, const Vec3& gravity, double h, ActorStats* stats,
+                             const Deadline& deadline) {
+  const double t0 = deadline.elapsedMs();
+  if (desc_.kind == FluidKind::Smoke) {
+    applyBuoyancy(tasks, grid_, smokeDensity_, temperature_, desc_.smoke, gravity, h);
+    applyVorticityConfinement(tasks, grid_, desc_.smoke.vorticityConfinement, h, vorticity_);
+    dissipate(smokeDensity_, desc_.smoke.densityDissipation, h);
+    dissipate(temperature_, desc_.smoke.temperatureDissipation, h);
+  } else {
+    for (int a = 0; a < 3; ++a) {
+      if (gravity[a] == 0.0) continue;
+      for (double& u : grid_.velocity[a]) u += h * gravity[a];
+    }
+  }
+  stats->phase(Phase::Forces).ms += deadline.elapsedMs() - t0;
 }
 
 Status FluidActor::updateFractions(const std::vector<FluidCollider>& colliders) {
@@ -283,7 +304,9 @@ void FluidActor::step(const FluidStepInput& input, ActorStats* stats, std::vecto
   pressureSettings.minIterations = std::min(4, solver.pressureMaxIterations);
   PhaseStats& pressurePhase = stats->phase(Phase::Pressure);
   for (int sub = 0; sub < substeps; ++sub) {
-    advectAndSource(tasks, input.gravity, h, speed * h, stats, deadline);
+    advectAndSource(tasks, h, speed * h, stats, deadline);
+    if (desc_.kinematicViscosity > 0.0) diffuseVelocity(tasks, h, deadline.share(1.0 / (3 * (substeps - sub))), stats);
+    applyForces(tasks, input.gravity, h, stats, deadline);
 
     t0 = deadline.elapsedMs();
     PressureSolveStats ps;

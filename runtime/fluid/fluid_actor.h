@@ -9,7 +9,15 @@
 //   then sub-steps of dt/n, n = ceil(max speed * dt / (cfl h)) capped at maxSubsteps:
 //   Advect     velocity (and smoke density/temperature, or the liquid level set); smoke is
 //              sampled through open faces only (advection.h)
-//   Forces     emitters, drains, buoyancy + vorticity confinement (smoke) or gravity (liquid)
+//   Sources    emitters, drains (timed as Forces); liquid: level-set upkeep (Surface phase)
+//   Viscosity  only when kinematicViscosity > 0: implicit diffusion of the velocity
+//              (viscosity.h), budgeted with a third of the sub-step's share. Before the
+//              forces: diffusing u + g dt against no-slip solids slows the uniform velocity
+//              gravity adds next to them, which the projection then turns into a spurious
+//              pressure (measured: a half-density box floated 60% submerged instead of 50%);
+//              the advected velocity of a fluid at rest is 0 and stays so. Before the
+//              projection, so what it leaves is made divergence-free.
+//   Forces     buoyancy + vorticity confinement + dissipation (smoke) or gravity (liquid)
 //   Pressure   cut-cell projection, budgeted (each sub-step gets an equal share of what is
 //              left of the actor's deadline), warm-started from the last pressure
 //   Surface    liquid: redistancing, volume correction, velocity extrapolation
@@ -34,6 +42,7 @@
 #include "fluid/pressure_forces.h"
 #include "fluid/pressure_projection.h"
 #include "fluid/smoke_forces.h"
+#include "fluid/viscosity.h"
 #include "step_stats.h"
 
 namespace vp {
@@ -90,11 +99,17 @@ class FluidActor {
   explicit FluidActor(FluidDesc desc) : desc_(std::move(desc)) {}
   Status updateFractions(const std::vector<FluidCollider>& colliders);
   double maxSpeed(TaskSystem& tasks) const;
-  // maxDisplacement: the farthest the flow (and colliders) move anything in this sub-step.
-  void advectAndSource(TaskSystem& tasks, const Vec3& gravity, double dt, double maxDisplacement, ActorStats* stats,
+  // Advection, emitters and drains, and the liquid's level-set upkeep. maxDisplacement: the
+  // farthest the flow (and colliders) move anything in this sub-step.
+  void advectAndSource(TaskSystem& tasks, double dt, double maxDisplacement, ActorStats* stats,
                        const Deadline& deadline);
+  // Gravity (liquid) or buoyancy, vorticity confinement and dissipation (smoke). Without
+  // viscosity the two together do what they did as one (the liquid's level-set upkeep never
+  // reads the velocity), so the inviscid path is unchanged bit for bit.
+  void applyForces(TaskSystem& tasks, const Vec3& gravity, double dt, ActorStats* stats, const Deadline& deadline);
   void keepLevelSetHealthy(TaskSystem& tasks);
   void extrapolateLiquidVelocity(TaskSystem& tasks);
+  void diffuseVelocity(TaskSystem& tasks, double dt, const Deadline& deadline, ActorStats* stats);
   const double* liquidPhi() const { return desc_.kind == FluidKind::Liquid ? phi_.data() : nullptr; }
 
   struct ColliderSnapshot {
@@ -116,6 +131,7 @@ class FluidActor {
   AdvectionWorkspace advection_;
   CellOpenFaces openFaces_;  // smoke: which faces advection may interpolate through
   VorticityWorkspace vorticity_;
+  ViscosityWorkspace viscosity_;
   FluidSurface surface_;
   TaskSystem* tasks_ = nullptr;  // the world's, for on-request work (surface extraction)
   // Liquid: the volume the level set must keep (initial + emitted - drained), the cells'

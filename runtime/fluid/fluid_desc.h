@@ -64,6 +64,8 @@ struct FluidDesc {
   std::array<DomainSide, 6> sides{DomainSide::Wall, DomainSide::Wall, DomainSide::Wall,
                                   DomainSide::Wall, DomainSide::Wall, DomainSide::Wall};
   double density = 1000.0;  // kg/m^3 of the fluid (water 1000, air 1.2): scales pressure forces
+  // m^2/s; 0 is inviscid and skips the viscosity solve entirely (viscosity.h).
+  double kinematicViscosity = 0.0;
   SmokeParameters smoke;
   std::vector<FluidShape> initialLiquid;  // liquid: union of regions filled at creation
   std::vector<FluidEmitter> emitters;
@@ -77,6 +79,9 @@ struct FluidDesc {
 // several fields is already gigabytes).
 constexpr int kMaxFluidCellsPerAxis = 1024;
 constexpr int64_t kMaxFluidCells = int64_t(1) << 27;
+// m^2/s: a thousand times honey's. Past it the implicit solve's condition number (about
+// 1 + 12 nu dt / h^2) makes its CG iterations, not the physics, the limit at game steps.
+constexpr double kMaxKinematicViscosity = 10.0;
 
 // Field names in messages follow vpFluidDef.
 Status validateFluidDesc(const FluidDesc& desc);

@@ -54,6 +54,7 @@ Status validateFluidDesc(const FluidDesc& d) {
       return fail(Status::InvalidArgument, "sides[%d] = %d: must be 0 (wall) or 1 (open)", s,
                   static_cast<int>(d.sides[s]));
   VP_TRY(checkRange("density", d.density, 1e-6, 1e6));
+  VP_TRY(checkRange("kinematicViscosity", d.kinematicViscosity, 0.0, kMaxKinematicViscosity));
   const SmokeParameters& sp = d.smoke;
   VP_TRY(checkRange("ambientTemperature", sp.ambientTemperature, -1e6, 1e6));
   VP_TRY(checkRange("densityBuoyancy", sp.densityBuoyancy, -1e4, 1e4));

@@ -68,7 +68,7 @@ Status parseEmitter(const JsonObject& e, FluidEmitter* emitter) {
 }  // namespace
 
 Status parseFluid(const JsonObject& obj, FluidDesc* d) {
-  VP_TRY(obj.checkKeys({"name", "kind", "origin", "resolution", "cellSize", "sides", "density", "advection",
+  VP_TRY(obj.checkKeys({"name", "kind", "origin", "resolution", "cellSize", "sides", "density", "kinematicViscosity", "advection",
                         "cflNumber", "maxSubsteps", "pressureTolerance", "pressureMaxIterations", "smoke",
                         "initialLiquid", "emitters", "drains", "twoWayCoupling"}));
   VP_TRY(obj.string("name", &d->name));
@@ -83,6 +83,7 @@ Status parseFluid(const JsonObject& obj, FluidDesc* d) {
   VP_TRY(obj.number("cellSize", &d->grid.h));
   VP_TRY(parseSides(obj, &d->sides));
   VP_TRY(obj.number("density", &d->density));
+  VP_TRY(obj.number("kinematicViscosity", &d->kinematicViscosity));
   int advection = static_cast<int>(d->solver.advection);
   VP_TRY(parseEnum(obj, "advection", {"semiLagrangian", "macCormack"}, &advection));
   d->solver.advection = static_cast<AdvectionScheme>(advection);

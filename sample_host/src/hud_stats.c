@@ -5,7 +5,7 @@
 
 static const char* const kPhaseNames[vpPhase_Count] = {"rigid",    "corotate", "assemble",  "contacts",
                                                        "solve",    "embed",    "advect",    "forces",
-                                                       "fractions", "pressure", "surface"};
+                                                       "fractions", "pressure", "surface",  "viscosity"};
 static const char* const kKindNames[3] = {"rigid", "deformable", "fluid"};
 
 int hudStatsLines(vpWorldId world, char lines[HUD_MAX_LINES][HUD_LINE_CHARS]) {

@@ -304,6 +304,14 @@ class Fluids(unittest.TestCase):
         np.testing.assert_allclose(positions[top, 1], 0.5, atol=1.5 * h)
         self.assertGreater(normals[top, 1].mean(), 0.9)
 
+    def test_viscous_liquid_reports_its_viscosity_solve(self):
+        fluid = self.world.create_fluid(
+            "liquid", resolution=(8, 8, 8), cell_size=0.125, kinematic_viscosity=0.05,
+            initial_liquid=[volphys.BoxRegion((0.25, 0.5, 0.5), (0.25, 0.5, 0.5))])
+        for _ in range(3):  # the column starts at rest, with nothing to diffuse
+            self.world.step(DT)
+        self.assertGreater(fluid.stats().phases[volphys.Phase.Viscosity].iterations, 0)
+
     def test_bad_definitions_raise_naming_the_field_and_create_nothing(self):
         with self.assertRaises(volphys.InvalidArgumentError) as cm:
             self.world.create_fluid("smoke", resolution=(0, 16, 16))
@@ -314,6 +322,9 @@ class Fluids(unittest.TestCase):
         with self.assertRaises(volphys.InvalidArgumentError) as cm:
             self.world.create_fluid("smoke", pressure_tolerance=0.0)
         self.assertIn("pressureTolerance", cm.exception.message)
+        with self.assertRaises(volphys.InvalidArgumentError) as cm:
+            self.world.create_fluid("liquid", kinematic_viscosity=-0.5)
+        self.assertIn("kinematicViscosity = -0.5", cm.exception.message)
         with self.assertRaises(ValueError):
             self.world.create_fluid("lava")
         with self.assertRaises(ValueError):

@@ -197,4 +197,49 @@ TEST(CApiFluid, WorldListsItsFluidsInSlotOrder) {
   EXPECT_EQ(vpWorldGetFluidCount(vpWorldId{}, &count), vpStatus_InvalidId);
 }
 
+// The viscosity is the one vpFluidDef field appended after userData: a bad value must be
+// caught by name (not read as garbage) and leave the world as it was.
+TEST(CApiFluid, BadViscosityIsNamedAndChangesNothing) {
+  ScopedWorld w;
+  vpFluidDef def = smallSmoke();
+  def.kind = vpFluidKind_Liquid;
+  def.resolution[0] = def.resolution[1] = def.resolution[2] = 8;
+  def.cellSize = 0.125f;
+  vpFluidRegion water{};
+  water.type = vpRegionType_Box;
+  water.centre = vpVec3{0.25f, 0.5f, 0.5f};  // a column that collapses: a liquid at rest has nothing to diffuse
+  water.halfExtents = vpVec3{0.25f, 0.5f, 0.5f};
+  def.initialLiquid = &water;
+  def.initialLiquidCount = 1;
+  EXPECT_EQ(vpDefaultFluidDef().kinematicViscosity, 0.0f);
+  def.kinematicViscosity = 0.05f;
+  vpFluidId viscous{};
+  ASSERT_VP_OK(vpFluidCreate(w.id, &def, &viscous));
+  for (int s = 0; s < 3; ++s) ASSERT_VP_OK(vpWorldStep(w.id, 1.0f / 60.0f));
+  vpActorStats before{};
+  ASSERT_VP_OK(vpFluidGetStats(viscous, &before));
+  EXPECT_GT(before.phases[vpPhase_Viscosity].iterations, 0);
+  const struct {
+    float value;
+    const char* message;
+  } cases[] = {{-1.0f, "kinematicViscosity = -1"},
+               {NAN, "kinematicViscosity = nan"},
+               {INFINITY, "kinematicViscosity = inf"},
+               {11.0f, "kinematicViscosity = 11: must be in [0, 10]"}};
+  for (const auto& c : cases) {
+    vpFluidDef bad = def;
+    bad.kinematicViscosity = c.value;
+    vpFluidId id{};
+    EXPECT_EQ(vpFluidCreate(w.id, &bad, &id), vpStatus_InvalidArgument) << c.message;
+    EXPECT_TRUE(lastErrorContains(c.message)) << "expected '" << c.message << "' in: " << vpGetLastError();
+    EXPECT_TRUE(vpFluidIdIsNull(id));
+  }
+  int32_t count = -1;
+  ASSERT_VP_OK(vpWorldGetFluidCount(w.id, &count));
+  EXPECT_EQ(count, 1);
+  vpActorStats after{};
+  ASSERT_VP_OK(vpFluidGetStats(viscous, &after));
+  EXPECT_EQ(after.phases[vpPhase_Viscosity].iterations, before.phases[vpPhase_Viscosity].iterations);
+}
+
 }  // namespace

@@ -141,6 +141,8 @@ INSTANTIATE_TEST_SUITE_P(
                  Status::ParseError, "$.fluids[0].resolution: expected 3 integers in [2, 1024]"},
         BadScene{R"({"colliders": [{"shape": {"type": "plane"}}], "fluids": [{"cellSize": 0}]})",
                  Status::InvalidArgument, "$.fluids[0]: cellSize = 0"},
+        BadScene{R"({"colliders": [{"shape": {"type": "plane"}}], "fluids": [{"kinematicViscosity": -2}]})",
+                 Status::InvalidArgument, "$.fluids[0]: kinematicViscosity = -2: must be in [0, 10]"},
         BadScene{R"({"colliders": [{"shape": {"type": "plane"}}], "fluids": [{"sides": {"+y": "door"}}]})",
                  Status::ParseError, "$.fluids[0].sides.+y = \"door\": expected one of"},
         BadScene{R"({"colliders": [{"shape": {"type": "plane"}}],

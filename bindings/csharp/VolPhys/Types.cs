@@ -18,7 +18,7 @@ namespace VolPhys
     public enum Phase : int
     {
         Rigid = 0, Corotate = 1, Assemble = 2, Contacts = 3, Solve = 4, Embed = 5, Advect = 6, Forces = 7,
-        Fractions = 8, Pressure = 9, Surface = 10
+        Fractions = 8, Pressure = 9, Surface = 10, Viscosity = 11
     }
 
     public enum ActorKind : int { Rigid = 0, Deformable = 1, Fluid = 2 }
@@ -273,6 +273,7 @@ namespace VolPhys
         public int drainCount;
         public int twoWayCoupling;
         public IntPtr userData;
+        public float kinematicViscosity;
 
         public void SetResolution(int nx, int ny, int nz)
         {

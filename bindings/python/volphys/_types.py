@@ -51,9 +51,10 @@ class Phase(enum.IntEnum):
     Fractions = 8
     Pressure = 9
     Surface = 10
+    Viscosity = 11
 
 
-PHASE_COUNT = 11
+PHASE_COUNT = 12
 
 
 class ActorKind(enum.IntEnum):
@@ -293,6 +294,7 @@ class vpFluidDef(ctypes.Structure):
         ("drainCount", c_int32),
         ("twoWayCoupling", c_int32),
         ("userData", c_void_p),
+        ("kinematicViscosity", c_float),
     ]
 
 

@@ -24,7 +24,8 @@ _DEFORMABLE_SCALARS = {
 }
 
 _FLUID_SCALARS = {
-    "cell_size": "cellSize", "density": "density", "cfl_number": "cflNumber", "max_substeps": "maxSubsteps",
+    "cell_size": "cellSize", "density": "density", "kinematic_viscosity": "kinematicViscosity",
+    "cfl_number": "cflNumber", "max_substeps": "maxSubsteps",
     "pressure_tolerance": "pressureTolerance", "pressure_max_iterations": "pressureMaxIterations",
     "ambient_temperature": "ambientTemperature", "density_buoyancy": "densityBuoyancy",
     "thermal_buoyancy": "thermalBuoyancy", "vorticity_confinement": "vorticityConfinement",
@@ -270,7 +271,7 @@ class World:
         (nx, ny, nz) cells. kind: FluidKind or 'smoke' / 'liquid'. sides: see _fill_sides.
         advection: Advection or 'semi_lagrangian' / 'mac_cormack'. initial_liquid, drains:
         BoxRegion / SphereRegion; emitters: Emitter. Further keywords: cell_size, density,
-        cfl_number, max_substeps, pressure_tolerance, pressure_max_iterations,
+        kinematic_viscosity, cfl_number, max_substeps, pressure_tolerance, pressure_max_iterations,
         ambient_temperature, density_buoyancy, thermal_buoyancy, vorticity_confinement,
         density_dissipation, temperature_dissipation, two_way_coupling. Anything not given keeps
         vpDefaultFluidDef()'s value."""

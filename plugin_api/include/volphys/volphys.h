@@ -223,7 +223,8 @@ typedef enum vpPhase {
   vpPhase_Fractions = 8,
   vpPhase_Pressure = 9,
   vpPhase_Surface = 10,
-  vpPhase_Count = 11
+  vpPhase_Viscosity = 11, /* fluids with a kinematic viscosity > 0: the implicit diffusion solve */
+  vpPhase_Count = 12
 } vpPhase;
 
 #define VP_MAX_PHASES 16
@@ -500,6 +501,8 @@ typedef struct vpFluidDef {
   int32_t drainCount;
   int32_t twoWayCoupling;           /* pressure forces act on dynamic colliders; default 1 */
   void* userData;
+  float kinematicViscosity;         /* m^2/s, 0..10 (water 1e-6, honey ~1e-2): implicit diffusion of
+                                       the velocity, solids no-slip; default 0 = inviscid, no cost */
 } vpFluidDef;
 
 typedef enum vpFluidField {

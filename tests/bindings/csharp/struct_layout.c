@@ -61,6 +61,7 @@ int main(void) {
   FIELD(vpFluidDef, temperatureDissipation); FIELD(vpFluidDef, initialLiquid); FIELD(vpFluidDef, initialLiquidCount);
   FIELD(vpFluidDef, emitters); FIELD(vpFluidDef, emitterCount); FIELD(vpFluidDef, drains);
   FIELD(vpFluidDef, drainCount); FIELD(vpFluidDef, twoWayCoupling); FIELD(vpFluidDef, userData);
+  FIELD(vpFluidDef, kinematicViscosity);
   SIZE(vpBuildInfo); FIELD(vpBuildInfo, cudaCompiled); FIELD(vpBuildInfo, cudaDeviceCount);
   FIELD(vpBuildInfo, hardwareThreads);
   return 0;
