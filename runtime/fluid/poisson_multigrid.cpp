@@ -124,7 +124,7 @@ void applyPoissonMultigrid(TaskSystem& tasks, const CutCellPoisson& fine, Poisso
   auto xOf = [&](int l) { return mg.x[static_cast<size_t>(l)].data(); };
   auto bOf = [&](int l) { return mg.b[static_cast<size_t>(l)].data(); };
   auto filter = [&](int l, float* v) {
-    if (l > 0 && mg.coarseFloating[static_cast<size_t>(l - 1)]) filterCutCellPoisson(op(l), v);
+    if (l > 0 && mg.coarseFloating[static_cast<size_t>(l - 1)]) filterCutCellPoisson(tasks, op(l), v);
   };
   auto scratchOf = [&](int l) -> std::vector<float>& { return mg.r[static_cast<size_t>(l)]; };
   const int64_t fineCells = static_cast<int64_t>(fine.diagonal.size());
