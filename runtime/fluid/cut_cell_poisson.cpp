@@ -203,14 +203,16 @@ void applyCutCellPoisson(TaskSystem& tasks, const CutCellPoisson& op, const doub
 }
 
 template <class T>
-void filterCutCellPoisson(const CutCellPoisson& op, T* values) {
+void filterCutCellPoisson(TaskSystem& tasks, const CutCellPoisson& op, T* values) {
   const size_t cells = op.region.size();
   const size_t regions = op.regionFloating.size();
   bool anyFloating = false;
   for (uint8_t f : op.regionFloating) anyFloating = anyFloating || f != 0;
   if (!anyFloating) {
-    for (size_t c = 0; c < cells; ++c)
-      if (op.region[c] < 0) values[c] = 0.0;
+    parallelFor(tasks, static_cast<int64_t>(cells), kCellGrain, [&](int64_t begin, int64_t end) {
+      for (int64_t c = begin; c < end; ++c)
+        if (op.region[static_cast<size_t>(c)] < 0) values[c] = T(0);
+    });
     return;
   }
   std::vector<double> mean(regions, 0.0);
@@ -226,8 +228,8 @@ void filterCutCellPoisson(const CutCellPoisson& op, T* values) {
   }
 }
 
-template void filterCutCellPoisson<double>(const CutCellPoisson&, double*);
-template void filterCutCellPoisson<float>(const CutCellPoisson&, float*);
+template void filterCutCellPoisson<double>(TaskSystem&, const CutCellPoisson&, double*);
+template void filterCutCellPoisson<float>(TaskSystem&, const CutCellPoisson&, float*);
 
 void computeNetOutflow(TaskSystem& tasks, const MacGrid& grid, const FaceFractionField& fractions,
                        const CutCellPoisson& op, double* outflow) {

@@ -105,8 +105,10 @@ void computeRowSpans(TaskSystem& tasks, CutCellPoisson* op);
 void applyCutCellPoisson(TaskSystem& tasks, const CutCellPoisson& op, const double* p, double* out);
 
 // In place: zero on non-fluid cells, zero mean on every floating region (T: double or float).
+// The CG filters twice per iteration, so without floating regions (the common case: any open
+// side or free surface) it runs in parallel; the region means are summed serially.
 template <class T>
-void filterCutCellPoisson(const CutCellPoisson& op, T* values);
+void filterCutCellPoisson(TaskSystem& tasks, const CutCellPoisson& op, T* values);
 
 // Per cell: the net outflow sum_f +-(A_f u_f + (1 - A_f) u_solid,f) through the cell's faces
 // (velocity times area / h^2; + on the high face of each axis), with Wall faces contributing

@@ -126,23 +126,19 @@ void smoothJacobi(TaskSystem& tasks, const PoissonCoefficients<T>& op, const T* 
   }
 }
 
-template <class T>
-void smoothRedBlackCells(TaskSystem& tasks, const PoissonCoefficients<T>& op, const BoundaryCellLists& byColour,
-                         const T* b, T* x, bool reverse) {
-  const Stencil<T> s(op);
+void smoothRedBlackCells(TaskSystem& tasks, const PoissonCoefficients<float>& op, const BoundaryCellLists& byColour,
+                         const float* b, float* x, bool reverse) {
+  const int64_t nx = op.grid.nx, sz = nx * op.grid.ny;
+  const int64_t step[6] = {-1, 1, -nx, nx, -sz, sz};
   for (int half = 0; half < 2; ++half) {
     const std::vector<BoundaryCell>& list = byColour[static_cast<size_t>(reverse ? 1 - half : half)];
     parallelFor(tasks, static_cast<int64_t>(list.size()), kBoundaryCellsPerChunk, [&](int64_t begin, int64_t end) {
       for (int64_t n = begin; n < end; ++n) {
         const BoundaryCell& e = list[static_cast<size_t>(n)];
         const int64_t c = e.cell;
-        const unsigned in = e.insideFaces;
-        // A neighbour outside the grid is read as the cell itself; its face coupling is 0.
-        const T sum = s.cu[e.faceU] * x[(in & 1u) ? c - 1 : c] + s.cu[e.faceU + 1] * x[(in & 2u) ? c + 1 : c] +
-                           s.cv[e.faceV] * x[(in & 4u) ? c - s.nx : c] +
-                           s.cv[e.faceV + s.nx] * x[(in & 8u) ? c + s.nx : c] +
-                           s.cw[c] * x[(in & 16u) ? c - s.sz : c] + s.cw[c + s.sz] * x[(in & 32u) ? c + s.sz : c];
-        x[c] = (b[c] + sum) / s.diagonal[c];
+        float sum = 0.0f;
+        for (int f = 0; f < 6; ++f) sum += e.coupling[f] * x[e.coupling[f] != 0.0f ? c + step[f] : c];
+        x[c] = (b[c] + sum) * e.inverseDiagonal;
       }
     });
   }
@@ -186,12 +182,13 @@ void findBoundaryCells(TaskSystem& tasks, const CutCellPoisson& op, double fullC
         bool near = cut[static_cast<size_t>(c)] != 0;
         for (int f = 0; f < 6; ++f) near = near || (inside[f] && cut[static_cast<size_t>(c + step[f])]);
         if (!near) continue;
+        const Row<double> r(s, j, k, nullptr);
+        const double faces[6] = {r.cu[i], r.cu[i + 1], r.cvLow[i], r.cvHigh[i], r.cwLow[i], r.cwHigh[i]};
         BoundaryCell e;
         e.cell = static_cast<int32_t>(c);
-        e.faceU = static_cast<int32_t>(i + (s.nx + 1) * row);
-        e.faceV = static_cast<int32_t>(i + s.nx * (j + (s.ny + 1) * k));
-        e.insideFaces = 0;
-        for (int f = 0; f < 6; ++f) e.insideFaces = static_cast<uint8_t>(e.insideFaces | (inside[f] ? 1u << f : 0u));
+        // Domain-side faces hold coupling 0 already (cut_cell_poisson.h); `inside` makes sure.
+        for (int f = 0; f < 6; ++f) e.coupling[f] = inside[f] ? static_cast<float>(faces[f]) : 0.0f;
+        e.inverseDiagonal = static_cast<float>(1.0 / s.diagonal[c]);
         (*byColour)[static_cast<size_t>((i + j + k) & 1)].push_back(e);
       }
     }
@@ -214,8 +211,6 @@ void computeResidual(TaskSystem& tasks, const PoissonCoefficients<T>& op, const 
 #define VP_INSTANTIATE_SMOOTHERS(T)                                                                         \
   template void smoothRedBlack<T>(TaskSystem&, const PoissonCoefficients<T>&, const T*, T*, bool, bool);         \
   template void smoothJacobi<T>(TaskSystem&, const PoissonCoefficients<T>&, const T*, T*, T*, double, int, bool); \
-  template void smoothRedBlackCells<T>(TaskSystem&, const PoissonCoefficients<T>&, const BoundaryCellLists&,      \
-                                       const T*, T*, bool);                                                      \
   template void computeResidual<T>(TaskSystem&, const PoissonCoefficients<T>&, const T*, const T*, T*);
 VP_INSTANTIATE_SMOOTHERS(double)
 VP_INSTANTIATE_SMOOTHERS(float)

@@ -50,19 +50,19 @@ void smoothJacobi(TaskSystem& tasks, const PoissonCoefficients<T>& op, const T* 
 // Boundary smoothing (McAdams et al. 2010): Gauss-Seidel restricted to the listed cells, split
 // by colour (red list then black list; black then red when `reverse`), so it parallelizes like
 // the full sweep and its reverse is its adjoint.
-// A listed cell with its face indices resolved at build time, packed (16 bytes instead of the
-// 72 of 64-bit indices of all six neighbours: the boundary sweeps are bound by reading this
-// list). 32-bit indices hold every grid a fluid may have (kMaxFluidCells faces < 2^31).
+// A listed cell carries its own coefficients, packed at build time in the V-cycle's single
+// precision, and the inverse of its diagonal, so a sweep reads the list and x (and b) only; a
+// face with coupling 0 (closed, or a domain side) reads the cell itself, so no neighbour outside
+// the grid is ever read.
 struct BoundaryCell {
   int32_t cell;
-  int32_t faceU, faceV;  // its -x and -y faces (its -z face has the cell's index)
-  uint8_t insideFaces;   // bit f set when the neighbour across face f (-x, +x, -y, +y, -z, +z) exists
+  float coupling[6];  // faces -x, +x, -y, +y, -z, +z
+  float inverseDiagonal;
 };
 using BoundaryCellLists = std::array<std::vector<BoundaryCell>, 2>;  // red, black
 
-template <class T>
-void smoothRedBlackCells(TaskSystem& tasks, const PoissonCoefficients<T>& op, const BoundaryCellLists& byColour,
-                         const T* b, T* x, bool reverse);
+void smoothRedBlackCells(TaskSystem& tasks, const PoissonCoefficients<float>& op, const BoundaryCellLists& byColour,
+                         const float* b, float* x, bool reverse);
 
 // The fluid cells within one face step of a cut cell, split by colour: red cells in
 // byColour[0], black in byColour[1], each in cell order. A cell is cut when a face inside the

@@ -66,10 +66,10 @@ Status buildPoissonMultigrid(TaskSystem& tasks, const CutCellPoisson& fine, cons
     return fail(Status::InvalidArgument, "multigrid: coarsestSize = %d must be >= 1", settings.coarsestSize);
   if (!(settings.jacobiWeight > 0.0 && settings.jacobiWeight <= 1.0))
     return fail(Status::InvalidArgument, "multigrid: jacobiWeight = %g must lie in (0, 1]", settings.jacobiWeight);
-  // Boundary cell lists index faces with 32 bits (multigrid_smoother.h).
+  // Boundary cell lists index cells with 32 bits (multigrid_smoother.h).
   const MacGridSpec& fineGrid = fine.grid;
-  if (static_cast<int64_t>(fineGrid.nx + 1) * (fineGrid.ny + 1) * (fineGrid.nz + 1) > INT32_MAX)
-    return fail(Status::InvalidArgument, "multigrid: grid (%d, %d, %d) has too many faces for 32-bit indices",
+  if (static_cast<int64_t>(fineGrid.nx) * fineGrid.ny * fineGrid.nz > INT32_MAX)
+    return fail(Status::InvalidArgument, "multigrid: grid (%d, %d, %d) has too many cells for 32-bit indices",
                 fineGrid.nx, fineGrid.ny, fineGrid.nz);
   mg->settings = settings;
   for (int side = 0; side < 6; ++side) mg->sides.open[side] = sides[static_cast<size_t>(side)] == DomainSide::Open;
@@ -124,7 +124,7 @@ void applyPoissonMultigrid(TaskSystem& tasks, const CutCellPoisson& fine, Poisso
   auto xOf = [&](int l) { return mg.x[static_cast<size_t>(l)].data(); };
   auto bOf = [&](int l) { return mg.b[static_cast<size_t>(l)].data(); };
   auto filter = [&](int l, float* v) {
-    if (l > 0 && mg.coarseFloating[static_cast<size_t>(l - 1)]) filterCutCellPoisson(op(l), v);
+    if (l > 0 && mg.coarseFloating[static_cast<size_t>(l - 1)]) filterCutCellPoisson(tasks, op(l), v);
   };
   auto scratchOf = [&](int l) -> std::vector<float>& { return mg.r[static_cast<size_t>(l)]; };
   const int64_t fineCells = static_cast<int64_t>(fine.diagonal.size());

@@ -53,7 +53,7 @@ Status projectVelocity(TaskSystem& tasks, MacGrid& grid, const FaceFractionField
     system.precondition = [&](const double* r, double* z) { applyMic0Preconditioner(op, state.preconditioner, r, z); };
   else
     system.precondition = [&](const double* r, double* z) { applyPoissonMultigrid(tasks, op, state.multigrid, r, z); };
-  system.filter = [&](double* v) { filterCutCellPoisson(op, v); };
+  system.filter = [&](double* v) { filterCutCellPoisson(tasks, op, v); };
   CgSettings cgSettings;
   cgSettings.relativeTolerance = settings.tolerance;
   cgSettings.maxIterations = settings.maxIterations;

@@ -66,10 +66,8 @@ CgResult solveConjugateGradient(TaskSystem& tasks, const LinearSystem& sys, cons
     const double pq = vec::dot(tasks, n, p, q);
     if (!(pq > 0.0)) break;  // A not positive on p: numerically converged or broken input
     const double alpha = rz / pq;
-    vec::axpy(tasks, n, alpha, p, x);
-    vec::axpy(tasks, n, -alpha, q, r);
+    rNorm = std::sqrt(vec::cgStep(tasks, n, alpha, p, q, x, r));
     result.iterations = it + 1;
-    rNorm = std::sqrt(vec::dot(tasks, n, r, r));
     result.relativeResidual = rNorm / bNorm;
     if (result.relativeResidual <= settings.relativeTolerance) {
       result.converged = true;

@@ -24,6 +24,11 @@ void xpby(TaskSystem& tasks, int64_t n, const double* x, double b, double* y) {
   });
 }
 
+double cgStep(TaskSystem& tasks, int64_t n, double alpha, const double* p, const double* q, double* x, double* r) {
+  return parallelReduce<double>(tasks, n, kGrain,
+                                [&](int64_t b, int64_t e) { return kernels::cgStepRange(b, e, alpha, p, q, x, r); });
+}
+
 void copy(TaskSystem& tasks, int64_t n, const double* x, double* y) {
   parallelFor(tasks, n, kGrain, [&](int64_t b, int64_t e) {
     std::memcpy(y + b, x + b, static_cast<size_t>(e - b) * sizeof(double));

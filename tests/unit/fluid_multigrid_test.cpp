@@ -131,12 +131,12 @@ TEST(FluidMultigrid, VCycleIsSymmetricAndPositive) {
         x[c] = u(rng);
         y[c] = u(rng);
       }
-      filterCutCellPoisson(scene.poisson, x.data());
-      filterCutCellPoisson(scene.poisson, y.data());
+      filterCutCellPoisson(*tasks, scene.poisson, x.data());
+      filterCutCellPoisson(*tasks, scene.poisson, y.data());
       solver.precondition(*tasks, scene, x.data(), mx.data());
       solver.precondition(*tasks, scene, y.data(), my.data());
-      filterCutCellPoisson(scene.poisson, mx.data());
-      filterCutCellPoisson(scene.poisson, my.data());
+      filterCutCellPoisson(*tasks, scene.poisson, mx.data());
+      filterCutCellPoisson(*tasks, scene.poisson, my.data());
       const double scale = std::sqrt(dot(x, x) * dot(my, my));
       EXPECT_NEAR(dot(x, my), dot(y, mx), 1e-7 * scale);
       EXPECT_GT(dot(x, mx), 1e-3 * std::sqrt(dot(x, x) * dot(mx, mx)));

@@ -159,7 +159,7 @@ struct SceneSolver {
     system.size = static_cast<int64_t>(scene.rhs.size());
     system.apply = [&](const double* x, double* y) { applyCutCellPoisson(tasks, scene.poisson, x, y); };
     system.precondition = [&](const double* r, double* z) { precondition(tasks, scene, r, z); };
-    system.filter = [&](double* v) { filterCutCellPoisson(scene.poisson, v); };
+    system.filter = [&](double* v) { filterCutCellPoisson(tasks, scene.poisson, v); };
     CgSettings settings;
     settings.relativeTolerance = tolerance;
     settings.maxIterations = maxIterations;

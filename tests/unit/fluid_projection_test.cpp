@@ -300,7 +300,7 @@ ManufacturedError manufacturedSphereError(TaskSystem& tasks, int n) {
   system.size = static_cast<int64_t>(cells);
   system.apply = [&](const double* x, double* y) { applyCutCellPoisson(tasks, op, x, y); };
   system.precondition = [&](const double* r, double* z) { applyMic0Preconditioner(op, mic, r, z); };
-  system.filter = [&](double* v) { filterCutCellPoisson(op, v); };
+  system.filter = [&](double* v) { filterCutCellPoisson(tasks, op, v); };
   CgSettings settings;
   settings.relativeTolerance = 1e-11;  // far below the discretization error at 64^3 (~1e-5)
   settings.maxIterations = 1000;
