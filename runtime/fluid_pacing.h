@@ -29,6 +29,11 @@ class FluidPacing {
   static constexpr double kRelaxFill = 0.7;   // what a lower interval must fit to be taken
   static constexpr int kCalmFrames = 30;
   static constexpr double kSmoothing = 0.2;   // weight of the newest frame in the averages
+  // The world holds back this multiple of a due fluid's smoothed step cost from the
+  // deformables: a fluid step varies from frame to frame (the default scene's two fluids on
+  // a busy machine: standard deviation 15% and 23% of the mean), and the frame's end is what
+  // must hold.
+  static constexpr double kReserveMargin = 1.25;
 
   int interval() const { return interval_; }
   // The running average the policy keeps of a measured cost (average < 0: none yet).

@@ -206,7 +206,7 @@ Status World::step(double dt) {
       backlog.pendingDt += dt;
       if (fluidPacing_.due(stats.stepIndex, ordinal++, static_cast<int>(fluids_.size()), backlog.waitedFrames)) {
         dueFluids.push_back(&fluid);
-        reserveMs += std::max(backlog.expectedStepMs, 0.0);
+        reserveMs += FluidPacing::kReserveMargin * std::max(backlog.expectedStepMs, 0.0);
       }
     });
   }
