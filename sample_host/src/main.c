@@ -133,10 +133,37 @@ static int writePoses(vpWorldId world, const char* outDir) {
   return 1;
 }
 
-/* stats.csv: totals by kind, then each actor's ms (and a fluid's simulated time, 0 in frames
- * the budget's pacing deferred it), named like the mesh files: deformableK, fluidK. */
+/* stats.csv: totals by kind, then each actor's own columns, named like the mesh files
+ * (deformableK, fluidK): its ms, each of its kind's phases in ms, and its iterative phase's
+ * iterations and residual; a fluid also its simulated time (0 in frames the budget's pacing
+ * deferred it). */
+typedef struct ActorColumns {
+  vpActorKind kind;
+  const char* prefix;
+  int iterative; /* the phase whose iterations and residual are reported */
+  int phases[8];
+  int phaseCount;
+} ActorColumns;
+
+static const ActorColumns kActorColumns[] = {
+    {vpActorKind_Deformable, "deformable", vpPhase_Solve,
+     {vpPhase_Corotate, vpPhase_Assemble, vpPhase_Contacts, vpPhase_Solve, vpPhase_Embed}, 5},
+    {vpActorKind_Fluid, "fluid", vpPhase_Pressure,
+     {vpPhase_Advect, vpPhase_Forces, vpPhase_Viscosity, vpPhase_Fractions, vpPhase_Pressure, vpPhase_Surface}, 6},
+};
+static const char* const kPhaseNames[vpPhase_Count] = {"rigid",     "corotate", "assemble", "contacts",
+                                                       "solve",     "embed",    "advect",   "forces",
+                                                       "fractions", "pressure", "surface",  "viscosity"};
+
+static const ActorColumns* actorColumns(vpActorKind kind) {
+  size_t i;
+  for (i = 0; i < sizeof kActorColumns / sizeof kActorColumns[0]; ++i)
+    if (kActorColumns[i].kind == kind) return &kActorColumns[i];
+  return NULL;
+}
+
 static void writeStatsHeader(FILE* csv, vpWorldId world, int actorCount) {
-  int a, deformables = 0, fluids = 0;
+  int a, p, counts[3] = {0, 0, 0};
   fprintf(csv,
           "frame,step_ms,wall_ms,budget_ms,budget_cut,rigid_ms,rigid_substeps,colliders,actors,"
           "deform_ms,deform_solve_ms,deform_iters,deform_max_residual,fluid_ms,fluid_advect_ms,fluid_forces_ms,"
@@ -144,26 +171,29 @@ static void writeStatsHeader(FILE* csv, vpWorldId world, int actorCount) {
           "fluid_interval,diverged");
   for (a = 1; a < actorCount; ++a) {
     vpActorStats s;
-    if (vpWorldGetActorStats(world, a, &s) != vpStatus_Ok) continue;
-    if (s.kind == vpActorKind_Fluid) {
-      fprintf(csv, ",fluid%d_ms,fluid%d_sim_dt", fluids, fluids);
-      ++fluids;
-    } else {
-      fprintf(csv, ",deformable%d_ms", deformables++);
-    }
+    const ActorColumns* c;
+    int k;
+    if (vpWorldGetActorStats(world, a, &s) != vpStatus_Ok || !(c = actorColumns(s.kind))) continue;
+    k = counts[s.kind]++;
+    fprintf(csv, ",%s%d_ms", c->prefix, k);
+    if (s.kind == vpActorKind_Fluid) fprintf(csv, ",%s%d_sim_dt", c->prefix, k);
+    for (p = 0; p < c->phaseCount; ++p) fprintf(csv, ",%s%d_%s_ms", c->prefix, k, kPhaseNames[c->phases[p]]);
+    fprintf(csv, ",%s%d_%s_iters,%s%d_%s_residual", c->prefix, k, kPhaseNames[c->iterative], c->prefix, k,
+            kPhaseNames[c->iterative]);
   }
   fputc('\n', csv);
 }
 
 static void writeActorColumns(FILE* csv, vpWorldId world, int actorCount) {
-  int a;
+  int a, p;
   for (a = 1; a < actorCount; ++a) {
     vpActorStats s;
-    if (vpWorldGetActorStats(world, a, &s) != vpStatus_Ok) continue;
-    if (s.kind == vpActorKind_Fluid)
-      fprintf(csv, ",%.4f,%.5f", s.totalMs, s.simulatedDt);
-    else
-      fprintf(csv, ",%.4f", s.totalMs);
+    const ActorColumns* c;
+    if (vpWorldGetActorStats(world, a, &s) != vpStatus_Ok || !(c = actorColumns(s.kind))) continue;
+    fprintf(csv, ",%.4f", s.totalMs);
+    if (s.kind == vpActorKind_Fluid) fprintf(csv, ",%.5f", s.simulatedDt);
+    for (p = 0; p < c->phaseCount; ++p) fprintf(csv, ",%.4f", s.phases[c->phases[p]].ms);
+    fprintf(csv, ",%d,%.3e", s.phases[c->iterative].iterations, s.phases[c->iterative].residual);
   }
   fputc('\n', csv);
 }
