@@ -198,6 +198,7 @@ Status FluidActor::updateFractions(const std::vector<FluidCollider>& colliders) 
                                    s.linearVelocity, s.angularVelocity});
   }
   const int count = static_cast<int>(geometry.size());
+  const Aabb domain = domainBounds();
   bool sameSet = fractionsValid_ && now.size() == snapshots_.size();
   for (size_t i = 0; sameSet && i < now.size(); ++i)
     sameSet = now[i].index1 == snapshots_[i].index1 && now[i].generation == snapshots_[i].generation;
@@ -209,14 +210,16 @@ Status FluidActor::updateFractions(const std::vector<FluidCollider>& colliders) 
     VP_TRY(computeFaceFractions(geometry.data(), count, &fractions_));
     for (const PreparedCollider* c : geometry)
       VP_TRY(closeSplitCellPieces(*tasks_, geometry.data(), count, c->bounds, &fractions_, nullptr));
-    fractionsChanged_ = true;
+    fractionsChanged_ = pressureOperatorStale_ = true;
   } else {
     for (size_t i = 0; i < now.size(); ++i) {
       const ColliderSnapshot& a = snapshots_[i];
       const ColliderSnapshot& b = now[i];
       const bool moved = a.translation != b.translation || a.rotation.coeffs() != b.rotation.coeffs() ||
                          a.linearVelocity != b.linearVelocity || a.angularVelocity != b.angularVelocity;
-      if (!moved) continue;
+      // A body moving elsewhere in the world changes no face here (and must not make the
+      // pressure operator look stale).
+      if (!moved || !(a.bounds.overlaps(domain) || b.bounds.overlaps(domain))) continue;
       VP_TRY(updateFaceFractions(geometry.data(), count, a.bounds, b.bounds, &fractions_));
       // A collider moving a little per step (a paddle) has nearly the same box before and
       // after: one pass over their union instead of two over the overlap.
@@ -229,12 +232,17 @@ Status FluidActor::updateFractions(const std::vector<FluidCollider>& colliders) 
         VP_TRY(closeSplitCellPieces(*tasks_, geometry.data(), count, a.bounds, &fractions_, nullptr));
         VP_TRY(closeSplitCellPieces(*tasks_, geometry.data(), count, b.bounds, &fractions_, nullptr));
       }
-      fractionsChanged_ = true;
+      fractionsChanged_ = pressureOperatorStale_ = true;
     }
   }
   snapshots_ = std::move(now);
   fractionsValid_ = true;
   return Status::Ok;
+}
+
+Aabb FluidActor::domainBounds() const {
+  const MacGridSpec& s = grid_.spec;
+  return Aabb{s.origin, s.origin + s.h * Eigen::Vector3d(s.nx, s.ny, s.nz)};
 }
 
 double FluidActor::maxSpeed(TaskSystem& tasks) const {
@@ -285,7 +293,7 @@ void FluidActor::step(const FluidStepInput& input, ActorStats* stats, std::vecto
   if (speedAtEnd_ < 0.0) speedAtEnd_ = maxSpeed(tasks);
   double speed = speedAtEnd_;
   for (const FluidCollider& c : input.colliders)
-    if (c.geometry != nullptr && c.geometry->bounds.overlaps(Aabb{s.origin, s.origin + s.h * Eigen::Vector3d(s.nx, s.ny, s.nz)}))
+    if (c.geometry != nullptr && c.geometry->bounds.overlaps(domainBounds()))
       speed = std::max(speed, c.geometry->shape.linearVelocity.norm() +
                                   c.geometry->shape.angularVelocity.norm() * c.geometry->boundRadius);
   const int substeps = std::clamp(static_cast<int>(std::ceil(speed * dt / (solver.cflNumber * s.h))), 1,
@@ -302,6 +310,8 @@ void FluidActor::step(const FluidStepInput& input, ActorStats* stats, std::vecto
   // a frame and 25% of the frames overran 16 ms). Two multigrid-preconditioned iterations cut
   // the residual about a hundredfold, so they run even past the deadline.
   pressureSettings.minIterations = std::min(4, solver.pressureMaxIterations);
+  // A liquid's operator follows its surface every sub-step; smoke's changes only with the
+  // fractions.
   PhaseStats& pressurePhase = stats->phase(Phase::Pressure);
   for (int sub = 0; sub < substeps; ++sub) {
     advectAndSource(tasks, h, speed * h, stats, deadline);
@@ -311,6 +321,8 @@ void FluidActor::step(const FluidStepInput& input, ActorStats* stats, std::vecto
     t0 = deadline.elapsedMs();
     PressureSolveStats ps;
     const Deadline share = deadline.share(1.0 / (substeps - sub));
+    pressureSettings.operatorUnchanged = desc_.kind == FluidKind::Smoke && !pressureOperatorStale_;
+    pressureOperatorStale_ = false;
     if (Status st = projectVelocity(tasks, grid_, fractions_, h, desc_.density, share, pressureSettings, pressure_, &ps,
                                     liquidPhi());
         st != Status::Ok)

@@ -99,6 +99,7 @@ class FluidActor {
   explicit FluidActor(FluidDesc desc) : desc_(std::move(desc)) {}
   Status updateFractions(const std::vector<FluidCollider>& colliders);
   double maxSpeed(TaskSystem& tasks) const;
+  Aabb domainBounds() const;
   // Advection, emitters and drains, and the liquid's level-set upkeep. maxDisplacement: the
   // farthest the flow (and colliders) move anything in this sub-step.
   void advectAndSource(TaskSystem& tasks, double dt, double maxDisplacement, ActorStats* stats,
@@ -125,6 +126,7 @@ class FluidActor {
   std::vector<ColliderSnapshot> snapshots_;  // the colliders the fractions were computed for
   bool fractionsValid_ = false;
   bool fractionsChanged_ = true;  // since the advection's open-face masks were built
+  bool pressureOperatorStale_ = true;  // the fractions changed since the last projection
   double speedAtEnd_ = -1.0;  // largest face speed after the last step; < 0 before the first
   std::vector<double> smokeDensity_, temperature_, phi_;
   PressureState pressure_;

@@ -22,14 +22,21 @@ Status projectVelocity(TaskSystem& tasks, MacGrid& grid, const FaceFractionField
   if (settings.maxIterations < 0)
     return fail(Status::InvalidArgument, "pressure projection: maxIterations = %d must be >= 0",
                 settings.maxIterations);
-  VP_TRY(buildCutCellPoisson(tasks, grid, fractions, &state.poisson, liquidPhi));
-  if (settings.solver == PressureSolver::Mic0Pcg) {
-    VP_TRY(buildMic0Preconditioner(state.poisson, Mic0Settings{}, &state.preconditioner));
-  } else {
-    MultigridSettings mg = settings.multigrid;
-    mg.coarsening = settings.solver == PressureSolver::VoxelMgpcg ? MultigridCoarsening::Voxel
-                                                                   : MultigridCoarsening::CutCell;
-    VP_TRY(buildPoissonMultigrid(tasks, state.poisson, grid.sides, mg, &state.multigrid));
+  const bool reuse = settings.operatorUnchanged && state.operatorBuilt && state.builtFor == settings.solver &&
+                     state.poisson.diagonal.size() == static_cast<size_t>(grid.cellCount());
+  if (!reuse) {
+    state.operatorBuilt = false;
+    VP_TRY(buildCutCellPoisson(tasks, grid, fractions, &state.poisson, liquidPhi));
+    if (settings.solver == PressureSolver::Mic0Pcg) {
+      VP_TRY(buildMic0Preconditioner(state.poisson, Mic0Settings{}, &state.preconditioner));
+    } else {
+      MultigridSettings mg = settings.multigrid;
+      mg.coarsening = settings.solver == PressureSolver::VoxelMgpcg ? MultigridCoarsening::Voxel
+                                                                     : MultigridCoarsening::CutCell;
+      VP_TRY(buildPoissonMultigrid(tasks, state.poisson, grid.sides, mg, &state.multigrid));
+    }
+    state.operatorBuilt = true;
+    state.builtFor = settings.solver;
   }
   const CutCellPoisson& op = state.poisson;
   const MacGridSpec& g = grid.spec;
