@@ -3,17 +3,17 @@
 #include <stdio.h>
 #include <string.h>
 
-static const char* const kPhaseNames[vpPhase_Count] = {"rigid",    "corotate", "assemble",  "contacts",
-                                                       "solve",    "embed",    "advect",    "forces",
-                                                       "fractions", "pressure", "surface",  "viscosity"};
+#include "phase_names.h"
+
 static const char* const kKindNames[3] = {"rigid", "deformable", "fluid"};
 
 int hudStatsLines(vpWorldId world, char lines[HUD_MAX_LINES][HUD_LINE_CHARS]) {
   vpStepStats step = vpDefaultStepStats();
   int n = 0, a;
   if (vpWorldGetStepStats(world, &step) != vpStatus_Ok) return 0;
-  snprintf(lines[n++], HUD_LINE_CHARS, "frame %llu  step %.2f ms / budget %.1f ms%s", (unsigned long long)step.stepIndex,
-           step.totalMs, step.budgetMs, step.budgetMs <= 0.0f ? " (unlimited)" : step.budgetCut ? "  CUT" : "");
+  snprintf(lines[n++], HUD_LINE_CHARS, "frame %llu  step %.2f ms / budget %.1f ms%s%s", (unsigned long long)step.stepIndex,
+           step.totalMs, step.budgetMs, step.budgetMs <= 0.0f ? " (unlimited)" : step.budgetCut ? "  CUT" : "",
+           step.fluidInterval > 1 ? "  fluids paced" : "");
   for (a = 0; a < step.actorCount && n < HUD_MAX_LINES; ++a) {
     vpActorStats s;
     size_t used;
@@ -29,11 +29,13 @@ int hudStatsLines(vpWorldId world, char lines[HUD_MAX_LINES][HUD_LINE_CHARS]) {
     for (p = 0; p < vpPhase_Count && used < HUD_LINE_CHARS; ++p) {
       const vpPhaseStats* ph = &s.phases[p];
       if (ph->ms <= 0.0f && ph->iterations == 0) continue;
-      used += (size_t)snprintf(line + used, HUD_LINE_CHARS - used, " %s %.2f", kPhaseNames[p], ph->ms);
+      used += (size_t)snprintf(line + used, HUD_LINE_CHARS - used, " %s %.2f", phaseName(p), ph->ms);
       if (ph->iterations > 0 && used < HUD_LINE_CHARS)
         used += (size_t)snprintf(line + used, HUD_LINE_CHARS - used, " (%d its, res %.0e%s)", ph->iterations,
                                  ph->residual, ph->budgetCut ? ", cut" : "");
     }
+    if (s.kind == vpActorKind_Fluid && s.simulatedDt <= 0.0f && used < HUD_LINE_CHARS)
+      used += (size_t)snprintf(line + used, HUD_LINE_CHARS - used, " deferred");
     if (s.diverged && used < HUD_LINE_CHARS) snprintf(line + used, HUD_LINE_CHARS - used, " DIVERGED");
   }
   return n;

@@ -15,6 +15,7 @@
 #include "frame_plot.h"
 #include "frame_stats.h"
 #include "host_outputs.h"
+#include "phase_names.h"
 #include "step_summary.h"
 #include "volphys/volphys.h"
 
@@ -151,9 +152,6 @@ static const ActorColumns kActorColumns[] = {
     {vpActorKind_Fluid, "fluid", vpPhase_Pressure,
      {vpPhase_Advect, vpPhase_Forces, vpPhase_Viscosity, vpPhase_Fractions, vpPhase_Pressure, vpPhase_Surface}, 6},
 };
-static const char* const kPhaseNames[vpPhase_Count] = {"rigid",     "corotate", "assemble", "contacts",
-                                                       "solve",     "embed",    "advect",   "forces",
-                                                       "fractions", "pressure", "surface",  "viscosity"};
 
 static const ActorColumns* actorColumns(vpActorKind kind) {
   size_t i;
@@ -177,9 +175,9 @@ static void writeStatsHeader(FILE* csv, vpWorldId world, int actorCount) {
     k = counts[s.kind]++;
     fprintf(csv, ",%s%d_ms", c->prefix, k);
     if (s.kind == vpActorKind_Fluid) fprintf(csv, ",%s%d_sim_dt", c->prefix, k);
-    for (p = 0; p < c->phaseCount; ++p) fprintf(csv, ",%s%d_%s_ms", c->prefix, k, kPhaseNames[c->phases[p]]);
-    fprintf(csv, ",%s%d_%s_iters,%s%d_%s_residual", c->prefix, k, kPhaseNames[c->iterative], c->prefix, k,
-            kPhaseNames[c->iterative]);
+    for (p = 0; p < c->phaseCount; ++p) fprintf(csv, ",%s%d_%s_ms", c->prefix, k, phaseName(c->phases[p]));
+    fprintf(csv, ",%s%d_%s_iters,%s%d_%s_residual", c->prefix, k, phaseName(c->iterative), c->prefix, k,
+            phaseName(c->iterative));
   }
   fputc('\n', csv);
 }
