@@ -9,6 +9,7 @@
 #include "collide/face_coverage.h"
 #include "fluid/fluid_actor.h"
 #include "world.h"
+#include "world_test_util.h"
 
 namespace vp {
 namespace {
@@ -180,11 +181,7 @@ double meanSurfaceHeight(const FluidActor& f, const Vec3& boxCentre, double half
 // A world (no frame budget) holding an n³ tank of 1 m filled to `fill`, open at the top, for
 // bodies floating in it; null (and a test failure) if it cannot be made.
 std::unique_ptr<World> worldWithOpenTank(int n, double fill, double pressureTolerance, FluidHandle* fluid) {
-  WorldConfig config;
-  config.workerCount = 2;
-  config.frameBudgetMs = 0.0;
-  std::unique_ptr<World> world;
-  EXPECT_EQ(World::create(config, &world), Status::Ok) << lastError();
+  std::unique_ptr<World> world = testutil::unbudgetedWorld();
   if (!world) return nullptr;
   FluidDesc d = liquidTank(n, n, n, 1.0 / n, fill);
   d.sides[3] = DomainSide::Open;

@@ -1,15 +1,17 @@
-// A floating ball in the default scene's tank, hit by its rotating kinematic paddle.
+// A floating ball in the default scene's tank, stirred by its rotating kinematic paddle.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
 #include "world.h"
+#include "world_test_util.h"
 
 namespace vp {
 namespace {
 
-constexpr double kFill = 0.5, kBallRadius = 0.2, kPaddleSpin = 1.5;
+constexpr double kFill = 0.5, kBallRadius = 0.2, kPaddleSpin = 1.5, kHalfWaterDensity = 500.0;
 const Vec3 kPaddleHalf(0.6, 0.12, 0.05);
 
 ColliderDesc staticBox(const char* name, const Vec3& position, const Vec3& half) {
@@ -26,11 +28,7 @@ ColliderDesc staticBox(const char* name, const Vec3& position, const Vec3& half)
 // 24 x 15 x 24 cells filled to 0.5 m, open at the top, its Bullet walls 5 cm outside the
 // domain, and the paddle turning about the tank's axis. No frame budget: machine-independent.
 std::unique_ptr<World> paddleTank(const Vec3& ballPosition, double ballDensity, ColliderHandle* ball) {
-  WorldConfig config;
-  config.workerCount = 2;
-  config.frameBudgetMs = 0.0;
-  std::unique_ptr<World> world;
-  EXPECT_EQ(World::create(config, &world), Status::Ok) << lastError();
+  std::unique_ptr<World> world = testutil::unbudgetedWorld();
   if (!world) return nullptr;
   ColliderDesc ground;
   ground.name = "ground";
@@ -86,7 +84,7 @@ std::unique_ptr<World> paddleTank(const Vec3& ballPosition, double ballDensity, 
 // faster than the paddle's tip.
 TEST(FluidLiquid, FloatingBallReachingThroughTheDomainWallStaysCalm) {
   ColliderHandle ball;
-  std::unique_ptr<World> world = paddleTank(Vec3(-0.95 - kBallRadius, kFill, 0.0), 500.0, &ball);
+  std::unique_ptr<World> world = paddleTank(Vec3(-0.95 - kBallRadius, kFill, 0.0), kHalfWaterDensity, &ball);
   ASSERT_TRUE(world);
   const double tipSpeed = kPaddleSpin * std::hypot(kPaddleHalf.x(), kPaddleHalf.z());
   double fastest = 0.0, lowest = kFill, highest = kFill;
