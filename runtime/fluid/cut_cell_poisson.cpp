@@ -1,6 +1,7 @@
 // Implicit cut-cell pressure operator (see cut_cell_poisson.h).
 #include "fluid/cut_cell_poisson.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/parallel_for.h"
@@ -244,10 +245,12 @@ void computeNetOutflow(TaskSystem& tasks, const MacGrid& grid, const FaceFractio
                 k = static_cast<int>(c / (static_cast<int64_t>(g.nx) * g.ny));
       double sum = 0.0;
       forEachFace(i, j, k, [&](int a, bool high, int fi, int fj, int fk, int, int, int) {
-        if (grid.isWallFace(a, fi, fj, fk)) return;
         const size_t f = grid.faceIndex(a, fi, fj, fk);
-        const double open = effectiveOpenFraction(grid, fractions, a, fi, fj, fk);
-        const double flux = open * grid.velocity[a][f] + (1.0 - open) * fractions.solidVelocity[a][f];
+        const bool wall = grid.isWallFace(a, fi, fj, fk);
+        const double open =
+            wall ? std::clamp(fractions.open[a][f], 0.0, 1.0) : effectiveOpenFraction(grid, fractions, a, fi, fj, fk);
+        const double fluidVelocity = wall ? 0.0 : grid.velocity[a][f];
+        const double flux = open * fluidVelocity + (1.0 - open) * fractions.solidVelocity[a][f];
         sum += high ? flux : -flux;
       });
       outflow[c] = sum;

@@ -111,8 +111,13 @@ template <class T>
 void filterCutCellPoisson(TaskSystem& tasks, const CutCellPoisson& op, T* values);
 
 // Per cell: the net outflow sum_f +-(A_f u_f + (1 - A_f) u_solid,f) through the cell's faces
-// (velocity times area / h^2; + on the high face of each axis), with Wall faces contributing
-// nothing. The discrete divergence is netOutflow / h. 0 on non-fluid cells.
+// (velocity times area / h^2; + on the high face of each axis). The discrete divergence is
+// netOutflow / h. 0 on non-fluid cells.
+// A domain Wall face stops the fluid (A_f u_f = 0) but not a collider that reaches through
+// it: its covered part carries the collider's velocity like any other face. A body moving
+// into the wall then leaves its cell through that face instead of squeezing the cell's fluid
+// out of the remaining gaps (a floating ball 4 cm into a wall met the pressure of a piston,
+// and the explicit coupling threw it at 20+ m/s).
 void computeNetOutflow(TaskSystem& tasks, const MacGrid& grid, const FaceFractionField& fractions,
                        const CutCellPoisson& op, double* outflow);
 

@@ -9,6 +9,7 @@
 #include "collide/face_coverage.h"
 #include "fluid/fluid_actor.h"
 #include "world.h"
+#include "world_test_util.h"
 
 namespace vp {
 namespace {
@@ -178,11 +179,7 @@ double meanSurfaceHeight(const FluidActor& f, const Vec3& boxCentre, double half
 // bodies floating in it; null (and a test failure) if it cannot be made.
 std::unique_ptr<World> worldWithOpenTank(int n, double fill, double pressureTolerance, FluidHandle* fluid,
                                          double kinematicViscosity = 0.0) {
-  WorldConfig config;
-  config.workerCount = 2;
-  config.frameBudgetMs = 0.0;
-  std::unique_ptr<World> world;
-  EXPECT_EQ(World::create(config, &world), Status::Ok) << lastError();
+  std::unique_ptr<World> world = testutil::unbudgetedWorld();
   if (!world) return nullptr;
   FluidDesc d = liquidTank(n, n, n, 1.0 / n, fill);
   d.sides[3] = DomainSide::Open;

@@ -57,7 +57,7 @@ std::vector<double> sampleCells(const MacGrid& grid, const Sdf& sdf) {
 // Net outflow of every cell from the definition, not through computeNetOutflow (which also
 // builds the right-hand side, so a mistake there would cancel): sum over the cell's faces of
 // +-(A_f u_f + (1 - A_f) u_solid,f), + on high faces, raw collider fractions, Wall faces
-// carrying nothing.
+// carrying only what a collider reaching through them moves ((1 - A_f) u_solid,f).
 inline std::vector<double> netOutflowByDefinition(const MacGrid& grid, const FaceFractionField& fractions) {
   std::vector<double> out(static_cast<size_t>(grid.cellCount()), 0.0);
   for (int k = 0; k < grid.spec.nz; ++k)
@@ -68,10 +68,10 @@ inline std::vector<double> netOutflowByDefinition(const MacGrid& grid, const Fac
           for (int high = 0; high < 2; ++high) {
             Eigen::Vector3i f(i, j, k);
             f[a] += high;
-            if (grid.isWallFace(a, f.x(), f.y(), f.z())) continue;
             const size_t index = grid.faceIndex(a, f.x(), f.y(), f.z());
             const double open = fractions.open[a][index];
-            const double flux = open * grid.velocity[a][index] + (1.0 - open) * fractions.solidVelocity[a][index];
+            const double fluid = grid.isWallFace(a, f.x(), f.y(), f.z()) ? 0.0 : grid.velocity[a][index];
+            const double flux = open * fluid + (1.0 - open) * fractions.solidVelocity[a][index];
             sum += high ? flux : -flux;
           }
         out[grid.cellIndex(i, j, k)] = sum;
