@@ -15,9 +15,12 @@
 //     coarse coupling = (sum of the 4 fine couplings under the coarse face) / 2,
 //     coarse Dirichlet part = (sum of the children's Dirichlet parts) / 2,
 // the Dirichlet part of a cell being its diagonal minus the couplings of its faces (open domain
-// sides today, liquid-air faces A_f / theta once the free surface adds them). The coarse
-// operator is the fine one at 2h with averaged fractions, i.e. half the Galerkin product of
-// piecewise-constant transfers, whose factor 2 overshoot is the known defect of that product.
+// sides). The coarse operator is the fine one at 2h with averaged fractions, i.e. half the
+// Galerkin product of piecewise-constant transfers, whose factor 2 overshoot is the known
+// defect of that product.
+// The free surface is the exception: its Dirichlet part is not summed but placed again by the
+// fine level's ghost-fluid rule at the coarse spacing, from the children's mean level set
+// (multigrid_coarsening.cpp says why).
 //
 // Voxel coarsening (McAdams et al. 2010, the baseline): a coarse cell is fluid when any child is,
 // every coupling between two coarse fluid cells is that of a fully open face (2 in the units
