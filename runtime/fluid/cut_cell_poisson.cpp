@@ -111,13 +111,15 @@ Status buildCutCellPoisson(TaskSystem& tasks, const MacGrid& grid, const FaceFra
         if (liquidPhi != nullptr && open > 0.0 && inside(g, ni, nj, nk)) {
           const double phiNb = liquidPhi[grid.cellIndex(ni, nj, nk)];
           if (!isLiquid(phiNb)) {
-            surface += open / freeSurfaceTheta(liquidPhi[c], phiNb);
+            const double term = open / freeSurfaceTheta(liquidPhi[c], phiNb);
+            sum += term;  // summed in face order as ever, so the fine operator is bitwise unchanged
+            surface += term;
             return;
           }
         }
         sum += open;
       });
-      op->diagonal[static_cast<size_t>(c)] = sum + surface;
+      op->diagonal[static_cast<size_t>(c)] = sum;
       if (liquidPhi != nullptr) op->surfaceDirichlet[static_cast<size_t>(c)] = surface;
     }
   });
