@@ -98,38 +98,28 @@ void coarsenFaces(TaskSystem& tasks, const Dims& f, const Dims& c, int a, const 
   std::vector<double>& out = *outValues;
   out.assign(static_cast<size_t>(a == 0 ? (c.nx + 1) * c.ny * c.nz
                                  : a == 1 ? c.nx * (c.ny + 1) * c.nz : c.nx * c.ny * (c.nz + 1)), 0.0);
-  parallelFor(tasks, c.ny * c.nz, kRowGrain, [&](int64_t begin, int64_t end) {
-    for (int64_t row = begin; row < end; ++row) {
-      const int64_t J = row % c.ny, K = row / c.ny;
-      for (int64_t I = 0; I < c.nx; ++I) {
-        const int64_t C[3] = {I, J, K};
-        if (C[a] == 0) continue;
-        double sum = 0.0;
-        for (int64_t e2 = 2 * C[e]; e2 < 2 * C[e] + 2 && e2 < fineE; ++e2)
-          for (int64_t b2 = 2 * C[b]; b2 < 2 * C[b] + 2 && b2 < fineB; ++b2) {
-            int64_t x[3];
-            x[a] = 2 * C[a];
-            x[b] = b2;
-            x[e] = e2;
-            const double shared = in[static_cast<size_t>(f.face(a, x[0], x[1], x[2]))];
-            if (!(shared > 0.0)) continue;
-            double resistance = 1.0 / shared, length = 1.0;
-            bool blocked = false;
-            for (int step = -1; step <= 1 && !blocked; step += 2) {
-              int64_t y[3] = {x[0], x[1], x[2]};
-              y[a] += step;
-              // 2I + 1 is the domain face when the coarse cell has one child along a.
-              if (y[a] >= f.along(a)) continue;
-              const double open = inner[static_cast<size_t>(f.face(a, y[0], y[1], y[2]))];
-              blocked = !(open > 0.0);
-              resistance += 0.5 / open;
-              length += 0.5;
-            }
-            if (!blocked) sum += length / resistance;
-          }
-        out[static_cast<size_t>(c.face(a, I, J, K))] = 0.5 * sum;
+  // Neighbouring faces along a are `stride` apart in every face layout.
+  const int64_t stride = a == 0 ? 1 : a == 1 ? f.nx : f.nx * f.ny;
+  forEachCell(tasks, c, [&](int64_t I, int64_t J, int64_t K) {
+    const int64_t C[3] = {I, J, K};
+    if (C[a] == 0) return;
+    // 2I + 1 is the domain face when the coarse cell has one child along a.
+    const bool behindHigh = 2 * C[a] + 1 < f.along(a);
+    double sum = 0.0;
+    for (int64_t e2 = 2 * C[e]; e2 < 2 * C[e] + 2 && e2 < fineE; ++e2)
+      for (int64_t b2 = 2 * C[b]; b2 < 2 * C[b] + 2 && b2 < fineB; ++b2) {
+        int64_t x[3];
+        x[a] = 2 * C[a];
+        x[b] = b2;
+        x[e] = e2;
+        const int64_t face = f.face(a, x[0], x[1], x[2]);
+        const double shared = in[static_cast<size_t>(face)];
+        const double low = inner[static_cast<size_t>(face - stride)];
+        const double high = behindHigh ? inner[static_cast<size_t>(face + stride)] : 1.0;
+        if (!(shared > 0.0 && low > 0.0 && high > 0.0)) continue;
+        sum += behindHigh ? 2.0 / (0.5 / low + 1.0 / shared + 0.5 / high) : 1.5 / (0.5 / low + 1.0 / shared);
       }
-    }
+    out[static_cast<size_t>(c.face(a, I, J, K))] = 0.5 * sum;
   });
 }
 
