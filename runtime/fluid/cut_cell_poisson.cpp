@@ -57,6 +57,8 @@ Status buildCutCellPoisson(TaskSystem& tasks, const MacGrid& grid, const FaceFra
     const Eigen::Vector3i d = grid.faceDims(a);
     std::vector<double>& c = op->coupling[a];
     c.assign(grid.velocity[a].size(), 0.0);
+    if (liquidPhi != nullptr) op->openFraction[a].assign(grid.velocity[a].size(), 0.0);
+    else op->openFraction[a].clear();
     // Interior faces only: index 1 .. cells-1 along the axis.
     parallelFor(tasks, static_cast<int64_t>(d.z()) * d.y(), 16, [&](int64_t begin, int64_t end) {
       for (int64_t row = begin; row < end; ++row) {
@@ -64,7 +66,10 @@ Status buildCutCellPoisson(TaskSystem& tasks, const MacGrid& grid, const FaceFra
         for (int i = 0; i < d.x(); ++i) {
           const int along = a == 0 ? i : a == 1 ? j : k;
           if (along == 0 || along == d[a] - 1) continue;
+          const size_t face = grid.faceIndex(a, i, j, k);
+          const double open = effectiveOpenFraction(grid, fractions, a, i, j, k);
           if (liquidPhi != nullptr) {
+            op->openFraction[a][face] = open;
             // Only liquid-liquid faces couple; a liquid-air face is a diagonal term below.
             Eigen::Vector3i low(i, j, k);
             low[a] -= 1;
@@ -72,15 +77,22 @@ Status buildCutCellPoisson(TaskSystem& tasks, const MacGrid& grid, const FaceFra
                 !isLiquid(liquidPhi[grid.cellIndex(low.x(), low.y(), low.z())]))
               continue;
           }
-          c[grid.faceIndex(a, i, j, k)] = effectiveOpenFraction(grid, fractions, a, i, j, k);
+          c[face] = open;
         }
       }
     });
   }
   const int64_t cells = grid.cellCount();
   op->diagonal.assign(static_cast<size_t>(cells), 0.0);
-  if (liquidPhi != nullptr) op->air.assign(static_cast<size_t>(cells), 0);
-  else op->air.clear();
+  if (liquidPhi != nullptr) {
+    op->air.assign(static_cast<size_t>(cells), 0);
+    op->liquidPhi.assign(liquidPhi, liquidPhi + cells);
+    op->surfaceDirichlet.assign(static_cast<size_t>(cells), 0.0);
+  } else {
+    op->air.clear();
+    op->liquidPhi.clear();
+    op->surfaceDirichlet.clear();
+  }
   parallelFor(tasks, cells, kCellGrain, [&](int64_t begin, int64_t end) {
     for (int64_t c = begin; c < end; ++c) {
       const int i = static_cast<int>(c % g.nx), j = static_cast<int>((c / g.nx) % g.ny),
@@ -94,19 +106,22 @@ Status buildCutCellPoisson(TaskSystem& tasks, const MacGrid& grid, const FaceFra
         op->air[static_cast<size_t>(c)] = open ? 1 : 0;
         continue;
       }
-      double sum = 0.0;
+      double sum = 0.0, surface = 0.0;
       forEachFace(i, j, k, [&](int a, bool, int fi, int fj, int fk, int ni, int nj, int nk) {
         const double open = effectiveOpenFraction(grid, fractions, a, fi, fj, fk);
         if (liquidPhi != nullptr && open > 0.0 && inside(g, ni, nj, nk)) {
           const double phiNb = liquidPhi[grid.cellIndex(ni, nj, nk)];
           if (!isLiquid(phiNb)) {
-            sum += open / freeSurfaceTheta(liquidPhi[c], phiNb);
+            const double term = open / freeSurfaceTheta(liquidPhi[c], phiNb);
+            sum += term;  // summed in face order as ever, so the fine operator is bitwise unchanged
+            surface += term;
             return;
           }
         }
         sum += open;
       });
       op->diagonal[static_cast<size_t>(c)] = sum;
+      if (liquidPhi != nullptr) op->surfaceDirichlet[static_cast<size_t>(c)] = surface;
     }
   });
 

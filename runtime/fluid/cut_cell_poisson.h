@@ -64,6 +64,14 @@ struct CutCellPoisson : PoissonCoefficients<double> {
   // not wholly inside a solid. The voxel-label multigrid baseline makes coarse cells over air
   // Dirichlet (multigrid_coarsening.h); the operator itself does not need it.
   std::vector<uint8_t> air;
+  // With a free surface only (else empty), so that the multigrid's coarse levels can place the
+  // surface with the same ghost-fluid rule at their own spacing (multigrid_coarsening.h)
+  // instead of summing the fine levels' terms, which puts it at the wrong depth:
+  // per cell the level set, per face the open fraction a coupling would have without the free
+  // surface (interior faces; the coupling's units), per cell the free-surface part of the diagonal.
+  std::vector<double> liquidPhi;
+  std::vector<double> openFraction[3];
+  std::vector<double> surfaceDirichlet;
 
   bool isFluid(size_t cell) const { return region[cell] >= 0; }
 };

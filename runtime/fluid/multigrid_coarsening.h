@@ -10,14 +10,20 @@
 // R = P^T for a prolongation P that reproduces constants (multigrid_transfer.h), so a coarse
 // right-hand side is (in the interior) the sum of its 8 children's, i.e. the coarse cell's
 // integrated source divided by h = (2h) / 2. The consistent finite-volume operator at spacing
-// 2h in those units is 2 sum_F A_F (p_C - p_NB) with A_F the average of the 4 fine fractions
-// under coarse face F, so
-//     coarse coupling = (sum of the 4 fine couplings under the coarse face) / 2,
+// 2h in those units is 2 sum_F A_F (p_C - p_NB) with A_F the mean open fraction of the 4 fine
+// columns under coarse face F, so
+//     coarse coupling = (sum over the 4 fine columns of their open fraction) / 2,
 //     coarse Dirichlet part = (sum of the children's Dirichlet parts) / 2,
-// the Dirichlet part of a cell being its diagonal minus the couplings of its faces (open domain
-// sides today, liquid-air faces A_f / theta once the free surface adds them). The coarse
-// operator is the fine one at 2h with averaged fractions, i.e. half the Galerkin product of
-// piecewise-constant transfers, whose factor 2 overshoot is the known defect of that product.
+// a column's open fraction being that of the fine face under F in series with half of each
+// fine face behind it inside the two coarse cells (so a thin solid inside a coarse cell closes
+// the column; multigrid_coarsening.cpp), and the Dirichlet part of a cell its diagonal minus the
+// couplings of its faces (open domain sides). A column of three equal fractions keeps that
+// fraction, so smooth geometry coarsens as by plain averaging. The coarse operator is the fine
+// one at 2h with these fractions, i.e. about half the Galerkin product of piecewise-constant
+// transfers, whose factor 2 overshoot is the known defect of that product.
+// The free surface is the exception: its Dirichlet part is not summed but placed again by the
+// fine level's ghost-fluid rule at the coarse spacing, from the children's mean level set
+// (multigrid_coarsening.cpp says why).
 //
 // Voxel coarsening (McAdams et al. 2010, the baseline): a coarse cell is fluid when any child is,
 // every coupling between two coarse fluid cells is that of a fully open face (2 in the units

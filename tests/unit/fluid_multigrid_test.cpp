@@ -63,18 +63,26 @@ TEST(FluidMultigrid, CoarseLevelsOfAnOpenBoxAreTheVoxelOperatorAtTwiceTheSpacing
   EXPECT_EQ(cut.fluidCellCount, 18);
 }
 
-// A half-covered fine face layer must give half-strength coarse couplings in the cut-cell
-// hierarchy and full ones in the voxel hierarchy: the difference the thesis is about.
-TEST(FluidMultigrid, CutCellCoarseCouplingsAverageTheFineFractions) {
-  auto tasks = TaskSystem::create(TaskHooks{}, 1);
+// A closed 4^3 box of unit size, every face open: the coarse face (1, 0, 0) has the fine
+// u-faces x = 2h, (j, k) in {0, 1}^2 under it and x = h, 3h behind it.
+void makeClosedBox4(MacGrid* grid, FaceFractionField* fractions) {
   MacGridSpec spec;
   spec.h = 0.25;
   spec.nx = spec.ny = spec.nz = 4;
+  ASSERT_EQ(initMacGrid(spec, std::array<DomainSide, 6>{}, grid), Status::Ok);
+  ASSERT_EQ(initFaceFractionField(spec, fractions), Status::Ok);
+}
+
+// A half-covered fine face layer must give weakened coarse couplings in the cut-cell hierarchy
+// and full ones in the voxel hierarchy: the difference the thesis is about. Each fine column
+// under the coarse face is the covered face in series with the open half faces behind it
+// (multigrid_coarsening.h): 2 A / (1 + A), which is A only for A = 0 or 1.
+TEST(FluidMultigrid, CutCellCoarseCouplingsFollowTheFineFractions) {
+  auto tasks = TaskSystem::create(TaskHooks{}, 1);
   const std::array<DomainSide, 6> closed{};
   MacGrid grid;
   FaceFractionField fractions;
-  ASSERT_EQ(initMacGrid(spec, closed, &grid), Status::Ok);
-  ASSERT_EQ(initFaceFractionField(spec, &fractions), Status::Ok);
+  makeClosedBox4(&grid, &fractions);
   // The u-faces at x = 2h: fractions 0.1, 0.3, 0.5, 0.7 under coarse face (1, 0, 0).
   const double open[4] = {0.1, 0.3, 0.5, 0.7};
   for (int k = 0; k < 2; ++k)
@@ -84,11 +92,31 @@ TEST(FluidMultigrid, CutCellCoarseCouplingsAverageTheFineFractions) {
   ASSERT_EQ(coarsenCutCell(*tasks, fine, &cut), Status::Ok);
   ASSERT_EQ(coarsenVoxel(*tasks, fine, closed, &voxel), Status::Ok);
   const size_t face = 1;  // coarse u-face (1, 0, 0) in a 3 x 2 x 2 face array
-  EXPECT_DOUBLE_EQ(cut.coupling[0][face], 0.5 * (0.1 + 0.3 + 0.5 + 0.7));
+  double columns = 0.0;
+  for (double a : open) columns += 2.0 * a / (1.0 + a);
+  EXPECT_DOUBLE_EQ(cut.coupling[0][face], 0.5 * columns);
   EXPECT_DOUBLE_EQ(voxel.coupling[0][face], 2.0);
   EXPECT_DOUBLE_EQ(cut.coupling[0][face + 6], 2.0);  // (1, 0, 1): fully open fine faces
   EXPECT_EQ(cut.regionFloating, std::vector<uint8_t>{1});
   EXPECT_DOUBLE_EQ(dirichletPart(cut, 0), 0.0);
+}
+
+// A solid layer inside the coarse cells (fine u-faces at x = h, behind the shared coarse face
+// at x = 2h) closes the coarse coupling, though every fine face under the coarse face is open:
+// averaging those alone would couple both sides of a thin plate on the coarse levels.
+TEST(FluidMultigrid, CutCellCoarseCouplingsCloseBehindAThinSolid) {
+  auto tasks = TaskSystem::create(TaskHooks{}, 1);
+  MacGrid grid;
+  FaceFractionField fractions;
+  makeClosedBox4(&grid, &fractions);
+  for (int k = 0; k < 2; ++k)
+    for (int j = 0; j < 2; ++j) fractions.open[0][grid.faceIndex(0, 1, j, k)] = 0.0;
+  CutCellPoisson fine, cut;
+  ASSERT_EQ(buildCutCellPoisson(*tasks, grid, fractions, &fine), Status::Ok);
+  ASSERT_EQ(coarsenCutCell(*tasks, fine, &cut), Status::Ok);
+  const size_t face = 1;  // coarse u-face (1, 0, 0) in a 3 x 2 x 2 face array
+  EXPECT_DOUBLE_EQ(cut.coupling[0][face], 0.0);
+  EXPECT_DOUBLE_EQ(cut.coupling[0][face + 6], 2.0);  // (1, 0, 1): nothing behind it
 }
 
 struct SymmetryCase {
@@ -210,6 +238,20 @@ TEST(FluidMultigrid, IterationCountGrowsAtMost30PercentPerRefinementPastSphere) 
   const int fine = iterationsTo1e6(*tasks, kind, 64, PressureSolver::CutCellMgpcg);
   std::printf("    %d iterations at 32^3, %d at 64^3\n", coarse, fine);
   EXPECT_LE(fine, 1.3 * coarse);
+}
+
+// The liquid tank (plate, sphere through the surface, free surface) converges like the smoke
+// scene. Before the coarse free surface was placed at each level's spacing and coarse
+// couplings took the fine faces inside the coarse cells in series (multigrid_coarsening.h),
+// both tanks took 11 iterations at 64^3, against 7 past the sphere. CG and V-cycle reduce in
+// fixed chunks, so the count is the same on 1, 2, 3 or 8 workers (checked).
+TEST(FluidMultigrid, LiquidTankConvergesLikeTheSmokeScene) {
+  auto tasks = TaskSystem::create(TaskHooks{}, 2);
+  const int liquid = iterationsTo1e6(*tasks, PressureSceneKind::LiquidTank, 64, PressureSolver::CutCellMgpcg);
+  const int tank = iterationsTo1e6(*tasks, PressureSceneKind::TankPlateSphere, 64, PressureSolver::CutCellMgpcg);
+  std::printf("    64^3: liquid tank %d iterations, plate tank %d\n", liquid, tank);
+  EXPECT_LE(liquid, 7);
+  EXPECT_LE(tank, 8);
 }
 
 // Without boundary smoothing the cut-cell V-cycle loses its resolution independence (sliver
