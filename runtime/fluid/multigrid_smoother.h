@@ -10,7 +10,9 @@
 // Damped Jacobi: x += w D^-1 (b - A x), symmetric by itself.
 //
 // Measured (BM_PressureSolve, cutcell_mgpcg vs cutcell_mgpcg_jacobi, 2 sweeps each plus the
-// Gauss-Seidel boundary sweeps; 2-core machine shared with other builds, medians of 3):
+// Gauss-Seidel boundary sweeps; 2-core machine shared with other builds, medians of 3; the
+// plate figures are from before the series coarse couplings, which took GS to 8/8/11 and
+// Jacobi to 8/9 at 64/128^3):
 //   iterations to 1e-6   sphere 64/128/192^3: GS 7/7/8,  Jacobi 8/8/9
 //                        plate  64/128/192^3: GS 11/12/13, Jacobi 12/12/14
 //   ms                   sphere: GS 130/1407/5555, Jacobi 324/1437/5223
