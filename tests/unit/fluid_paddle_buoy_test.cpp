@@ -132,7 +132,7 @@ LiquidMotion measureLiquid(const FluidActor& fluid) {
 // The default scene with its buoy held still, crossing the water line: faces nearly closed by
 // the ball meet the free surface there. Before the fix the liquid ran away: fastest liquid
 // cell 28.7 m/s and 43 kJ of kinetic energy at 10 s (the tank without the ball, 54 m/s), against
-// the paddle's tip speed of 0.9 m/s; after, about 3 m/s at most and 100 J. Bounds: the paddle
+// the paddle's tip speed of 0.9 m/s; after, 2.7 m/s at most and 95 J. Bounds: the paddle
 // cannot give the tank's 2 t of water more kinetic energy than all of it moving at the tip
 // speed (810 J), and no liquid falls faster than from the domain's top (sqrt(2 g 1.25 m) =
 // 4.95 m/s; splashes are thrown up by the paddle far slower).
