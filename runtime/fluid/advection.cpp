@@ -153,7 +153,13 @@ void advectVelocity(TaskSystem& tasks, MacGrid& grid, double dt, AdvectionScheme
       const Eigen::Vector3d x = grid.faceCentre(a, i, j, k);
       const Eigen::Vector3d ahead = trace(field, x, field.atFace(a, i, j, k, old[f]), -dt);
       const double backAgain = trilinearSample(fwd.data(), d, latticeCoordinate(s, ahead, a));
-      out[f] = std::clamp(fwd[f] + 0.5 * (old[f] - backAgain), work.rangeLo[f], work.rangeHi[f]);
+      // Where the correction leaves the range of the samples the forward step read, the
+      // semi-Lagrangian value is kept (Selle et al.'s own limiter) rather than the correction
+      // clamped to the range: clamped, every such face took the extreme of its stencil, which
+      // near a free surface (extrapolated air velocities in the stencil) pumped energy in step
+      // after step; a stirred tank then ran away after 5 to 8 s (fluid_paddle_buoy_test.cpp).
+      const double corrected = fwd[f] + 0.5 * (old[f] - backAgain);
+      out[f] = corrected >= work.rangeLo[f] && corrected <= work.rangeHi[f] ? corrected : fwd[f];
     });
   }
   for (int a = 0; a < 3; ++a) grid.velocity[a].swap(work.advected[a]);

@@ -7,9 +7,11 @@
 //
 // MacCormack (Selle, Fedkiw, Kim, Liu, Osher 2008): a forward semi-Lagrangian step phi^,
 // a backward one from phi^ (tracing forward in time) phi~, and the corrected
-// phi^ + (phi - phi~) / 2, which cancels the leading error term. The result is clamped to
-// the range of the 8 old samples that the forward step interpolated, so the correction never
-// creates new extrema (the scheme stays stable). Twice the cost, much less dissipation.
+// phi^ + (phi - phi~) / 2, which cancels the leading error term. A scalar is clamped to the
+// range of the 8 old samples that the forward step interpolated, so the correction never
+// creates new extrema (the scheme stays stable); a velocity outside that range keeps the
+// semi-Lagrangian phi^ instead (clamping it fed energy into a stirred liquid, advection.cpp).
+// Twice the cost, much less dissipation.
 //
 // Points traced out of the domain take the boundary's values (clamped sampling).
 //

@@ -17,6 +17,18 @@ namespace vp {
 // m/s; far above anything a game scene's fluid reaches, far below what a blown-up one does.
 constexpr double kMaxFluidSpeed = 1e3;
 
+// The projection sets the flux A_f u_f of a face, and its velocity counts with weight A_f in
+// the kinetic energy it minimizes, so on a sliver (a face nearly closed by a solid) the
+// velocity is barely constrained: where a static ball crossed the water line, faces 1.4% open
+// gained g dt a step that their ghost-fluid pressure difference did not take back (-6.2 m/s
+// after 2 s), and advection, which samples a face at full weight, carried that into the flow.
+// The liquid around such a face is tied to its well-open neighbours, so after each projection
+// slivers take their velocity from them (a flux error of at most a quarter of the difference,
+// which the volume correction absorbs). Measured in that tank: at 10%, faces 22% open at the
+// water line still fell in bursts (8.8 m/s at 12.9 s); at 25% no liquid cell passed 2.7 m/s
+// in 15 s.
+constexpr double kMinExtrapolationSourceOpenFraction = 0.25;
+
 Status FluidActor::create(FluidDesc desc, TaskSystem& tasks, std::unique_ptr<FluidActor>* out) {
   VP_TRY(validateFluidDesc(desc));
   std::unique_ptr<FluidActor> actor(new FluidActor(std::move(desc)));
@@ -89,6 +101,7 @@ void FluidActor::extrapolateLiquidVelocity(TaskSystem& tasks) {
   // Advection traces at most cflNumber cells (plus the interpolation stencil) from any
   // liquid face within a sub-step.
   settings.layers = static_cast<int>(std::ceil(desc_.solver.cflNumber)) + 2;
+  settings.minSourceOpenFraction = kMinExtrapolationSourceOpenFraction;
   if (Status s = extrapolateVelocity(tasks, grid_, fractions_, phi_.data(), settings, extrapolation_); !ok(s)) {
     log(LogLevel::Error, "fluid '%s': velocity extrapolation failed: %s", desc_.name.c_str(), lastError());
     return;

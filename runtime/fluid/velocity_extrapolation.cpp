@@ -46,13 +46,14 @@ Status extrapolateVelocity(TaskSystem& tasks, MacGrid& grid, const FaceFractionF
           mark[f] = kExtrapolationFixed;
           continue;
         }
-        const bool open = effectiveOpenFraction(grid, fractions, a, i, j, k) > 0.0;
+        const double openFraction = effectiveOpenFraction(grid, fractions, a, i, j, k);
+        const bool open = openFraction > 0.0;
         Eigen::Vector3i low(i, j, k);
         low[a] -= 1;
         const int along = low[a] + 1;
         const bool liquid = (along > 0 && isLiquid(liquidPhi[grid.cellIndex(low.x(), low.y(), low.z())])) ||
                             (along < cellsAlong && isLiquid(liquidPhi[grid.cellIndex(i, j, k)]));
-        if (open && liquid) mark[f] = 0;
+        if (open && liquid && openFraction >= settings.minSourceOpenFraction) mark[f] = 0;
         else if (open || settings.intoClosedFaces) mark[f] = kExtrapolationUnreached;
         else mark[f] = kExtrapolationFixed;
       }

@@ -4,7 +4,7 @@
 //
 // A face is known when it is not a domain Wall face, is open (effectiveOpenFraction > 0) and
 // borders at least one liquid cell (phi < 0, free_surface.h): after a free-surface projection
-// exactly these faces carry a projected velocity. Every other non-Wall face is a target (closed
+// exactly these faces carry a projected velocity (slivers below minSourceOpenFraction excepted). Every other non-Wall face is a target (closed
 // faces only when intoClosedFaces). Breadth-first layers over the face grid of each axis
 // (the breadth-first extrapolation of Bridson, "Fluid Simulation for Computer Graphics"):
 // layer L gives each target face that has a same-axis neighbour (+-x, +-y, +-z)
@@ -36,6 +36,9 @@ namespace vp {
 struct VelocityExtrapolationSettings {
   int layers = 4;                // at least the advection's CFL number + 1
   bool intoClosedFaces = false;  // true: closed faces next to the liquid get liquid velocities too
+  // Open liquid faces less open than this are targets, not known: a sliver's projected
+  // velocity is barely constrained by the solve (fluid_actor.cpp).
+  double minSourceOpenFraction = 0.0;
 };
 
 // Per face after a call: 0 known, 1 .. layers the layer that set it, kExtrapolationUnreached

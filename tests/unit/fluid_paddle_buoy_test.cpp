@@ -27,7 +27,8 @@ ColliderDesc staticBox(const char* name, const Vec3& position, const Vec3& half)
 // The default scene's tank (sample_host/scenes/default.json): a 2 x 2 m liquid domain of
 // 24 x 15 x 24 cells filled to 0.5 m, open at the top, its Bullet walls 5 cm outside the
 // domain, and the paddle turning about the tank's axis. No frame budget: machine-independent.
-std::unique_ptr<World> paddleTank(const Vec3& ballPosition, double ballDensity, ColliderHandle* ball) {
+std::unique_ptr<World> paddleTank(const Vec3& ballPosition, double ballDensity, ColliderHandle* ball,
+                                  BodyType ballType = BodyType::Dynamic) {
   std::unique_ptr<World> world = testutil::unbudgetedWorld();
   if (!world) return nullptr;
   ColliderDesc ground;
@@ -44,7 +45,7 @@ std::unique_ptr<World> paddleTank(const Vec3& ballPosition, double ballDensity, 
   paddle.angularVelocity = Vec3(0, kPaddleSpin, 0);
   ColliderDesc buoy;
   buoy.name = "buoy";
-  buoy.bodyType = BodyType::Dynamic;
+  buoy.bodyType = ballType;
   buoy.shape.type = ShapeType::Sphere;
   buoy.shape.radius = kBallRadius;
   buoy.mass = ballDensity * 4.0 / 3.0 * M_PI * std::pow(kBallRadius, 3);
@@ -104,6 +105,66 @@ TEST(FluidLiquid, FloatingBallReachingThroughTheDomainWallStaysCalm) {
   // Floating: the water line stays on the ball.
   EXPECT_GT(lowest, kFill - kBallRadius);
   EXPECT_LT(highest, kFill + kBallRadius);
+}
+
+
+struct LiquidMotion {
+  double fastestCell = 0.0;    // m/s, cell-centred velocity over liquid cells
+  double kineticEnergy = 0.0;  // J, from the cell-centred velocities of liquid cells
+};
+
+LiquidMotion measureLiquid(const FluidActor& fluid) {
+  const MacGrid& g = fluid.grid();
+  const std::vector<double>& phi = fluid.levelSet();
+  LiquidMotion m;
+  const double cellMass = fluid.desc().density * g.spec.h * g.spec.h * g.spec.h;
+  for (int k = 0; k < g.spec.nz; ++k)
+    for (int j = 0; j < g.spec.ny; ++j)
+      for (int i = 0; i < g.spec.nx; ++i) {
+        if (!(phi[g.cellIndex(i, j, k)] < 0.0)) continue;
+        const Vec3 u = g.cellVelocity(i, j, k);
+        m.fastestCell = std::max(m.fastestCell, u.norm());
+        m.kineticEnergy += 0.5 * cellMass * u.squaredNorm();
+      }
+  return m;
+}
+
+// The default scene with its buoy held still, crossing the water line: faces nearly closed by
+// the ball meet the free surface there. Before the fix the liquid ran away: fastest liquid
+// cell 28.7 m/s and 43 kJ of kinetic energy at 10 s (the tank without the ball, 54 m/s), against
+// the paddle's tip speed of 0.9 m/s; after, 2.7 m/s at most and 95 J. Bounds: the paddle
+// cannot give the tank's 2 t of water more kinetic energy than all of it moving at the tip
+// speed (810 J), and no liquid falls faster than from the domain's top (sqrt(2 g 1.25 m) =
+// 4.95 m/s; splashes are thrown up by the paddle far slower).
+TEST(FluidLiquid, StaticBallAtTheWaterLineKeepsTheStirredTankBounded) {
+  ColliderHandle ball;
+  std::unique_ptr<World> world = paddleTank(Vec3(-1.35, kFill, 0.65), kHalfWaterDensity, &ball, BodyType::Static);
+  ASSERT_TRUE(world);
+  FluidHandle tank;
+  ASSERT_TRUE(world->findFluid("tank", &tank));
+  const FluidActor& fluid = *world->fluid(tank);
+  const double tipSpeed = kPaddleSpin * std::hypot(kPaddleHalf.x(), kPaddleHalf.z());
+  const double waterMass = fluid.desc().density * 2.0 * 2.0 * kFill;
+  const double domainHeight = fluid.grid().spec.ny * fluid.grid().spec.h;
+  const double energyBound = 0.5 * waterMass * tipSpeed * tipSpeed;
+  const double speedBound = std::sqrt(2.0 * 9.81 * domainHeight);
+  double fastest = 0.0, mostEnergy = 0.0;
+  int divergedSteps = 0;
+  for (int s = 1; s <= 600; ++s) {
+    ASSERT_EQ(world->step(1.0 / 60.0), Status::Ok);
+    for (const ActorStats& a : world->lastStats().actors) divergedSteps += a.diverged;
+    const LiquidMotion m = measureLiquid(fluid);
+    fastest = std::max(fastest, m.fastestCell);
+    mostEnergy = std::max(mostEnergy, m.kineticEnergy);
+    if (s % 120 == 0)
+      std::printf("t %4.1f s: fastest liquid cell %.3f m/s, kinetic energy %.1f J\n", s / 60.0, m.fastestCell,
+                  m.kineticEnergy);
+  }
+  std::printf("static ball at the water line: fastest liquid cell %.3f m/s (bound %.2f, paddle tip %.2f m/s), "
+              "most kinetic energy %.1f J (bound %.0f J)\n", fastest, speedBound, tipSpeed, mostEnergy, energyBound);
+  EXPECT_EQ(divergedSteps, 0);
+  EXPECT_LT(fastest, speedBound);
+  EXPECT_LT(mostEnergy, energyBound);
 }
 
 }  // namespace
