@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/log.h"
 
@@ -71,8 +72,10 @@ Status World::createDeformable(DeformableDesc desc, DeformableHandle* out) {
 }
 
 Status World::destroyDeformable(DeformableHandle handle) {
-  if (!deformables_.remove(handle.index1, handle.generation))
+  std::unique_ptr<DeformableBody> body = deformables_.remove(handle.index1, handle.generation);
+  if (!body)
     return fail(Status::InvalidId, "deformable id (%u, %u) is stale or null", handle.index1, handle.generation);
+  deformableExpectedMs_.erase(body.get());
   return Status::Ok;
 }
 
@@ -195,8 +198,9 @@ Status World::step(double dt) {
   // first (fluid pacing, fluid_pacing.h: a fluid not due keeps its time for later and its
   // last loads). Their expected step time (each fluid's smoothed measured cost) is held back
   // from the deformables, which run in slot order, each with an equal share of what is left
-  // of the frame before that reserve when its turn comes; then the due fluids run, each with
-  // an equal share of what is left. Time one actor does not use passes on to the next.
+  // of the frame before that reserve when its turn comes, or more: all of it but the smoothed
+  // step time of the deformables after it, when those are cheap; then the due fluids run, each
+  // with an equal share of what is left. Time one actor does not use passes on to the next.
   std::vector<FluidActor*> dueFluids;
   double reserveMs = 0.0;
   {
@@ -227,8 +231,23 @@ Status World::step(double dt) {
     stats.actors.push_back(a);
   };
   int deformablesLeft = static_cast<int>(deformables_.size());
+  // laterMs[i]: what the deformables after the i-th are expected to need (infinite while one of
+  // them has not been measured: then the shares are equal).
+  std::vector<double> laterMs(deformables_.size() + 1, 0.0);
+  {
+    std::vector<double> expected;
+    deformables_.forEach([&](DeformableHandle, DeformableBody& body) {
+      expected.push_back(deformableExpectedMs_.try_emplace(&body, -1.0).first->second);
+    });
+    for (size_t i = expected.size(); i-- > 0;)
+      laterMs[i] = laterMs[i + 1] + (expected[i] < 0.0 ? std::numeric_limits<double>::infinity()
+                                                        : FluidPacing::kReserveMargin * expected[i]);
+  }
+  size_t deformableIndex = 0;
   deformables_.forEach([&](DeformableHandle h, DeformableBody& body) {
-    const Deadline share = frame.share(1.0 / deformablesLeft--, reserveMs);
+    double& expectedMs = deformableExpectedMs_[&body];
+    const double laterDeformablesMs = laterMs[++deformableIndex];
+    const Deadline share = frame.shareLeaving(1.0 / deformablesLeft--, reserveMs, laterDeformablesMs);
     runActor(ActorKind::Deformable, h.index1, h.generation, share, [&](const Deadline& share, ActorStats* a) {
       DeformableStepInput input;
       input.dt = dt;
@@ -241,6 +260,7 @@ Status World::step(double dt) {
       };
       body.step(input, a);
     });
+    expectedMs = FluidPacing::smoothed(expectedMs, stats.actors.back().totalMs);
   });
 
   std::vector<FluidCollider> fluidColliders;

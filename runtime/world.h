@@ -99,6 +99,8 @@ class World {
     std::vector<FluidColliderLoad> loads;
   };
   std::unordered_map<const FluidActor*, FluidBacklog> fluidBacklog_;
+  // Each deformable's smoothed step time, held back for it from the deformables before it.
+  std::unordered_map<const DeformableBody*, double> deformableExpectedMs_;
   FluidPacing fluidPacing_;
   StepStats stats_;
   std::atomic<bool> stepping_{false};

@@ -27,11 +27,16 @@ double Deadline::elapsedMs() const { return (clock_.seconds() - start_) * 1e3; }
 Deadline Deadline::share(double fraction) const { return share(fraction, 0.0); }
 
 Deadline Deadline::share(double fraction, double reserveMs) const {
+  return shareLeaving(fraction, reserveMs, std::numeric_limits<double>::infinity());
+}
+
+Deadline Deadline::shareLeaving(double fraction, double reserveMs, double laterMs) const {
   Deadline d = *this;
   if (unlimited()) return d;
-  double now = clock_.seconds();
+  const double now = clock_.seconds();
+  const double available = std::max(0.0, end_ - now - std::max(reserveMs, 0.0) * 1e-3);
   d.start_ = now;
-  d.end_ = now + std::max(0.0, end_ - now - std::max(reserveMs, 0.0) * 1e-3) * std::clamp(fraction, 0.0, 1.0);
+  d.end_ = now + std::max(available * std::clamp(fraction, 0.0, 1.0), available - std::max(laterMs, 0.0) * 1e-3);
   return d;
 }
 

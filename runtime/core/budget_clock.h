@@ -30,6 +30,9 @@ class Deadline {
   Deadline share(double fraction) const;
   // The same after holding back `reserveMs` of what remains for work that comes later.
   Deadline share(double fraction, double reserveMs) const;
+  // The larger of share(fraction, reserveMs) and all that remains but reserveMs + laterMs: an
+  // equal share, or more when the work after this one is expected to need less.
+  Deadline shareLeaving(double fraction, double reserveMs, double laterMs) const;
   const Clock& clock() const { return clock_; }
 
  private:

@@ -1,6 +1,7 @@
 // The per-frame budget with an injected clock (deterministic): solvers stop when it is spent,
 // say so, keep the iterate they reached, warm-start, and catch up over the following frames; the budget is
-// shared between actors by the world's policy (each gets an equal share of what is left).
+// shared between actors by the world's policy (each gets an equal share of what is left, or
+// more when the actors after it are expected to need less).
 #include <gtest/gtest.h>
 
 #include "geometry/box_tet_mesh.h"
@@ -159,6 +160,27 @@ TEST(FrameBudget, TwoActorsShareTheBudgetByThePolicy) {
   EXPECT_EQ(early.solve(0).iterations, 5);
   EXPECT_TRUE(early.solve(1).budgetCut);
   EXPECT_GT(early.world->lastStats().actors[2].totalMs, 8.0);
+}
+
+TEST(FrameBudget, ADeformableGetsMoreThanItsEqualShareWhenTheOnesAfterItAreCheap) {
+  // The first bar never converges, the second stops at 5 iterations. From the second frame on
+  // the first leaves the second only 1.25 times its smoothed cost instead of half the budget.
+  BudgetWorld w(10.0, {10000, 5});
+  double secondExpected = -1.0;
+  for (int f = 0; f < 4; ++f) {
+    ASSERT_EQ(w.world->step(1.0 / 60.0), Status::Ok);
+    const auto& actors = w.world->lastStats().actors;
+    EXPECT_TRUE(w.solve(0).budgetCut);
+    EXPECT_FALSE(w.solve(1).budgetCut);
+    if (f == 0) {
+      EXPECT_NEAR(actors[1].totalMs, 5.0, 1.0);  // nothing measured yet: equal shares
+    } else {
+      EXPECT_NEAR(actors[1].totalMs, 10.0 - 1.25 * secondExpected, 0.5) << "frame " << f;
+      EXPECT_GT(actors[1].totalMs, 8.0);
+    }
+    EXPECT_LE(w.world->lastStats().totalMs, 10.0 + 1.0);
+    secondExpected = secondExpected < 0.0 ? actors[2].totalMs : secondExpected + 0.2 * (actors[2].totalMs - secondExpected);
+  }
 }
 
 }  // namespace

@@ -52,6 +52,14 @@ TEST(Deadline, ShareAfterAReserveSplitsWhatRemainsBeyondIt) {
   EXPECT_TRUE(Deadline(fake.clock(), 0.0).share(0.5, 6.0).unlimited());
 }
 
+TEST(Deadline, ShareLeavingGivesMoreWhenWhatComesLaterIsCheap) {
+  FakeClock fake;
+  Deadline d(fake.clock(), 20.0);
+  fake.now += 0.004;  // 16 ms remain, 6 held back: 10 available
+  EXPECT_NEAR(d.shareLeaving(0.5, 6.0, 2.0).remainingMs(), 8.0, 1e-9);  // all but the 2 ms later
+  EXPECT_NEAR(d.shareLeaving(0.5, 6.0, 7.0).remainingMs(), 5.0, 1e-9);  // never below the equal share
+}
+
 TEST(Deadline, SteadyClockByDefault) {
   Deadline d(Clock{}, 1e4);
   EXPECT_FALSE(d.expired());

@@ -177,7 +177,8 @@ typedef struct vpWorldDef {
                                   Sharing: the Bullet step is not budgeted; then the deformables
                                   run in slot order, each with an equal share of what is left
                                   after holding back the expected time of the fluids due this
-                                  step, then those fluids, each with an equal share of what is
+                                  step (or more, when the deformables after it are expected to
+                                  need less), then those fluids, each with an equal share of what is
                                   left; time one does not use passes on to the next. A cut solver keeps its best
                                   iterate, sets budgetCut, and warm-starts next step. Fluid work
                                   that cannot be cut (advection, fractions) is paced instead:
