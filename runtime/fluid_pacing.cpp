@@ -5,15 +5,13 @@
 
 namespace vp {
 
-void FluidPacing::observe(double budgetMs, double otherMs, double fluidStepsMs, int fluidSteps, int fluidCount) {
+void FluidPacing::observe(double budgetMs, double otherMs, double fluidMs) {
   otherMs_ = smoothed(otherMs_, otherMs);
-  if (fluidSteps > 0) fluidStepMs_ = smoothed(fluidStepMs_, fluidStepsMs / fluidSteps);
-  if (budgetMs <= 0.0 || fluidCount == 0 || fluidStepMs_ < 0.0) {
+  if (budgetMs <= 0.0 || fluidMs <= 0.0) {
     interval_ = 1;
     calmFrames_ = 0;
     return;
   }
-  const double fluidMs = fluidCount * fluidStepMs_;
   const double room = std::max(budgetMs - otherMs_, 0.0);
   // Smallest interval that fits with kFill of the room; kMaxInterval when none does.
   int needed = 1;

@@ -8,9 +8,9 @@
 // fluids are staggered so that each frame carries about 1/interval of the fluid work. Semi-Lagrangian advection is
 // stable at any step, and the CFL sub-steps grow with the longer step where the flow is fast.
 //
-// The interval comes from the measured cost of a fluid step (the mean over the fluids that
-// stepped, smoothed over frames) and of everything else in the frame:
-//   interval = smallest k with fluidCount * fluidStepMs / k <= kFill * (budget - otherMs),
+// The interval comes from the measured cost of the fluid steps (each fluid's own step time,
+// smoothed over its steps by the world) and of everything else in the frame:
+//   interval = smallest k with sum of the fluids' step ms / k <= kFill * (budget - otherMs),
 // raised at once when a frame needs it (protecting the budget), lowered only after
 // kCalmFrames consecutive frames would have fitted at the lower interval with room to spare
 // (kRelaxFill), so it does not flip every frame. Capped at kMaxInterval: beyond that the
@@ -49,15 +49,15 @@ class FluidPacing {
     return waitedFrames + 1 >= kMaxInterval || (frame + offset) % static_cast<uint64_t>(interval_) == 0;
   }
   // After a frame: the budget it ran under, the ms spent outside fluid steps that the budget
-  // cannot shrink (the world leaves out the deformables' iterative solves), the total ms of
-  // the fluid steps taken and how many there were, and how many fluids the world has.
-  void observe(double budgetMs, double otherMs, double fluidStepsMs, int fluidSteps, int fluidCount);
+  // cannot shrink (the world leaves out the deformables' iterative solves; smoothed here), and
+  // what one step of every fluid costs (the sum of their smoothed step times; 0 while none
+  // has stepped).
+  void observe(double budgetMs, double otherMs, double fluidMs);
 
  private:
   int interval_ = 1;
   int calmFrames_ = 0;
-  double otherMs_ = -1.0;      // < 0: no frame seen yet
-  double fluidStepMs_ = -1.0;  // < 0: no fluid step seen yet
+  double otherMs_ = -1.0;  // < 0: no frame seen yet
 };
 
 }  // namespace vp

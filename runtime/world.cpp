@@ -201,29 +201,29 @@ Status World::step(double dt) {
   // of the frame before that reserve when its turn comes, or more: all of it but the smoothed
   // step time of the deformables after it, when those are cheap; then the due fluids run, each
   // with an equal share of what is left. Time one actor does not use passes on to the next.
-  std::vector<FluidActor*> dueFluids;
+  int dueFluids = 0;
   double reserveMs = 0.0;
   {
     int ordinal = 0;
     fluids_.forEach([&](FluidHandle, FluidActor& fluid) {
       FluidBacklog& backlog = fluidBacklog_[&fluid];
       backlog.pendingDt += dt;
-      if (fluidPacing_.due(stats.stepIndex, ordinal++, static_cast<int>(fluids_.size()), backlog.waitedFrames)) {
-        dueFluids.push_back(&fluid);
+      backlog.due = fluidPacing_.due(stats.stepIndex, ordinal++, static_cast<int>(fluids_.size()), backlog.waitedFrames);
+      if (backlog.due) {
+        ++dueFluids;
         reserveMs += FluidPacing::kReserveMargin * std::max(backlog.expectedStepMs, 0.0);
       }
     });
   }
-  // Runs one actor's step under its share of the frame and records its stats.
-  auto runActor = [&](ActorKind kind, uint32_t index1, uint32_t generation, const Deadline& share,
-                      const auto& stepActor) {
+  // Runs one actor's step and records its stats.
+  auto runActor = [&](ActorKind kind, uint32_t index1, uint32_t generation, const auto& stepActor) {
     ActorStats a;
     a.kind = kind;
     a.index1 = index1;
     a.generation = generation;
     a.simulatedDt = dt;
     const double start = frame.elapsedMs();
-    stepActor(share, &a);
+    stepActor(&a);
     a.totalMs = frame.elapsedMs() - start;
     if (a.diverged)
       log(LogLevel::Warning, "%s (%u, %u) diverged; %s", kind == ActorKind::Fluid ? "fluid" : "deformable", index1,
@@ -248,7 +248,7 @@ Status World::step(double dt) {
     double& expectedMs = deformableExpectedMs_[&body];
     const double laterDeformablesMs = laterMs[++deformableIndex];
     const Deadline share = frame.shareLeaving(1.0 / deformablesLeft--, reserveMs, laterDeformablesMs);
-    runActor(ActorKind::Deformable, h.index1, h.generation, share, [&](const Deadline& share, ActorStats* a) {
+    runActor(ActorKind::Deformable, h.index1, h.generation, [&](ActorStats* a) {
       DeformableStepInput input;
       input.dt = dt;
       input.gravity = config_.gravity;
@@ -270,10 +270,10 @@ Status World::step(double dt) {
         fluidColliders.push_back(FluidCollider{h.index1, h.generation, c.geometry(), c.bodyType() == BodyType::Dynamic});
     });
   double fluidStepsMs = 0.0;
-  int fluidsLeft = static_cast<int>(dueFluids.size());
+  int fluidsLeft = dueFluids;
   fluids_.forEach([&](FluidHandle h, FluidActor& fluid) {
     FluidBacklog& backlog = fluidBacklog_[&fluid];
-    if (std::find(dueFluids.begin(), dueFluids.end(), &fluid) == dueFluids.end()) {
+    if (!backlog.due) {
       ++backlog.waitedFrames;
       ActorStats deferred;
       deferred.kind = ActorKind::Fluid;
@@ -284,7 +284,7 @@ Status World::step(double dt) {
       return;
     }
     const Deadline share = frame.share(1.0 / fluidsLeft--);
-    runActor(ActorKind::Fluid, h.index1, h.generation, share, [&](const Deadline& share, ActorStats* a) {
+    runActor(ActorKind::Fluid, h.index1, h.generation, [&](ActorStats* a) {
       FluidStepInput input;
       input.dt = backlog.pendingDt;
       input.gravity = config_.gravity;
@@ -309,9 +309,9 @@ Status World::step(double dt) {
   double elasticMs = 0.0;
   for (const ActorStats& a : stats.actors)
     if (a.kind == ActorKind::Deformable) elasticMs += a.phase(Phase::Solve).ms;
-  fluidPacing_.observe(config_.frameBudgetMs, stats.totalMs - fluidStepsMs - elasticMs, fluidStepsMs,
-                       static_cast<int>(dueFluids.size()),
-                       static_cast<int>(fluids_.size()));
+  double everyFluidMs = 0.0;
+  for (const auto& [fluid, backlog] : fluidBacklog_) everyFluidMs += std::max(backlog.expectedStepMs, 0.0);
+  fluidPacing_.observe(config_.frameBudgetMs, stats.totalMs - fluidStepsMs - elasticMs, everyFluidMs);
   stats.fluidInterval = fluidPacing_.interval();
   for (const ActorStats& a : stats.actors)
     for (const PhaseStats& p : a.phases) stats.budgetCut = stats.budgetCut || p.budgetCut;

@@ -95,6 +95,7 @@ class World {
   struct FluidBacklog {
     double pendingDt = 0.0;
     int waitedFrames = 0;
+    bool due = false;  // steps in the frame being run
     double expectedStepMs = -1.0;  // < 0: it has not stepped yet
     std::vector<FluidColliderLoad> loads;
   };

@@ -24,10 +24,8 @@ double Deadline::remainingMs() const {
 
 double Deadline::elapsedMs() const { return (clock_.seconds() - start_) * 1e3; }
 
-Deadline Deadline::share(double fraction) const { return share(fraction, 0.0); }
-
-Deadline Deadline::share(double fraction, double reserveMs) const {
-  return shareLeaving(fraction, reserveMs, std::numeric_limits<double>::infinity());
+Deadline Deadline::share(double fraction) const {
+  return shareLeaving(fraction, 0.0, std::numeric_limits<double>::infinity());
 }
 
 Deadline Deadline::shareLeaving(double fraction, double reserveMs, double laterMs) const {

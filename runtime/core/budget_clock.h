@@ -28,10 +28,9 @@ class Deadline {
   bool unlimited() const { return end_ == std::numeric_limits<double>::infinity(); }
   // A sub-deadline that ends after `fraction` of what remains (for sharing a budget).
   Deadline share(double fraction) const;
-  // The same after holding back `reserveMs` of what remains for work that comes later.
-  Deadline share(double fraction, double reserveMs) const;
-  // The larger of share(fraction, reserveMs) and all that remains but reserveMs + laterMs: an
-  // equal share, or more when the work after this one is expected to need less.
+  // After holding back `reserveMs` of what remains for work that comes later: the larger of
+  // `fraction` of the rest and all of the rest but laterMs (an equal share, or more when the
+  // work after this one is expected to need less).
   Deadline shareLeaving(double fraction, double reserveMs, double laterMs) const;
   const Clock& clock() const { return clock_; }
 

@@ -155,9 +155,8 @@ void FluidActor::advectAndSource(TaskSystem& tasks, double h, double maxDisplace
     advectCellScalars(tasks, grid_, h, solver.advection, scalars, 2, advection_, &openFaces_, solidValues);
   } else {
     // The level set is extended into solids on purpose (level_set_solid_extension.h) and
-    // sampled as it is.
-    // Cells farther from the surface than the sub-step moves it, plus the forward and backward
-    // traces' interpolation stencils, keep their sign, and redistancing rewrites their value.
+    // sampled as it is. Cells farther from the surface than the sub-step moves it, plus the
+    // forward and backward traces' stencils, keep their sign, and redistancing rewrites them.
     std::vector<double>* scalars[1] = {&phi_};
     advectCellScalars(tasks, grid_, h, solver.advection, scalars, 1, advection_, nullptr, nullptr,
                       maxDisplacement + 3.0 * cell);

@@ -10,10 +10,10 @@
 namespace vp {
 namespace {
 
-// Feeds the same frame costs `frames` times.
+// Feeds the same frame costs `frames` times: fluidCount fluids of fluidStepMs each.
 void observeFrames(FluidPacing& pacing, int frames, double budgetMs, double otherMs, double fluidStepMs,
                    int fluidCount) {
-  for (int f = 0; f < frames; ++f) pacing.observe(budgetMs, otherMs, fluidStepMs, 1, fluidCount);
+  for (int f = 0; f < frames; ++f) pacing.observe(budgetMs, otherMs, fluidCount * fluidStepMs);
 }
 
 TEST(FluidPacing, StepsEveryFrameWhenTheFluidsFitOrTheBudgetIsUnlimited) {
@@ -44,26 +44,20 @@ TEST(FluidPacing, RaisesAtOnceAndLowersOnlyAfterCalmFrames) {
   FluidPacing pacing;
   observeFrames(pacing, 1, 16.0, 5.0, 8.0, 2);
   ASSERT_EQ(pacing.interval(), 2);
-  // Costs fall to 3 ms a step: 6 ms every frame fits in 0.7 * 11 = 7.7 ms. The averages need a
-  // few frames to follow, and then kCalmFrames more before the interval comes down.
+  // Costs fall to 3 ms a step: 6 ms every frame fits in 0.7 * 11 = 7.7 ms, and after
+  // kCalmFrames such frames the interval comes down.
   int lowered = -1;
   for (int f = 0; f < 200 && lowered < 0; ++f) {
-    pacing.observe(16.0, 5.0, 3.0, 1, 2);
+    observeFrames(pacing, 1, 16.0, 5.0, 3.0, 2);
     if (pacing.interval() == 1) lowered = f;
   }
-  EXPECT_GE(lowered, FluidPacing::kCalmFrames - 1);
-  EXPECT_LT(lowered, FluidPacing::kCalmFrames + 20);
-  // A single expensive frame raises it again immediately once the average crosses.
+  EXPECT_EQ(lowered, FluidPacing::kCalmFrames - 1);
+  // A frame whose fluids cost more than fits raises it on that frame.
   FluidPacing spike;
   observeFrames(spike, 50, 16.0, 5.0, 3.0, 2);
   ASSERT_EQ(spike.interval(), 1);
-  int raised = -1;
-  for (int f = 0; f < 10 && raised < 0; ++f) {
-    spike.observe(16.0, 5.0, 12.0, 1, 2);
-    if (spike.interval() > 1) raised = f;
-  }
-  EXPECT_GE(raised, 0);
-  EXPECT_LE(raised, 3);  // the smoothed cost passes 4.7 ms within a few frames
+  observeFrames(spike, 1, 16.0, 5.0, 12.0, 2);
+  EXPECT_EQ(spike.interval(), 3);  // 24 ms of fluids: 24 / 3 = 8 <= 0.85 * 11
 }
 
 TEST(FluidPacing, StaggersFluidsSoEachFrameCarriesItsShare) {

@@ -43,21 +43,14 @@ TEST(Deadline, ShareSplitsWhatRemains) {
   EXPECT_FALSE(d.expired());
 }
 
-TEST(Deadline, ShareAfterAReserveSplitsWhatRemainsBeyondIt) {
-  FakeClock fake;
-  Deadline d(fake.clock(), 20.0);
-  fake.now += 0.004;  // 16 ms remain, 6 held back: half of 10
-  EXPECT_NEAR(d.share(0.5, 6.0).remainingMs(), 5.0, 1e-9);
-  EXPECT_NEAR(d.share(0.5, 30.0).remainingMs(), 0.0, 1e-12);  // a reserve beyond the budget leaves nothing
-  EXPECT_TRUE(Deadline(fake.clock(), 0.0).share(0.5, 6.0).unlimited());
-}
-
 TEST(Deadline, ShareLeavingGivesMoreWhenWhatComesLaterIsCheap) {
   FakeClock fake;
   Deadline d(fake.clock(), 20.0);
   fake.now += 0.004;  // 16 ms remain, 6 held back: 10 available
   EXPECT_NEAR(d.shareLeaving(0.5, 6.0, 2.0).remainingMs(), 8.0, 1e-9);  // all but the 2 ms later
   EXPECT_NEAR(d.shareLeaving(0.5, 6.0, 7.0).remainingMs(), 5.0, 1e-9);  // never below the equal share
+  EXPECT_NEAR(d.shareLeaving(0.5, 30.0, 0.0).remainingMs(), 0.0, 1e-12);  // a reserve beyond the budget leaves nothing
+  EXPECT_TRUE(Deadline(fake.clock(), 0.0).shareLeaving(0.5, 6.0, 2.0).unlimited());
 }
 
 TEST(Deadline, SteadyClockByDefault) {
