@@ -29,8 +29,17 @@ struct ActorStats {
   double totalMs = 0.0;
   bool diverged = false;  // the step blew up and the actor was restored to its previous state
   // Seconds this step advanced the actor: the frame's dt, 0 for a fluid the budget's pacing
-  // deferred, several frames' dt for one that catches up (fluid_pacing.h).
+  // deferred, several frames' dt for one that catches up (frame_plan.h).
   double simulatedDt = 0.0;
+  // Frames per step: a deformable steps every interval-th frame with interval * dt; a fluid's
+  // last completed step spanned interval frames.
+  int interval = 1;
+  bool completedStep = false;  // a step of this actor completed in this frame
+  double progress = 0.0;       // fluid: fraction of its current step done at the frame's end; 1 when it completed
+  int slices = 0;              // slices of this actor's work run in this frame
+  double residual = 0.0;       // final relative residual of its iterative solve in this frame
+  int priority = 0;            // its desc's priority: higher is served first when the budget is short
+  bool floorMissed = false;    // deformable: the budget stopped its solve above its targetResidual
   std::array<PhaseStats, kPhaseCount> phases{};
 
   PhaseStats& phase(Phase p) { return phases[static_cast<int>(p)]; }
@@ -45,7 +54,12 @@ struct StepStats {
   bool budgetCut = false;
   int colliderCount = 0;
   int rigidSubsteps = 0;
-  int fluidInterval = 1;  // frames per fluid step chosen by the pacing for the next frames
+  int fluidInterval = 1;  // the largest interval among the fluids (ActorStats::interval)
+  double overBudgetMs = 0.0;  // how far totalMs went past budgetMs; 0 when within it or unlimited
+  // The actors' accuracy floors and minimum rates did not fit the budget: some actor ran at its
+  // interval cap.
+  bool budgetInfeasible = false;
+  double maxSliceMs = 0.0;  // the longest single slice of work in this frame
   std::vector<ActorStats> actors;  // [0] is the rigid pseudo-actor
 };
 

@@ -75,7 +75,6 @@ Status World::destroyDeformable(DeformableHandle handle) {
   std::unique_ptr<DeformableBody> body = deformables_.remove(handle.index1, handle.generation);
   if (!body)
     return fail(Status::InvalidId, "deformable id (%u, %u) is stale or null", handle.index1, handle.generation);
-  deformableExpectedMs_.erase(body.get());
   return Status::Ok;
 }
 
@@ -89,7 +88,6 @@ Status World::createFluid(FluidDesc desc, FluidHandle* out) {
 Status World::destroyFluid(FluidHandle handle) {
   std::unique_ptr<FluidActor> fluid = fluids_.remove(handle.index1, handle.generation);
   if (!fluid) return fail(Status::InvalidId, "fluid id (%u, %u) is stale or null", handle.index1, handle.generation);
-  fluidBacklog_.erase(fluid.get());
   return Status::Ok;
 }
 
@@ -144,180 +142,250 @@ Status World::step(double dt) {
   if (!(dt > 0.0 && dt <= 1.0)) return fail(Status::InvalidArgument, "dt = %g: must be in (0, 1] seconds", dt);
   stepping_.store(true, std::memory_order_release);
   const Deadline frame(config_.clock, config_.frameBudgetMs);
-
   StepStats stats;
   stats.stepIndex = stats_.stepIndex + 1;
   stats.dt = dt;
   stats.budgetMs = config_.frameBudgetMs;
   stats.colliderCount = static_cast<int>(colliders_.size());
+  stepRigidBodies(dt, frame, &stats);
+  const bool floorsHeld = stepDeformables(dt, frame, &stats);
+  stepFluids(dt, frame, floorsHeld, &stats);
+  finishStats(frame, &stats);
+  stats_ = std::move(stats);
+  stepping_.store(false, std::memory_order_release);
+  return Status::Ok;
+}
 
-  // Phase 1: rigid bodies. Bullet's step is not budgeted (it is cheap and must stay
-  // consistent); the budget is spent by the iterative solvers of the actors that follow.
-  ActorStats rigid;
-  rigid.kind = ActorKind::Rigid;
-  rigid.simulatedDt = dt;
-  {
-    const double start = frame.elapsedMs();
-    std::vector<Collider*> kinematics, loaded;
-    colliders_.forEach([&](ColliderHandle, Collider& c) {
-      if (c.bodyType() == BodyType::Kinematic) kinematics.push_back(&c);
-    });
-    // Loads of several fluids on one body add up; a body destroyed since is skipped.
-    // In the fluids' slot order, so the sums do not depend on the backlog map's order.
-    auto forEachFluidLoad = [&](const auto& visit) {
-      fluids_.forEach([&](FluidHandle, const FluidActor& fluid) {
-        if (const auto it = fluidBacklog_.find(&fluid); it != fluidBacklog_.end())
-          for (const FluidColliderLoad& l : it->second.loads)
-            if (Collider* c = colliders_.get(l.index1, l.generation); c != nullptr) visit(*c, l.load);
-      });
-    };
-    forEachFluidLoad([&](Collider& c, const PressureLoad&) {
-      c.clearFluidLoad();
-      loaded.push_back(&c);
-    });
-    std::sort(loaded.begin(), loaded.end());
-    loaded.erase(std::unique(loaded.begin(), loaded.end()), loaded.end());
-    forEachFluidLoad([](Collider& c, const PressureLoad& l) { c.addFluidLoad(l.force, l.torque, l.addedMass); });
-    colliders_.forEach([](ColliderHandle, Collider& c) { c.trackVelocity(); });
-    for (Collider* c : loaded) c->prepareFluidLoad(dt, config_.gravity);
-    stats.rigidSubsteps = collision_.step(dt, config_.rigidMaxSubstep, kinematics.data(),
-                                          static_cast<int>(kinematics.size()), loaded.data(),
-                                          static_cast<int>(loaded.size()));
-    for (Collider* c : loaded) c->clearFluidLoad();
-    rigid.phase(Phase::Rigid).ms = frame.elapsedMs() - start;
-    rigid.totalMs = rigid.phase(Phase::Rigid).ms;
+namespace {
+
+// A deformable step's slices are its non-iterative phases and its solver's iterations.
+double longestDeformableSliceMs(const ActorStats& a) {
+  double longest = 0.0;
+  for (int p = 0; p < kPhaseCount; ++p) {
+    const PhaseStats& phase = a.phases[p];
+    const bool iterative = static_cast<Phase>(p) == Phase::Solve;
+    longest = std::max(longest, iterative && phase.iterations > 0 ? phase.ms / phase.iterations : phase.ms);
   }
-  stats.actors.push_back(rigid);
+  return longest;
+}
+
+}  // namespace
+
+ActorStats World::actorStats(ActorKind kind, uint32_t index1, uint32_t generation, int priority, double dt) const {
+  ActorStats a;
+  a.kind = kind;
+  a.index1 = index1;
+  a.generation = generation;
+  a.priority = priority;
+  a.simulatedDt = dt;
+  return a;
+}
+
+// Bullet's step is not budgeted (it is cheap and must stay consistent); its cost is what the
+// plan measures before sharing out the rest of the frame.
+void World::stepRigidBodies(double dt, const Deadline& frame, StepStats* stats) {
+  ActorStats rigid = actorStats(ActorKind::Rigid, 0, 0, 0, dt);
+  const double start = frame.elapsedMs();
+  std::vector<Collider*> kinematics, loaded;
+  colliders_.forEach([&](ColliderHandle, Collider& c) {
+    if (c.bodyType() == BodyType::Kinematic) kinematics.push_back(&c);
+  });
+  // The loads of each fluid's last completed step; those of several fluids on one body add
+  // up, in the fluids' slot order; a body destroyed since is skipped.
+  auto forEachFluidLoad = [&](const auto& visit) {
+    fluids_.forEach([&](FluidHandle, const FluidActor& fluid) {
+      for (const FluidColliderLoad& l : fluid.loads())
+        if (Collider* c = colliders_.get(l.index1, l.generation); c != nullptr) visit(*c, l.load);
+    });
+  };
+  forEachFluidLoad([&](Collider& c, const PressureLoad&) {
+    c.clearFluidLoad();
+    loaded.push_back(&c);
+  });
+  std::sort(loaded.begin(), loaded.end());
+  loaded.erase(std::unique(loaded.begin(), loaded.end()), loaded.end());
+  forEachFluidLoad([](Collider& c, const PressureLoad& l) { c.addFluidLoad(l.force, l.torque, l.addedMass); });
+  colliders_.forEach([](ColliderHandle, Collider& c) { c.trackVelocity(); });
+  for (Collider* c : loaded) c->prepareFluidLoad(dt, config_.gravity);
+  stats->rigidSubsteps = collision_.step(dt, config_.rigidMaxSubstep, kinematics.data(),
+                                         static_cast<int>(kinematics.size()), loaded.data(),
+                                         static_cast<int>(loaded.size()));
+  for (Collider* c : loaded) c->clearFluidLoad();
   colliders_.forEach([](ColliderHandle, Collider& c) { c.syncGeometry(); });
+  rigid.phase(Phase::Rigid).ms = frame.elapsedMs() - start;
+  rigid.totalMs = rigid.phase(Phase::Rigid).ms;
+  rigid.slices = 1;
+  rigid.completedStep = true;
+  stats->maxSliceMs = std::max(stats->maxSliceMs, rigid.totalMs);
+  stats->actors.push_back(rigid);
+}
+
+double World::fluidsExpectedMs(int priority) {
+  double ms = 0.0;
+  fluids_.forEach([&](FluidHandle, FluidActor& fluid) {
+    if (fluid.desc().priority >= priority) ms += FramePlan::kMargin * std::max(fluid.schedule().expectedMs, 0.0);
+  });
+  return ms;
+}
+
+bool World::stepDeformables(double dt, const Deadline& frame, StepStats* stats) {
   std::vector<ContactCollider> contactColliders;
   colliders_.forEach([&](ColliderHandle, const Collider& c) {
     if (c.geometry()) contactColliders.push_back(ContactCollider{c.geometry(), c.desc().friction});
   });
-
-  // Phase 3: deformables, then fluids. Budget policy: the fluids due this frame are decided
-  // first (fluid pacing, fluid_pacing.h: a fluid not due keeps its time for later and its
-  // last loads). Their expected step time (each fluid's smoothed measured cost) is held back
-  // from the deformables, which run in slot order, each with an equal share of what is left
-  // of the frame before that reserve when its turn comes, or more: all of it but the smoothed
-  // step time of the deformables after it, when those are cheap; then the due fluids run, each
-  // with an equal share of what is left. Time one actor does not use passes on to the next.
-  int dueFluids = 0;
-  double reserveMs = 0.0;
-  {
-    int ordinal = 0;
-    fluids_.forEach([&](FluidHandle, FluidActor& fluid) {
-      FluidBacklog& backlog = fluidBacklog_[&fluid];
-      backlog.pendingDt += dt;
-      backlog.due = fluidPacing_.due(stats.stepIndex, ordinal++, static_cast<int>(fluids_.size()), backlog.waitedFrames);
-      if (backlog.due) {
-        ++dueFluids;
-        reserveMs += FluidPacing::kReserveMargin * std::max(backlog.expectedStepMs, 0.0);
-      }
-    });
+  std::vector<DeformableHandle> handles = deformableHandles();
+  std::vector<FramePlan::Deformable> planned;
+  std::vector<int> priorities;
+  std::vector<bool> due;
+  for (size_t i = 0; i < handles.size(); ++i) {
+    DeformableBody& body = *deformable(handles[i]);
+    ActorSchedule& s = body.schedule();
+    s.pendingDt += dt;
+    if (frame.unlimited()) s.interval = 1;  // no budget: nothing lowers a rate
+    planned.push_back(FramePlan::Deformable{body.desc().priority, &s});
+    priorities.push_back(body.desc().priority);
+    due.push_back(FramePlan::due(stats->stepIndex, static_cast<int>(i), static_cast<int>(handles.size()), s));
   }
-  // Runs one actor's step and records its stats.
-  auto runActor = [&](ActorKind kind, uint32_t index1, uint32_t generation, const auto& stepActor) {
-    ActorStats a;
-    a.kind = kind;
-    a.index1 = index1;
-    a.generation = generation;
-    a.simulatedDt = dt;
+  const std::vector<int> order = FramePlan::byPriority(priorities);
+  // laterFloorsMs[n]: what the due deformables served after the n-th are expected to need
+  // (infinite while one of them has not been measured: then the shares are equal).
+  std::vector<double> laterFloorsMs(order.size() + 1, 0.0);
+  int dueCount = 0;
+  for (size_t n = order.size(); n-- > 0;) {
+    const ActorSchedule& s = *planned[order[n]].schedule;
+    laterFloorsMs[n] = laterFloorsMs[n + 1];
+    if (!due[order[n]]) continue;
+    ++dueCount;
+    laterFloorsMs[n] += s.expectedMs < 0.0 ? std::numeric_limits<double>::infinity() : FramePlan::kMargin * s.expectedMs;
+  }
+  std::vector<ActorStats> served(handles.size());
+  std::vector<bool> missed(handles.size(), false);
+  for (size_t n = 0; n < order.size(); ++n) {
+    const int i = order[n];
+    DeformableBody& body = *deformable(handles[i]);
+    ActorSchedule& s = body.schedule();
+    ActorStats& a = served[i] = actorStats(ActorKind::Deformable, handles[i].index1, handles[i].generation,
+                                           body.desc().priority, 0.0);
+    a.interval = s.interval;
+    if (!due[i]) {
+      ++s.waitedFrames;
+      continue;
+    }
+    const FramePlan::DeformableDeadlines deadlines = FramePlan::deformableDeadlines(
+        frame, s, laterFloorsMs[n + 1], fluidsExpectedMs(body.desc().priority), dueCount--);
+    DeformableStepInput input;
+    input.dt = s.pendingDt;
+    input.gravity = config_.gravity;
+    input.deadline = deadlines.share;
+    input.floorDeadline = deadlines.floor;
+    input.tasks = tasks_.get();
+    input.colliders = contactColliders;
+    input.collider = [this](uint32_t index1, uint32_t generation) -> const Collider* {
+      return colliders_.get(index1, generation);
+    };
     const double start = frame.elapsedMs();
-    stepActor(&a);
+    body.step(input, &a);
     a.totalMs = frame.elapsedMs() - start;
-    if (a.diverged)
-      log(LogLevel::Warning, "%s (%u, %u) diverged; %s", kind == ActorKind::Fluid ? "fluid" : "deformable", index1,
-          generation, kind == ActorKind::Fluid ? "its flow was reset to rest" : "restored its previous state");
-    stats.actors.push_back(a);
-  };
-  int deformablesLeft = static_cast<int>(deformables_.size());
-  // laterMs[i]: what the deformables after the i-th are expected to need (infinite while one of
-  // them has not been measured: then the shares are equal).
-  std::vector<double> laterMs(deformables_.size() + 1, 0.0);
-  {
-    std::vector<double> expected;
-    deformables_.forEach([&](DeformableHandle, DeformableBody& body) {
-      expected.push_back(deformableExpectedMs_.try_emplace(&body, -1.0).first->second);
-    });
-    for (size_t i = expected.size(); i-- > 0;)
-      laterMs[i] = laterMs[i + 1] + (expected[i] < 0.0 ? std::numeric_limits<double>::infinity()
-                                                        : FluidPacing::kReserveMargin * expected[i]);
+    a.simulatedDt = input.dt;
+    a.completedStep = true;
+    a.slices = 1 + a.phase(Phase::Solve).iterations;
+    stats->maxSliceMs = std::max(stats->maxSliceMs, longestDeformableSliceMs(a));
+    missed[i] = a.floorMissed;
+    if (deadlines.forced && frame.expired()) stats->budgetInfeasible = true;
+    if (a.diverged) log(LogLevel::Warning, "deformable (%u, %u) diverged; restored its previous state", a.index1, a.generation);
+    s.expectedMs = FramePlan::smoothed(s.expectedMs, a.totalMs);
+    s.tailMs = FramePlan::smoothed(s.tailMs, a.phase(Phase::Contacts).ms + a.phase(Phase::Embed).ms);
+    s.pendingDt = 0.0;
+    s.waitedFrames = 0;
   }
-  size_t deformableIndex = 0;
-  deformables_.forEach([&](DeformableHandle h, DeformableBody& body) {
-    double& expectedMs = deformableExpectedMs_[&body];
-    const double laterDeformablesMs = laterMs[++deformableIndex];
-    const Deadline share = frame.shareLeaving(1.0 / deformablesLeft--, reserveMs, laterDeformablesMs);
-    runActor(ActorKind::Deformable, h.index1, h.generation, [&](ActorStats* a) {
-      DeformableStepInput input;
-      input.dt = dt;
-      input.gravity = config_.gravity;
-      input.deadline = share;
-      input.tasks = tasks_.get();
-      input.colliders = contactColliders;
-      input.collider = [this](uint32_t index1, uint32_t generation) -> const Collider* {
-        return colliders_.get(index1, generation);
-      };
-      body.step(input, a);
-    });
-    expectedMs = FluidPacing::smoothed(expectedMs, stats.actors.back().totalMs);
-  });
+  for (ActorStats& a : served) stats->actors.push_back(a);
+  // The time left after the deformables is the room a lower interval would take from the
+  // fluids; read only when some interval could come down.
+  const bool anyRaised = std::any_of(planned.begin(), planned.end(),
+                                     [](const FramePlan::Deformable& d) { return d.schedule->interval > 1; });
+  const double slackMs =
+      frame.unlimited() || !anyRaised ? std::numeric_limits<double>::infinity() : frame.remainingMs();
+  if (!FramePlan::adjustIntervals(planned, missed, slackMs)) stats->budgetInfeasible = true;
+  return std::find(missed.begin(), missed.end(), true) == missed.end();
+}
 
-  std::vector<FluidCollider> fluidColliders;
+void World::stepFluids(double dt, const Deadline& frame, bool floorsHeld, StepStats* stats) {
+  std::vector<FluidCollider> colliders;
   if (fluids_.size() > 0)
     colliders_.forEach([&](ColliderHandle h, const Collider& c) {
       if (c.geometry())
-        fluidColliders.push_back(FluidCollider{h.index1, h.generation, c.geometry(), c.bodyType() == BodyType::Dynamic});
+        colliders.push_back(
+            FluidCollider{h.index1, h.generation, c.geometry(), c.sharedGeometry(), c.bodyType() == BodyType::Dynamic});
     });
-  double fluidStepsMs = 0.0;
-  int fluidsLeft = dueFluids;
-  fluids_.forEach([&](FluidHandle h, FluidActor& fluid) {
-    FluidBacklog& backlog = fluidBacklog_[&fluid];
-    if (!backlog.due) {
-      ++backlog.waitedFrames;
-      ActorStats deferred;
-      deferred.kind = ActorKind::Fluid;
-      deferred.index1 = h.index1;
-      deferred.generation = h.generation;
-      deferred.simulatedDt = 0.0;
-      stats.actors.push_back(deferred);
-      return;
+  std::vector<FluidHandle> handles = fluidHandles();
+  std::vector<int> priorities;
+  for (FluidHandle h : handles) priorities.push_back(fluid(h)->desc().priority);
+  const std::vector<int> order = FramePlan::byPriority(priorities);
+  std::vector<ActorStats> served(handles.size());
+  for (size_t n = 0; n < order.size(); ++n) {
+    const int i = order[n];
+    FluidActor& f = *fluid(handles[i]);
+    ActorSchedule& s = f.schedule();
+    s.pendingDt += dt;
+    int equals = 0;
+    bool lowerAfter = false;
+    for (size_t m = n; m < order.size(); ++m) {
+      equals += priorities[order[m]] == priorities[i];
+      lowerAfter = lowerAfter || priorities[order[m]] < priorities[i];
     }
-    const Deadline share = frame.share(1.0 / fluidsLeft--);
-    runActor(ActorKind::Fluid, h.index1, h.generation, [&](ActorStats* a) {
-      FluidStepInput input;
-      input.dt = backlog.pendingDt;
-      input.gravity = config_.gravity;
-      input.deadline = share;
-      input.tasks = tasks_.get();
-      input.colliders = fluidColliders;
-      backlog.loads.clear();
-      fluid.step(input, a, &backlog.loads);
-      a->simulatedDt = input.dt;
-    });
-    const double stepMs = stats.actors.back().totalMs;
-    fluidStepsMs += stepMs;
-    backlog.expectedStepMs = FluidPacing::smoothed(backlog.expectedStepMs, stepMs);
-    backlog.pendingDt = 0.0;
-    backlog.waitedFrames = 0;
-  });
+    ActorStats& a = served[i] = actorStats(ActorKind::Fluid, handles[i].index1, handles[i].generation, priorities[i], 0.0);
+    FramePlan::Fluid planned{priorities[i], &s, f.lastStepSlices(), 0};
+    if (f.stepInProgress()) planned.slicesDone = f.stepSlicesRun();
+    SliceBudget budget;
+    budget.share = FramePlan::fluidShare(frame, s, equals, lowerAfter);
+    budget.minSlices = FramePlan::fluidMinSlices(planned);
+    // A deformable above its floor this frame: the floors come first, so a fluid gets only
+    // what its rate cap forces.
+    if (!floorsHeld) budget.share = frame.within(0.0);
+    if (budget.minSlices == 0 && !budget.share.unlimited() &&
+        (!floorsHeld || budget.share.remainingMs() <= 0.0)) {
+      ++s.stepFrames;
+      a.interval = s.interval;
+      a.progress = f.progress();
+      continue;  // no time this frame: its step waits
+    }
+    FluidStepInput input;
+    if (!f.stepInProgress()) {
+      input.dt = s.pendingDt;
+      s.pendingDt = 0.0;
+      s.stepMs = 0.0;
+    }
+    input.gravity = config_.gravity;
+    input.tasks = tasks_.get();
+    input.colliders = colliders;
+    const double start = frame.elapsedMs();
+    const bool completed = f.advance(input, budget, &a);
+    a.totalMs = frame.elapsedMs() - start;
+    stats->maxSliceMs = std::max(stats->maxSliceMs, f.maxSliceMs());
+    if (budget.minSlices > 0 && a.slices > 0 && (frame.expired() || !floorsHeld)) stats->budgetInfeasible = true;
+    ++s.stepFrames;
+    s.stepMs += a.totalMs;
+    if (completed) {
+      // Frames since the last completed step, the waiting ones included.
+      s.interval = s.stepFrames;
+      s.stepFrames = 0;
+      s.expectedMs = FramePlan::smoothed(s.expectedMs, s.stepMs);
+      if (a.diverged) log(LogLevel::Warning, "fluid (%u, %u) diverged; its flow was reset to rest", a.index1, a.generation);
+    } else {
+      a.simulatedDt = 0.0;
+    }
+    a.interval = s.interval;
+  }
+  for (ActorStats& a : served) stats->actors.push_back(a);
+}
 
-  stats.totalMs = frame.elapsedMs();
-  // The deformables' iterative solves take whatever share they are given (and a cut solve
-  // catches up later), so they are not part of the cost the fluids must fit beside; a fluid
-  // step cannot be cut. The fluids' rate therefore comes before the solves' accuracy.
-  double elasticMs = 0.0;
-  for (const ActorStats& a : stats.actors)
-    if (a.kind == ActorKind::Deformable) elasticMs += a.phase(Phase::Solve).ms;
-  double everyFluidMs = 0.0;
-  for (const auto& [fluid, backlog] : fluidBacklog_) everyFluidMs += std::max(backlog.expectedStepMs, 0.0);
-  fluidPacing_.observe(config_.frameBudgetMs, stats.totalMs - fluidStepsMs - elasticMs, everyFluidMs);
-  stats.fluidInterval = fluidPacing_.interval();
-  for (const ActorStats& a : stats.actors)
-    for (const PhaseStats& p : a.phases) stats.budgetCut = stats.budgetCut || p.budgetCut;
-  stats_ = std::move(stats);
-  stepping_.store(false, std::memory_order_release);
-  return Status::Ok;
+void World::finishStats(const Deadline& frame, StepStats* stats) {
+  stats->totalMs = frame.elapsedMs();
+  if (stats->budgetMs > 0.0) stats->overBudgetMs = std::max(0.0, stats->totalMs - stats->budgetMs);
+  for (const ActorStats& a : stats->actors) {
+    for (const PhaseStats& p : a.phases) stats->budgetCut = stats->budgetCut || p.budgetCut;
+    if (a.kind == ActorKind::Fluid) stats->fluidInterval = std::max(stats->fluidInterval, a.interval);
+  }
 }
 
 }  // namespace vp

@@ -5,7 +5,6 @@
 #include <atomic>
 #include <memory>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 #include "collide/collider.h"
@@ -15,7 +14,7 @@
 #include "core/task_system.h"
 #include "deform/deformable_body.h"
 #include "fluid/fluid_actor.h"
-#include "fluid_pacing.h"
+#include "frame_plan.h"
 #include "step_stats.h"
 
 namespace vp {
@@ -82,6 +81,15 @@ class World {
 
  private:
   explicit World(const WorldConfig& config);
+  // The stages of a step (frame_plan.h has the policy).
+  void stepRigidBodies(double dt, const Deadline& frame, StepStats* stats);
+  // Returns whether every deformable that stepped reached its accuracy floor.
+  bool stepDeformables(double dt, const Deadline& frame, StepStats* stats);
+  void stepFluids(double dt, const Deadline& frame, bool floorsHeld, StepStats* stats);
+  void finishStats(const Deadline& frame, StepStats* stats);
+  // What the fluids of at least `priority` are expected to need this frame.
+  double fluidsExpectedMs(int priority);
+  ActorStats actorStats(ActorKind kind, uint32_t index1, uint32_t generation, int priority, double dt) const;
 
   WorldConfig config_;
   std::unique_ptr<TaskSystem> tasks_;
@@ -89,20 +97,6 @@ class World {
   SlotMap<Collider> colliders_;
   SlotMap<DeformableBody> deformables_;
   SlotMap<FluidActor> fluids_;
-  // A fluid's time not yet simulated (the pacing let it skip frames), the loads of its last
-  // step, which act on the rigid bodies every frame until it steps again, and its smoothed
-  // step cost, which the frame holds back for it from the deformables.
-  struct FluidBacklog {
-    double pendingDt = 0.0;
-    int waitedFrames = 0;
-    bool due = false;  // steps in the frame being run
-    double expectedStepMs = -1.0;  // < 0: it has not stepped yet
-    std::vector<FluidColliderLoad> loads;
-  };
-  std::unordered_map<const FluidActor*, FluidBacklog> fluidBacklog_;
-  // Each deformable's smoothed step time, held back for it from the deformables before it.
-  std::unordered_map<const DeformableBody*, double> deformableExpectedMs_;
-  FluidPacing fluidPacing_;
   StepStats stats_;
   std::atomic<bool> stepping_{false};
 };

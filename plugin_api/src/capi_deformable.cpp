@@ -76,6 +76,8 @@ vpDeformableDef vpDefaultDeformableDef(void) {
   d.friction = static_cast<float>(defaults.material.friction);
   d.solverTolerance = static_cast<float>(defaults.solver.tolerance);
   d.solverMaxIterations = defaults.solver.maxIterations;
+  d.targetResidual = static_cast<float>(defaults.solver.targetResidual);
+  d.priority = defaults.priority;
   return d;
 }
 
@@ -101,6 +103,8 @@ vpStatus vpDeformableCreate(vpWorldId worldId, const vpDeformableDef* def, vpDef
     desc.material.friction = def->friction;
     desc.solver.tolerance = def->solverTolerance;
     desc.solver.maxIterations = def->solverMaxIterations;
+    desc.solver.targetResidual = def->targetResidual;
+    desc.priority = def->priority;
     desc.userData = def->userData;
     DeformableHandle h;
     VP_TRY(world->createDeformable(std::move(desc), &h));

@@ -76,6 +76,7 @@ Status translateFluidDef(const vpFluidDef& d, FluidDesc* desc) {
     desc->emitters.push_back(out);
   }
   desc->twoWayCoupling = d.twoWayCoupling != 0;
+  desc->priority = d.priority;
   desc->userData = d.userData;
   return Status::Ok;
 }
@@ -108,6 +109,7 @@ vpFluidDef vpDefaultFluidDef(void) {
   d.densityDissipation = static_cast<float>(defaults.smoke.densityDissipation);
   d.temperatureDissipation = static_cast<float>(defaults.smoke.temperatureDissipation);
   d.twoWayCoupling = defaults.twoWayCoupling ? 1 : 0;
+  d.priority = defaults.priority;
   return d;
 }
 

@@ -122,6 +122,9 @@ vpStatus vpWorldGetStepStats(vpWorldId id, vpStepStats* out) {
     out->colliderCount = s.colliderCount;
     out->rigidSubsteps = s.rigidSubsteps;
     out->fluidInterval = s.fluidInterval;
+    out->overBudgetMs = static_cast<float>(s.overBudgetMs);
+    out->budgetInfeasible = s.budgetInfeasible ? 1 : 0;
+    out->maxSliceMs = static_cast<float>(s.maxSliceMs);
     return Status::Ok;
   });
 }

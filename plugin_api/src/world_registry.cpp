@@ -110,6 +110,13 @@ void fillActorStats(const ActorStats& in, vpActorStats* out) {
   out->totalMs = static_cast<float>(in.totalMs);
   out->diverged = in.diverged ? 1 : 0;
   out->simulatedDt = static_cast<float>(in.simulatedDt);
+  out->interval = in.interval;
+  out->completedStep = in.completedStep ? 1 : 0;
+  out->progress = static_cast<float>(in.progress);
+  out->slices = in.slices;
+  out->residual = static_cast<float>(in.residual);
+  out->priority = in.priority;
+  out->floorMissed = in.floorMissed ? 1 : 0;
   static_assert(kPhaseCount == vpPhase_Count && kPhaseCount <= VP_MAX_PHASES, "phase tables must match");
   for (int p = 0; p < kPhaseCount; ++p) {
     const PhaseStats& ph = in.phases[p];

@@ -73,7 +73,7 @@ Collider::Collider(ColliderDesc desc) : desc_(std::move(desc)), shape_(buildBull
   // deformables and fluids cannot use them; that is logged, not an error.
   PreparedCollider prepared;
   if (ok(prepareCollider(exactShapeOf(desc_), &prepared)))
-    geometry_ = std::move(prepared);
+    geometry_ = std::make_shared<PreparedCollider>(std::move(prepared));
   else
     log(LogLevel::Warning, "collider '%s' (%s): no exact geometry for deformables and fluids: %s",
         desc_.name.c_str(), shapeTypeName(desc_.shape.type), lastError());
@@ -158,9 +158,15 @@ void Collider::clearFluidLoad() {
 void Collider::syncGeometry() {
   if (!geometry_) return;
   const Pose p = pose();
-  if (desc_.bodyType != BodyType::Static) setColliderPose(&*geometry_, p.rotation, p.position);
-  geometry_->shape.linearVelocity = linearVelocity();
-  geometry_->shape.angularVelocity = angularVelocity();
+  const Vec3 linear = linearVelocity(), angular = angularVelocity();
+  const ColliderShape& now = geometry_->shape;
+  const bool moves = desc_.bodyType != BodyType::Static &&
+                     (now.translation != p.position || now.rotation.coeffs() != p.rotation.coeffs());
+  if (!moves && now.linearVelocity == linear && now.angularVelocity == angular) return;
+  if (geometry_.use_count() > 1) geometry_ = std::make_shared<PreparedCollider>(*geometry_);
+  if (moves) setColliderPose(geometry_.get(), p.rotation, p.position);
+  geometry_->shape.linearVelocity = linear;
+  geometry_->shape.angularVelocity = angular;
 }
 
 Pose Collider::pose() const {

@@ -36,7 +36,10 @@ class Collider {
 
   // Exact geometry for deformable contacts and fluid face fractions, at the pose and
   // velocity of the last step; nullptr when the shape has none (an open triangle mesh).
-  const PreparedCollider* geometry() const { return geometry_ ? &*geometry_ : nullptr; }
+  const PreparedCollider* geometry() const { return geometry_.get(); }
+  // The same geometry, kept as it is now for as long as the holder keeps the pointer (a
+  // fluid step spanning frames): the collider moves a copy while it is shared.
+  std::shared_ptr<const PreparedCollider> sharedGeometry() const { return geometry_; }
   // Brings the geometry to the body's current pose and velocity (after each rigid step).
   void syncGeometry();
 
@@ -65,7 +68,7 @@ class Collider {
   Pose kinematicPose_;
   Vec3 kinematicLinear_ = Vec3::Zero(), kinematicAngular_ = Vec3::Zero();
   std::optional<Pose> target_;
-  std::optional<PreparedCollider> geometry_;
+  std::shared_ptr<PreparedCollider> geometry_;
   bool targetActive_ = false;
   Vec3 fluidForce_ = Vec3::Zero(), fluidTorque_ = Vec3::Zero();
   Vec3 appliedFluidForce_ = Vec3::Zero(), appliedFluidTorque_ = Vec3::Zero();

@@ -29,12 +29,23 @@ Deadline Deadline::share(double fraction) const {
 }
 
 Deadline Deadline::shareLeaving(double fraction, double reserveMs, double laterMs) const {
+  return unlimited() ? *this : shareLeaving(fraction, reserveMs, laterMs, clock_.seconds());
+}
+
+Deadline Deadline::shareLeaving(double fraction, double reserveMs, double laterMs, double now) const {
   Deadline d = *this;
   if (unlimited()) return d;
-  const double now = clock_.seconds();
   const double available = std::max(0.0, end_ - now - std::max(reserveMs, 0.0) * 1e-3);
   d.start_ = now;
   d.end_ = now + std::max(available * std::clamp(fraction, 0.0, 1.0), available - std::max(laterMs, 0.0) * 1e-3);
+  return d;
+}
+
+Deadline Deadline::within(double ms) const {
+  Deadline d = *this;
+  const double now = clock_.seconds();
+  d.start_ = now;
+  d.end_ = std::min(end_, now + std::max(ms, 0.0) * 1e-3);
   return d;
 }
 

@@ -32,6 +32,11 @@ class Deadline {
   // `fraction` of the rest and all of the rest but laterMs (an equal share, or more when the
   // work after this one is expected to need less).
   Deadline shareLeaving(double fraction, double reserveMs, double laterMs) const;
+  // The same, measured from `nowSeconds` (a reading of clock()) so several shares taken at
+  // one moment cost one reading.
+  Deadline shareLeaving(double fraction, double reserveMs, double laterMs, double nowSeconds) const;
+  // This deadline, or `ms` from now when that comes first.
+  Deadline within(double ms) const;
   const Clock& clock() const { return clock_; }
 
  private:

@@ -573,7 +573,9 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
     });
   };
   CgSettings settings{desc_.solver.tolerance, desc_.solver.maxIterations};
-  CgResult cg = solveConjugateGradient(tasks, system, rhs_.data(), vNext_.data(), settings, in.deadline, cg_);
+  const double floor = desc_.solver.targetResidual;
+  CgResult cg = solveConjugateGradient(tasks, system, rhs_.data(), vNext_.data(), settings, in.deadline, cg_, floor,
+                                       in.floorDeadline);
   PhaseStats& solve = stats->phase(Phase::Solve);
   solve.iterations = cg.iterations;
   lap(Phase::Solve);
@@ -651,7 +653,8 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
       updateMultigridFilters(tasks, massScale);
       lap(Phase::Assemble);
     }
-    cg = solveConjugateGradient(tasks, system, rhs_.data(), vNext_.data(), settings, in.deadline, cg_);
+    cg = solveConjugateGradient(tasks, system, rhs_.data(), vNext_.data(), settings, in.deadline, cg_, floor,
+                                in.floorDeadline);
     solve.iterations += cg.iterations;
     lap(Phase::Solve);
   }
@@ -665,6 +668,10 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
   }
   solve.residual = cg.relativeResidual;
   solve.budgetCut = cg.budgetCut;
+  stats->residual = cg.relativeResidual;
+  // Missed only when time ran out: a solve that stopped at maxIterations above the floor
+  // is a matter of the solver settings, which a lower rate would not change.
+  stats->floorMissed = cg.budgetCut && cg.relativeResidual > floor;
 
   // Integrate, then guard: a non-finite or absurd velocity restores the step's start state.
   bool diverged = false;

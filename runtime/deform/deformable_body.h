@@ -23,6 +23,7 @@
 #include "deform/deformable_contacts.h"
 #include "deform/degree_level_assembly.h"
 #include "deform/element_incidence.h"
+#include "frame_plan.h"
 #include "geometry/embedding.h"
 #include "linalg/aggregation_multigrid.h"
 #include "linalg/block_sparse_matrix.h"
@@ -37,7 +38,9 @@ using ColliderLookup = std::function<const Collider*(uint32_t index1, uint32_t g
 struct DeformableStepInput {
   double dt = 1.0 / 60.0;
   Vec3 gravity = Vec3::Zero();
-  Deadline deadline;
+  // The solve stops at `deadline` once its residual is at or below the desc's targetResidual
+  // (the accuracy floor), and at `floorDeadline` in any case (frame_plan.h).
+  Deadline deadline, floorDeadline;
   TaskSystem* tasks = nullptr;
   ColliderLookup collider;  // resolves attachment targets; attachments to vanished colliders are dropped
   std::vector<ContactCollider> colliders;  // what the surface collides with this step
@@ -52,6 +55,7 @@ class DeformableBody {
   void step(const DeformableStepInput& input, ActorStats* stats);
 
   const DeformableDesc& desc() const { return desc_; }
+  ActorSchedule& schedule() { return schedule_; }
   int32_t nodeCount() const { return nodeCount_; }
   int64_t elementCount() const { return static_cast<int64_t>(restVolume_.size()); }
   int degree() const { return degree_; }
@@ -119,6 +123,7 @@ class DeformableBody {
   };
 
   DeformableDesc desc_;
+  ActorSchedule schedule_;  // the frame plan's state of this body
   int32_t nodeCount_ = 0;
   double lambda_ = 0.0, mu_ = 0.0;
   Array<double> restX_, x_, v_, mass_, externalForce_;

@@ -58,6 +58,9 @@ enum class PMultigridCoarseOperator : int {
 
 struct DeformableSolverSettings {
   double tolerance = 1e-3;  // relative residual of the implicit solve
+  // The accuracy floor: the relative residual the frame plan guarantees this solve reaches
+  // before fluids get time; in [tolerance, 1].
+  double targetResidual = 1e-2;
   int maxIterations = 200;
   Preconditioner preconditioner = Preconditioner::Auto;
   PMultigridCoarseOperator pMultigridCoarseOperator = PMultigridCoarseOperator::Rediscretized;
@@ -72,6 +75,7 @@ struct DeformableDesc {
   Vec3 linearVelocity = Vec3::Zero();
   DeformableMaterial material;
   DeformableSolverSettings solver;
+  int priority = 0;  // higher is served first when the frame budget is short (actor_priority.h)
   void* userData = nullptr;
 };
 

@@ -1,5 +1,6 @@
 #include <cmath>
 
+#include "actor_priority.h"
 #include "deform/deformable_desc.h"
 #include "geometry/tet_mesh_validation.h"
 
@@ -34,8 +35,16 @@ Status validateDeformableDesc(DeformableDesc& in) {
   VP_TRY(checkNonNegative("friction", m.friction, 1e3));
   if (!(in.solver.tolerance > 0.0 && in.solver.tolerance < 1.0))
     return fail(Status::InvalidArgument, "solverTolerance = %g: must be in (0, 1)", in.solver.tolerance);
+  // A floor below the solve's own tolerance could never be reached.
+  const double target = in.solver.targetResidual;
+  if (!(std::isfinite(target) && target <= 1.0))
+    return fail(Status::InvalidArgument, "targetResidual = %g: must be finite and in [solverTolerance, 1]", target);
+  if (target < in.solver.tolerance)
+    return fail(Status::InvalidArgument, "targetResidual = %g: must be >= solverTolerance = %g", target,
+                in.solver.tolerance);
   if (in.solver.maxIterations < 1 || in.solver.maxIterations > 100000)
     return fail(Status::InvalidArgument, "solverMaxIterations = %d: must be in [1, 100000]", in.solver.maxIterations);
+  VP_TRY(validateActorPriority(in.priority));
   if (!in.pose.position.allFinite())
     return fail(Status::InvalidArgument, "pose.position = (%g, %g, %g): must be finite", in.pose.position.x(),
                 in.pose.position.y(), in.pose.position.z());

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/parallel_for.h"
 #include "fluid/cut_cell_poisson.h"
@@ -100,11 +101,15 @@ Eigen::Vector3d latticeCoordinate(const MacGridSpec& s, const Eigen::Vector3d& x
   return l;
 }
 
-// Runs body(i, j, k, index) over every sample of a lattice with dims d, parallel over lines.
+int64_t rowCount(const Eigen::Vector3i& d) { return static_cast<int64_t>(d.y()) * d.z(); }
+
+// Runs body(i, j, k, index) over the samples of rows [rowBegin, rowEnd) of a lattice with
+// dims d, parallel over rows.
 template <class Body>
-void forEachSample(TaskSystem& tasks, const Eigen::Vector3i& d, const Body& body) {
-  parallelFor(tasks, static_cast<int64_t>(d.y()) * d.z(), kRowGrain, [&](int64_t begin, int64_t end) {
-    for (int64_t row = begin; row < end; ++row) {
+void forEachSampleInRows(TaskSystem& tasks, const Eigen::Vector3i& d, int64_t rowBegin, int64_t rowEnd,
+                         const Body& body) {
+  parallelFor(tasks, rowEnd - rowBegin, kRowGrain, [&](int64_t begin, int64_t end) {
+    for (int64_t row = rowBegin + begin; row < rowBegin + end; ++row) {
       const int j = static_cast<int>(row % d.y()), k = static_cast<int>(row / d.y());
       size_t index = static_cast<size_t>(row) * static_cast<size_t>(d.x());
       for (int i = 0; i < d.x(); ++i, ++index) body(i, j, k, index);
@@ -112,57 +117,163 @@ void forEachSample(TaskSystem& tasks, const Eigen::Vector3i& d, const Body& body
   });
 }
 
+template <class Body>
+void forEachSample(TaskSystem& tasks, const Eigen::Vector3i& d, const Body& body) {
+  forEachSampleInRows(tasks, d, 0, rowCount(d), body);
+}
+
+template <class Body>
+void forEachSampleInSlab(TaskSystem& tasks, const AdvectionSlabList::Slab& slab, const Body& body) {
+  forEachSampleInRows(tasks, slab.dims, slab.rowBegin, slab.rowEnd, body);
+}
+
+// What both velocity passes read for the faces of one axis.
+struct VelocityAxisInputs {
+  const MacGrid& grid;
+  const VelocityField field;
+  const int axis;
+  const std::vector<double>& old;
+  const uint8_t* marks;  // null: no face is skipped
+  const uint8_t skipMark;
+
+  VelocityAxisInputs(const MacGrid& g, const FaceSkipMask& skip, int a)
+      : grid(g), field(g), axis(a), old(g.velocity[a]),
+        marks(skip.marks != nullptr ? skip.marks[a].data() : nullptr), skipMark(skip.skipMark) {}
+  bool skipped(size_t f) const { return marks != nullptr && marks[f] == skipMark; }
+  // Where face f = (i, j, k) traces to over dt (negative: forward in time), as a coordinate of
+  // the axis' face lattice.
+  Eigen::Vector3d tracedFrom(int i, int j, int k, size_t f, double dt) const {
+    const Eigen::Vector3d x = grid.faceCentre(axis, i, j, k);
+    return latticeCoordinate(grid.spec, trace(field, x, field.atFace(axis, i, j, k, old[f]), dt), axis);
+  }
+};
+
+// What a scalar pass asks of a cell besides its trace: is it solid (no open face: it is not
+// advected and holds the solid value), does it keep its value (keepBeyond); and how the old
+// field is sampled (through open faces only, or plainly).
+struct ScalarCellRules {
+  const uint8_t* faces;  // null: no open-face masks
+  const uint8_t* blockOpen;
+  const uint8_t* kept;  // null: keepBeyond off
+  const double* solidValue;  // null: solid cells keep their values
+  Eigen::Vector3i dims;
+
+  bool solid(size_t c) const { return faces != nullptr && !(faces[c] & kCellIsFluid); }
+  bool keeps(size_t c) const { return kept != nullptr && kept[c]; }
+  double solidResult(const std::vector<double>& old, size_t c) const {
+    return solidValue != nullptr ? *solidValue : old[c];
+  }
+  double sample(const double* values, const Eigen::Vector3d& at, SampleRange* range) const {
+    return faces != nullptr ? connectedTrilinearSample(values, dims, at, faces, blockOpen, range)
+                            : trilinearSample(values, dims, at, range);
+  }
+};
+
+ScalarCellRules scalarCellRules(const AdvectionSlabList::Slab& slab, const CellOpenFaces* openFaces,
+                                const std::vector<double>& solidValues, double keepBeyond,
+                                const AdvectionWorkspace& work) {
+  ScalarCellRules rules;
+  rules.faces = openFaces != nullptr ? openFaces->faces.data() : nullptr;
+  rules.blockOpen = openFaces != nullptr ? openFaces->blockOpen.data() : nullptr;
+  rules.kept = keepBeyond > 0.0 ? work.kept.data() : nullptr;
+  rules.solidValue = solidValues.empty() ? nullptr : &solidValues[static_cast<size_t>(slab.target)];
+  rules.dims = slab.dims;
+  return rules;
+}
+
 }  // namespace
+
+void AdvectionSlabList::appendPass(Pass pass, int target, const Eigen::Vector3i& dims, int64_t maxSamplesPerSlab) {
+  const int64_t rows = rowCount(dims);
+  if (rows <= 0 || dims.x() <= 0) return;
+  const int64_t rowsPerSlab = std::clamp<int64_t>(maxSamplesPerSlab / dims.x(), 1, rows);
+  // Near-equal slabs rather than full ones and a remainder, so their costs stay alike.
+  const int64_t slabCount = (rows + rowsPerSlab - 1) / rowsPerSlab;
+  for (int64_t s = 0; s < slabCount; ++s)
+    slabs_.push_back(Slab{pass, target, dims, s * rows / slabCount, (s + 1) * rows / slabCount});
+}
+
+void VelocityAdvectionSlices::prepare(MacGrid& grid, double dt, AdvectionScheme scheme, AdvectionWorkspace& work,
+                                      const FaceSkipMask& skip, int64_t maxSamplesPerSlice) {
+  grid_ = &grid;
+  work_ = &work;
+  dt_ = dt;
+  maccormack_ = scheme == AdvectionScheme::MacCormack;
+  skip_ = skip;
+  slabs_.clear();
+  size_t largestAxis = 0;
+  for (int a = 0; a < 3; ++a) {
+    work.advected[a].resize(grid.velocity[a].size());
+    largestAxis = std::max(largestAxis, grid.velocity[a].size());
+    slabs_.appendPass(AdvectionSlabList::Pass::Forward, a, grid.faceDims(a), maxSamplesPerSlice);
+    if (maccormack_) slabs_.appendPass(AdvectionSlabList::Pass::Correction, a, grid.faceDims(a), maxSamplesPerSlice);
+  }
+  // The axes take turns with the MacCormack arrays: an axis is done before the next starts.
+  if (maccormack_) {
+    work.forward.resize(largestAxis);
+    work.rangeLo.resize(largestAxis);
+    work.rangeHi.resize(largestAxis);
+  }
+}
+
+void VelocityAdvectionSlices::runSlice(TaskSystem& tasks, int slice) {
+  const AdvectionSlabList::Slab& slab = slabs_[slice];
+  if (slab.pass == AdvectionSlabList::Pass::Forward)
+    forwardPass(tasks, slab);
+  else
+    correctionPass(tasks, slab);
+}
+
+void VelocityAdvectionSlices::forwardPass(TaskSystem& tasks, const AdvectionSlabList::Slab& slab) {
+  AdvectionWorkspace& work = *work_;
+  const VelocityAxisInputs in(*grid_, skip_, slab.target);
+  const bool maccormack = maccormack_;
+  const double dt = dt_;
+  double* fwd = maccormack ? work.forward.data() : work.advected[slab.target].data();
+  forEachSampleInSlab(tasks, slab, [&](int i, int j, int k, size_t f) {
+    if (in.skipped(f)) {
+      fwd[f] = in.old[f];
+      if (maccormack) work.rangeLo[f] = work.rangeHi[f] = in.old[f];
+      return;
+    }
+    SampleRange range;
+    fwd[f] = trilinearSample(in.old.data(), slab.dims, in.tracedFrom(i, j, k, f, dt), maccormack ? &range : nullptr);
+    if (maccormack) work.rangeLo[f] = range.lo, work.rangeHi[f] = range.hi;
+  });
+}
+
+void VelocityAdvectionSlices::correctionPass(TaskSystem& tasks, const AdvectionSlabList::Slab& slab) {
+  AdvectionWorkspace& work = *work_;
+  const VelocityAxisInputs in(*grid_, skip_, slab.target);
+  const double dt = dt_;
+  const std::vector<double>& fwd = work.forward;
+  std::vector<double>& out = work.advected[slab.target];
+  forEachSampleInSlab(tasks, slab, [&](int i, int j, int k, size_t f) {
+    if (in.skipped(f)) {
+      out[f] = in.old[f];
+      return;
+    }
+    const double backAgain = trilinearSample(fwd.data(), slab.dims, in.tracedFrom(i, j, k, f, -dt));
+    // Where the correction leaves the range of the samples the forward step read, the
+    // semi-Lagrangian value is kept (Selle et al.'s own limiter) rather than the correction
+    // clamped to the range: clamped, every such face took the extreme of its stencil, which
+    // near a free surface (extrapolated air velocities in the stencil) pumped energy in step
+    // after step; a stirred tank then ran away after 5 to 8 s (fluid_paddle_buoy_test.cpp).
+    const double corrected = fwd[f] + 0.5 * (in.old[f] - backAgain);
+    out[f] = corrected >= work.rangeLo[f] && corrected <= work.rangeHi[f] ? corrected : fwd[f];
+  });
+}
+
+void VelocityAdvectionSlices::finish() {
+  for (int a = 0; a < 3; ++a) grid_->velocity[a].swap(work_->advected[a]);
+}
 
 void advectVelocity(TaskSystem& tasks, MacGrid& grid, double dt, AdvectionScheme scheme, AdvectionWorkspace& work,
                     const FaceSkipMask& skip) {
-  const MacGridSpec& s = grid.spec;
-  const bool maccormack = scheme == AdvectionScheme::MacCormack;
-  const VelocityField field(grid);
-  for (int a = 0; a < 3; ++a) {
-    const Eigen::Vector3i d = grid.faceDims(a);
-    const std::vector<double>& old = grid.velocity[a];
-    const uint8_t* marks = skip.marks != nullptr ? skip.marks[a].data() : nullptr;
-    auto skipped = [&](size_t f) { return marks != nullptr && marks[f] == skip.skipMark; };
-    std::vector<double>& out = work.advected[a];
-    out.resize(old.size());
-    std::vector<double>& fwd = maccormack ? work.forward : out;
-    fwd.resize(old.size());
-    if (maccormack) {
-      work.rangeLo.resize(old.size());
-      work.rangeHi.resize(old.size());
-    }
-    forEachSample(tasks, d, [&](int i, int j, int k, size_t f) {
-      if (skipped(f)) {
-        fwd[f] = old[f];
-        if (maccormack) work.rangeLo[f] = work.rangeHi[f] = old[f];
-        return;
-      }
-      const Eigen::Vector3d x = grid.faceCentre(a, i, j, k);
-      const Eigen::Vector3d back = trace(field, x, field.atFace(a, i, j, k, old[f]), dt);
-      SampleRange range;
-      fwd[f] = trilinearSample(old.data(), d, latticeCoordinate(s, back, a), maccormack ? &range : nullptr);
-      if (maccormack) work.rangeLo[f] = range.lo, work.rangeHi[f] = range.hi;
-    });
-    if (!maccormack) continue;
-    forEachSample(tasks, d, [&](int i, int j, int k, size_t f) {
-      if (skipped(f)) {
-        out[f] = old[f];
-        return;
-      }
-      const Eigen::Vector3d x = grid.faceCentre(a, i, j, k);
-      const Eigen::Vector3d ahead = trace(field, x, field.atFace(a, i, j, k, old[f]), -dt);
-      const double backAgain = trilinearSample(fwd.data(), d, latticeCoordinate(s, ahead, a));
-      // Where the correction leaves the range of the samples the forward step read, the
-      // semi-Lagrangian value is kept (Selle et al.'s own limiter) rather than the correction
-      // clamped to the range: clamped, every such face took the extreme of its stencil, which
-      // near a free surface (extrapolated air velocities in the stencil) pumped energy in step
-      // after step; a stirred tank then ran away after 5 to 8 s (fluid_paddle_buoy_test.cpp).
-      const double corrected = fwd[f] + 0.5 * (old[f] - backAgain);
-      out[f] = corrected >= work.rangeLo[f] && corrected <= work.rangeHi[f] ? corrected : fwd[f];
-    });
-  }
-  for (int a = 0; a < 3; ++a) grid.velocity[a].swap(work.advected[a]);
+  VelocityAdvectionSlices slices;
+  slices.prepare(grid, dt, scheme, work, skip, std::numeric_limits<int64_t>::max());
+  for (int slice = 0; slice < slices.sliceCount(); ++slice) slices.runSlice(tasks, slice);
+  slices.finish();
 }
 
 void buildCellOpenFaces(TaskSystem& tasks, const MacGrid& grid, const FaceFractionField& fractions, CellOpenFaces* out) {
@@ -209,75 +320,123 @@ void buildCellOpenFaces(TaskSystem& tasks, const MacGrid& grid, const FaceFracti
   });
 }
 
-void advectCellScalars(TaskSystem& tasks, const MacGrid& grid, double dt, AdvectionScheme scheme,
-                       std::vector<double>* const* fields, int fieldCount, AdvectionWorkspace& work,
-                       const CellOpenFaces* openFaces, const double* solidValues, double keepBeyond) {
-  if (fieldCount <= 0) return;
-  const MacGridSpec& s = grid.spec;
-  const Eigen::Vector3i d(s.nx, s.ny, s.nz);
+void ScalarAdvectionSlices::prepare(const MacGrid& grid, double dt, AdvectionScheme scheme,
+                                    std::vector<double>* const* fields, int fieldCount, AdvectionWorkspace& work,
+                                    const CellOpenFaces* openFaces, const double* solidValues, double keepBeyond,
+                                    int64_t maxSamplesPerSlice) {
+  grid_ = &grid;
+  work_ = &work;
+  dt_ = dt;
+  maccormack_ = scheme == AdvectionScheme::MacCormack;
+  fields_.clear();
+  if (fieldCount > 0) fields_.assign(fields, fields + fieldCount);
+  openFaces_ = openFaces;
+  solidValues_.clear();
+  if (solidValues != nullptr) solidValues_.assign(solidValues, solidValues + fields_.size());
+  keepBeyond_ = keepBeyond;
+  slabs_.clear();
+  if (fields_.empty()) return;
+  const Eigen::Vector3i d(grid.spec.nx, grid.spec.ny, grid.spec.nz);
   const size_t cells = static_cast<size_t>(grid.cellCount());
-  const bool maccormack = scheme == AdvectionScheme::MacCormack;
   // Both traces are shared by all fields: back (where the value comes from) and, for
   // MacCormack, ahead (where the backward step samples the forward result).
-  work.cellTrace.resize(maccormack ? 2 * cells : cells);
-  const VelocityField field(grid);
-  // Decided from the first field's old values once: the fields are swapped as they are done.
+  work.cellTrace.resize(maccormack_ ? 2 * cells : cells);
+  // Decided from the first field's old values once (trace pass): the fields are swapped as
+  // they are done.
   work.kept.assign(keepBeyond > 0.0 ? cells : 0, 0);
-  const double* first = fields[0]->data();
-  auto kept = [&](size_t c) { return keepBeyond > 0.0 && work.kept[c]; };
-  forEachSample(tasks, d, [&](int i, int j, int k, size_t c) {
+  work.forward.resize(cells);
+  work.advected[0].resize(cells);
+  if (maccormack_) {
+    work.rangeLo.resize(cells);
+    work.rangeHi.resize(cells);
+  }
+  slabs_.appendPass(AdvectionSlabList::Pass::Trace, 0, d, maxSamplesPerSlice);
+  for (int which = 0; which < static_cast<int>(fields_.size()); ++which) {
+    slabs_.appendPass(AdvectionSlabList::Pass::Forward, which, d, maxSamplesPerSlice);
+    if (maccormack_) slabs_.appendPass(AdvectionSlabList::Pass::Correction, which, d, maxSamplesPerSlice);
+  }
+}
+
+void ScalarAdvectionSlices::runSlice(TaskSystem& tasks, int slice) {
+  const AdvectionSlabList::Slab& slab = slabs_[slice];
+  switch (slab.pass) {
+    case AdvectionSlabList::Pass::Trace:
+      tracePass(tasks, slab);
+      return;
+    case AdvectionSlabList::Pass::Forward:
+      forwardPass(tasks, slab);
+      break;
+    case AdvectionSlabList::Pass::Correction:
+      correctionPass(tasks, slab);
+      break;
+  }
+  const bool fieldsLastPass = !maccormack_ || slab.pass == AdvectionSlabList::Pass::Correction;
+  if (fieldsLastPass && slab.rowEnd == rowCount(slab.dims))
+    fields_[static_cast<size_t>(slab.target)]->swap(work_->advected[0]);
+}
+
+void ScalarAdvectionSlices::tracePass(TaskSystem& tasks, const AdvectionSlabList::Slab& slab) {
+  const MacGrid& grid = *grid_;
+  AdvectionWorkspace& work = *work_;
+  const size_t cells = static_cast<size_t>(grid.cellCount());
+  const VelocityField field(grid);
+  const double* first = fields_[0]->data();
+  const double keepBeyond = keepBeyond_, dt = dt_;
+  const bool maccormack = maccormack_;
+  forEachSampleInSlab(tasks, slab, [&](int i, int j, int k, size_t c) {
     if (keepBeyond > 0.0 && std::abs(first[c]) >= keepBeyond) {
       work.kept[c] = 1;
       return;
     }
     const Eigen::Vector3d x = grid.cellCentre(i, j, k);
     const Eigen::Vector3d u = grid.cellVelocity(i, j, k);
-    work.cellTrace[c] = latticeCoordinate(s, trace(field, x, u, dt), 3);
-    if (maccormack) work.cellTrace[cells + c] = latticeCoordinate(s, trace(field, x, u, -dt), 3);
+    work.cellTrace[c] = latticeCoordinate(grid.spec, trace(field, x, u, dt), 3);
+    if (maccormack) work.cellTrace[cells + c] = latticeCoordinate(grid.spec, trace(field, x, u, -dt), 3);
   });
-  work.forward.resize(cells);
-  std::vector<double>& out = work.advected[0];
-  out.resize(cells);
-  const uint8_t* faces = openFaces != nullptr ? openFaces->faces.data() : nullptr;
-  const uint8_t* blockOpen = openFaces != nullptr ? openFaces->blockOpen.data() : nullptr;
-  auto sample = [&](const double* values, const Eigen::Vector3d& at, SampleRange* range) {
-    return faces != nullptr ? connectedTrilinearSample(values, d, at, faces, blockOpen, range)
-                            : trilinearSample(values, d, at, range);
-  };
-  for (int which = 0; which < fieldCount; ++which) {
-    std::vector<double>& old = *fields[which];
-    // Cells with no open face (inside a solid) are not advected: they hold the solid value.
-    auto solid = [&](size_t c) { return faces != nullptr && !(faces[c] & kCellIsFluid); };
-    const double solidValue = solidValues != nullptr ? solidValues[which] : 0.0;
-    auto solidResult = [&](size_t c) { return solidValues != nullptr ? solidValue : old[c]; };
-    if (!maccormack) {
-      forEachSample(tasks, d, [&](int, int, int, size_t c) {
-        out[c] = solid(c) ? solidResult(c) : kept(c) ? old[c] : sample(old.data(), work.cellTrace[c], nullptr);
-      });
-      old.swap(out);
-      continue;
+}
+
+void ScalarAdvectionSlices::forwardPass(TaskSystem& tasks, const AdvectionSlabList::Slab& slab) {
+  AdvectionWorkspace& work = *work_;
+  const ScalarCellRules rules = scalarCellRules(slab, openFaces_, solidValues_, keepBeyond_, work);
+  const std::vector<double>& old = *fields_[static_cast<size_t>(slab.target)];
+  const bool maccormack = maccormack_;
+  // Semi-Lagrangian: the forward result is the advected field.
+  double* fwd = maccormack ? work.forward.data() : work.advected[0].data();
+  forEachSampleInSlab(tasks, slab, [&](int, int, int, size_t c) {
+    if (rules.solid(c) || rules.keeps(c)) {
+      fwd[c] = rules.solid(c) ? rules.solidResult(old, c) : old[c];
+      if (maccormack) work.rangeLo[c] = work.rangeHi[c] = fwd[c];
+      return;
     }
-    work.rangeLo.resize(cells);
-    work.rangeHi.resize(cells);
-    forEachSample(tasks, d, [&](int, int, int, size_t c) {
-      if (solid(c) || kept(c)) {
-        work.forward[c] = work.rangeLo[c] = work.rangeHi[c] = solid(c) ? solidResult(c) : old[c];
-        return;
-      }
-      SampleRange range;
-      work.forward[c] = sample(old.data(), work.cellTrace[c], &range);
-      work.rangeLo[c] = range.lo, work.rangeHi[c] = range.hi;
-    });
-    forEachSample(tasks, d, [&](int, int, int, size_t c) {
-      if (solid(c) || kept(c)) {
-        out[c] = work.forward[c];
-        return;
-      }
-      const double backAgain = sample(work.forward.data(), work.cellTrace[cells + c], nullptr);
-      out[c] = std::clamp(work.forward[c] + 0.5 * (old[c] - backAgain), work.rangeLo[c], work.rangeHi[c]);
-    });
-    old.swap(out);
-  }
+    SampleRange range;
+    fwd[c] = rules.sample(old.data(), work.cellTrace[c], maccormack ? &range : nullptr);
+    if (maccormack) work.rangeLo[c] = range.lo, work.rangeHi[c] = range.hi;
+  });
+}
+
+void ScalarAdvectionSlices::correctionPass(TaskSystem& tasks, const AdvectionSlabList::Slab& slab) {
+  AdvectionWorkspace& work = *work_;
+  const ScalarCellRules rules = scalarCellRules(slab, openFaces_, solidValues_, keepBeyond_, work);
+  const std::vector<double>& old = *fields_[static_cast<size_t>(slab.target)];
+  const size_t cells = static_cast<size_t>(grid_->cellCount());
+  std::vector<double>& out = work.advected[0];
+  forEachSampleInSlab(tasks, slab, [&](int, int, int, size_t c) {
+    if (rules.solid(c) || rules.keeps(c)) {
+      out[c] = work.forward[c];
+      return;
+    }
+    const double backAgain = rules.sample(work.forward.data(), work.cellTrace[cells + c], nullptr);
+    out[c] = std::clamp(work.forward[c] + 0.5 * (old[c] - backAgain), work.rangeLo[c], work.rangeHi[c]);
+  });
+}
+
+void advectCellScalars(TaskSystem& tasks, const MacGrid& grid, double dt, AdvectionScheme scheme,
+                       std::vector<double>* const* fields, int fieldCount, AdvectionWorkspace& work,
+                       const CellOpenFaces* openFaces, const double* solidValues, double keepBeyond) {
+  ScalarAdvectionSlices slices;
+  slices.prepare(grid, dt, scheme, fields, fieldCount, work, openFaces, solidValues, keepBeyond,
+                 std::numeric_limits<int64_t>::max());
+  for (int slice = 0; slice < slices.sliceCount(); ++slice) slices.runSlice(tasks, slice);
 }
 
 }  // namespace vp

@@ -15,6 +15,11 @@
 //
 // Points traced out of the domain take the boundary's values (clamped sampling).
 //
+// Sliced (VelocityAdvectionSlices, ScalarAdvectionSlices): every pass computes each sample
+// from the pass's inputs alone, so a pass's rows can be cut into slabs run one at a time,
+// with frames in between, and give bitwise what one call gives. advectVelocity and
+// advectCellScalars are the same passes run as one slab each.
+//
 // Cell-centred scalars can be sampled through the open faces only (CellOpenFaces): a sample
 // then uses, of its 8 cells, those connected to the fluid cell nearest the sample point by
 // open faces inside the 2 x 2 x 2 block (connectedTrilinearSample in grid_sampling.h), and
@@ -78,5 +83,96 @@ void advectCellScalars(TaskSystem& tasks, const MacGrid& grid, double dt, Advect
                        std::vector<double>* const* fields, int fieldCount, AdvectionWorkspace& work,
                        const CellOpenFaces* openFaces = nullptr, const double* solidValues = nullptr,
                        double keepBeyond = 0.0);
+
+// The slices of a sequence of passes over sample lattices: each pass's rows (x-lines) cut into
+// near-equal slabs of at most maxSamplesPerSlab samples, but never less than one row.
+class AdvectionSlabList {
+ public:
+  enum class Pass : uint8_t { Trace, Forward, Correction };
+  struct Slab {
+    Pass pass;
+    int target;  // the axis or field the pass works on
+    Eigen::Vector3i dims;  // of the pass's lattice
+    int64_t rowBegin, rowEnd;  // rows are numbered j + dims.y * k
+    int64_t samples() const { return (rowEnd - rowBegin) * dims.x(); }
+  };
+
+  void clear() { slabs_.clear(); }
+  void appendPass(Pass pass, int target, const Eigen::Vector3i& dims, int64_t maxSamplesPerSlab);
+  int count() const { return static_cast<int>(slabs_.size()); }
+  const Slab& operator[](int slab) const { return slabs_[static_cast<size_t>(slab)]; }
+
+ private:
+  std::vector<Slab> slabs_;
+};
+
+// One sub-step's velocity advection (advectVelocity) as a sequence of slices: for each axis,
+// for each pass (semi-Lagrangian: one; MacCormack: forward, then correction), that axis's face
+// rows in slabs of at most maxSamplesPerSlice samples (one row at least). The slices write the
+// workspace only, so grid.velocity stays the old field that every trace samples until
+// finish() swaps the advected one in.
+//
+// Between prepare() and finish() the grid, the workspace and the skip marks must outlive this
+// object and be left alone by everything else. Slices run in order, each once.
+class VelocityAdvectionSlices {
+ public:
+  // Sizes the workspace and lists the slices.
+  void prepare(MacGrid& grid, double dt, AdvectionScheme scheme, AdvectionWorkspace& work, const FaceSkipMask& skip,
+               int64_t maxSamplesPerSlice);
+  int sliceCount() const { return slabs_.count(); }
+  int64_t sliceSamples(int slice) const { return slabs_[slice].samples(); }
+  // Parallel inside, over the slab's rows.
+  void runSlice(TaskSystem& tasks, int slice);
+  // After the last slice: grid.velocity becomes the advected velocity.
+  void finish();
+
+ private:
+  void forwardPass(TaskSystem& tasks, const AdvectionSlabList::Slab& slab);
+  void correctionPass(TaskSystem& tasks, const AdvectionSlabList::Slab& slab);
+
+  MacGrid* grid_ = nullptr;
+  AdvectionWorkspace* work_ = nullptr;
+  double dt_ = 0.0;
+  bool maccormack_ = false;
+  FaceSkipMask skip_;
+  AdvectionSlabList slabs_;
+};
+
+// advectCellScalars as a sequence of slices: the trace pass shared by all fields in slabs,
+// then per field its passes (semi-Lagrangian: one; MacCormack: forward, then correction) in
+// slabs of at most maxSamplesPerSlice cells (one row at least). The slice that completes a
+// field's last pass swaps the field with its advected values, as advectCellScalars does, so
+// after the last slice every field is advected and nothing is left to finish.
+//
+// Between prepare() and the last slice the grid, the fields, the workspace and openFaces must
+// outlive this object and be left alone by everything else; the list of field pointers and
+// solidValues are copied. Slices run in order, each once.
+class ScalarAdvectionSlices {
+ public:
+  // Arguments as advectCellScalars'. Sizes the workspace and lists the slices (none when
+  // fieldCount <= 0).
+  void prepare(const MacGrid& grid, double dt, AdvectionScheme scheme, std::vector<double>* const* fields,
+               int fieldCount, AdvectionWorkspace& work, const CellOpenFaces* openFaces, const double* solidValues,
+               double keepBeyond, int64_t maxSamplesPerSlice);
+  int sliceCount() const { return slabs_.count(); }
+  int64_t sliceSamples(int slice) const { return slabs_[slice].samples(); }
+  // Parallel inside, over the slab's rows.
+  void runSlice(TaskSystem& tasks, int slice);
+
+ private:
+  void tracePass(TaskSystem& tasks, const AdvectionSlabList::Slab& slab);
+  void forwardPass(TaskSystem& tasks, const AdvectionSlabList::Slab& slab);
+  void correctionPass(TaskSystem& tasks, const AdvectionSlabList::Slab& slab);
+
+  const MacGrid* grid_ = nullptr;
+  AdvectionWorkspace* work_ = nullptr;
+  double dt_ = 0.0;
+  bool maccormack_ = false;
+  std::vector<std::vector<double>*> fields_;
+  const CellOpenFaces* openFaces_ = nullptr;
+  std::vector<double> solidValues_;  // per field; empty: solid cells keep their values
+  double keepBeyond_ = 0.0;
+  AdvectionSlabList slabs_;
+};
 
 }  // namespace vp

@@ -48,19 +48,22 @@ Status FluidActor::create(FluidDesc desc, TaskSystem& tasks, std::unique_ptr<Flu
     // target is re-measured then (liquid created inside a solid does not count).
     a.targetVolume_ = -1.0;
   }
+  a.publish();
+  a.stepCount_ = 0;
   *out = std::move(actor);
   return Status::Ok;
 }
 
 double FluidActor::totalSmoke() const {
   double sum = 0.0;
-  for (double d : smokeDensity_) sum += d;
+  for (double d : shown_.smokeDensity) sum += d;
   return sum * grid_.spec.h * grid_.spec.h * grid_.spec.h;
 }
 
 double FluidActor::liquidVolume() const {
   if (desc_.kind != FluidKind::Liquid) return 0.0;
-  return vp::liquidVolume(*tasks_, grid_.spec, phi_.data(), cellWeights_.empty() ? nullptr : cellWeights_.data());
+  const std::vector<double>& weights = shown_.cellWeights;
+  return vp::liquidVolume(*tasks_, grid_.spec, shown_.levelSet.data(), weights.empty() ? nullptr : weights.data());
 }
 
 const FluidSurface& FluidActor::surface() {
@@ -70,7 +73,7 @@ const FluidSurface& FluidActor::surface() {
   if (desc_.kind != FluidKind::Liquid) return surface_;
   SurfaceMesh mesh;
   std::vector<Eigen::Vector3d> normals;
-  if (Status s = extractLiquidSurface(*tasks_, grid_.spec, phi_.data(), &mesh, &normals, marchingCubes_); !ok(s)) {
+  if (Status s = extractLiquidSurface(*tasks_, grid_.spec, shown_.levelSet.data(), &mesh, &normals, marchingCubes_); !ok(s)) {
     log(LogLevel::Error, "fluid '%s': surface extraction failed: %s", desc_.name.c_str(), lastError());
     return surface_;
   }
@@ -81,7 +84,8 @@ const FluidSurface& FluidActor::surface() {
   return surface_;
 }
 
-void FluidActor::keepLevelSetHealthy(TaskSystem& tasks) {
+void FluidActor::keepLevelSetHealthy() {
+  TaskSystem& tasks = *step_->input.tasks;
   extendLevelSetIntoSolids(grid_.spec, cellWeights_, phi_, solidCells_);
   RedistanceStats rs;
   if (Status s = redistanceLevelSet(tasks, grid_.spec, phi_.data(), RedistanceSettings{}, redistance_, &rs); !ok(s))
@@ -96,7 +100,8 @@ void FluidActor::keepLevelSetHealthy(TaskSystem& tasks) {
     log(LogLevel::Error, "fluid '%s': volume correction failed: %s", desc_.name.c_str(), lastError());
 }
 
-void FluidActor::extrapolateLiquidVelocity(TaskSystem& tasks) {
+void FluidActor::extrapolateLiquidVelocity() {
+  TaskSystem& tasks = *tasks_;
   VelocityExtrapolationSettings settings;
   // Advection traces at most cflNumber cells (plus the interpolation stencil) from any
   // liquid face within a sub-step.
@@ -116,33 +121,33 @@ void FluidActor::extrapolateLiquidVelocity(TaskSystem& tasks) {
   }
 }
 
-void FluidActor::diffuseVelocity(TaskSystem& tasks, double dt, const Deadline& deadline, ActorStats* stats) {
-  const double t0 = deadline.elapsedMs();
+void FluidActor::diffuseVelocity() {
   ViscosityStats vs;
-  if (Status s = applyViscosity(tasks, grid_, fractions_, liquidPhi(), desc_.kinematicViscosity, dt, deadline,
-                                ViscositySettings{}, viscosity_, &vs);
+  if (Status s = applyViscosity(*step_->input.tasks, grid_, fractions_, liquidPhi(), desc_.kinematicViscosity,
+                                step_->h, Deadline{}, ViscositySettings{}, viscosity_, &vs);
       !ok(s))
     log(LogLevel::Error, "fluid '%s': viscosity failed: %s", desc_.name.c_str(), lastError());
-  PhaseStats& phase = stats->phase(Phase::Viscosity);
+  PhaseStats& phase = step_->stats->phase(Phase::Viscosity);
   phase.iterations += vs.solve.iterations;
   phase.residual = std::max(phase.residual, vs.solve.relativeResidual);
-  phase.budgetCut = phase.budgetCut || vs.solve.budgetCut;
-  phase.ms += deadline.elapsedMs() - t0;
 }
 
-void FluidActor::advectAndSource(TaskSystem& tasks, double h, double maxDisplacement, ActorStats* stats,
-                                 const Deadline& deadline) {
+void FluidActor::advectVelocityStage() {
   const FluidSolverSettings& solver = desc_.solver;
-  const double cell = grid_.spec.h;
-  double t0 = deadline.elapsedMs();
   // A liquid's air faces beyond the extrapolated layers are zeroed after the projection and
   // out of reach of the liquid while a sub-step moves things at most cflNumber cells (the
   // layers' premise); when maxSubsteps caps the sub-steps, everything is advected.
   FaceSkipMask skip;
   if (desc_.kind == FluidKind::Liquid && !extrapolation_.mark[0].empty() &&
-      maxDisplacement <= solver.cflNumber * cell)
+      step_->speed * step_->h <= solver.cflNumber * grid_.spec.h)
     skip = FaceSkipMask{extrapolation_.mark, kExtrapolationUnreached};
-  advectVelocity(tasks, grid_, h, solver.advection, advection_, skip);
+  advectVelocity(*step_->input.tasks, grid_, step_->h, solver.advection, advection_, skip);
+}
+
+void FluidActor::advectScalarsStage() {
+  TaskSystem& tasks = *step_->input.tasks;
+  const double h = step_->h;
+  const AdvectionScheme scheme = desc_.solver.advection;
   if (desc_.kind == FluidKind::Smoke) {
     // Smoke and heat move through open faces only: a plain trilinear stencil reaches across a
     // plate one cell thick. Cells inside solids hold no smoke and the ambient temperature.
@@ -152,39 +157,35 @@ void FluidActor::advectAndSource(TaskSystem& tasks, double h, double maxDisplace
     }
     std::vector<double>* scalars[2] = {&smokeDensity_, &temperature_};
     const double solidValues[2] = {0.0, desc_.smoke.ambientTemperature};
-    advectCellScalars(tasks, grid_, h, solver.advection, scalars, 2, advection_, &openFaces_, solidValues);
+    advectCellScalars(tasks, grid_, h, scheme, scalars, 2, advection_, &openFaces_, solidValues);
   } else {
     // The level set is extended into solids on purpose (level_set_solid_extension.h) and
     // sampled as it is. Cells farther from the surface than the sub-step moves it, plus the
     // forward and backward traces' stencils, keep their sign, and redistancing rewrites them.
     std::vector<double>* scalars[1] = {&phi_};
-    advectCellScalars(tasks, grid_, h, solver.advection, scalars, 1, advection_, nullptr, nullptr,
-                      maxDisplacement + 3.0 * cell);
+    advectCellScalars(tasks, grid_, h, scheme, scalars, 1, advection_, nullptr, nullptr,
+                      step_->speed * h + 3.0 * grid_.spec.h);
   }
-  stats->phase(Phase::Advect).ms += deadline.elapsedMs() - t0;
+}
 
-  t0 = deadline.elapsedMs();
+void FluidActor::applySources() {
+  const double h = step_->h;
   if (desc_.kind == FluidKind::Smoke) {
     applySmokeEmitters(grid_, desc_.emitters, h, smokeDensity_, temperature_);
   } else if (!desc_.emitters.empty() || !desc_.drains.empty()) {
     // Sources change the volume on purpose: the target follows them.
+    TaskSystem& tasks = *step_->input.tasks;
     const double before = vp::liquidVolume(tasks, grid_.spec, phi_.data(), cellWeights_.data());
     applyLiquidEmitters(grid_, desc_.emitters, phi_);
     applyDrains(grid_, desc_.drains, phi_);
     targetVolume_ += vp::liquidVolume(tasks, grid_.spec, phi_.data(), cellWeights_.data()) - before;
   }
-  stats->phase(Phase::Forces).ms += deadline.elapsedMs() - t0;
-
-  if (desc_.kind == FluidKind::Liquid) {
-    t0 = deadline.elapsedMs();
-    keepLevelSetHealthy(tasks);
-    stats->phase(Phase::Surface).ms += deadline.elapsedMs() - t0;
-  }
 }
 
-void FluidActor::applyForces(TaskSystem& tasks, const Vec3& gravity, double h, ActorStats* stats,
-                             const Deadline& deadline) {
-  const double t0 = deadline.elapsedMs();
+void FluidActor::applyForces() {
+  TaskSystem& tasks = *step_->input.tasks;
+  const double h = step_->h;
+  const Vec3& gravity = step_->input.gravity;
   if (desc_.kind == FluidKind::Smoke) {
     applyBuoyancy(tasks, grid_, smokeDensity_, temperature_, desc_.smoke, gravity, h);
     applyVorticityConfinement(tasks, grid_, desc_.smoke.vorticityConfinement, h, vorticity_);
@@ -196,7 +197,6 @@ void FluidActor::applyForces(TaskSystem& tasks, const Vec3& gravity, double h, A
       for (double& u : grid_.velocity[a]) u += h * gravity[a];
     }
   }
-  stats->phase(Phase::Forces).ms += deadline.elapsedMs() - t0;
 }
 
 Status FluidActor::updateFractions(const std::vector<FluidCollider>& colliders) {
@@ -281,106 +281,210 @@ double FluidActor::maxSpeed(TaskSystem& tasks) const {
 }
 
 void FluidActor::step(const FluidStepInput& input, ActorStats* stats, std::vector<FluidColliderLoad>* loads) {
-  TaskSystem& tasks = *input.tasks;
-  ++stepCount_;
-  const double dt = input.dt;
-  const Deadline& deadline = input.deadline;
-  const FluidSolverSettings& solver = desc_.solver;
-  const MacGridSpec& s = grid_.spec;
+  SliceBudget unlimited;
+  unlimited.minSlices = std::numeric_limits<int>::max();
+  while (!advance(input, unlimited, stats)) {
+  }
+  if (loads != nullptr) loads->insert(loads->end(), shown_.loads.begin(), shown_.loads.end());
+}
 
-  double t0 = deadline.elapsedMs();
-  if (Status st = updateFractions(input.colliders); st != Status::Ok)
+bool FluidActor::advance(const FluidStepInput& input, const SliceBudget& budget, ActorStats* stats) {
+  if (job_.done()) beginStep(input);
+  step_->stats = stats;
+  const Clock& clock = budget.share.clock();
+  int ran = 0;
+  maxSliceMs_ = 0.0;
+  while (!job_.done()) {
+    // A slice of a kind never measured is expected to cost nothing: it runs while any time is left.
+    const double remaining = budget.share.remainingMs();
+    const bool fits = budget.share.unlimited() || (remaining > 0.0 && remaining >= job_.expectedNextMs());
+    if (!fits && ran >= budget.minSlices) break;
+    const FluidSlice kind = static_cast<FluidSlice>(job_.nextKind());
+    const double ms = job_.runNext(clock);
+    stats->phase(phaseOf(kind)).ms += ms;
+    maxSliceMs_ = std::max(maxSliceMs_, ms);
+    ++ran;
+  }
+  stats->slices += ran;
+  stats->completedStep = job_.done();
+  stats->progress = progress();
+  if (!job_.done()) return false;
+  stats->simulatedDt = step_->input.dt;
+  stats->diverged = stats->diverged || step_->diverged;
+  lastStepSlices_ = job_.slicesRun();
+  step_.reset();
+  return true;
+}
+
+double FluidActor::progress() const {
+  if (job_.done()) return step_ ? 1.0 : 0.0;
+  const int done = job_.slicesRun();
+  return static_cast<double>(done) / std::max(done + job_.slicesQueued(), lastStepSlices_);
+}
+
+void FluidActor::beginStep(const FluidStepInput& input) {
+  step_ = std::make_unique<StepInProgress>();
+  step_->input = input;
+  job_.reset();
+  job_.thenOnce(static_cast<int>(FluidSlice::Fractions), [this] { updateFractionsStage(); });
+  job_.thenOnce(static_cast<int>(FluidSlice::Plan), [this] { planSubsteps(); });
+}
+
+void FluidActor::updateFractionsStage() {
+  TaskSystem& tasks = *step_->input.tasks;
+  if (Status st = updateFractions(step_->input.colliders); st != Status::Ok)
     log(LogLevel::Error, "fluid '%s': face fractions failed: %s", desc_.name.c_str(), lastError());
   if (desc_.kind == FluidKind::Liquid) {
     cellOpenFractions(tasks, fractions_, &cellWeights_);
     if (targetVolume_ < 0.0) {
       targetVolume_ = vp::liquidVolume(tasks, grid_.spec, phi_.data(), cellWeights_.data());
-      extrapolateLiquidVelocity(tasks);
+      extrapolateLiquidVelocity();
     }
   }
-  stats->phase(Phase::Fractions).ms += deadline.elapsedMs() - t0;
+}
 
-  // Nothing outside step() writes the velocities, so the speed the last step ended with is
-  // the speed this one starts with.
-  if (speedAtEnd_ < 0.0) speedAtEnd_ = maxSpeed(tasks);
-  double speed = speedAtEnd_;
-  for (const FluidCollider& c : input.colliders)
+void FluidActor::planSubsteps() {
+  StepInProgress& st = *step_;
+  const FluidSolverSettings& solver = desc_.solver;
+  // Nothing outside the step writes the working velocities, so the speed the last step
+  // ended with is the speed this one starts with.
+  if (speedAtEnd_ < 0.0) speedAtEnd_ = maxSpeed(*st.input.tasks);
+  st.speed = speedAtEnd_;
+  for (const FluidCollider& c : st.input.colliders)
     if (c.geometry != nullptr && c.geometry->bounds.overlaps(domainBounds()))
-      speed = std::max(speed, c.geometry->shape.linearVelocity.norm() +
-                                  c.geometry->shape.angularVelocity.norm() * c.geometry->boundRadius);
-  const int substeps = std::clamp(static_cast<int>(std::ceil(speed * dt / (solver.cflNumber * s.h))), 1,
-                                  solver.maxSubsteps);
-  const double h = dt / substeps;
+      st.speed = std::max(st.speed, c.geometry->shape.linearVelocity.norm() +
+                                        c.geometry->shape.angularVelocity.norm() * c.geometry->boundRadius);
+  st.substeps = std::clamp(static_cast<int>(std::ceil(st.speed * st.input.dt / (solver.cflNumber * grid_.spec.h))), 1,
+                           solver.maxSubsteps);
+  st.h = st.input.dt / st.substeps;
+  st.loadSum.assign(st.input.colliders.size(), PressureLoad{});
+  for (int sub = 0; sub < st.substeps; ++sub) queueSubstep(sub);
+  job_.thenOnce(static_cast<int>(FluidSlice::Publish), [this] { publish(); });
+}
 
-  std::vector<PressureLoad> loadSum(input.colliders.size());
-  PressureSolveSettings pressureSettings;
-  pressureSettings.tolerance = solver.pressureTolerance;
-  pressureSettings.maxIterations = solver.pressureMaxIterations;
-  // A projection the budget skips leaves the divergence it should remove in the flow; it
-  // grows step after step, speeds rise, the CFL sub-steps multiply and the next frames cost
-  // more, so the budget cuts deeper (measured: the default scene's liquid then ran 4 sub-steps
-  // a frame and 25% of the frames overran 16 ms). Two multigrid-preconditioned iterations cut
-  // the residual about a hundredfold, so they run even past the deadline.
-  pressureSettings.minIterations = std::min(4, solver.pressureMaxIterations);
+void FluidActor::queueSubstep(int) {
+  auto once = [this](FluidSlice kind, void (FluidActor::*stage)()) {
+    job_.thenOnce(static_cast<int>(kind), [this, stage] { (this->*stage)(); });
+  };
+  const bool liquid = desc_.kind == FluidKind::Liquid;
+  once(FluidSlice::AdvectVelocity, &FluidActor::advectVelocityStage);
+  once(FluidSlice::AdvectScalars, &FluidActor::advectScalarsStage);
+  once(FluidSlice::Sources, &FluidActor::applySources);
+  if (liquid) once(FluidSlice::LevelSet, &FluidActor::keepLevelSetHealthy);
+  if (desc_.kinematicViscosity > 0.0) once(FluidSlice::Viscosity, &FluidActor::diffuseVelocity);
+  once(FluidSlice::Forces, &FluidActor::applyForces);
+  once(FluidSlice::PressureSetup, &FluidActor::beginProjection);
+  job_.then(static_cast<int>(FluidSlice::PressureIteration), [this] { return iterateProjection(); });
+  once(FluidSlice::PressureUpdate, &FluidActor::finishProjection);
+  if (liquid) once(FluidSlice::Extrapolate, &FluidActor::extrapolateLiquidVelocity);
+}
+
+void FluidActor::beginProjection() {
+  StepInProgress& st = *step_;
+  PressureSolveSettings settings;
+  settings.tolerance = desc_.solver.pressureTolerance;
+  settings.maxIterations = desc_.solver.pressureMaxIterations;
   // A liquid's operator follows its surface every sub-step; smoke's changes only with the
   // fractions.
-  PhaseStats& pressurePhase = stats->phase(Phase::Pressure);
-  for (int sub = 0; sub < substeps; ++sub) {
-    advectAndSource(tasks, h, speed * h, stats, deadline);
-    if (desc_.kinematicViscosity > 0.0) diffuseVelocity(tasks, h, deadline.share(1.0 / (3 * (substeps - sub))), stats);
-    applyForces(tasks, input.gravity, h, stats, deadline);
+  settings.operatorUnchanged = desc_.kind == FluidKind::Smoke && !pressureOperatorStale_;
+  pressureOperatorStale_ = false;
+  st.projectionFailed = !ok(st.projection.begin(*st.input.tasks, grid_, fractions_, st.h, desc_.density, settings,
+                                                pressure_, liquidPhi()));
+  if (st.projectionFailed)
+    log(LogLevel::Error, "fluid '%s': pressure projection failed: %s", desc_.name.c_str(), lastError());
+}
 
-    t0 = deadline.elapsedMs();
-    PressureSolveStats ps;
-    const Deadline share = deadline.share(1.0 / (substeps - sub));
-    pressureSettings.operatorUnchanged = desc_.kind == FluidKind::Smoke && !pressureOperatorStale_;
-    pressureOperatorStale_ = false;
-    if (Status st = projectVelocity(tasks, grid_, fractions_, h, desc_.density, share, pressureSettings, pressure_, &ps,
-                                    liquidPhi());
-        st != Status::Ok)
-      log(LogLevel::Error, "fluid '%s': pressure projection failed: %s", desc_.name.c_str(), lastError());
-    pressurePhase.iterations += ps.iterations;
-    pressurePhase.residual = std::max(pressurePhase.residual, ps.relativeResidual);
-    pressurePhase.budgetCut = pressurePhase.budgetCut || ps.budgetCut;
-    if (desc_.twoWayCoupling)
-      for (size_t c = 0; c < input.colliders.size(); ++c) {
-        const FluidCollider& fc = input.colliders[c];
-        if (!fc.dynamic || fc.geometry == nullptr) continue;
-        const PressureLoad l = pressureLoadOnCollider(grid_, fractions_, pressure_.poisson, pressure_.pressure.data(), desc_.density,
-                                                      *fc.geometry, fc.geometry->shape.translation);
-        loadSum[c].force += l.force / substeps;
-        loadSum[c].torque += l.torque / substeps;
-        loadSum[c].addedMass += l.addedMass / substeps;
-      }
-    pressurePhase.ms += deadline.elapsedMs() - t0;
-    if (desc_.kind == FluidKind::Liquid) {
-      t0 = deadline.elapsedMs();
-      extrapolateLiquidVelocity(tasks);
-      stats->phase(Phase::Surface).ms += deadline.elapsedMs() - t0;
+bool FluidActor::iterateProjection() {
+  StepInProgress& st = *step_;
+  if (st.projectionFailed || st.projection.solved()) return true;
+  ++st.stats->phase(Phase::Pressure).iterations;
+  return st.projection.iterate();
+}
+
+void FluidActor::finishProjection() {
+  StepInProgress& st = *step_;
+  if (st.projectionFailed) return;
+  PressureSolveStats ps;
+  st.projection.finish(&ps);
+  PhaseStats& phase = st.stats->phase(Phase::Pressure);
+  phase.residual = std::max(phase.residual, ps.relativeResidual);
+  st.stats->residual = std::max(st.stats->residual, ps.relativeResidual);
+  if (!desc_.twoWayCoupling) return;
+  for (size_t c = 0; c < st.input.colliders.size(); ++c) {
+    const FluidCollider& fc = st.input.colliders[c];
+    if (!fc.dynamic || fc.geometry == nullptr) continue;
+    const PressureLoad l = pressureLoadOnCollider(grid_, fractions_, pressure_.poisson, pressure_.pressure.data(),
+                                                  desc_.density, *fc.geometry, fc.geometry->shape.translation);
+    st.loadSum[c].force += l.force / st.substeps;
+    st.loadSum[c].torque += l.torque / st.substeps;
+    st.loadSum[c].addedMass += l.addedMass / st.substeps;
+  }
+}
+
+void FluidActor::publish() {
+  ++stepCount_;
+  shown_.loads.clear();
+  if (step_ != nullptr) {
+    StepInProgress& st = *step_;
+    // Non-finite or absurd speeds (the deformables' guard uses the same kind of bound) mean
+    // the step blew up; nothing brings such a flow back. Restart it from rest rather than
+    // hand NaNs or absurd loads to the host and the rigid bodies.
+    speedAtEnd_ = maxSpeed(*st.input.tasks);
+    if (!(std::isfinite(speedAtEnd_) && speedAtEnd_ <= kMaxFluidSpeed)) {
+      for (int a = 0; a < 3; ++a) std::fill(grid_.velocity[a].begin(), grid_.velocity[a].end(), 0.0);
+      std::fill(pressure_.pressure.begin(), pressure_.pressure.end(), 0.0);
+      speedAtEnd_ = 0.0;
+      st.diverged = true;
+    } else if (desc_.twoWayCoupling) {
+      // The load is the mean over this step and acts during the next one (a delay of one
+      // step: explicit coupling). Extrapolating it one step ahead to cancel the delay was
+      // tried and made a floating box unstable (the pressure also carries the added-mass
+      // reaction, which an extrapolation amplifies).
+      for (size_t c = 0; c < st.input.colliders.size(); ++c)
+        if (st.input.colliders[c].dynamic)
+          shown_.loads.push_back(
+              FluidColliderLoad{st.input.colliders[c].index1, st.input.colliders[c].generation, st.loadSum[c]});
     }
   }
+  publishFields();
+}
 
-  // Non-finite or absurd speeds (the deformables' guard uses the same kind of bound) mean the
-  // step blew up; nothing brings such a flow back.
-  speedAtEnd_ = maxSpeed(tasks);
-  const bool finite = std::isfinite(speedAtEnd_) && speedAtEnd_ <= kMaxFluidSpeed;
-  if (!finite) {
-    // Restart the flow from rest rather than hand NaNs or absurd loads to the host and the
-    // rigid bodies.
-    for (int a = 0; a < 3; ++a) std::fill(grid_.velocity[a].begin(), grid_.velocity[a].end(), 0.0);
-    std::fill(pressure_.pressure.begin(), pressure_.pressure.end(), 0.0);
-    speedAtEnd_ = 0.0;
-    stats->diverged = true;
-    return;
+bool FluidActor::editFields(const std::function<void(EditableFields&)>& edit) {
+  if (stepInProgress()) return false;
+  EditableFields fields{grid_, smokeDensity_, temperature_, phi_};
+  edit(fields);
+  speedAtEnd_ = -1.0;  // the next step measures the edited velocities
+  publishFields();
+  return true;
+}
+
+void FluidActor::publishFields() {
+  shown_.grid = grid_;
+  shown_.smokeDensity = smokeDensity_;
+  shown_.temperature = temperature_;
+  shown_.levelSet = phi_;
+  shown_.pressure = pressure_.pressure;
+  shown_.cellWeights = cellWeights_;
+}
+
+Phase FluidActor::phaseOf(FluidSlice kind) {
+  switch (kind) {
+    case FluidSlice::Fractions:
+    case FluidSlice::Plan: return Phase::Fractions;
+    case FluidSlice::AdvectVelocity:
+    case FluidSlice::AdvectScalars: return Phase::Advect;
+    case FluidSlice::Sources:
+    case FluidSlice::Forces: return Phase::Forces;
+    case FluidSlice::Viscosity: return Phase::Viscosity;
+    case FluidSlice::PressureSetup:
+    case FluidSlice::PressureIteration:
+    case FluidSlice::PressureUpdate: return Phase::Pressure;
+    case FluidSlice::LevelSet:
+    case FluidSlice::Extrapolate:
+    case FluidSlice::Publish:
+    case FluidSlice::Count: break;
   }
-  // The load is the mean over this step and acts during the next one (a delay of one step:
-  // explicit coupling). Extrapolating it one step ahead to cancel the delay was tried and made
-  // a floating box unstable (the pressure also carries the added-mass reaction, which an
-  // extrapolation amplifies); the plain delay lets bobbing decay, slowly, in an inviscid tank.
-  if (loads != nullptr)
-    for (size_t c = 0; c < input.colliders.size(); ++c)
-      if (input.colliders[c].dynamic && desc_.twoWayCoupling)
-        loads->push_back(FluidColliderLoad{input.colliders[c].index1, input.colliders[c].generation, loadSum[c]});
+  return Phase::Surface;
 }
 
 }  // namespace vp

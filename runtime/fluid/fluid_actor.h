@@ -2,35 +2,41 @@
 // cut-cell solid boundaries (exact face fractions) and, optionally, two-way coupling to the
 // dynamic ones.
 //
-// One world step of dt:
+// One step of dt is a list of stages, run as slices (core/sliced_job.h) that the world may
+// spread over several frames; readers (fields, velocities, surface, loads) see the last
+// completed step, switched in one place (publish) when a step completes. The stages never
+// read a clock, so a step gives bitwise the same result however it is sliced:
 //   Fractions  face fractions brought up to date where colliders moved (incremental), and
 //              the faces of cells that a thin collider splits closed except around the
 //              cell's main piece (cut_cell_components.h)
-//   then sub-steps of dt/n, n = ceil(max speed * dt / (cfl h)) capped at maxSubsteps:
+//   Plan       sub-steps of dt/n, n = ceil(max speed * dt / (cfl h)) capped at maxSubsteps;
+//   then per sub-step:
 //   Advect     velocity (and smoke density/temperature, or the liquid level set); smoke is
 //              sampled through open faces only (advection.h)
 //   Sources    emitters, drains (timed as Forces); liquid: level-set upkeep (Surface phase)
 //   Viscosity  only when kinematicViscosity > 0: implicit diffusion of the velocity
-//              (viscosity.h), budgeted with a third of the sub-step's share. Before the
-//              forces: diffusing u + g dt against no-slip solids slows the uniform velocity
-//              gravity adds next to them, which the projection then turns into a spurious
-//              pressure (measured: a half-density box floated 60% submerged instead of 50%);
-//              the advected velocity of a fluid at rest is 0 and stays so. Before the
-//              projection, so what it leaves is made divergence-free.
+//              (viscosity.h). Before the forces: diffusing u + g dt against no-slip solids
+//              slows the uniform velocity gravity adds next to them, which the projection
+//              then turns into a spurious pressure; the advected velocity of a fluid at rest
+//              is 0 and stays so. Before the projection, so what it leaves is made
+//              divergence-free.
 //   Forces     buoyancy + vorticity confinement + dissipation (smoke) or gravity (liquid)
-//   Pressure   cut-cell projection, budgeted (each sub-step gets an equal share of what is
-//              left of the actor's deadline), warm-started from the last pressure
-//   Surface    liquid: redistancing, volume correction, velocity extrapolation
-// The pressure loads on dynamic colliders, averaged over the sub-steps, are reported in
-// FluidStepResult for the world to apply during the next rigid step.
+//   Pressure   cut-cell projection: setup, one slice per CG iteration (to the tolerance or
+//              pressureMaxIterations, never cut by time), velocity update, loads
+//   Surface    liquid: velocity extrapolation
+//   Publish    divergence guard, then what readers see becomes this step's result
+// The pressure loads on dynamic colliders, averaged over the sub-steps, are those of the last
+// completed step (loads()); the world applies them during the rigid steps that follow.
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
 #include "collide/face_coverage.h"
 #include "core/budget_clock.h"
+#include "core/sliced_job.h"
 #include "core/task_system.h"
 #include "fluid/advection.h"
 #include "fluid/face_fraction_field.h"
@@ -43,6 +49,7 @@
 #include "fluid/pressure_projection.h"
 #include "fluid/smoke_forces.h"
 #include "fluid/viscosity.h"
+#include "frame_plan.h"
 #include "step_stats.h"
 
 namespace vp {
@@ -50,13 +57,16 @@ namespace vp {
 struct FluidCollider {
   uint32_t index1 = 0, generation = 0;  // identifies the collider across steps
   const PreparedCollider* geometry = nullptr;
+  // Keeps `geometry` as it was while a step spanning several frames uses it (the collider
+  // copies its geometry before moving it while it is shared); null when the caller keeps the
+  // geometry unchanged until the step completes.
+  std::shared_ptr<const PreparedCollider> keep;
   bool dynamic = false;  // receives pressure loads when two-way coupling is on
 };
 
 struct FluidStepInput {
   double dt = 1.0 / 60.0;
   Vec3 gravity = Vec3::Zero();
-  Deadline deadline;
   TaskSystem* tasks = nullptr;
   std::vector<FluidCollider> colliders;
 };
@@ -72,21 +82,66 @@ struct FluidSurface {
   std::vector<Eigen::Vector3i> triangles;
 };
 
+// Which slices may run now: while the share leaves room for the next slice's expected cost,
+// and in any case until minSlices have run (the plan's progress floor).
+struct SliceBudget {
+  Deadline share;
+  int minSlices = 0;
+};
+
+// The kinds of slice a fluid step is made of (their measured costs are kept per kind).
+enum class FluidSlice : int {
+  Fractions, Plan, AdvectVelocity, AdvectScalars, Sources, LevelSet, Viscosity, Forces,
+  PressureSetup, PressureIteration, PressureUpdate, Extrapolate, Publish, Count
+};
+
 class FluidActor {
  public:
   static Status create(FluidDesc desc, TaskSystem& tasks, std::unique_ptr<FluidActor>* out);
 
-  // Fills stats; `loads` receives the pressure loads on dynamic colliders (may be null).
+  // One whole step, unbudgeted. Fills stats; `loads` receives the pressure loads on dynamic
+  // colliders (may be null).
   void step(const FluidStepInput& input, ActorStats* stats, std::vector<FluidColliderLoad>* loads);
 
+  // The step in slices: begins a step of `input` when none is in progress, then runs slices
+  // as `budget` allows. Adds what ran to `stats` (phases, slices, iterations, progress).
+  // Returns true when a step completed (its results are then published).
+  bool advance(const FluidStepInput& input, const SliceBudget& budget, ActorStats* stats);
+  bool stepInProgress() const { return !job_.done(); }
+
+  // The fields as a step works on them, for edits outside a step (initial conditions).
+  struct EditableFields {
+    MacGrid& grid;
+    std::vector<double>& smokeDensity;
+    std::vector<double>& temperature;
+    std::vector<double>& levelSet;
+  };
+  // Runs `edit` on the working fields; readers see the edit at once. Refused (false) while a
+  // step is in progress: the step would overwrite it.
+  bool editFields(const std::function<void(EditableFields&)>& edit);
+  // The fraction of the step in progress done so far (by slices, against the last completed
+  // step's count); 0 when none is in progress.
+  double progress() const;
+  // Expected cost of the next slice (0 when unknown or none is queued).
+  double expectedSliceMs() const { return job_.done() ? 0.0 : job_.expectedNextMs(); }
+  // Slices run so far by the step in progress.
+  int stepSlicesRun() const { return job_.slicesRun(); }
+  // Slices of the last completed step (0 before the first).
+  int lastStepSlices() const { return lastStepSlices_; }
+
+  // What readers see: the last completed step.
   const FluidDesc& desc() const { return desc_; }
-  const MacGrid& grid() const { return grid_; }
-  const FaceFractionField& fractions() const { return fractions_; }
-  const std::vector<double>& smokeDensity() const { return smokeDensity_; }
-  const std::vector<double>& temperature() const { return temperature_; }
-  const std::vector<double>& levelSet() const { return phi_; }
-  const std::vector<double>& pressure() const { return pressure_.pressure; }
-  Vec3 sampleVelocity(const Vec3& x) const { return grid_.sampleVelocity(x); }
+  ActorSchedule& schedule() { return schedule_; }
+  // The longest slice run by the last advance().
+  double maxSliceMs() const { return maxSliceMs_; }
+  const MacGrid& grid() const { return shown_.grid; }
+  const std::vector<double>& smokeDensity() const { return shown_.smokeDensity; }
+  const std::vector<double>& temperature() const { return shown_.temperature; }
+  const std::vector<double>& levelSet() const { return shown_.levelSet; }
+  const std::vector<double>& pressure() const { return shown_.pressure; }
+  Vec3 sampleVelocity(const Vec3& x) const { return shown_.grid.sampleVelocity(x); }
+  // The pressure loads of the last completed step on dynamic colliders.
+  const std::vector<FluidColliderLoad>& loads() const { return shown_.loads; }
   // Total smoke (density integrated over the domain, density units * m^3).
   double totalSmoke() const;
   // Liquid volume in m^3 (0 for smoke).
@@ -94,23 +149,33 @@ class FluidActor {
   // Built on the first request after a step (empty for smoke).
   const FluidSurface& surface();
   uint64_t stepCount() const { return stepCount_; }
+  // The working fractions (those of the step in progress, or of the last one).
+  const FaceFractionField& fractions() const { return fractions_; }
 
  private:
   explicit FluidActor(FluidDesc desc) : desc_(std::move(desc)) {}
+  void beginStep(const FluidStepInput& input);
+  // The stages (see the top of this file).
+  void updateFractionsStage();
+  void planSubsteps();
+  void queueSubstep(int sub);
+  void advectVelocityStage();
+  void advectScalarsStage();
+  void applySources();
+  void keepLevelSetHealthy();
+  void diffuseVelocity();
+  void applyForces();
+  void beginProjection();
+  bool iterateProjection();
+  void finishProjection();
+  void extrapolateLiquidVelocity();
+  void publish();
+  void publishFields();
+  static Phase phaseOf(FluidSlice kind);
+
   Status updateFractions(const std::vector<FluidCollider>& colliders);
   double maxSpeed(TaskSystem& tasks) const;
   Aabb domainBounds() const;
-  // Advection, emitters and drains, and the liquid's level-set upkeep. maxDisplacement: the
-  // farthest the flow (and colliders) move anything in this sub-step.
-  void advectAndSource(TaskSystem& tasks, double dt, double maxDisplacement, ActorStats* stats,
-                       const Deadline& deadline);
-  // Gravity (liquid) or buoyancy, vorticity confinement and dissipation (smoke). Without
-  // viscosity the two together do what they did as one (the liquid's level-set upkeep never
-  // reads the velocity), so the inviscid path is unchanged bit for bit.
-  void applyForces(TaskSystem& tasks, const Vec3& gravity, double dt, ActorStats* stats, const Deadline& deadline);
-  void keepLevelSetHealthy(TaskSystem& tasks);
-  void extrapolateLiquidVelocity(TaskSystem& tasks);
-  void diffuseVelocity(TaskSystem& tasks, double dt, const Deadline& deadline, ActorStats* stats);
   const double* liquidPhi() const { return desc_.kind == FluidKind::Liquid ? phi_.data() : nullptr; }
 
   struct ColliderSnapshot {
@@ -118,6 +183,24 @@ class FluidActor {
     Aabb bounds;
     Eigen::Quaterniond rotation;
     Eigen::Vector3d translation, linearVelocity, angularVelocity;
+  };
+  // What the step in progress carries from stage to stage.
+  struct StepInProgress {
+    FluidStepInput input;
+    double speed = 0.0;  // bound on anything's speed in this step
+    int substeps = 1;
+    double h = 0.0;      // sub-step
+    std::vector<PressureLoad> loadSum;  // per input collider
+    PressureProjectionRun projection;
+    bool projectionFailed = false;
+    bool diverged = false;
+    ActorStats* stats = nullptr;  // of the frame now running
+  };
+  // What readers see (the last completed step).
+  struct ShownState {
+    MacGrid grid;
+    std::vector<double> smokeDensity, temperature, levelSet, pressure, cellWeights;
+    std::vector<FluidColliderLoad> loads;
   };
 
   FluidDesc desc_;
@@ -134,7 +217,6 @@ class FluidActor {
   CellOpenFaces openFaces_;  // smoke: which faces advection may interpolate through
   VorticityWorkspace vorticity_;
   ViscosityWorkspace viscosity_;
-  FluidSurface surface_;
   TaskSystem* tasks_ = nullptr;  // the world's, for on-request work (surface extraction)
   // Liquid: the volume the level set must keep (initial + emitted - drained), the cells'
   // open fractions that weight it, and the level-set workspaces.
@@ -143,6 +225,13 @@ class FluidActor {
   std::vector<int64_t> solidCells_;
   RedistanceWorkspace redistance_;
   VelocityExtrapolationState extrapolation_;
+  SlicedJob job_{static_cast<int>(FluidSlice::Count)};
+  std::unique_ptr<StepInProgress> step_;
+  int lastStepSlices_ = 0;
+  double maxSliceMs_ = 0.0;
+  ActorSchedule schedule_;  // the frame plan's state of this fluid
+  ShownState shown_;
+  FluidSurface surface_;
   MarchingCubesWorkspace marchingCubes_;
   uint64_t stepCount_ = 0, surfaceStep_ = ~uint64_t(0);
 };

@@ -72,6 +72,7 @@ struct FluidDesc {
   std::vector<FluidShape> drains;         // liquid: removed where these are
   FluidSolverSettings solver;
   bool twoWayCoupling = true;  // pressure forces act on dynamic colliders
+  int priority = 0;  // higher is served first when the frame budget is short (actor_priority.h)
   void* userData = nullptr;
 };
 

@@ -1,6 +1,7 @@
 // Validation of FluidDesc (fluid_desc.h); messages name the vpFluidDef field and its value.
 #include <cmath>
 
+#include "actor_priority.h"
 #include "fluid/fluid_desc.h"
 
 namespace vp {
@@ -73,6 +74,7 @@ Status validateFluidDesc(const FluidDesc& d) {
   if (s.pressureMaxIterations < 1 || s.pressureMaxIterations > 100000)
     return fail(Status::InvalidArgument, "pressureMaxIterations = %d: must be in [1, 100000]",
                 s.pressureMaxIterations);
+  VP_TRY(validateActorPriority(d.priority));
   for (size_t i = 0; i < d.initialLiquid.size(); ++i)
     VP_TRY(validateShape("initialLiquid[" + std::to_string(i) + "]", d.initialLiquid[i]));
   for (size_t i = 0; i < d.drains.size(); ++i) VP_TRY(validateShape("drains[" + std::to_string(i) + "]", d.drains[i]));

@@ -8,9 +8,9 @@
 
 namespace vp {
 
-Status projectVelocity(TaskSystem& tasks, MacGrid& grid, const FaceFractionField& fractions, double dt,
-                       double density, const Deadline& deadline, const PressureSolveSettings& settings,
-                       PressureState& state, PressureSolveStats* stats, const double* liquidPhi) {
+Status PressureProjectionRun::begin(TaskSystem& tasks, MacGrid& grid, const FaceFractionField& fractions, double dt,
+                                    double density, const PressureSolveSettings& settings, PressureState& state,
+                                    const double* liquidPhi) {
   if (!(dt > 0.0) || !std::isfinite(dt))
     return fail(Status::InvalidArgument, "pressure projection: dt = %g must be positive and finite", dt);
   if (!(density > 0.0) || !std::isfinite(density))
@@ -22,6 +22,13 @@ Status projectVelocity(TaskSystem& tasks, MacGrid& grid, const FaceFractionField
   if (settings.maxIterations < 0)
     return fail(Status::InvalidArgument, "pressure projection: maxIterations = %d must be >= 0",
                 settings.maxIterations);
+  tasks_ = &tasks;
+  grid_ = &grid;
+  fractions_ = &fractions;
+  state_ = &state;
+  liquidPhi_ = liquidPhi;
+  dt_ = dt;
+  density_ = density;
   const bool reuse = settings.operatorUnchanged && state.operatorBuilt && state.builtFor == settings.solver &&
                      state.poisson.diagonal.size() == static_cast<size_t>(grid.cellCount());
   if (!reuse) {
@@ -39,13 +46,11 @@ Status projectVelocity(TaskSystem& tasks, MacGrid& grid, const FaceFractionField
     state.builtFor = settings.solver;
   }
   const CutCellPoisson& op = state.poisson;
-  const MacGridSpec& g = grid.spec;
   const int64_t cells = grid.cellCount();
-  const double h = g.h;
 
   state.rhs.resize(static_cast<size_t>(cells));
   computeNetOutflow(tasks, grid, fractions, op, state.rhs.data());
-  const double rhsScale = -density * h / dt;
+  const double rhsScale = -density * grid.spec.h / dt;
   for (double& b : state.rhs) b *= rhsScale;
 
   if (state.pressure.size() != static_cast<size_t>(cells)) state.pressure.assign(static_cast<size_t>(cells), 0.0);
@@ -53,21 +58,35 @@ Status projectVelocity(TaskSystem& tasks, MacGrid& grid, const FaceFractionField
   for (int64_t c = 0; c < cells; ++c)
     if (!op.isFluid(static_cast<size_t>(c))) state.pressure[static_cast<size_t>(c)] = 0.0;
 
-  LinearSystem system;
-  system.size = cells;
-  system.apply = [&](const double* x, double* y) { applyCutCellPoisson(tasks, op, x, y); };
+  system_ = LinearSystem{};
+  system_.size = cells;
+  system_.apply = [this](const double* x, double* y) { applyCutCellPoisson(*tasks_, state_->poisson, x, y); };
   if (settings.solver == PressureSolver::Mic0Pcg)
-    system.precondition = [&](const double* r, double* z) { applyMic0Preconditioner(op, state.preconditioner, r, z); };
+    system_.precondition = [this](const double* r, double* z) {
+      applyMic0Preconditioner(state_->poisson, state_->preconditioner, r, z);
+    };
   else
-    system.precondition = [&](const double* r, double* z) { applyPoissonMultigrid(tasks, op, state.multigrid, r, z); };
-  system.filter = [&](double* v) { filterCutCellPoisson(tasks, op, v); };
+    system_.precondition = [this](const double* r, double* z) {
+      applyPoissonMultigrid(*tasks_, state_->poisson, state_->multigrid, r, z);
+    };
+  system_.filter = [this](double* v) { filterCutCellPoisson(*tasks_, state_->poisson, v); };
   CgSettings cgSettings;
   cgSettings.relativeTolerance = settings.tolerance;
   cgSettings.maxIterations = settings.maxIterations;
-  cgSettings.minIterations = settings.minIterations;
-  const CgResult result = solveConjugateGradient(tasks, system, state.rhs.data(), state.pressure.data(),
-                                                 cgSettings, deadline, state.cg);
+  cg_ = std::make_unique<ConjugateGradientRun>(tasks, system_, state.rhs.data(), state.pressure.data(), cgSettings,
+                                               state.cg);
+  cg_->start();
+  return Status::Ok;
+}
 
+void PressureProjectionRun::finish(PressureSolveStats* stats) {
+  TaskSystem& tasks = *tasks_;
+  MacGrid& grid = *grid_;
+  const FaceFractionField& fractions = *fractions_;
+  const MacGridSpec& g = grid.spec;
+  const double h = g.h, dt = dt_, density = density_;
+  const double* liquidPhi = liquidPhi_;
+  PressureState& state = *state_;
   // Velocity update, face by face (each face written once: parallel over face rows).
   const double gradientScale = dt / (density * h);
   const double* p = state.pressure.data();
@@ -113,12 +132,32 @@ Status projectVelocity(TaskSystem& tasks, MacGrid& grid, const FaceFractionField
   }
 
   if (stats != nullptr) {
+    const CgResult& result = cg_->result();
     stats->iterations = result.iterations;
     stats->relativeResidual = result.relativeResidual;
     stats->converged = result.converged;
-    stats->budgetCut = result.budgetCut;
-    stats->fluidCells = op.fluidCellCount;
+    stats->budgetCut = false;
+    stats->fluidCells = state.poisson.fluidCellCount;
   }
+}
+
+Status projectVelocity(TaskSystem& tasks, MacGrid& grid, const FaceFractionField& fractions, double dt,
+                       double density, const Deadline& deadline, const PressureSolveSettings& settings,
+                       PressureState& state, PressureSolveStats* stats, const double* liquidPhi) {
+  PressureProjectionRun run;
+  VP_TRY(run.begin(tasks, grid, fractions, dt, density, settings, state, liquidPhi));
+  int iterations = 0;
+  bool budgetCut = false;
+  while (!run.solved()) {
+    if (iterations >= settings.minIterations && deadline.expired()) {
+      budgetCut = true;
+      break;
+    }
+    run.iterate();
+    ++iterations;
+  }
+  run.finish(stats);
+  if (stats != nullptr) stats->budgetCut = budgetCut;
   return Status::Ok;
 }
 

@@ -18,6 +18,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "core/budget_clock.h"
@@ -81,5 +82,30 @@ Status projectVelocity(TaskSystem& tasks, MacGrid& grid, const FaceFractionField
                        double density, const Deadline& deadline, const PressureSolveSettings& settings,
                        PressureState& warmStart, PressureSolveStats* stats,
                        const double* liquidPhi = nullptr);
+
+// The same projection in slices, for a fluid step spread over several frames: begin (operator,
+// preconditioner, right-hand side, first residual), one CG iteration per iterate(), then
+// finish (velocity update). The deadline is the caller's: the solve stops only at the
+// tolerance or maxIterations, so the result does not depend on where the calls are split.
+// Everything passed to begin must outlive the run and stay untouched until finish.
+class PressureProjectionRun {
+ public:
+  Status begin(TaskSystem& tasks, MacGrid& grid, const FaceFractionField& fractions, double dt, double density,
+               const PressureSolveSettings& settings, PressureState& state, const double* liquidPhi = nullptr);
+  // One CG iteration; true when the solve has ended.
+  bool iterate() { return cg_->iterate(); }
+  bool solved() const { return cg_->finished(); }
+  void finish(PressureSolveStats* stats);
+
+ private:
+  TaskSystem* tasks_ = nullptr;
+  MacGrid* grid_ = nullptr;
+  const FaceFractionField* fractions_ = nullptr;
+  PressureState* state_ = nullptr;
+  const double* liquidPhi_ = nullptr;
+  double dt_ = 0.0, density_ = 0.0;
+  LinearSystem system_;
+  std::unique_ptr<ConjugateGradientRun> cg_;
+};
 
 }  // namespace vp

@@ -51,4 +51,42 @@ struct CgWorkspace {
 CgResult solveConjugateGradient(TaskSystem& tasks, const LinearSystem& system, const double* b, double* x,
                                 const CgSettings& settings, const Deadline& deadline, CgWorkspace& work);
 
+// With an accuracy floor: past `deadline` the solve stops only once its relative residual is
+// at or below floorTolerance, and at `floorDeadline` in any case (budgetCut says it stopped
+// on time; the residual says whether it was above the floor).
+CgResult solveConjugateGradient(TaskSystem& tasks, const LinearSystem& system, const double* b, double* x,
+                                const CgSettings& settings, const Deadline& deadline, CgWorkspace& work,
+                                double floorTolerance, const Deadline& floorDeadline);
+
+// The same solve, one iteration per call, for work that is spread over several frames: every
+// quantity the next iteration needs lives here and in the workspace, so stopping between two
+// calls and resuming later gives bitwise the iterates of an uninterrupted solve. The system,
+// b, x and the workspace must outlive the run and stay untouched between calls. The deadline
+// is the caller's business (minIterations is not read).
+class ConjugateGradientRun {
+ public:
+  ConjugateGradientRun(TaskSystem& tasks, const LinearSystem& system, const double* b, double* x,
+                       const CgSettings& settings, CgWorkspace& work);
+  // Initial residual, first search direction; true when that already ends the solve.
+  bool start();
+  // One iteration; true when the solve has ended (converged, maxIterations or breakdown).
+  bool iterate();
+  bool finished() const { return finished_; }
+  const CgResult& result() const { return result_; }
+
+ private:
+  void precondition(const double* r, double* z);
+  void filter(double* v);
+
+  TaskSystem& tasks_;
+  const LinearSystem& system_;
+  const double* b_;
+  double* x_;
+  CgSettings settings_;
+  CgWorkspace& work_;
+  CgResult result_;
+  double bNorm_ = 0.0, rz_ = 0.0;
+  bool finished_ = false;
+};
+
 }  // namespace vp

@@ -211,7 +211,7 @@ Status parseDeformable(const JsonObject& obj, const std::string& baseDirectory, 
   VP_TRY(obj.checkKeys({"name", "degree", "box", "tetFile", "surfaceFile", "voxelResolution", "renderFile", "scale",
                         "ifFileMissing", "position", "rotation", "axisAngle", "linearVelocity", "youngsModulus",
                         "poissonRatio", "density", "massDamping", "stiffnessDamping", "friction", "solverTolerance",
-                        "solverMaxIterations", "pinBox", "attach"}));
+                        "solverMaxIterations", "targetResidual", "priority", "pinBox", "attach"}));
   bool replaced = false;
   VP_TRY(applyFileFallback(obj, baseDirectory, out, &replaced));
   if (replaced) return Status::Ok;
@@ -248,6 +248,8 @@ Status parseDeformable(const JsonObject& obj, const std::string& baseDirectory, 
   VP_TRY(obj.number("friction", &desc.material.friction));
   VP_TRY(obj.number("solverTolerance", &desc.solver.tolerance));
   VP_TRY(obj.integer("solverMaxIterations", &desc.solver.maxIterations));
+  VP_TRY(obj.number("targetResidual", &desc.solver.targetResidual));
+  VP_TRY(obj.integer("priority", &desc.priority));
   // Resolve and validate now so that applying the scene cannot fail half-way.
   Status s = resolveDeformableMesh(source, &desc);
   if (!ok(s)) return addErrorContext(s, obj.path());

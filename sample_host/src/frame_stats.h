@@ -1,4 +1,5 @@
-/* Per-frame timing summary for the sample host: percentiles over the frames it ran. */
+/* Per-frame samples for the sample host's summary (frame times, the deformables' residuals):
+ * percentiles and the mean over the frames it ran. */
 #ifndef VP_SAMPLE_FRAME_STATS_H
 #define VP_SAMPLE_FRAME_STATS_H
 

@@ -34,6 +34,9 @@ int hudStatsLines(vpWorldId world, char lines[HUD_MAX_LINES][HUD_LINE_CHARS]) {
         used += (size_t)snprintf(line + used, HUD_LINE_CHARS - used, " (%d its, res %.0e%s)", ph->iterations,
                                  ph->residual, ph->budgetCut ? ", cut" : "");
     }
+    /* A fluid step may span frames; readers see the last completed one meanwhile. */
+    if (s.kind == vpActorKind_Fluid && s.progress < 1.0f && used < HUD_LINE_CHARS)
+      used += (size_t)snprintf(line + used, HUD_LINE_CHARS - used, " step %.0f%%", 100.0 * s.progress);
     if (s.kind == vpActorKind_Fluid && s.simulatedDt <= 0.0f && used < HUD_LINE_CHARS)
       used += (size_t)snprintf(line + used, HUD_LINE_CHARS - used, " deferred");
     if (s.diverged && used < HUD_LINE_CHARS) snprintf(line + used, HUD_LINE_CHARS - used, " DIVERGED");

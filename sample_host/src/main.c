@@ -16,6 +16,7 @@
 #include "frame_stats.h"
 #include "host_outputs.h"
 #include "phase_names.h"
+#include "run_summary.h"
 #include "step_summary.h"
 #include "volphys/volphys.h"
 
@@ -137,7 +138,8 @@ static int writePoses(vpWorldId world, const char* outDir) {
 /* stats.csv: totals by kind, then each actor's own columns, named like the mesh files
  * (deformableK, fluidK): its ms, each of its kind's phases in ms, and its iterative phase's
  * iterations and residual; a fluid also its simulated time (0 in frames the budget's pacing
- * deferred it). */
+ * deferred it); then the frame plan's view of it: its interval, progress, slices and final
+ * residual. */
 typedef struct ActorColumns {
   vpActorKind kind;
   const char* prefix;
@@ -178,6 +180,8 @@ static void writeStatsHeader(FILE* csv, vpWorldId world, int actorCount) {
     for (p = 0; p < c->phaseCount; ++p) fprintf(csv, ",%s%d_%s_ms", c->prefix, k, phaseName(c->phases[p]));
     fprintf(csv, ",%s%d_%s_iters,%s%d_%s_residual", c->prefix, k, phaseName(c->iterative), c->prefix, k,
             phaseName(c->iterative));
+    fprintf(csv, ",%s%d_interval,%s%d_progress,%s%d_slices,%s%d_residual", c->prefix, k, c->prefix, k, c->prefix, k,
+            c->prefix, k);
   }
   fputc('\n', csv);
 }
@@ -192,6 +196,7 @@ static void writeActorColumns(FILE* csv, vpWorldId world, int actorCount) {
     if (s.kind == vpActorKind_Fluid) fprintf(csv, ",%.5f", s.simulatedDt);
     for (p = 0; p < c->phaseCount; ++p) fprintf(csv, ",%.4f", s.phases[c->phases[p]].ms);
     fprintf(csv, ",%d,%.3e", s.phases[c->iterative].iterations, s.phases[c->iterative].residual);
+    fprintf(csv, ",%d,%.4f,%d,%.3e", s.interval, s.progress, s.slices, s.residual);
   }
   fputc('\n', csv);
 }
@@ -202,6 +207,7 @@ static int run(vpWorldId world, const Options* o) {
   FrameTimes times;
   FramePlot plot;
   HostOutputs outputs;
+  RunSummary summary;
   char plotPath[4096];
   FILE* csv = NULL;
   int frame, cutFrames = 0, rc = 1;
@@ -210,6 +216,7 @@ static int run(vpWorldId world, const Options* o) {
   memset(&times, 0, sizeof times);
   memset(&plot, 0, sizeof plot);
   memset(&outputs, 0, sizeof outputs);
+  runSummaryInit(&summary, o->frames);
   if (!makeDirectories(o->outDir)) {
     fprintf(stderr, "volphys_host: cannot create output folder '%s': %s\n", o->outDir, strerror(errno));
     return 1;
@@ -236,6 +243,10 @@ static int run(vpWorldId world, const Options* o) {
     frameTimesAdd(&times, wall);
     framePlotAdd(&plot, stats.totalMs, stats.budgetMs, stats.budgetCut);
     cutFrames += stats.budgetCut;
+    if (!runSummaryAdd(&summary, world, &stats)) {
+      fprintf(stderr, "volphys_host: out of memory for the run summary\n");
+      goto done;
+    }
     /* The per-actor columns need the actors, which the first step lists. */
     if (frame == 0) writeStatsHeader(csv, world, stats.actorCount);
     fprintf(csv, "%d,%.4f,%.4f,%.2f,%d,%.4f,%d,%d,%d,%.4f,%.4f,%d,%.3e,%.4f,%.4f,%.4f,%.4f,%.4f,%d,%.3e,%.4f,%d,%d",
@@ -257,15 +268,18 @@ static int run(vpWorldId world, const Options* o) {
   if (!writePoses(world, o->outDir)) goto done;
   snprintf(plotPath, sizeof plotPath, "%s/frame_times.svg", o->outDir);
   if (!framePlotWriteSvg(&plot, plotPath)) goto done;
-  printf("summary: %d frames, mean %.3f ms, p50 %.3f ms, p95 %.3f ms, max %.3f ms, budget-cut frames %d\n",
+  printf("summary: %d frames, mean %.3f ms, p50 %.3f ms, p95 %.3f ms, max %.3f ms, budget-cut frames %d",
          times.count, frameTimesMean(&times), frameTimesPercentile(&times, 0.5), frameTimesPercentile(&times, 0.95),
          frameTimesPercentile(&times, 1.0), cutFrames);
+  runSummaryPrint(&summary, stdout);
+  putchar('\n');
   printf("wrote %s/stats.csv, %s/poses.csv, %s, %d mesh files in %s/meshes, %d snapshots in %s/snapshots\n",
          o->outDir, o->outDir, plotPath, outputs.meshFiles, o->outDir, outputs.snapshotFiles, o->outDir);
   rc = 0;
 done:
   if (csv) fclose(csv);
   hostOutputsFree(&outputs);
+  runSummaryFree(&summary);
   framePlotFree(&plot);
   frameTimesFree(&times);
   return rc;

@@ -468,6 +468,78 @@ class Example(unittest.TestCase):
         self.assertIn("IoError", r.stderr)
 
 
+class FramePlanFields(unittest.TestCase):
+    """The accuracy floor and priorities of the defs, and the frame plan's statistics."""
+
+    def setUp(self):
+        self.world = volphys.World(frame_budget_ms=0)
+        self.verts, self.tets = box_tet_mesh(1, 0.4)
+
+    def tearDown(self):
+        self.world.destroy()
+
+    def test_defaults(self):
+        d = volphys._lib.vpDefaultDeformableDef()
+        self.assertEqual(d.targetResidual, ctypes.c_float(1e-2).value)
+        self.assertEqual(d.priority, 0)
+        self.assertEqual(volphys._lib.vpDefaultFluidDef().priority, 0)
+        self.assertEqual((T.VP_VERSION_MAJOR, T.VP_VERSION_MINOR), (0, 3))
+
+    def test_priorities_and_floor_reach_the_stats(self):
+        jelly = self.world.create_deformable(vertices=self.verts, tets=self.tets, target_residual=0.05, priority=5)
+        smoke = self.world.create_fluid("smoke", origin=(2, 0, 0), resolution=(8, 8, 8), cell_size=0.125,
+                                        priority=-4)
+        step = self.world.step(DT)
+        self.assertEqual(step.over_budget_ms, 0.0)  # unlimited
+        self.assertFalse(step.budget_infeasible)
+        self.assertGreaterEqual(step.max_slice_ms, 0.0)
+        self.assertLessEqual(step.max_slice_ms, step.total_ms)
+        self.assertEqual(step.fluid_interval, 1)
+        rigid, by_world_jelly, by_world_smoke = self.world.actor_stats()
+        self.assertEqual((rigid.priority, rigid.interval), (0, 1))
+        for stats, priority in ((jelly.stats(), 5), (by_world_jelly, 5), (smoke.stats(), -4), (by_world_smoke, -4)):
+            self.assertEqual(stats.priority, priority)
+            self.assertEqual(stats.interval, 1)  # unbudgeted: every actor steps every frame
+            self.assertIsInstance(stats.completed_step, bool)
+            self.assertIsInstance(stats.floor_missed, bool)
+            self.assertTrue(0.0 <= stats.progress <= 1.0, stats.progress)
+            self.assertGreaterEqual(stats.slices, 0)
+            self.assertGreaterEqual(stats.residual, 0.0)
+
+    def test_actor_stats_struct_is_the_size_the_library_writes(self):
+        # vpActorStats has no structSize for the import check: the library must fill exactly
+        # the bytes of the ctypes mirror, no more (a short mirror) and no fewer (a long one).
+        self.world.create_deformable(vertices=self.verts, tets=self.tets, priority=-9)
+        self.world.step(DT)
+        size = ctypes.sizeof(T.vpActorStats)
+        buffer = (ctypes.c_uint8 * (size + 16))(*([0xAB] * (size + 16)))
+        volphys._call("vpWorldGetActorStats", self.world.id, 1, ctypes.cast(buffer, ctypes.POINTER(T.vpActorStats)))
+        self.assertEqual(list(buffer[size:]), [0xAB] * 16)
+        # Every field is 4 bytes wide, so there is no padding: every word was written.
+        words = [bytes(buffer[i:i + 4]) for i in range(0, size, 4)]
+        self.assertNotIn(b"\xab\xab\xab\xab", words)
+        stats = T.vpActorStats.from_buffer_copy(bytes(buffer[:size]))
+        self.assertEqual((stats.kind, stats.priority), (int(volphys.ActorKind.Deformable), -9))
+
+    def test_bad_values_raise_naming_the_field_and_create_nothing(self):
+        cases = (
+            (dict(target_residual=float("nan")), "targetResidual = nan: must be finite"),
+            (dict(target_residual=0.0), "targetResidual = 0: must be >= solverTolerance = 0.001"),
+            (dict(target_residual=5e-4), "targetResidual = 0.0005: must be >= solverTolerance = 0.001"),
+            (dict(target_residual=2.0), "targetResidual = 2: must be finite and in [solverTolerance, 1]"),
+            (dict(priority=1000001), "priority = 1000001: must be in [-1000000, 1000000]"),
+        )
+        for kwargs, message in cases:
+            with self.assertRaises(volphys.InvalidArgumentError, msg=str(kwargs)) as cm:
+                self.world.create_deformable(vertices=self.verts, tets=self.tets, **kwargs)
+            self.assertIn(message, cm.exception.message)
+        with self.assertRaises(volphys.InvalidArgumentError) as cm:
+            self.world.create_fluid("smoke", resolution=(8, 8, 8), priority=-1000001)
+        self.assertIn("priority = -1000001: must be in [-1000000, 1000000]", cm.exception.message)
+        self.assertEqual(self.world.deformables(), [])
+        self.assertEqual(self.world.fluids(), [])
+
+
 class ImportChecks(unittest.TestCase):
     def test_struct_sizes_match_library(self):
         lib = volphys._lib

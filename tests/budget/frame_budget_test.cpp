@@ -4,23 +4,16 @@
 // more when the actors after it are expected to need less).
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include "geometry/box_tet_mesh.h"
+#include "tick_clock.h"
 #include "world.h"
 
 namespace vp {
 namespace {
 
-// Every reading of the clock advances it by one tick: the solver reads it once per CG
-// iteration, so budgets are counted in iterations, independent of the machine.
-struct TickClock {
-  double seconds = 0.0;
-  double tick = 1e-4;  // 0.1 ms
-  static double read(void* self) {
-    auto* c = static_cast<TickClock*>(self);
-    c->seconds += c->tick;
-    return c->seconds;
-  }
-};
+using testutil::TickClock;
 
 struct BudgetWorld {
   TickClock clock;
@@ -41,6 +34,9 @@ struct BudgetWorld {
       d.solver.tolerance = 1e-8;
       d.solver.maxIterations = maxIterations[b];
       d.solver.preconditioner = Preconditioner::BlockJacobi;  // many iterations: easy to cut
+      // No accuracy floor: these tests are about cutting solves and sharing the budget above
+      // the floor (frame_plan_test.cpp covers the floors and the rates they lower).
+      d.solver.targetResidual = 1.0;
       DeformableHandle h;
       EXPECT_EQ(world->createDeformable(std::move(d), &h), Status::Ok);
       DeformableBody& body = *world->deformable(h);
@@ -164,19 +160,22 @@ TEST(FrameBudget, TwoActorsShareTheBudgetByThePolicy) {
 
 TEST(FrameBudget, ADeformableGetsMoreThanItsEqualShareWhenTheOnesAfterItAreCheap) {
   // The first bar never converges, the second stops at 5 iterations. From the second frame on
-  // the first leaves the second only 1.25 times its smoothed cost instead of half the budget.
+  // the first leaves the second 1.25 times its smoothed cost instead of half the budget, and
+  // its solve ends early enough for its own step's work after the solve (frame_plan.h).
   BudgetWorld w(10.0, {10000, 5});
   double secondExpected = -1.0;
   for (int f = 0; f < 4; ++f) {
     ASSERT_EQ(w.world->step(1.0 / 60.0), Status::Ok);
     const auto& actors = w.world->lastStats().actors;
     EXPECT_TRUE(w.solve(0).budgetCut);
-    EXPECT_FALSE(w.solve(1).budgetCut);
     if (f == 0) {
       EXPECT_NEAR(actors[1].totalMs, 5.0, 1.0);  // nothing measured yet: equal shares
     } else {
-      EXPECT_NEAR(actors[1].totalMs, 10.0 - 1.25 * secondExpected, 0.5) << "frame " << f;
+      const double tail = FramePlan::kMargin * w.world->deformable(w.bars[0])->schedule().tailMs;
+      EXPECT_LE(actors[1].totalMs, 10.0 - 1.25 * secondExpected) << "frame " << f;
+      EXPECT_GE(actors[1].totalMs, 10.0 - 1.25 * secondExpected - tail - 0.5) << "frame " << f;
       EXPECT_GT(actors[1].totalMs, 8.0);
+      EXPECT_GE(w.solve(1).iterations, 4) << "frame " << f;  // the cheap bar is not starved
     }
     EXPECT_LE(w.world->lastStats().totalMs, 10.0 + 1.0);
     secondExpected = secondExpected < 0.0 ? actors[2].totalMs : secondExpected + 0.2 * (actors[2].totalMs - secondExpected);

@@ -1,5 +1,7 @@
 // Deformable actors through the C ABI.
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 #include <fstream>
 #include <vector>
 
@@ -165,6 +167,20 @@ TEST(CApiDeformable, DefRejectsBadValuesAndAddsNothing) {
       {"density = -1", vpStatus_InvalidArgument, [](vpDeformableDef& d) { d.density = -1; }},
       {"solverTolerance = nan", vpStatus_InvalidArgument, [](vpDeformableDef& d) { d.solverTolerance = NAN; }},
       {"solverMaxIterations = -3", vpStatus_InvalidArgument, [](vpDeformableDef& d) { d.solverMaxIterations = -3; }},
+      {"targetResidual = nan: must be finite", vpStatus_InvalidArgument,
+       [](vpDeformableDef& d) { d.targetResidual = NAN; }},
+      {"targetResidual = 0: must be >= solverTolerance = 0.001", vpStatus_InvalidArgument,
+       [](vpDeformableDef& d) { d.targetResidual = 0.0f; }},
+      {"targetResidual = 0.0005: must be >= solverTolerance = 0.001", vpStatus_InvalidArgument,
+       [](vpDeformableDef& d) { d.targetResidual = 5e-4f; }},
+      {"targetResidual = 0.005: must be >= solverTolerance = 0.01", vpStatus_InvalidArgument,
+       [](vpDeformableDef& d) { d.solverTolerance = 0.01f, d.targetResidual = 0.005f; }},
+      {"targetResidual = 1.5: must be finite and in [solverTolerance, 1]", vpStatus_InvalidArgument,
+       [](vpDeformableDef& d) { d.targetResidual = 1.5f; }},
+      {"priority = 1000001: must be in [-1000000, 1000000]", vpStatus_InvalidArgument,
+       [](vpDeformableDef& d) { d.priority = 1000001; }},
+      {"priority = -2147483648: must be in [-1000000, 1000000]", vpStatus_InvalidArgument,
+       [](vpDeformableDef& d) { d.priority = INT32_MIN; }},
       {"degree = 4", vpStatus_InvalidArgument, [](vpDeformableDef& d) { d.degree = 4; }},
       {"degree = 0", vpStatus_InvalidArgument, [](vpDeformableDef& d) { d.degree = 0; }},
       {"vertexCount = 0", vpStatus_InvalidArgument, [](vpDeformableDef& d) { d.vertexCount = 0; }},
@@ -199,6 +215,37 @@ TEST(CApiDeformable, DefRejectsBadValuesAndAddsNothing) {
   ASSERT_VP_OK(vpWorldStep(w.id, 0.01f));
   ASSERT_VP_OK(vpWorldGetStepStats(w.id, &stats));
   EXPECT_EQ(stats.actorCount, 1);  // only the rigid pseudo-actor: nothing was added
+}
+
+// The accuracy floor and the priority were appended after userData: the older fields keep
+// their offsets, and the defaults are the documented ones.
+TEST(CApiDeformable, AccuracyFloorAndPriorityDefaultsAndBounds) {
+  static_assert(offsetof(vpDeformableDef, targetResidual) > offsetof(vpDeformableDef, userData),
+                "appended after the older fields");
+  static_assert(offsetof(vpDeformableDef, priority) > offsetof(vpDeformableDef, targetResidual), "in header order");
+  const vpDeformableDef defaults = vpDefaultDeformableDef();
+  EXPECT_EQ(defaults.targetResidual, 1e-2f);
+  EXPECT_EQ(defaults.priority, 0);
+  EXPECT_EQ(defaults.solverTolerance, 1e-3f);
+  // The bounds themselves are accepted: a floor equal to the tolerance, a floor of 1, the
+  // extreme priorities.
+  ScopedWorld w;
+  BoxArrays box;
+  const struct {
+    float solverTolerance, targetResidual;
+    int32_t priority;
+  } accepted[] = {{1e-3f, 1e-3f, 1000000}, {1e-3f, 1.0f, -1000000}, {0.5f, 0.5f, 0}};
+  for (const auto& a : accepted) {
+    vpDeformableDef def = box.def();
+    def.solverTolerance = a.solverTolerance;
+    def.targetResidual = a.targetResidual;
+    def.priority = a.priority;
+    vpDeformableId id{};
+    EXPECT_VP_OK(vpDeformableCreate(w.id, &def, &id)) << a.targetResidual << ", " << a.priority;
+  }
+  int32_t count = 0;
+  ASSERT_VP_OK(vpWorldGetDeformableCount(w.id, &count));
+  EXPECT_EQ(count, 3);
 }
 
 TEST(CApiDeformable, FromATetFileAndFromASurfaceFile) {

@@ -1,5 +1,6 @@
 // Fluid actors through the C ABI.
 #include <cmath>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -101,6 +102,10 @@ TEST(CApiFluid, BadDefinitionsNameTheFieldAndCreateNothing) {
          d.emitterCount = 1;
        }},
       {"pressureTolerance = 0", [](vpFluidDef& d, vpFluidEmitter*) { d.pressureTolerance = 0.0f; }},
+      {"priority = 1000001: must be in [-1000000, 1000000]",
+       [](vpFluidDef& d, vpFluidEmitter*) { d.priority = 1000001; }},
+      {"priority = -1000001: must be in [-1000000, 1000000]",
+       [](vpFluidDef& d, vpFluidEmitter*) { d.priority = -1000001; }},
       {"structSize", [](vpFluidDef& d, vpFluidEmitter*) { d.structSize = 8; }},
   };
   for (const Case& c : cases) {
@@ -116,6 +121,17 @@ TEST(CApiFluid, BadDefinitionsNameTheFieldAndCreateNothing) {
   ASSERT_VP_OK(vpWorldStep(w.id, 1.0f / 60.0f));
   ASSERT_VP_OK(vpWorldGetStepStats(w.id, &step));
   EXPECT_EQ(step.actorCount, 1);  // only the rigid pseudo-actor: nothing was created
+}
+
+TEST(CApiFluid, PriorityIsAppendedAndDefaultsToZero) {
+  static_assert(offsetof(vpFluidDef, priority) > offsetof(vpFluidDef, kinematicViscosity),
+                "appended after the older fields");
+  EXPECT_EQ(vpDefaultFluidDef().priority, 0);
+  ScopedWorld w;
+  vpFluidDef def = smallSmoke();
+  def.priority = -1000000;  // the bound itself is accepted
+  vpFluidId id{};
+  EXPECT_VP_OK(vpFluidCreate(w.id, &def, &id));
 }
 
 TEST(CApiFluid, GettersCheckCapacitiesAndArguments) {

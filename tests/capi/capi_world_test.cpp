@@ -1,4 +1,6 @@
 #include <cmath>
+#include <cstddef>
+#include <cstring>
 
 #include "capi_test_support.h"
 
@@ -60,6 +62,63 @@ TEST(CApiWorld, StepWithNothingInIt) {
   EXPECT_EQ(stats.stepIndex, 10u);
   EXPECT_EQ(stats.colliderCount, 0);
   EXPECT_EQ(stats.budgetCut, 0);
+}
+
+// The frame plan's statistics read back through the C structs. Unbudgeted, nothing is over
+// the budget or infeasible and every actor steps every frame.
+TEST(CApiWorld, StepAndActorStatsCarryTheFramePlanFields) {
+  static_assert(offsetof(vpStepStats, overBudgetMs) > offsetof(vpStepStats, fluidInterval),
+                "appended after the older fields");
+  static_assert(offsetof(vpActorStats, interval) > offsetof(vpActorStats, simulatedDt),
+                "appended after the older fields");
+  ScopedWorld w;
+  vpDeformableDef jelly = vpDefaultDeformableDef();
+  jelly.tetFile = VP_TEST_DATA_DIR "/geometry/cube_v41.msh";
+  jelly.priority = 7;
+  vpDeformableId jellyId{};
+  ASSERT_VP_OK(vpDeformableCreate(w.id, &jelly, &jellyId));
+  vpFluidDef smoke = vpDefaultFluidDef();
+  smoke.resolution[0] = smoke.resolution[1] = smoke.resolution[2] = 8;
+  smoke.cellSize = 0.125f;
+  smoke.origin = vpVec3{3, 0, 0};
+  smoke.priority = -3;
+  vpFluidId smokeId{};
+  ASSERT_VP_OK(vpFluidCreate(w.id, &smoke, &smokeId));
+  for (int i = 0; i < 3; ++i) ASSERT_VP_OK(vpWorldStep(w.id, 1.0f / 60.0f));
+
+  vpStepStats step = vpDefaultStepStats();
+  ASSERT_VP_OK(vpWorldGetStepStats(w.id, &step));
+  EXPECT_EQ(step.budgetMs, 0.0f);
+  EXPECT_EQ(step.overBudgetMs, 0.0f);
+  EXPECT_EQ(step.budgetInfeasible, 0);
+  EXPECT_GE(step.maxSliceMs, 0.0f);
+  EXPECT_LE(step.maxSliceMs, step.totalMs);
+  EXPECT_EQ(step.fluidInterval, 1);
+  ASSERT_EQ(step.actorCount, 3);  // rigid, the deformable, the fluid
+
+  const int32_t expectedPriority[3] = {0, 7, -3};
+  const vpActorKind expectedKind[3] = {vpActorKind_Rigid, vpActorKind_Deformable, vpActorKind_Fluid};
+  for (int32_t a = 0; a < step.actorCount; ++a) {
+    vpActorStats s;
+    std::memset(&s, 0xFF, sizeof s);  // every field must be written
+    ASSERT_VP_OK(vpWorldGetActorStats(w.id, a, &s));
+    EXPECT_EQ(s.kind, expectedKind[a]);
+    EXPECT_EQ(s.priority, expectedPriority[a]) << "actor " << a;
+    EXPECT_EQ(s.interval, 1) << "actor " << a;
+    EXPECT_TRUE(s.completedStep == 0 || s.completedStep == 1) << s.completedStep;
+    EXPECT_TRUE(s.progress >= 0.0f && s.progress <= 1.0f) << s.progress;
+    EXPECT_GE(s.slices, 0);
+    EXPECT_TRUE(s.residual >= 0.0f) << s.residual;
+    EXPECT_TRUE(s.floorMissed == 0 || s.floorMissed == 1) << s.floorMissed;
+  }
+  // The per-actor getters give the same record.
+  vpActorStats byId;
+  ASSERT_VP_OK(vpDeformableGetStats(jellyId, &byId));
+  EXPECT_EQ(byId.priority, 7);
+  EXPECT_EQ(byId.interval, 1);
+  ASSERT_VP_OK(vpFluidGetStats(smokeId, &byId));
+  EXPECT_EQ(byId.priority, -3);
+  EXPECT_EQ(byId.interval, 1);
 }
 
 TEST(CApiWorld, GravityAndBudgetSetters) {

@@ -92,11 +92,16 @@ def check_fluid_stats(rows):
         fail("stats.csv: the fluids' pressure solve never iterated")
 
 
+FRAME_PLAN_COLUMNS = ("interval", "progress", "slices", "residual")
+
+
 def check_actor_columns(rows, deformables, fluids):
-    """Every actor has its own columns; without a budget every fluid steps every frame, so its
-    simulated time is the frame's dt (1/60 s, the host's default) and the pacing interval 1."""
-    names = ["deformable%d_ms" % d for d in range(deformables)]
-    names += [c % k for k in range(fluids) for c in ("fluid%d_ms", "fluid%d_sim_dt")]
+    """Every actor has its own columns; without a budget every actor steps every frame, so a
+    fluid's simulated time is the frame's dt (1/60 s, the host's default) and every interval 1;
+    the frame plan's progress is a fraction, its slices a count, its residual not negative."""
+    actors = ["deformable%d" % d for d in range(deformables)] + ["fluid%d" % k for k in range(fluids)]
+    names = ["%s_ms" % a for a in actors] + ["fluid%d_sim_dt" % k for k in range(fluids)]
+    names += ["%s_%s" % (a, c) for a in actors for c in FRAME_PLAN_COLUMNS]
     missing = [n for n in names if n not in rows[0]]
     if missing:
         fail("stats.csv lacks the per-actor columns %s" % missing)
@@ -106,6 +111,31 @@ def check_actor_columns(rows, deformables, fluids):
         if any(abs(float(row["fluid%d_sim_dt" % k]) - 1 / 60) > 1e-5 for k in range(fluids)) \
                 or row["fluid_interval"] != "1":
             fail("stats.csv frame %s: unbudgeted fluids did not step every frame" % row["frame"])
+        for a in actors:
+            interval, progress = row[a + "_interval"], float(row[a + "_progress"])
+            slices, residual = row[a + "_slices"], float(row[a + "_residual"])
+            if interval != "1" or not 0 <= progress <= 1 or not slices.isdigit() or not residual >= 0:
+                fail("stats.csv frame %s: %s has interval %s, progress %s, slices %s, residual %s (unbudgeted: "
+                     "interval 1, progress in [0, 1], a count of slices, a residual >= 0)"
+                     % (row["frame"], a, interval, progress, slices, residual))
+
+
+def check_summary(stdout, frames, deformables, fluids):
+    """The summary line: no frame over an unlimited budget, every actor at interval 1 all run
+    long, and the deformables' residual percentiles when there are deformables."""
+    lines = [l for l in stdout.splitlines() if l.startswith("summary: %d frames" % frames)]
+    if len(lines) != 1:
+        fail("expected one summary line for %d frames in the host's output" % frames)
+    summary = lines[0]
+    intervals = "".join(" deformable%d 1-1" % d for d in range(deformables))
+    intervals += "".join(" fluid%d 1-1" % k for k in range(fluids))
+    expected = ["over 1.1x budget 0 (0.0%)"] + ([", intervals" + intervals] if intervals else [])
+    missing = [e for e in expected if e not in summary]
+    residuals = re.search(r"deformable residual p50 (\S+) p95 (\S+)$", summary)
+    if missing or bool(residuals) != bool(deformables):
+        fail("summary line %r lacks %s%s" % (summary, missing, " or the residual percentiles" if deformables else ""))
+    if residuals and not 0 <= float(residuals.group(1)) <= float(residuals.group(2)):
+        fail("summary line %r: residual p50 above p95 or negative" % summary)
 
 
 def check_liquid_meshes(out, fluid, names):
@@ -162,6 +192,7 @@ def check_host(exe, out, scene_path=DEFAULT_SCENE):
     if fluids:
         check_fluid_stats(rows)
     check_actor_columns(rows, deformables, len(fluids))
+    check_summary(r.stdout, 7, deformables, len(fluids))
     shots = sorted(os.listdir(os.path.join(out, "snapshots")))
     if shots != ["frame_00000.png", "frame_00003.png", "frame_00006.png"]:
         fail("snapshots/ holds %s" % shots)

@@ -49,20 +49,21 @@ double taylorGreenEnergyKept(AdvectionScheme scheme, int n) {
   d.solver.advection = scheme;
   d.solver.cflNumber = 1.0;
   auto actor = makeActor(*tasks, d);
-  // The actor's grid is private state; the test sets the initial field through a copy of the
-  // layout and the (test-only) velocity access below.
-  MacGrid& g = const_cast<MacGrid&>(actor->grid());
-  for (int a = 0; a < 2; ++a) {
-    const Eigen::Vector3i dims = g.faceDims(a);
-    for (int k = 0; k < dims.z(); ++k)
-      for (int j = 0; j < dims.y(); ++j)
-        for (int i = 0; i < dims.x(); ++i) {
-          const Vec3 x = g.faceCentre(a, i, j, k);
-          g.velocity[a][g.faceIndex(a, i, j, k)] =
-              a == 0 ? std::sin(x.x()) * std::cos(x.y()) : -std::cos(x.x()) * std::sin(x.y());
-        }
-  }
-  const double e0 = kineticEnergy(g);
+  double e0 = 0.0;
+  actor->editFields([&](FluidActor::EditableFields& f) {
+    MacGrid& g = f.grid;
+    for (int a = 0; a < 2; ++a) {
+      const Eigen::Vector3i dims = g.faceDims(a);
+      for (int k = 0; k < dims.z(); ++k)
+        for (int j = 0; j < dims.y(); ++j)
+          for (int i = 0; i < dims.x(); ++i) {
+            const Vec3 x = g.faceCentre(a, i, j, k);
+            g.velocity[a][g.faceIndex(a, i, j, k)] =
+                a == 0 ? std::sin(x.x()) * std::cos(x.y()) : -std::cos(x.x()) * std::sin(x.y());
+          }
+    }
+    e0 = kineticEnergy(g);
+  });
   FluidStepInput input;
   input.dt = 1.0 / 60.0;
   input.tasks = tasks.get();
@@ -70,7 +71,7 @@ double taylorGreenEnergyKept(AdvectionScheme scheme, int n) {
     ActorStats stats;
     actor->step(input, &stats, nullptr);
   }
-  return kineticEnergy(g) / e0;
+  return kineticEnergy(actor->grid()) / e0;
 }
 
 TEST(FluidSmoke, TaylorGreenMacCormackKeepsMoreEnergyThanSemiLagrangian) {
@@ -126,19 +127,19 @@ PlateLeak smokeLeakPastThinPlate(const Eigen::Matrix3d& rotation, const Vec3& ce
   EXPECT_EQ(prepareCollider(plate, &prepared), Status::Ok) << lastError();
   auto actor = makeActor(*tasks, d);
   // Smoke and heat in the cells wholly below the plate's lower face, in a band above the floor.
-  std::vector<double>& smoke = const_cast<std::vector<double>&>(actor->smokeDensity());
-  std::vector<double>& heat = const_cast<std::vector<double>&>(actor->temperature());
   const MacGrid& g = actor->grid();
   auto side = [&](const Vec3& x) { return (x - centre).dot(normal); };
-  for (int k = 0; k < g.spec.nz; ++k)
-    for (int j = 0; j < g.spec.ny; ++j)
-      for (int i = 0; i < g.spec.nx; ++i) {
-        const Vec3 x = g.cellCentre(i, j, k);
-        if (side(x) < -halfThickness - h && x.y() < 0.35) {
-          smoke[g.cellIndex(i, j, k)] = 1.0;
-          heat[g.cellIndex(i, j, k)] = 2.0;
+  actor->editFields([&](FluidActor::EditableFields& f) {
+    for (int k = 0; k < g.spec.nz; ++k)
+      for (int j = 0; j < g.spec.ny; ++j)
+        for (int i = 0; i < g.spec.nx; ++i) {
+          const Vec3 x = g.cellCentre(i, j, k);
+          if (side(x) < -halfThickness - h && x.y() < 0.35) {
+            f.smokeDensity[g.cellIndex(i, j, k)] = 1.0;
+            f.temperature[g.cellIndex(i, j, k)] = 2.0;
+          }
         }
-      }
+  });
   const double total0 = actor->totalSmoke();
   EXPECT_GT(total0, 0.0);
   FluidStepInput input;
@@ -156,7 +157,7 @@ PlateLeak smokeLeakPastThinPlate(const Eigen::Matrix3d& rotation, const Vec3& ce
     for (int j = 0; j < g.spec.ny; ++j)
       for (int i = 0; i < g.spec.nx; ++i) {
         const double sd = side(g.cellCentre(i, j, k));
-        const double m = smoke[g.cellIndex(i, j, k)] * h * h * h;
+        const double m = actor->smokeDensity()[g.cellIndex(i, j, k)] * h * h * h;
         if (sd > halfThickness) leak.aboveFace += m;
         if (sd > 0.0) leak.aboveMid += m;
       }

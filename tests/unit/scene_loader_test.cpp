@@ -127,6 +127,20 @@ INSTANTIATE_TEST_SUITE_P(
                  "$.deformables[0]: mesh source: give exactly one of"},
         BadScene{R"({"colliders": [{"shape": {"type": "plane"}}], "deformables": [{"box": {}, "youngsModulus": -1}]})",
                  Status::InvalidArgument, "$.deformables[0]: youngsModulus = -1"},
+        BadScene{R"({"colliders": [{"shape": {"type": "plane"}}], "deformables": [{"box": {}, "targetResidual": 0}]})",
+                 Status::InvalidArgument, "$.deformables[0]: targetResidual = 0: must be >= solverTolerance = 0.001"},
+        BadScene{R"({"colliders": [{"shape": {"type": "plane"}}],
+                     "deformables": [{"box": {}, "solverTolerance": 0.05, "targetResidual": 0.02}]})",
+                 Status::InvalidArgument, "$.deformables[0]: targetResidual = 0.02: must be >= solverTolerance = 0.05"},
+        BadScene{R"({"colliders": [{"shape": {"type": "plane"}}], "deformables": [{"box": {}, "targetResidual": 1.5}]})",
+                 Status::InvalidArgument,
+                 "$.deformables[0]: targetResidual = 1.5: must be finite and in [solverTolerance, 1]"},
+        BadScene{R"({"colliders": [{"shape": {"type": "plane"}}], "deformables": [{"box": {}, "targetResidual": "low"}]})",
+                 Status::ParseError, "$.deformables[0].targetResidual: expected a number, got string"},
+        BadScene{R"({"colliders": [{"shape": {"type": "plane"}}], "deformables": [{"box": {}, "priority": 1000001}]})",
+                 Status::InvalidArgument, "$.deformables[0]: priority = 1000001: must be in [-1000000, 1000000]"},
+        BadScene{R"({"colliders": [{"shape": {"type": "plane"}}], "deformables": [{"box": {}, "priority": 2.5}]})",
+                 Status::ParseError, "$.deformables[0].priority: expected an integer, got 2.5"},
         BadScene{R"({"colliders": [{"shape": {"type": "plane"}}], "deformables": [{"tetFile": "none.msh"}]})",
                  Status::IoError, "$.deformables[0]: tetFile"},
         BadScene{R"({"colliders": [{"shape": {"type": "plane"}}],
@@ -143,6 +157,10 @@ INSTANTIATE_TEST_SUITE_P(
                  Status::InvalidArgument, "$.fluids[0]: cellSize = 0"},
         BadScene{R"({"colliders": [{"shape": {"type": "plane"}}], "fluids": [{"kinematicViscosity": -2}]})",
                  Status::InvalidArgument, "$.fluids[0]: kinematicViscosity = -2: must be in [0, 10]"},
+        BadScene{R"({"colliders": [{"shape": {"type": "plane"}}], "fluids": [{"priority": -1000001}]})",
+                 Status::InvalidArgument, "$.fluids[0]: priority = -1000001: must be in [-1000000, 1000000]"},
+        BadScene{R"({"colliders": [{"shape": {"type": "plane"}}], "fluids": [{"priority": 10000000000}]})",
+                 Status::ParseError, "$.fluids[0].priority = 10000000000: out of the integer range"},
         BadScene{R"({"colliders": [{"shape": {"type": "plane"}}], "fluids": [{"sides": {"+y": "door"}}]})",
                  Status::ParseError, "$.fluids[0].sides.+y = \"door\": expected one of"},
         BadScene{R"({"colliders": [{"shape": {"type": "plane"}}],
@@ -173,6 +191,28 @@ TEST(SceneLoader, DeformableWithPinsAndAnAttachment) {
   for (int32_t i = 0; i < bridge->nodeCount(); ++i) minY = std::min(minY, bridge->positions()[3 * i + 1]);
   EXPECT_LT(minY, 1.0 - 0.125 - 1e-3);
   EXPECT_GT(minY, 0.0);
+}
+
+TEST(SceneLoader, ReadsTheAccuracyFloorAndPriorities) {
+  auto world = makeWorld();
+  ASSERT_EQ(loadSceneFromString(*world, R"({
+      "deformables": [{"name": "jelly", "box": {"cells": [1, 1, 1], "size": [1, 1, 1]},
+                       "solverTolerance": 0.002, "targetResidual": 0.05, "priority": 12},
+                      {"name": "plain", "box": {"cells": [1, 1, 1], "size": [1, 1, 1]}, "position": [3, 0, 0]}],
+      "fluids": [{"name": "tank", "resolution": [4, 4, 4], "priority": -7}]})", "."),
+            Status::Ok)
+      << lastError();
+  DeformableHandle jelly, plain;
+  ASSERT_TRUE(world->findDeformable("jelly", &jelly));
+  ASSERT_TRUE(world->findDeformable("plain", &plain));
+  EXPECT_DOUBLE_EQ(world->deformable(jelly)->desc().solver.targetResidual, 0.05);
+  EXPECT_EQ(world->deformable(jelly)->desc().priority, 12);
+  // Keys left out keep the C ABI's defaults.
+  EXPECT_DOUBLE_EQ(world->deformable(plain)->desc().solver.targetResidual, 1e-2);
+  EXPECT_EQ(world->deformable(plain)->desc().priority, 0);
+  FluidHandle tank;
+  ASSERT_TRUE(world->findFluid("tank", &tank));
+  EXPECT_EQ(world->fluid(tank)->desc().priority, -7);
 }
 
 // A closed unit cube as an OBJ surface, and a scene with one deformable whose extra keys are

@@ -33,7 +33,7 @@ namespace VolPhys
 
     public static class Constants
     {
-        public const int VersionMajor = 0, VersionMinor = 2, VersionPatch = 0;
+        public const int VersionMajor = 0, VersionMinor = 3, VersionPatch = 0;
         public const uint HeaderVersion = (VersionMajor << 16) | (VersionMinor << 8) | VersionPatch;
         public const int MaxPhases = 16;
     }
@@ -126,6 +126,17 @@ namespace VolPhys
         // vpPhaseStats[VP_MAX_PHASES] as raw storage: C# fixed buffers hold only primitives.
         public fixed int phases[Constants.MaxPhases * 4];
         public float simulatedDt;
+        /// <summary>Frames per step (a fluid: the frames its last completed step spanned).</summary>
+        public int interval;
+        public int completedStep;
+        /// <summary>Fluid: fraction of its current step done at the end of the frame, 1 when it completed.</summary>
+        public float progress;
+        public int slices;
+        /// <summary>Final relative residual of the actor's iterative solve in the frame.</summary>
+        public float residual;
+        public int priority;
+        /// <summary>Deformable: its solve ended the frame above its targetResidual.</summary>
+        public int floorMissed;
 
         public vpPhaseStats Phase(Phase phase)
         {
@@ -148,6 +159,12 @@ namespace VolPhys
         public int colliderCount;
         public int rigidSubsteps;
         public int fluidInterval;
+        /// <summary>How far totalMs went past budgetMs; 0 when within it or unlimited.</summary>
+        public float overBudgetMs;
+        /// <summary>The accuracy floors and minimum rates did not fit the budget: some actor ran at
+        /// its interval cap.</summary>
+        public int budgetInfeasible;
+        public float maxSliceMs;
     }
 
     [StructLayout(LayoutKind.Sequential)]
@@ -212,6 +229,10 @@ namespace VolPhys
         public float solverTolerance;
         public int solverMaxIterations;
         public IntPtr userData;
+        /// <summary>The accuracy floor of the implicit solve, in [solverTolerance, 1].</summary>
+        public float targetResidual;
+        /// <summary>Higher is served first when the frame budget is short.</summary>
+        public int priority;
     }
 
     /// <summary>A region in world coordinates: a box (centre, halfExtents) or a sphere (centre, radius).</summary>
@@ -274,6 +295,8 @@ namespace VolPhys
         public int twoWayCoupling;
         public IntPtr userData;
         public float kinematicViscosity;
+        /// <summary>Higher is served first when the frame budget is short.</summary>
+        public int priority;
 
         public void SetResolution(int nx, int ny, int nz)
         {

@@ -8,7 +8,7 @@ import enum
 from ctypes import c_float, c_int32, c_uint16, c_uint32, c_uint64, c_void_p, c_char_p, c_double, c_size_t, POINTER
 
 VP_VERSION_MAJOR = 0
-VP_VERSION_MINOR = 2
+VP_VERSION_MINOR = 3
 VP_VERSION_PATCH = 0
 VP_HEADER_VERSION = (VP_VERSION_MAJOR << 16) | (VP_VERSION_MINOR << 8) | VP_VERSION_PATCH
 VP_MAX_PHASES = 16
@@ -176,6 +176,13 @@ class vpActorStats(ctypes.Structure):
         ("diverged", c_int32),
         ("phases", vpPhaseStats * VP_MAX_PHASES),
         ("simulatedDt", c_float),
+        ("interval", c_int32),
+        ("completedStep", c_int32),
+        ("progress", c_float),
+        ("slices", c_int32),
+        ("residual", c_float),
+        ("priority", c_int32),
+        ("floorMissed", c_int32),
     ]
 
 
@@ -191,6 +198,9 @@ class vpStepStats(ctypes.Structure):
         ("colliderCount", c_int32),
         ("rigidSubsteps", c_int32),
         ("fluidInterval", c_int32),
+        ("overBudgetMs", c_float),
+        ("budgetInfeasible", c_int32),
+        ("maxSliceMs", c_float),
     ]
 
 
@@ -255,6 +265,8 @@ class vpDeformableDef(ctypes.Structure):
         ("solverTolerance", c_float),
         ("solverMaxIterations", c_int32),
         ("userData", c_void_p),
+        ("targetResidual", c_float),
+        ("priority", c_int32),
     ]
 
 
@@ -295,6 +307,7 @@ class vpFluidDef(ctypes.Structure):
         ("twoWayCoupling", c_int32),
         ("userData", c_void_p),
         ("kinematicViscosity", c_float),
+        ("priority", c_int32),
     ]
 
 

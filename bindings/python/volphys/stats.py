@@ -15,12 +15,17 @@ class StepStats:
     actor_count: int
     collider_count: int
     rigid_substeps: int
-    fluid_interval: int  # each fluid steps every fluid_interval steps (budget pacing)
+    fluid_interval: int  # the largest interval among the fluids (budget pacing)
+    over_budget_ms: float    # how far total_ms went past budget_ms; 0 within it or unlimited
+    budget_infeasible: bool  # the accuracy floors and minimum rates did not fit: some actor ran at its interval cap
+    max_slice_ms: float      # the longest single slice of work in this step
 
     @classmethod
     def _from_c(cls, s):
-        return cls(s.stepIndex, s.dt, s.totalMs, s.budgetMs, bool(s.budgetCut), s.actorCount,
-                   s.colliderCount, s.rigidSubsteps, s.fluidInterval)
+        return cls(step_index=s.stepIndex, dt=s.dt, total_ms=s.totalMs, budget_ms=s.budgetMs,
+                   budget_cut=bool(s.budgetCut), actor_count=s.actorCount, collider_count=s.colliderCount,
+                   rigid_substeps=s.rigidSubsteps, fluid_interval=s.fluidInterval, over_budget_ms=s.overBudgetMs,
+                   budget_infeasible=bool(s.budgetInfeasible), max_slice_ms=s.maxSliceMs)
 
 
 @dataclass(frozen=True)
@@ -38,6 +43,13 @@ class ActorStats:
     total_ms: float
     diverged: bool
     simulated_dt: float  # 0 for a fluid the budget's pacing deferred
+    interval: int         # frames per step (a fluid: frames its last completed step spanned)
+    completed_step: bool  # a step of this actor completed in this frame
+    progress: float       # fluid: fraction of its current step done, 1 when it completed
+    slices: int           # slices of its work run in this frame
+    residual: float       # final relative residual of its iterative solve in this frame
+    priority: int         # the def's priority
+    floor_missed: bool    # deformable: its solve ended the frame above its target_residual
     phases: Dict[Phase, PhaseStats] = field(default_factory=dict)
 
     @classmethod
@@ -49,4 +61,7 @@ class ActorStats:
             kind = ActorKind(s.kind)
         except ValueError:
             kind = s.kind
-        return cls(kind, s.index1, s.totalMs, bool(s.diverged), s.simulatedDt, phases)
+        return cls(kind=kind, index1=s.index1, total_ms=s.totalMs, diverged=bool(s.diverged),
+                   simulated_dt=s.simulatedDt, interval=s.interval, completed_step=bool(s.completedStep),
+                   progress=s.progress, slices=s.slices, residual=s.residual, priority=s.priority,
+                   floor_missed=bool(s.floorMissed), phases=phases)

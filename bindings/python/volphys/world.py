@@ -20,7 +20,7 @@ _DEFORMABLE_SCALARS = {
     "degree": "degree", "voxel_resolution": "voxelResolution", "youngs_modulus": "youngsModulus",
     "poisson_ratio": "poissonRatio", "density": "density", "mass_damping": "massDamping",
     "stiffness_damping": "stiffnessDamping", "friction": "friction", "solver_tolerance": "solverTolerance",
-    "solver_max_iterations": "solverMaxIterations",
+    "solver_max_iterations": "solverMaxIterations", "target_residual": "targetResidual", "priority": "priority",
 }
 
 _FLUID_SCALARS = {
@@ -30,7 +30,7 @@ _FLUID_SCALARS = {
     "ambient_temperature": "ambientTemperature", "density_buoyancy": "densityBuoyancy",
     "thermal_buoyancy": "thermalBuoyancy", "vorticity_confinement": "vorticityConfinement",
     "density_dissipation": "densityDissipation", "temperature_dissipation": "temperatureDissipation",
-    "two_way_coupling": "twoWayCoupling",
+    "two_way_coupling": "twoWayCoupling", "priority": "priority",
 }
 _SIDE_NAMES = ("-x", "+x", "-y", "+y", "-z", "+z")
 
@@ -224,7 +224,9 @@ class World:
                           linear_velocity=None, **scalars):
         """Exactly one mesh source: vertices (n,3) + tets (m,4), tet_file, or surface_file.
         Further keywords: degree, voxel_resolution, youngs_modulus, poisson_ratio, density,
-        mass_damping, stiffness_damping, friction, solver_tolerance, solver_max_iterations."""
+        mass_damping, stiffness_damping, friction, solver_tolerance, solver_max_iterations,
+        target_residual (the accuracy floor of the implicit solve, in [solver_tolerance, 1]),
+        priority (higher is served first when the frame budget is short)."""
         d = lib.vpDefaultDeformableDef()
         keep = []
         if vertices is not None:
@@ -273,8 +275,8 @@ class World:
         BoxRegion / SphereRegion; emitters: Emitter. Further keywords: cell_size, density,
         kinematic_viscosity, cfl_number, max_substeps, pressure_tolerance, pressure_max_iterations,
         ambient_temperature, density_buoyancy, thermal_buoyancy, vorticity_confinement,
-        density_dissipation, temperature_dissipation, two_way_coupling. Anything not given keeps
-        vpDefaultFluidDef()'s value."""
+        density_dissipation, temperature_dissipation, two_way_coupling, priority (higher is served
+        first when the frame budget is short). Anything not given keeps vpDefaultFluidDef()'s value."""
         d = lib.vpDefaultFluidDef()
         d.kind = _enum_value(T.FluidKind, kind, "kind")
         if origin is not None:

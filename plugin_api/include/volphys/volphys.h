@@ -51,7 +51,7 @@ extern "C" {
 /* ---------------------------------------------------------------- version */
 
 #define VP_VERSION_MAJOR 0
-#define VP_VERSION_MINOR 2
+#define VP_VERSION_MINOR 3
 #define VP_VERSION_PATCH 0
 /* Major changes break the ABI; minor ones only add. */
 #define VP_HEADER_VERSION ((VP_VERSION_MAJOR << 16) | (VP_VERSION_MINOR << 8) | VP_VERSION_PATCH)
@@ -251,6 +251,15 @@ typedef struct vpActorStats {
   vpPhaseStats phases[VP_MAX_PHASES]; /* indexed by vpPhase */
   float simulatedDt;  /* seconds this step advanced the actor: the step's dt; for a fluid 0 when
                          the budget's pacing deferred it, several steps' dt when it catches up */
+  int32_t interval;   /* frames per step (>= 1): a deformable steps every interval-th frame with
+                         interval * dt; a fluid's last completed step spanned interval frames */
+  int32_t completedStep; /* 1 if a step of this actor completed in this frame */
+  float progress;     /* fluid: fraction of its current step done at the end of this frame, 1 when
+                         it completed (readers see the last completed step) */
+  int32_t slices;     /* slices of this actor's work run in this frame */
+  float residual;     /* final relative residual of its iterative solve in this frame */
+  int32_t priority;   /* the def's priority */
+  int32_t floorMissed; /* deformable: 1 if the budget stopped its solve above its targetResidual */
 } vpActorStats;
 
 typedef struct vpStepStats {
@@ -263,8 +272,12 @@ typedef struct vpStepStats {
   int32_t actorCount;  /* entries available through vpWorldGetActorStats */
   int32_t colliderCount;
   int32_t rigidSubsteps;
-  int32_t fluidInterval; /* under a tight budget each fluid steps every fluidInterval steps with
-                            the time it skipped, fluids staggered (1 = every step; README) */
+  int32_t fluidInterval; /* the largest vpActorStats.interval among the fluids: under a tight
+                            budget a fluid steps every interval frames (1 = every step; README) */
+  float overBudgetMs;  /* how far totalMs went past budgetMs; 0 when within it or unlimited */
+  int32_t budgetInfeasible; /* 1 if the actors' accuracy floors and minimum rates did not fit the
+                               budget: some actor ran at its interval cap */
+  float maxSliceMs;    /* the longest single slice of work in this frame */
 } vpStepStats;
 
 VP_API vpStepStats vpDefaultStepStats(void);
@@ -390,6 +403,11 @@ typedef struct vpDeformableDef {
   float solverTolerance;        /* relative residual, default 1e-3 */
   int32_t solverMaxIterations;  /* default 200 */
   void* userData;
+  float targetResidual;         /* the accuracy floor: the relative residual of the implicit solve
+                                   that the frame plan guarantees before fluids get time; finite, in
+                                   [solverTolerance, 1]; default 1e-2 */
+  int32_t priority;             /* -1000000..1000000: higher is served first when the frame budget
+                                   is short (deformables and fluids share the scale); default 0 */
 } vpDeformableDef;
 
 VP_API vpDeformableDef vpDefaultDeformableDef(void);
@@ -504,6 +522,8 @@ typedef struct vpFluidDef {
   void* userData;
   float kinematicViscosity;         /* m^2/s, 0..10 (water 1e-6, honey ~1e-2): implicit diffusion of
                                        the velocity, solids no-slip; default 0 = inviscid, no cost */
+  int32_t priority;                 /* -1000000..1000000: higher is served first when the frame budget
+                                       is short (as vpDeformableDef.priority); default 0 */
 } vpFluidDef;
 
 typedef enum vpFluidField {

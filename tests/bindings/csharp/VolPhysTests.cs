@@ -229,6 +229,76 @@ static class VolPhysTests
         }
     }
 
+    static void ExpectInvalidArgument(Action create, params string[] messageParts)
+    {
+        string expected = string.Join("', '", messageParts);
+        try
+        {
+            create();
+            Check(false, "accepted, expected: '" + expected + "'");
+        }
+        catch (VolPhysException e)
+        {
+            bool named = e.Status == Status.InvalidArgument;
+            foreach (string part in messageParts) named = named && e.Message.Contains(part);
+            Check(named, "expected '" + expected + "' in: " + e.Message);
+        }
+    }
+
+    public static void TestAccuracyFloorAndPrioritiesReachTheStats()
+    {
+        Check(Deformable.DefaultDef().targetResidual == 1e-2f, "default targetResidual " + Deformable.DefaultDef().targetResidual);
+        Check(Deformable.DefaultDef().priority == 0 && Fluid.DefaultDef().priority == 0, "default priorities");
+        vpWorldDef worldDef = World.DefaultDef();
+        worldDef.frameBudgetMs = 0; // unlimited: nothing is over budget, every actor steps every frame
+        using (var world = new World(worldDef))
+        {
+            float[] vertices;
+            int[] tets;
+            BoxMesh(out vertices, out tets);
+            vpDeformableDef jellyDef = Deformable.DefaultDef();
+            jellyDef.targetResidual = 0.05f;
+            jellyDef.priority = 6;
+            Deformable jelly = world.CreateDeformable(jellyDef, vertices, tets);
+            vpFluidDef smokeDef = Fluid.DefaultDef();
+            smokeDef.SetResolution(8, 8, 8);
+            smokeDef.cellSize = 0.125f;
+            smokeDef.origin = new vpVec3(4, 0, 0);
+            smokeDef.priority = -2;
+            Fluid smoke = world.CreateFluid(smokeDef);
+            vpStepStats step = world.Step(1.0f / 60.0f);
+            Check(step.overBudgetMs == 0 && step.budgetInfeasible == 0, "unlimited: over budget " + step.overBudgetMs);
+            Check(step.maxSliceMs >= 0 && step.maxSliceMs <= step.totalMs, "longest slice " + step.maxSliceMs);
+            Check(step.fluidInterval == 1 && step.actorCount == 3, "fluid interval, actor count " + step.actorCount);
+            Check(world.ActorStats(0).priority == 0 && world.ActorStats(0).interval == 1, "rigid pseudo-actor");
+            Check(world.ActorStats(1).priority == 6 && jelly.Stats.priority == 6, "deformable priority " + jelly.Stats.priority);
+            Check(world.ActorStats(2).priority == -2 && smoke.Stats.priority == -2, "fluid priority " + smoke.Stats.priority);
+            Check(jelly.Stats.interval == 1 && smoke.Stats.interval == 1, "intervals");
+            vpActorStats s = smoke.Stats;
+            Check(s.progress >= 0 && s.progress <= 1 && s.slices >= 0 && s.residual >= 0, "progress " + s.progress);
+            Check((s.completedStep == 0 || s.completedStep == 1) && (s.floorMissed == 0 || s.floorMissed == 1), "flags");
+
+            vpDeformableDef bad = jellyDef;
+            bad.targetResidual = float.NaN;
+            // C#'s NaN has its sign bit set: the library prints it as -nan.
+            ExpectInvalidArgument(() => world.CreateDeformable(bad, vertices, tets), "targetResidual = ", "nan: must be finite");
+            bad.targetResidual = 5e-4f;
+            ExpectInvalidArgument(() => world.CreateDeformable(bad, vertices, tets),
+                                  "targetResidual = 0.0005: must be >= solverTolerance = 0.001");
+            bad.targetResidual = 1.5f;
+            ExpectInvalidArgument(() => world.CreateDeformable(bad, vertices, tets), "targetResidual = 1.5");
+            bad = jellyDef;
+            bad.priority = 1000001;
+            ExpectInvalidArgument(() => world.CreateDeformable(bad, vertices, tets), "priority = 1000001");
+            vpFluidDef badFluid = smokeDef;
+            badFluid.priority = -1000001;
+            ExpectInvalidArgument(() => world.CreateFluid(badFluid), "priority = -1000001");
+            int deformables;
+            VolPhysException.Check(Native.vpWorldGetDeformableCount(world.Id, out deformables), "vpWorldGetDeformableCount");
+            Check(deformables == 1 && world.GetFluids().Length == 1, "nothing was created: " + deformables + " deformables");
+        }
+    }
+
     public static void TestIdsAfterDestroyRaiseInvalidId()
     {
         var world = new World();

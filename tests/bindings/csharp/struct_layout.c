@@ -25,10 +25,14 @@ int main(void) {
   FIELD(vpPhaseStats, budgetCut);
   SIZE(vpActorStats); FIELD(vpActorStats, kind); FIELD(vpActorStats, index1); FIELD(vpActorStats, totalMs);
   FIELD(vpActorStats, diverged); FIELD(vpActorStats, phases); FIELD(vpActorStats, simulatedDt);
+  FIELD(vpActorStats, interval); FIELD(vpActorStats, completedStep); FIELD(vpActorStats, progress);
+  FIELD(vpActorStats, slices); FIELD(vpActorStats, residual); FIELD(vpActorStats, priority);
+  FIELD(vpActorStats, floorMissed);
   SIZE(vpStepStats); FIELD(vpStepStats, structSize); FIELD(vpStepStats, stepIndex); FIELD(vpStepStats, dt);
   FIELD(vpStepStats, totalMs); FIELD(vpStepStats, budgetMs); FIELD(vpStepStats, budgetCut);
   FIELD(vpStepStats, actorCount); FIELD(vpStepStats, colliderCount); FIELD(vpStepStats, rigidSubsteps);
-  FIELD(vpStepStats, fluidInterval);
+  FIELD(vpStepStats, fluidInterval); FIELD(vpStepStats, overBudgetMs); FIELD(vpStepStats, budgetInfeasible);
+  FIELD(vpStepStats, maxSliceMs);
   SIZE(vpShapeDef); FIELD(vpShapeDef, structSize); FIELD(vpShapeDef, type); FIELD(vpShapeDef, radius);
   FIELD(vpShapeDef, halfHeight); FIELD(vpShapeDef, halfExtents); FIELD(vpShapeDef, normal); FIELD(vpShapeDef, offset);
   FIELD(vpShapeDef, points); FIELD(vpShapeDef, pointCount); FIELD(vpShapeDef, indices);
@@ -46,7 +50,7 @@ int main(void) {
   FIELD(vpDeformableDef, youngsModulus); FIELD(vpDeformableDef, poissonRatio); FIELD(vpDeformableDef, density);
   FIELD(vpDeformableDef, massDamping); FIELD(vpDeformableDef, stiffnessDamping); FIELD(vpDeformableDef, friction);
   FIELD(vpDeformableDef, solverTolerance); FIELD(vpDeformableDef, solverMaxIterations);
-  FIELD(vpDeformableDef, userData);
+  FIELD(vpDeformableDef, userData); FIELD(vpDeformableDef, targetResidual); FIELD(vpDeformableDef, priority);
   SIZE(vpFluidId); FIELD(vpFluidId, index1); FIELD(vpFluidId, generation); FIELD(vpFluidId, world);
   SIZE(vpFluidRegion); FIELD(vpFluidRegion, type); FIELD(vpFluidRegion, centre); FIELD(vpFluidRegion, halfExtents);
   FIELD(vpFluidRegion, radius);
@@ -61,7 +65,7 @@ int main(void) {
   FIELD(vpFluidDef, temperatureDissipation); FIELD(vpFluidDef, initialLiquid); FIELD(vpFluidDef, initialLiquidCount);
   FIELD(vpFluidDef, emitters); FIELD(vpFluidDef, emitterCount); FIELD(vpFluidDef, drains);
   FIELD(vpFluidDef, drainCount); FIELD(vpFluidDef, twoWayCoupling); FIELD(vpFluidDef, userData);
-  FIELD(vpFluidDef, kinematicViscosity);
+  FIELD(vpFluidDef, kinematicViscosity); FIELD(vpFluidDef, priority);
   SIZE(vpBuildInfo); FIELD(vpBuildInfo, cudaCompiled); FIELD(vpBuildInfo, cudaDeviceCount);
   FIELD(vpBuildInfo, hardwareThreads);
   return 0;

@@ -1,0 +1,112 @@
+// The frame plan: which actors advance in a frame, in which order, with what share of the
+// frame budget, and at what rate, from each actor's measured costs, accuracy floor and
+// priority. The world runs the plan's stages; the plan holds the policy.
+//
+// The policy, in order of what is protected first:
+//   1. Deformables reach their accuracy floor (DeformableDesc targetResidual). A deformable's
+//      solve may stop at its share of the frame only once its residual is at or below the
+//      floor; above it, it goes on until the frame's end less what the floors of the
+//      deformables after it are expected to cost. Deformables run by priority (higher
+//      first; equal priorities in slot order).
+//   2. When the floors do not fit, deformables lower their rate, never their accuracy: the
+//      lowest-priority deformable not yet at kMaxInterval steps every k-th frame with the
+//      time it skipped (backward Euler is stable at k dt). The interval comes back down
+//      after kCalmFrames frames in which the frame had room for it.
+//   3. Fluids take what is left, by priority: a fluid is given what one whole step of it is
+//      expected to cost, then the next; fluids of equal priority share equally, and time
+//      one does not use passes on. A fluid step is resumable (fluid_actor.h): one that does
+//      not fit goes on in the next frames, so a fluid short of time lowers its rate (its
+//      steps span more frames and simulate their time), never its accuracy. A slice starts
+//      only when the share leaves room for its expected cost.
+//   4. Rates have a cap: a deformable at kMaxInterval reaches its floor whatever the
+//      budget, and a fluid step never spans more than about kMaxInterval frames (each frame
+//      of a step must bring it its share of the way). When either overruns the frame, the
+//      stats say the budget is infeasible.
+// The guarantee: a frame exceeds its budget by at most one slice (one CG iteration or one
+// stage of a fluid step) beyond what the estimate of that slice allowed for, except where
+// the caps above force work, which the stats flag.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/budget_clock.h"
+
+namespace vp {
+
+// What the plan keeps about an actor between frames; each actor owns its own.
+struct ActorSchedule {
+  int interval = 1;          // deformable: frames per step; fluid: frames its last step spanned
+  int waitedFrames = 0;      // deformable: frames since its last step
+  int calmFrames = 0;        // deformable: frames in a row with room for a lower interval
+  double pendingDt = 0.0;    // simulated time not yet given to a step
+  double expectedMs = -1.0;  // smoothed cost of one whole step; < 0 before the first
+  double tailMs = -1.0;      // deformable: smoothed cost of what follows its solve (contacts, embedding)
+  int stepFrames = 0;        // fluid: frames since its last step completed
+  double stepMs = 0.0;       // fluid: what the step in progress has cost so far
+};
+
+class FramePlan {
+ public:
+  static constexpr int kMaxInterval = 8;
+  static constexpr int kCalmFrames = 30;
+  static constexpr double kSmoothing = 0.2;  // weight of the newest cost in the averages
+  // The plan expects this multiple of an actor's smoothed cost: costs vary from frame to
+  // frame, and the frame's end is what must hold.
+  static constexpr double kMargin = 1.25;
+
+  static double smoothed(double average, double sample) {
+    return average < 0.0 ? sample : average + kSmoothing * (sample - average);
+  }
+
+  // A deformable as the plan sees it this frame.
+  struct Deformable {
+    int priority = 0;
+    ActorSchedule* schedule = nullptr;
+  };
+  // A fluid as the plan sees it this frame.
+  struct Fluid {
+    int priority = 0;
+    ActorSchedule* schedule = nullptr;
+    int expectedSlices = 0;  // slices of a whole step (the last one's count; 0: unknown)
+    int slicesDone = 0;      // of the step in progress
+  };
+
+  // Order of service: indices into the lists by priority (higher first), stable.
+  static std::vector<int> byPriority(const std::vector<int>& priorities);
+
+  // Whether a deformable steps this frame (frame, its position in slot order among
+  // `count`): deformables at the same interval are staggered over it.
+  static bool due(uint64_t frame, int ordinal, int count, const ActorSchedule& s);
+
+  // The two deadlines of a due deformable: `share` (stop there once at the floor) and
+  // `floor` (stop there in any case). laterFloorsMs: the expected cost of the due
+  // deformables after it; fluidsMs: what the fluids of at least its priority are expected to
+  // need this frame; remainingDeformables: itself and those after it.
+  struct DeformableDeadlines {
+    Deadline share, floor;
+    bool forced = false;  // at the interval cap: the floor holds whatever the budget
+  };
+  static DeformableDeadlines deformableDeadlines(const Deadline& frame, const ActorSchedule& s,
+                                                 double laterFloorsMs, double fluidsMs, int remainingDeformables);
+
+  // A fluid's share of what is left of the frame: its expected cost of a whole step when
+  // there are fluids of lower priority after it, an equal part among those of its
+  // priority otherwise (`equals`: itself and the later fluids of its priority; `lowerAfter`:
+  // fluids of lower priority follow).
+  static Deadline fluidShare(const Deadline& frame, const ActorSchedule& s, int equals, bool lowerAfter);
+  // Slices a fluid must run this frame whatever the budget, so that its step never spans
+  // more than about kMaxInterval frames.
+  static int fluidMinSlices(const Fluid& f);
+
+  // After the frame: a deformable that missed its floor raises the interval of the
+  // lowest-priority deformable below the cap (`deformables` in slot order; `missed[i]`:
+  // the i-th missed its floor); intervals come back down after kCalmFrames frames with
+  // `slackMs` (what the frame left unused) above the stepping cost they would add.
+  // Returns false when no interval could be raised (all at the cap): the budget cannot
+  // hold the floors.
+  static bool adjustIntervals(const std::vector<Deformable>& deformables, const std::vector<bool>& missed,
+                              double slackMs);
+};
+
+}  // namespace vp
