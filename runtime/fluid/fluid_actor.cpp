@@ -132,40 +132,55 @@ void FluidActor::diffuseVelocity() {
   phase.residual = std::max(phase.residual, vs.solve.relativeResidual);
 }
 
-void FluidActor::advectVelocityStage() {
-  const FluidSolverSettings& solver = desc_.solver;
-  // A liquid's air faces beyond the extrapolated layers are zeroed after the projection and
-  // out of reach of the liquid while a sub-step moves things at most cflNumber cells (the
-  // layers' premise); when maxSubsteps caps the sub-steps, everything is advected.
-  FaceSkipMask skip;
-  if (desc_.kind == FluidKind::Liquid && !extrapolation_.mark[0].empty() &&
-      step_->speed * step_->h <= solver.cflNumber * grid_.spec.h)
-    skip = FaceSkipMask{extrapolation_.mark, kExtrapolationUnreached};
-  advectVelocity(*step_->input.tasks, grid_, step_->h, solver.advection, advection_, skip);
+bool FluidActor::advectVelocitySlab() {
+  StepInProgress& st = *step_;
+  if (st.slab == 0) {
+    const FluidSolverSettings& solver = desc_.solver;
+    // A liquid's air faces beyond the extrapolated layers are zeroed after the projection and
+    // out of reach of the liquid while a sub-step moves things at most cflNumber cells (the
+    // layers' premise); when maxSubsteps caps the sub-steps, everything is advected.
+    FaceSkipMask skip;
+    if (desc_.kind == FluidKind::Liquid && !extrapolation_.mark[0].empty() &&
+        st.speed * st.h <= solver.cflNumber * grid_.spec.h)
+      skip = FaceSkipMask{extrapolation_.mark, kExtrapolationUnreached};
+    st.velocityAdvection.prepare(grid_, st.h, solver.advection, advection_, skip, desc_.solver.samplesPerSlice);
+  }
+  st.velocityAdvection.runSlice(*st.input.tasks, st.slab++);
+  if (st.slab < st.velocityAdvection.sliceCount()) return false;
+  st.velocityAdvection.finish();
+  st.slab = 0;
+  return true;
 }
 
-void FluidActor::advectScalarsStage() {
-  TaskSystem& tasks = *step_->input.tasks;
-  const double h = step_->h;
-  const AdvectionScheme scheme = desc_.solver.advection;
-  if (desc_.kind == FluidKind::Smoke) {
-    // Smoke and heat move through open faces only: a plain trilinear stencil reaches across a
-    // plate one cell thick. Cells inside solids hold no smoke and the ambient temperature.
-    if (fractionsChanged_) {
-      buildCellOpenFaces(tasks, grid_, fractions_, &openFaces_);
-      fractionsChanged_ = false;
+bool FluidActor::advectScalarsSlab() {
+  StepInProgress& st = *step_;
+  if (st.slab == 0) {
+    TaskSystem& tasks = *st.input.tasks;
+    const AdvectionScheme scheme = desc_.solver.advection;
+    if (desc_.kind == FluidKind::Smoke) {
+      // Smoke and heat move through open faces only: a plain trilinear stencil reaches across
+      // a plate one cell thick. Cells inside solids hold no smoke and the ambient temperature.
+      if (fractionsChanged_) {
+        buildCellOpenFaces(tasks, grid_, fractions_, &openFaces_);
+        fractionsChanged_ = false;
+      }
+      std::vector<double>* scalars[2] = {&smokeDensity_, &temperature_};
+      const double solidValues[2] = {0.0, desc_.smoke.ambientTemperature};
+      st.scalarAdvection.prepare(grid_, st.h, scheme, scalars, 2, advection_, &openFaces_, solidValues, 0.0,
+                                 desc_.solver.samplesPerSlice);
+    } else {
+      // The level set is extended into solids on purpose (level_set_solid_extension.h) and
+      // sampled as it is. Cells farther from the surface than the sub-step moves it, plus the
+      // forward and backward traces' stencils, keep their sign, and redistancing rewrites them.
+      std::vector<double>* scalars[1] = {&phi_};
+      st.scalarAdvection.prepare(grid_, st.h, scheme, scalars, 1, advection_, nullptr, nullptr,
+                                 st.speed * st.h + 3.0 * grid_.spec.h, desc_.solver.samplesPerSlice);
     }
-    std::vector<double>* scalars[2] = {&smokeDensity_, &temperature_};
-    const double solidValues[2] = {0.0, desc_.smoke.ambientTemperature};
-    advectCellScalars(tasks, grid_, h, scheme, scalars, 2, advection_, &openFaces_, solidValues);
-  } else {
-    // The level set is extended into solids on purpose (level_set_solid_extension.h) and
-    // sampled as it is. Cells farther from the surface than the sub-step moves it, plus the
-    // forward and backward traces' stencils, keep their sign, and redistancing rewrites them.
-    std::vector<double>* scalars[1] = {&phi_};
-    advectCellScalars(tasks, grid_, h, scheme, scalars, 1, advection_, nullptr, nullptr,
-                      step_->speed * h + 3.0 * grid_.spec.h);
   }
+  st.scalarAdvection.runSlice(*st.input.tasks, st.slab++);
+  if (st.slab < st.scalarAdvection.sliceCount()) return false;
+  st.slab = 0;
+  return true;
 }
 
 void FluidActor::applySources() {
@@ -367,8 +382,8 @@ void FluidActor::queueSubstep(int) {
     job_.thenOnce(static_cast<int>(kind), [this, stage] { (this->*stage)(); });
   };
   const bool liquid = desc_.kind == FluidKind::Liquid;
-  once(FluidSlice::AdvectVelocity, &FluidActor::advectVelocityStage);
-  once(FluidSlice::AdvectScalars, &FluidActor::advectScalarsStage);
+  job_.then(static_cast<int>(FluidSlice::AdvectVelocity), [this] { return advectVelocitySlab(); });
+  job_.then(static_cast<int>(FluidSlice::AdvectScalars), [this] { return advectScalarsSlab(); });
   once(FluidSlice::Sources, &FluidActor::applySources);
   if (liquid) once(FluidSlice::LevelSet, &FluidActor::keepLevelSetHealthy);
   if (desc_.kinematicViscosity > 0.0) once(FluidSlice::Viscosity, &FluidActor::diffuseVelocity);

@@ -159,8 +159,9 @@ class FluidActor {
   void updateFractionsStage();
   void planSubsteps();
   void queueSubstep(int sub);
-  void advectVelocityStage();
-  void advectScalarsStage();
+  // One slab of the sub-step's advection per call; true when the last is done.
+  bool advectVelocitySlab();
+  bool advectScalarsSlab();
   void applySources();
   void keepLevelSetHealthy();
   void diffuseVelocity();
@@ -191,6 +192,9 @@ class FluidActor {
     int substeps = 1;
     double h = 0.0;      // sub-step
     std::vector<PressureLoad> loadSum;  // per input collider
+    VelocityAdvectionSlices velocityAdvection;
+    ScalarAdvectionSlices scalarAdvection;
+    int slab = 0;  // of the advection in progress
     PressureProjectionRun projection;
     bool projectionFailed = false;
     bool diverged = false;

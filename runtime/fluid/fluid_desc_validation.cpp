@@ -74,6 +74,9 @@ Status validateFluidDesc(const FluidDesc& d) {
   if (s.pressureMaxIterations < 1 || s.pressureMaxIterations > 100000)
     return fail(Status::InvalidArgument, "pressureMaxIterations = %d: must be in [1, 100000]",
                 s.pressureMaxIterations);
+  if (s.samplesPerSlice < 1)
+    return fail(Status::InvalidArgument, "samplesPerSlice = %lld: must be >= 1",
+                static_cast<long long>(s.samplesPerSlice));
   VP_TRY(validateActorPriority(d.priority));
   for (size_t i = 0; i < d.initialLiquid.size(); ++i)
     VP_TRY(validateShape("initialLiquid[" + std::to_string(i) + "]", d.initialLiquid[i]));

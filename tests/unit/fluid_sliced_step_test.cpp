@@ -31,6 +31,7 @@ FluidDesc smallFluid(FluidKind kind) {
   d.solver.pressureTolerance = 1e-6;
   d.twoWayCoupling = true;
   d.solver.advection = AdvectionScheme::MacCormack;
+  d.solver.samplesPerSlice = 250;  // several slabs per advection pass
   if (kind == FluidKind::Liquid) {
     FluidShape water;
     water.type = FluidShape::Type::Box;
