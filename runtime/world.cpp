@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "core/log.h"
+#include "core/parallel_for.h"
 
 namespace vp {
 
@@ -171,6 +172,23 @@ double longestDeformableSliceMs(const ActorStats& a) {
 
 }  // namespace
 
+bool World::runsConcurrently(int actors) const {
+  const int workers = tasks_->workerCount();
+  return workers > 1 && actors > 1 && actors <= workers;
+}
+
+template <class Work>
+void World::runActors(bool concurrent, int count, const Work& work) {
+  if (!concurrent) {
+    for (int n = 0; n < count; ++n) work(n);
+    return;
+  }
+  // One actor per item; the pool runs each actor's own parallel loops inline (task_system.h).
+  parallelFor(*tasks_, count, 1, [&](int64_t begin, int64_t end) {
+    for (int64_t n = begin; n < end; ++n) work(static_cast<int>(n));
+  });
+}
+
 ActorStats World::actorStats(ActorKind kind, uint32_t index1, uint32_t generation, int priority, double dt) const {
   ActorStats a;
   a.kind = kind;
@@ -233,7 +251,7 @@ bool World::stepDeformables(double dt, const Deadline& frame, StepStats* stats) 
   colliders_.forEach([&](ColliderHandle, const Collider& c) {
     if (c.geometry()) contactColliders.push_back(ContactCollider{c.geometry(), c.desc().friction});
   });
-  std::vector<DeformableHandle> handles = deformableHandles();
+  const std::vector<DeformableHandle> handles = deformableHandles();
   std::vector<FramePlan::Deformable> planned;
   std::vector<int> priorities;
   std::vector<bool> due;
@@ -246,59 +264,69 @@ bool World::stepDeformables(double dt, const Deadline& frame, StepStats* stats) 
     priorities.push_back(body.desc().priority);
     due.push_back(FramePlan::due(stats->stepIndex, static_cast<int>(i), static_cast<int>(handles.size()), s));
   }
-  const std::vector<int> order = FramePlan::byPriority(priorities);
-  // laterFloorsMs[n]: what the due deformables served after the n-th are expected to need
+  // Served by priority; the due ones, and what those served after each are expected to need
   // (infinite while one of them has not been measured: then the shares are equal).
-  std::vector<double> laterFloorsMs(order.size() + 1, 0.0);
-  int dueCount = 0;
-  for (size_t n = order.size(); n-- > 0;) {
-    const ActorSchedule& s = *planned[order[n]].schedule;
-    laterFloorsMs[n] = laterFloorsMs[n + 1];
-    if (!due[order[n]]) continue;
-    ++dueCount;
-    laterFloorsMs[n] += s.expectedMs < 0.0 ? std::numeric_limits<double>::infinity() : FramePlan::kMargin * s.expectedMs;
+  std::vector<int> served;
+  for (int i : FramePlan::byPriority(priorities))
+    if (due[i]) served.push_back(i);
+  std::vector<double> laterFloorsMs(served.size() + 1, 0.0);
+  for (size_t n = served.size(); n-- > 0;) {
+    const double expected = planned[served[n]].schedule->expectedMs;
+    laterFloorsMs[n] = laterFloorsMs[n + 1] + (expected < 0.0 ? std::numeric_limits<double>::infinity()
+                                                               : FramePlan::kMargin * expected);
   }
-  std::vector<ActorStats> served(handles.size());
-  std::vector<bool> missed(handles.size(), false);
-  for (size_t n = 0; n < order.size(); ++n) {
-    const int i = order[n];
+  std::vector<ActorStats> actors(handles.size());
+  std::vector<FramePlan::DeformableDeadlines> deadlines(handles.size());
+  for (size_t i = 0; i < handles.size(); ++i) {
+    actors[i] = actorStats(ActorKind::Deformable, handles[i].index1, handles[i].generation, priorities[i], 0.0);
+    actors[i].interval = planned[i].schedule->interval;
+  }
+  // Side by side, each takes the rest of the frame (and its own floor) for itself.
+  const bool concurrent = runsConcurrently(static_cast<int>(served.size()));
+  runActors(concurrent, static_cast<int>(served.size()), [&](int n) {
+    const int i = served[static_cast<size_t>(n)];
     DeformableBody& body = *deformable(handles[i]);
     ActorSchedule& s = body.schedule();
-    ActorStats& a = served[i] = actorStats(ActorKind::Deformable, handles[i].index1, handles[i].generation,
-                                           body.desc().priority, 0.0);
-    a.interval = s.interval;
-    if (!due[i]) {
-      ++s.waitedFrames;
-      continue;
-    }
-    const FramePlan::DeformableDeadlines deadlines = FramePlan::deformableDeadlines(
-        frame, s, laterFloorsMs[n + 1], fluidsExpectedMs(body.desc().priority), dueCount--);
+    deadlines[i] = FramePlan::deformableDeadlines(frame, s, concurrent ? 0.0 : laterFloorsMs[n + 1],
+                                                  fluidsExpectedMs(priorities[i]),
+                                                  concurrent ? 1 : static_cast<int>(served.size()) - n);
     DeformableStepInput input;
     input.dt = s.pendingDt;
     input.gravity = config_.gravity;
-    input.deadline = deadlines.share;
-    input.floorDeadline = deadlines.floor;
+    input.deadline = deadlines[i].share;
+    input.floorDeadline = deadlines[i].floor;
     input.tasks = tasks_.get();
     input.colliders = contactColliders;
     input.collider = [this](uint32_t index1, uint32_t generation) -> const Collider* {
       return colliders_.get(index1, generation);
     };
+    ActorStats& a = actors[i];
     const double start = frame.elapsedMs();
     body.step(input, &a);
     a.totalMs = frame.elapsedMs() - start;
     a.simulatedDt = input.dt;
+  });
+  std::vector<bool> missed(handles.size(), false);
+  for (size_t i = 0; i < handles.size(); ++i) {
+    ActorSchedule& s = *planned[i].schedule;
+    ActorStats& a = actors[i];
+    if (!due[i]) {
+      ++s.waitedFrames;
+      continue;
+    }
     a.completedStep = true;
     a.slices = 1 + a.phase(Phase::Solve).iterations;
     stats->maxSliceMs = std::max(stats->maxSliceMs, longestDeformableSliceMs(a));
     missed[i] = a.floorMissed;
-    if (deadlines.forced && frame.expired()) stats->budgetInfeasible = true;
-    if (a.diverged) log(LogLevel::Warning, "deformable (%u, %u) diverged; restored its previous state", a.index1, a.generation);
+    if (deadlines[i].forced && frame.expired()) stats->budgetInfeasible = true;
+    if (a.diverged)
+      log(LogLevel::Warning, "deformable (%u, %u) diverged; restored its previous state", a.index1, a.generation);
     s.expectedMs = FramePlan::smoothed(s.expectedMs, a.totalMs);
     s.tailMs = FramePlan::smoothed(s.tailMs, a.phase(Phase::Contacts).ms + a.phase(Phase::Embed).ms);
     s.pendingDt = 0.0;
     s.waitedFrames = 0;
   }
-  for (ActorStats& a : served) stats->actors.push_back(a);
+  stats->actors.insert(stats->actors.end(), actors.begin(), actors.end());
   // The time left after the deformables is the room a lower interval would take from the
   // fluids; read only when some interval could come down.
   const bool anyRaised = std::any_of(planned.begin(), planned.end(),
@@ -317,37 +345,46 @@ void World::stepFluids(double dt, const Deadline& frame, bool floorsHeld, StepSt
         colliders.push_back(
             FluidCollider{h.index1, h.generation, c.geometry(), c.sharedGeometry(), c.bodyType() == BodyType::Dynamic});
     });
-  std::vector<FluidHandle> handles = fluidHandles();
+  const std::vector<FluidHandle> handles = fluidHandles();
   std::vector<int> priorities;
   for (FluidHandle h : handles) priorities.push_back(fluid(h)->desc().priority);
-  const std::vector<int> order = FramePlan::byPriority(priorities);
-  std::vector<ActorStats> served(handles.size());
-  for (size_t n = 0; n < order.size(); ++n) {
-    const int i = order[n];
+  std::vector<ActorStats> actors(handles.size());
+  std::vector<SliceBudget> budgets(handles.size());
+  // Which fluids run this frame, by priority: those with time, and those their rate cap forces.
+  std::vector<int> served;
+  for (int i : FramePlan::byPriority(priorities)) {
     FluidActor& f = *fluid(handles[i]);
     ActorSchedule& s = f.schedule();
     s.pendingDt += dt;
-    int equals = 0;
-    bool lowerAfter = false;
-    for (size_t m = n; m < order.size(); ++m) {
-      equals += priorities[order[m]] == priorities[i];
-      lowerAfter = lowerAfter || priorities[order[m]] < priorities[i];
-    }
-    ActorStats& a = served[i] = actorStats(ActorKind::Fluid, handles[i].index1, handles[i].generation, priorities[i], 0.0);
-    FramePlan::Fluid planned{priorities[i], &s, f.lastStepSlices(), 0};
-    if (f.stepInProgress()) planned.slicesDone = f.stepSlicesRun();
-    SliceBudget budget;
-    budget.share = FramePlan::fluidShare(frame, s, equals, lowerAfter);
-    budget.minSlices = FramePlan::fluidMinSlices(planned);
-    // A deformable above its floor this frame: the floors come first, so a fluid gets only
-    // what its rate cap forces.
-    if (!floorsHeld) budget.share = frame.within(0.0);
-    if (budget.minSlices == 0 && !budget.share.unlimited() &&
-        (!floorsHeld || budget.share.remainingMs() <= 0.0)) {
+    actors[i] = actorStats(ActorKind::Fluid, handles[i].index1, handles[i].generation, priorities[i], 0.0);
+    actors[i].interval = s.interval;
+    FramePlan::Fluid planned{priorities[i], &s, f.lastStepSlices(), f.stepInProgress() ? f.stepSlicesRun() : 0};
+    budgets[i].minSlices = FramePlan::fluidMinSlices(planned);
+    // A deformable above its floor this frame: the floors come first.
+    const bool noTime = !frame.unlimited() && (!floorsHeld || frame.remainingMs() <= 0.0);
+    if (budgets[i].minSlices == 0 && noTime) {
       ++s.stepFrames;
-      a.interval = s.interval;
-      a.progress = f.progress();
-      continue;  // no time this frame: its step waits
+      actors[i].progress = f.progress();
+      continue;  // its step waits for the next frame
+    }
+    if (noTime) budgets[i].share = frame.within(0.0);
+    served.push_back(i);
+  }
+  const bool concurrent = runsConcurrently(static_cast<int>(served.size()));
+  runActors(concurrent, static_cast<int>(served.size()), [&](int n) {
+    const int i = served[static_cast<size_t>(n)];
+    FluidActor& f = *fluid(handles[i]);
+    ActorSchedule& s = f.schedule();
+    SliceBudget& budget = budgets[i];
+    if (budget.share.unlimited() && !frame.unlimited()) {
+      // Side by side, each has the rest of the frame; in turn, its share of what is left.
+      int equals = 0;
+      bool lowerAfter = false;
+      for (size_t m = static_cast<size_t>(n); m < served.size(); ++m) {
+        equals += priorities[served[m]] == priorities[i];
+        lowerAfter = lowerAfter || priorities[served[m]] < priorities[i];
+      }
+      budget.share = concurrent ? frame.share(1.0) : FramePlan::fluidShare(frame, s, equals, lowerAfter);
     }
     FluidStepInput input;
     if (!f.stepInProgress()) {
@@ -358,14 +395,20 @@ void World::stepFluids(double dt, const Deadline& frame, bool floorsHeld, StepSt
     input.gravity = config_.gravity;
     input.tasks = tasks_.get();
     input.colliders = colliders;
+    ActorStats& a = actors[i];
     const double start = frame.elapsedMs();
-    const bool completed = f.advance(input, budget, &a);
+    a.completedStep = f.advance(input, budget, &a);
     a.totalMs = frame.elapsedMs() - start;
+  });
+  for (int i : served) {
+    FluidActor& f = *fluid(handles[i]);
+    ActorSchedule& s = f.schedule();
+    ActorStats& a = actors[i];
     stats->maxSliceMs = std::max(stats->maxSliceMs, f.maxSliceMs());
-    if (budget.minSlices > 0 && a.slices > 0 && (frame.expired() || !floorsHeld)) stats->budgetInfeasible = true;
+    if (budgets[i].minSlices > 0 && a.slices > 0 && (frame.expired() || !floorsHeld)) stats->budgetInfeasible = true;
     ++s.stepFrames;
     s.stepMs += a.totalMs;
-    if (completed) {
+    if (a.completedStep) {
       // Frames since the last completed step, the waiting ones included.
       s.interval = s.stepFrames;
       s.stepFrames = 0;
@@ -376,7 +419,7 @@ void World::stepFluids(double dt, const Deadline& frame, bool floorsHeld, StepSt
     }
     a.interval = s.interval;
   }
-  for (ActorStats& a : served) stats->actors.push_back(a);
+  stats->actors.insert(stats->actors.end(), actors.begin(), actors.end());
 }
 
 void World::finishStats(const Deadline& frame, StepStats* stats) {

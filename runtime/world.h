@@ -89,6 +89,11 @@ class World {
   void finishStats(const Deadline& frame, StepStats* stats);
   // What the fluids of at least `priority` are expected to need this frame.
   double fluidsExpectedMs(int priority);
+  // Actors that do not depend on each other in a stage run side by side on the worker pool,
+  // each its own parallel loops inline, when there are at least two and no more than workers.
+  bool runsConcurrently(int actors) const;
+  template <class Work>
+  void runActors(bool concurrent, int count, const Work& work);
   ActorStats actorStats(ActorKind kind, uint32_t index1, uint32_t generation, int priority, double dt) const;
 
   WorldConfig config_;

@@ -22,7 +22,22 @@ class InlineTaskSystem final : public TaskSystem {
   int workerCount() const override { return 1; }
 };
 
-// The host's task system. The host may run a task inline and return nullptr.
+struct MarkedTask {
+  TaskFn task;
+  void* context;
+  static void run(int32_t start, int32_t end, uint32_t worker, void* self) {
+    const auto* m = static_cast<const MarkedTask*>(self);
+    const bool outer = t_insideTask;
+    t_insideTask = true;
+    m->task(start, end, worker, m->context);
+    t_insideTask = outer;
+  }
+};
+
+// The host's task system. The host may run a task inline and return nullptr. Its threads
+// are marked as running VolPhys work while they run a task, so work nested in a task (an
+// actor running beside another, with its own parallel loops) runs inline there instead of
+// calling the host's hooks from a task thread.
 class HostTaskSystem final : public TaskSystem {
  public:
   HostTaskSystem(const TaskHooks& hooks, int workers) : hooks_(hooks), workers_(workers) {}
@@ -33,7 +48,8 @@ class HostTaskSystem final : public TaskSystem {
       return;
     }
     t_insideTask = true;
-    void* handle = hooks_.enqueue(task, itemCount, std::max(1, minRange), context, hooks_.userContext);
+    MarkedTask marked{task, context};
+    void* handle = hooks_.enqueue(&MarkedTask::run, itemCount, std::max(1, minRange), &marked, hooks_.userContext);
     if (handle) hooks_.finish(handle, hooks_.userContext);
     t_insideTask = false;
   }

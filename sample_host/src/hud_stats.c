@@ -13,7 +13,7 @@ int hudStatsLines(vpWorldId world, char lines[HUD_MAX_LINES][HUD_LINE_CHARS]) {
   if (vpWorldGetStepStats(world, &step) != vpStatus_Ok) return 0;
   snprintf(lines[n++], HUD_LINE_CHARS, "frame %llu  step %.2f ms / budget %.1f ms%s%s", (unsigned long long)step.stepIndex,
            step.totalMs, step.budgetMs, step.budgetMs <= 0.0f ? " (unlimited)" : step.budgetCut ? "  CUT" : "",
-           step.fluidInterval > 1 ? "  fluids paced" : "");
+           step.budgetInfeasible ? "  INFEASIBLE" : step.fluidInterval > 1 ? "  fluid steps span frames" : "");
   for (a = 0; a < step.actorCount && n < HUD_MAX_LINES; ++a) {
     vpActorStats s;
     size_t used;
@@ -37,8 +37,8 @@ int hudStatsLines(vpWorldId world, char lines[HUD_MAX_LINES][HUD_LINE_CHARS]) {
     /* A fluid step may span frames; readers see the last completed one meanwhile. */
     if (s.kind == vpActorKind_Fluid && s.progress < 1.0f && used < HUD_LINE_CHARS)
       used += (size_t)snprintf(line + used, HUD_LINE_CHARS - used, " step %.0f%%", 100.0 * s.progress);
-    if (s.kind == vpActorKind_Fluid && s.simulatedDt <= 0.0f && used < HUD_LINE_CHARS)
-      used += (size_t)snprintf(line + used, HUD_LINE_CHARS - used, " deferred");
+    if (s.interval > 1 && used < HUD_LINE_CHARS)
+      used += (size_t)snprintf(line + used, HUD_LINE_CHARS - used, " every %d frames", s.interval);
     if (s.diverged && used < HUD_LINE_CHARS) snprintf(line + used, HUD_LINE_CHARS - used, " DIVERGED");
   }
   return n;

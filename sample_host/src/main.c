@@ -137,8 +137,8 @@ static int writePoses(vpWorldId world, const char* outDir) {
 
 /* stats.csv: totals by kind, then each actor's own columns, named like the mesh files
  * (deformableK, fluidK): its ms, each of its kind's phases in ms, and its iterative phase's
- * iterations and residual; a fluid also its simulated time (0 in frames the budget's pacing
- * deferred it); then the frame plan's view of it: its interval, progress, slices and final
+ * iterations and residual; a fluid also its simulated time (0 unless a step of it completed
+ * in that frame); then the frame plan's view of it: its interval, progress, slices and final
  * residual. */
 typedef struct ActorColumns {
   vpActorKind kind;

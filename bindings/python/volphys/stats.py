@@ -42,7 +42,7 @@ class ActorStats:
     index1: int
     total_ms: float
     diverged: bool
-    simulated_dt: float  # 0 for a fluid the budget's pacing deferred
+    simulated_dt: float  # 0 unless a step completed in this frame
     interval: int         # frames per step (a fluid: frames its last completed step spanned)
     completed_step: bool  # a step of this actor completed in this frame
     progress: float       # fluid: fraction of its current step done, 1 when it completed

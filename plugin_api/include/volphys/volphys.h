@@ -134,7 +134,9 @@ typedef void* vpEnqueueTaskFn(vpTaskFn* task, int32_t itemCount, int32_t minRang
 typedef void vpFinishTaskFn(void* userTask, void* userContext);
 
 /* Monotonic clock in seconds used for the frame budget. NULL means the system's steady
- * clock. Hosts with their own frame timer (and tests) can inject one. */
+ * clock. Hosts with their own frame timer (and tests) can inject one. With workerCount > 1
+ * it may be called from task threads at the same time (independent actors run side by
+ * side), so it must be thread-safe there. */
 typedef double vpClockFn(void* userContext);
 
 /* ---------------------------------------------------------------- ids */
@@ -173,18 +175,25 @@ typedef struct vpWorldDef {
   uint32_t structSize;
   vpVec3 gravity;              /* default (0, -9.81, 0) */
   int32_t workerCount;         /* worker threads incl. the caller, 1..64; default 1 */
-  float frameBudgetMs;         /* per-step budget for iterative solvers; 0 = unlimited; default 16.
-                                  Sharing: the Bullet step is not budgeted; then the deformables
-                                  run in slot order, each with an equal share of what is left
-                                  after holding back the expected time of the fluids due this
-                                  step (or more, when the deformables after it are expected to
-                                  need less), then those fluids, each with an equal share of what is
-                                  left; time one does not use passes on to the next. A cut solver keeps its best
-                                  iterate, sets budgetCut, and warm-starts next step. Fluid work
-                                  that cannot be cut (advection, fractions) is paced instead:
-                                  when the measured fluid steps do not fit, each fluid steps
-                                  every k-th step (k <= 4, fluids staggered) with the time it
-                                  skipped (vpStepStats.fluidInterval, vpActorStats.simulatedDt). */
+  float frameBudgetMs;         /* wall time one vpWorldStep may take; 0 = unlimited; default 16.
+                                  The frame plan (README, "Frame budget"): the Bullet step runs
+                                  first (not divisible). Deformables then run by priority (higher
+                                  first, equal ones in slot order); each solve stops at its share
+                                  only once its residual is at or below its targetResidual (the
+                                  accuracy floor), else at the frame's end less what the later
+                                  floors need. When floors do not fit, the lowest-priority
+                                  deformable steps every k-th frame with k * dt (k <= 8), never
+                                  below its floor. Fluids take what is left, by priority: a fluid
+                                  step is a sequence of slices that may span frames (each step
+                                  simulates the time since the last), readers see the last
+                                  completed step, and slicing never changes results. A slice
+                                  starts only when the time left covers its measured cost.
+                                  Guarantee: a step exceeds the budget by at most one slice (a CG
+                                  iteration or one stage or slab of a fluid step) beyond its
+                                  estimate. Its limit: a single slice cannot be cut, and when the
+                                  floors and the rate caps cannot fit (a fluid step spanning 8
+                                  frames must finish; a deformable at k = 8 reaches its floor),
+                                  the step overruns and vpStepStats.budgetInfeasible says so. */
   float rigidMaxSubstep;       /* Bullet sub-step length bound in seconds; default 1/120 */
   vpEnqueueTaskFn* enqueueTask;/* both NULL: built-in thread pool with workerCount threads */
   vpFinishTaskFn* finishTask;
@@ -249,8 +258,9 @@ typedef struct vpActorStats {
   float totalMs;
   int32_t diverged;   /* the step blew up; the actor was restored to its previous state */
   vpPhaseStats phases[VP_MAX_PHASES]; /* indexed by vpPhase */
-  float simulatedDt;  /* seconds this step advanced the actor: the step's dt; for a fluid 0 when
-                         the budget's pacing deferred it, several steps' dt when it catches up */
+  float simulatedDt;  /* seconds this step advanced the actor: 0 unless a step completed in it;
+                         the frames' dt since its last step when its step spanned frames or
+                         its rate was lowered */
   int32_t interval;   /* frames per step (>= 1): a deformable steps every interval-th frame with
                          interval * dt; a fluid's last completed step spanned interval frames */
   int32_t completedStep; /* 1 if a step of this actor completed in this frame */
