@@ -37,9 +37,81 @@ double effectiveOpenFraction(const MacGrid& grid, const FaceFractionField& fract
   return open < kMinOpenFraction ? 0.0 : open;
 }
 
-Status buildCutCellPoisson(TaskSystem& tasks, const MacGrid& grid, const FaceFractionField& fractions,
-                           CutCellPoisson* op, const double* liquidPhi) {
-  if (op == nullptr) return fail(Status::InvalidArgument, "cut-cell poisson: op is null");
+void SlabPasses::reset(TaskSystem& tasks) {
+  tasks_ = &tasks;
+  passes_.clear();
+  next_ = 0;
+  nextUnit_ = 0;
+  inStep_ = false;
+  lastSamples_ = lastUnits_ = 0;
+}
+
+void SlabPasses::add(Pass pass) {
+  if (inStep_) passes_.insert(passes_.begin() + static_cast<std::ptrdiff_t>(insertAt_++), std::move(pass));
+  else passes_.push_back(std::move(pass));
+}
+
+void SlabPasses::addParallel(int64_t units, int64_t samplesPerUnit, int64_t grain, Body body) {
+  if (units <= 0) return;
+  add(Pass{units, std::max<int64_t>(samplesPerUnit, 1), std::max<int64_t>(grain, 1), std::move(body), {}});
+}
+
+void SlabPasses::addSerial(int64_t units, int64_t samplesPerUnit, Body body) {
+  if (units <= 0) return;
+  add(Pass{units, std::max<int64_t>(samplesPerUnit, 1), 0, std::move(body), {}});
+}
+
+void SlabPasses::addWhole(int64_t samples, std::function<void()> body) {
+  addSerial(1, samples, [body = std::move(body)](int64_t, int64_t) { body(); });
+}
+
+void SlabPasses::addStep(std::function<void()> step) { add(Pass{0, 0, 0, {}, std::move(step)}); }
+
+bool SlabPasses::runSlice(int64_t maxSamples) {
+  lastSamples_ = lastUnits_ = 0;
+  int64_t left = std::max<int64_t>(maxSamples, 1);
+  while (next_ < passes_.size()) {
+    if (passes_[next_].units == 0) {
+      // Moved out first: the passes it adds may move the list.
+      const std::function<void()> step = std::move(passes_[next_].step);
+      inStep_ = true;
+      insertAt_ = next_ + 1;
+      step();
+      inStep_ = false;
+      ++next_;
+      continue;
+    }
+    if (left <= 0) break;
+    const Pass& pass = passes_[next_];
+    int64_t count = std::min(pass.units - nextUnit_, left / pass.samplesPerUnit);
+    if (count == 0) {
+      if (lastUnits_ > 0) break;  // the next unit starts the next slice
+      count = 1;
+    }
+    const int64_t first = nextUnit_;
+    if (pass.grain > 0)
+      parallelFor(*tasks_, count, pass.grain,
+                  [&](int64_t begin, int64_t end) { pass.body(first + begin, first + end); });
+    else
+      pass.body(first, first + count);
+    lastSamples_ += count * pass.samplesPerUnit;
+    lastUnits_ += count;
+    left -= count * pass.samplesPerUnit;
+    nextUnit_ += count;
+    if (nextUnit_ == pass.units) {
+      ++next_;
+      nextUnit_ = 0;
+    }
+  }
+  return done();
+}
+
+void SlabPasses::runAll() {
+  while (!runSlice(INT64_MAX)) {
+  }
+}
+
+Status checkCutCellPoissonInputs(const MacGrid& grid, const FaceFractionField& fractions) {
   if (!sameGrid(grid.spec, fractions.grid))
     return fail(Status::InvalidArgument,
                 "cut-cell poisson: face fractions grid (%d, %d, %d, h %g) differs from the MAC grid "
@@ -51,83 +123,134 @@ Status buildCutCellPoisson(TaskSystem& tasks, const MacGrid& grid, const FaceFra
       return fail(Status::InvalidArgument, "cut-cell poisson: face arrays of axis %d have %zu entries, "
                   "expected %zu", a, fractions.open[a].size(), grid.velocity[a].size());
   }
-  const MacGridSpec& g = grid.spec;
-  op->grid = g;
-  for (int a = 0; a < 3; ++a) {
-    const Eigen::Vector3i d = grid.faceDims(a);
-    std::vector<double>& c = op->coupling[a];
-    c.assign(grid.velocity[a].size(), 0.0);
-    if (liquidPhi != nullptr) op->openFraction[a].assign(grid.velocity[a].size(), 0.0);
-    else op->openFraction[a].clear();
-    // Interior faces only: index 1 .. cells-1 along the axis.
-    parallelFor(tasks, static_cast<int64_t>(d.z()) * d.y(), 16, [&](int64_t begin, int64_t end) {
-      for (int64_t row = begin; row < end; ++row) {
-        const int j = static_cast<int>(row % d.y()), k = static_cast<int>(row / d.y());
-        for (int i = 0; i < d.x(); ++i) {
-          const int along = a == 0 ? i : a == 1 ? j : k;
-          if (along == 0 || along == d[a] - 1) continue;
-          const size_t face = grid.faceIndex(a, i, j, k);
-          const double open = effectiveOpenFraction(grid, fractions, a, i, j, k);
-          if (liquidPhi != nullptr) {
-            op->openFraction[a][face] = open;
-            // Only liquid-liquid faces couple; a liquid-air face is a diagonal term below.
-            Eigen::Vector3i low(i, j, k);
-            low[a] -= 1;
-            if (!isLiquid(liquidPhi[grid.cellIndex(i, j, k)]) ||
-                !isLiquid(liquidPhi[grid.cellIndex(low.x(), low.y(), low.z())]))
-              continue;
-          }
-          c[face] = open;
-        }
-      }
-    });
-  }
-  const int64_t cells = grid.cellCount();
-  op->diagonal.assign(static_cast<size_t>(cells), 0.0);
-  if (liquidPhi != nullptr) {
-    op->air.assign(static_cast<size_t>(cells), 0);
-    op->liquidPhi.assign(liquidPhi, liquidPhi + cells);
-    op->surfaceDirichlet.assign(static_cast<size_t>(cells), 0.0);
-  } else {
-    op->air.clear();
-    op->liquidPhi.clear();
-    op->surfaceDirichlet.clear();
-  }
-  parallelFor(tasks, cells, kCellGrain, [&](int64_t begin, int64_t end) {
-    for (int64_t c = begin; c < end; ++c) {
-      const int i = static_cast<int>(c % g.nx), j = static_cast<int>((c / g.nx) % g.ny),
-                k = static_cast<int>(c / (static_cast<int64_t>(g.nx) * g.ny));
-      if (liquidPhi != nullptr && !isLiquid(liquidPhi[c])) {
-        op->diagonal[static_cast<size_t>(c)] = 0.0;  // air: p = 0, no row
-        bool open = false;
-        forEachFace(i, j, k, [&](int a, bool, int fi, int fj, int fk, int, int, int) {
-          open = open || effectiveOpenFraction(grid, fractions, a, fi, fj, fk) > 0.0;
-        });
-        op->air[static_cast<size_t>(c)] = open ? 1 : 0;
-        continue;
-      }
-      double sum = 0.0, surface = 0.0;
-      forEachFace(i, j, k, [&](int a, bool, int fi, int fj, int fk, int ni, int nj, int nk) {
-        const double open = effectiveOpenFraction(grid, fractions, a, fi, fj, fk);
-        if (liquidPhi != nullptr && open > 0.0 && inside(g, ni, nj, nk)) {
-          const double phiNb = liquidPhi[grid.cellIndex(ni, nj, nk)];
-          if (!isLiquid(phiNb)) {
-            const double term = open / freeSurfaceTheta(liquidPhi[c], phiNb);
-            sum += term;  // summed in face order as ever, so the fine operator is bitwise unchanged
-            surface += term;
-            return;
-          }
-        }
-        sum += open;
-      });
-      op->diagonal[static_cast<size_t>(c)] = sum;
-      if (liquidPhi != nullptr) op->surfaceDirichlet[static_cast<size_t>(c)] = surface;
-    }
-  });
-
-  labelFluidRegions(op);
-  computeRowSpans(tasks, op);
+  // Region labels hold cell indices while they are built (labelFluidRegions).
+  if (grid.cellCount() > INT32_MAX)
+    return fail(Status::InvalidArgument, "cut-cell poisson: grid (%d, %d, %d) has too many cells for 32-bit labels",
+                grid.spec.nx, grid.spec.ny, grid.spec.nz);
   return Status::Ok;
+}
+
+Status buildCutCellPoisson(TaskSystem& tasks, const MacGrid& grid, const FaceFractionField& fractions,
+                           CutCellPoisson* op, const double* liquidPhi) {
+  if (op == nullptr) return fail(Status::InvalidArgument, "cut-cell poisson: op is null");
+  VP_TRY(checkCutCellPoissonInputs(grid, fractions));
+  SlabPasses passes(tasks);
+  appendBuildCutCellPoisson(grid, fractions, op, liquidPhi, &passes);
+  passes.runAll();
+  return Status::Ok;
+}
+
+namespace {
+
+// Couplings (and, with a free surface, open fractions) of the faces of axis a in face rows
+// [begin, end); only interior faces couple, index 1 .. cells-1 along the axis.
+void buildCouplingRows(const MacGrid& grid, const FaceFractionField& fractions, const double* liquidPhi, int a,
+                       int64_t begin, int64_t end, CutCellPoisson* op) {
+  const Eigen::Vector3i d = grid.faceDims(a);
+  std::vector<double>& c = op->coupling[a];
+  for (int64_t row = begin; row < end; ++row) {
+    const int j = static_cast<int>(row % d.y()), k = static_cast<int>(row / d.y());
+    for (int i = 0; i < d.x(); ++i) {
+      const int along = a == 0 ? i : a == 1 ? j : k;
+      const size_t face = grid.faceIndex(a, i, j, k);
+      c[face] = 0.0;
+      if (liquidPhi != nullptr) op->openFraction[a][face] = 0.0;
+      if (along == 0 || along == d[a] - 1) continue;
+      const double open = effectiveOpenFraction(grid, fractions, a, i, j, k);
+      if (liquidPhi != nullptr) {
+        op->openFraction[a][face] = open;
+        // Only liquid-liquid faces couple; a liquid-air face is a diagonal term below.
+        Eigen::Vector3i low(i, j, k);
+        low[a] -= 1;
+        if (!isLiquid(liquidPhi[grid.cellIndex(i, j, k)]) ||
+            !isLiquid(liquidPhi[grid.cellIndex(low.x(), low.y(), low.z())]))
+          continue;
+      }
+      c[face] = open;
+    }
+  }
+}
+
+// Diagonal (and, with a free surface, air flags, level set and surface terms) of cells [begin, end).
+void buildDiagonalCells(const MacGrid& grid, const FaceFractionField& fractions, const double* liquidPhi,
+                        int64_t begin, int64_t end, CutCellPoisson* op) {
+  const MacGridSpec& g = grid.spec;
+  for (int64_t c = begin; c < end; ++c) {
+    const int i = static_cast<int>(c % g.nx), j = static_cast<int>((c / g.nx) % g.ny),
+              k = static_cast<int>(c / (static_cast<int64_t>(g.nx) * g.ny));
+    if (liquidPhi != nullptr) {
+      op->liquidPhi[static_cast<size_t>(c)] = liquidPhi[c];
+      op->air[static_cast<size_t>(c)] = 0;
+      op->surfaceDirichlet[static_cast<size_t>(c)] = 0.0;
+    }
+    if (liquidPhi != nullptr && !isLiquid(liquidPhi[c])) {
+      op->diagonal[static_cast<size_t>(c)] = 0.0;  // air: p = 0, no row
+      bool open = false;
+      forEachFace(i, j, k, [&](int a, bool, int fi, int fj, int fk, int, int, int) {
+        open = open || effectiveOpenFraction(grid, fractions, a, fi, fj, fk) > 0.0;
+      });
+      op->air[static_cast<size_t>(c)] = open ? 1 : 0;
+      continue;
+    }
+    double sum = 0.0, surface = 0.0;
+    forEachFace(i, j, k, [&](int a, bool, int fi, int fj, int fk, int ni, int nj, int nk) {
+      const double open = effectiveOpenFraction(grid, fractions, a, fi, fj, fk);
+      if (liquidPhi != nullptr && open > 0.0 && inside(g, ni, nj, nk)) {
+        const double phiNb = liquidPhi[grid.cellIndex(ni, nj, nk)];
+        if (!isLiquid(phiNb)) {
+          const double term = open / freeSurfaceTheta(liquidPhi[c], phiNb);
+          sum += term;  // summed in face order as ever, so the fine operator is bitwise unchanged
+          surface += term;
+          return;
+        }
+      }
+      sum += open;
+    });
+    op->diagonal[static_cast<size_t>(c)] = sum;
+    if (liquidPhi != nullptr) op->surfaceDirichlet[static_cast<size_t>(c)] = surface;
+  }
+}
+
+template <class T>
+void sizeOrClear(std::vector<T>& values, bool used, size_t count) {
+  if (used) values.resize(count);
+  else values.clear();
+}
+
+}  // namespace
+
+void sizeCutCellPoisson(const MacGridSpec& grid, bool freeSurface, bool air, CutCellPoisson* op) {
+  const size_t nx = static_cast<size_t>(grid.nx), ny = static_cast<size_t>(grid.ny), nz = static_cast<size_t>(grid.nz);
+  const size_t faces[3] = {(nx + 1) * ny * nz, nx * (ny + 1) * nz, nx * ny * (nz + 1)};
+  op->grid = grid;
+  for (int a = 0; a < 3; ++a) {
+    op->coupling[a].resize(faces[a]);
+    sizeOrClear(op->openFraction[a], freeSurface, faces[a]);
+  }
+  op->diagonal.resize(nx * ny * nz);
+  sizeOrClear(op->air, air, nx * ny * nz);
+  sizeOrClear(op->liquidPhi, freeSurface, nx * ny * nz);
+  sizeOrClear(op->surfaceDirichlet, freeSurface, nx * ny * nz);
+}
+
+void appendBuildCutCellPoisson(const MacGrid& grid, const FaceFractionField& fractions, CutCellPoisson* op,
+                               const double* liquidPhi, SlabPasses* passes) {
+  const MacGrid* g = &grid;
+  const FaceFractionField* f = &fractions;
+  passes->addStep([g, f, op, liquidPhi, passes] {
+    sizeCutCellPoisson(g->spec, liquidPhi != nullptr, liquidPhi != nullptr, op);
+    for (int a = 0; a < 3; ++a) {
+      const Eigen::Vector3i d = g->faceDims(a);
+      passes->addParallel(static_cast<int64_t>(d.z()) * d.y(), d.x(), 16, [g, f, op, liquidPhi, a](int64_t b, int64_t e) {
+        buildCouplingRows(*g, *f, liquidPhi, a, b, e, op);
+      });
+    }
+    passes->addParallel(g->cellCount(), 1, kCellGrain, [g, f, op, liquidPhi](int64_t b, int64_t e) {
+      buildDiagonalCells(*g, *f, liquidPhi, b, e, op);
+    });
+    appendLabelFluidRegions(op, passes);
+    appendComputeRowSpans(op, passes);
+  });
 }
 
 namespace {
@@ -157,50 +280,107 @@ double dirichletPart(const CutCellPoisson& op, int64_t cell) {
   return rest > 1e-12 * diag ? rest : 0.0;
 }
 
-void labelFluidRegions(CutCellPoisson* op) {
-  const int64_t cells = static_cast<int64_t>(op->diagonal.size());
-  op->region.assign(static_cast<size_t>(cells), -1);
+namespace {
+
+void startFluidRegions(CutCellPoisson* op) {
+  op->region.resize(op->diagonal.size());
   op->regionFloating.clear();
   op->regionCellCount.clear();
   op->fluidCellCount = 0;
-  std::vector<int64_t> queue;
-  for (int64_t seed = 0; seed < cells; ++seed) {
-    if (op->region[static_cast<size_t>(seed)] >= 0 || !(op->diagonal[static_cast<size_t>(seed)] > 0.0)) continue;
-    const int32_t id = static_cast<int32_t>(op->regionFloating.size());
-    bool floating = true;
-    queue.clear();
-    queue.push_back(seed);
-    op->region[static_cast<size_t>(seed)] = id;
-    for (size_t head = 0; head < queue.size(); ++head) {
-      const int64_t c = queue[head];
-      if (dirichletPart(*op, c) > 0.0) floating = false;
-      forEachCellFace(op->grid, c, [&](int a, int64_t face, int64_t nb) {
-        if (nb < 0 || !(op->coupling[a][static_cast<size_t>(face)] > 0.0)) return;
-        if (op->region[static_cast<size_t>(nb)] < 0) {
-          op->region[static_cast<size_t>(nb)] = id;
-          queue.push_back(nb);
-        }
-      });
+}
+
+int32_t findRoot(int32_t* parent, int32_t c) {
+  while (parent[c] != c) {
+    parent[c] = parent[parent[c]];  // path halving: links only ever point to smaller indices
+    c = parent[c];
+  }
+  return c;
+}
+
+// First scan, cells [begin, end) in order: region[c] becomes a smaller cell of c's region so
+// far (c itself for a root), -1 off fluid. Linking the larger root under the smaller keeps
+// every link pointing down, so each region's root ends as its first cell.
+void linkFluidRegions(CutCellPoisson* op, int64_t begin, int64_t end) {
+  int32_t* parent = op->region.data();
+  for (int64_t c = begin; c < end; ++c) {
+    if (!(op->diagonal[static_cast<size_t>(c)] > 0.0)) {
+      parent[c] = -1;
+      continue;
     }
-    op->regionFloating.push_back(floating ? 1 : 0);
-    op->regionCellCount.push_back(static_cast<int64_t>(queue.size()));
-    op->fluidCellCount += static_cast<int64_t>(queue.size());
+    parent[c] = static_cast<int32_t>(c);
+    forEachCellFace(op->grid, c, [&](int a, int64_t face, int64_t nb) {
+      if (nb < 0 || nb > c || parent[nb] < 0 || !(op->coupling[a][static_cast<size_t>(face)] > 0.0)) return;
+      const int32_t r = findRoot(parent, static_cast<int32_t>(nb)), s = findRoot(parent, static_cast<int32_t>(c));
+      if (r != s) parent[std::max(r, s)] = std::min(r, s);
+    });
   }
 }
 
-void computeRowSpans(TaskSystem& tasks, CutCellPoisson* op) {
-  const poisson_rows::Stencil<double> s(*op);
-  op->rowSpan.assign(static_cast<size_t>(2 * s.rows()), 0);
-  int32_t* span = op->rowSpan.data();
-  parallelFor(tasks, s.rows(), s.rowGrain(), [&](int64_t begin, int64_t end) {
-    for (int64_t row = begin; row < end; ++row) {
-      const double* d = s.diagonal + s.nx * row;
-      int64_t first = 0, last = s.nx;
-      while (first < s.nx && !(d[first] > 0.0)) ++first;
-      while (last > first && !(d[last - 1] > 0.0)) --last;
-      span[2 * row] = static_cast<int32_t>(first);
-      span[2 * row + 1] = static_cast<int32_t>(last);
+// Second scan, in order: a root opens the next region; any other cell takes the region of its
+// link, a smaller cell already numbered.
+void numberFluidRegions(CutCellPoisson* op, int64_t begin, int64_t end) {
+  int32_t* region = op->region.data();
+  for (int64_t c = begin; c < end; ++c) {
+    const int32_t link = region[c];
+    if (link < 0) continue;
+    int32_t id;
+    if (link == c) {
+      id = static_cast<int32_t>(op->regionFloating.size());
+      op->regionFloating.push_back(1);
+      op->regionCellCount.push_back(0);
+    } else {
+      id = region[link];
     }
+    region[c] = id;
+    if (dirichletPart(*op, c) > 0.0) op->regionFloating[static_cast<size_t>(id)] = 0;
+    ++op->regionCellCount[static_cast<size_t>(id)];
+    ++op->fluidCellCount;
+  }
+}
+
+void computeRowSpansOfRows(CutCellPoisson* op, int64_t begin, int64_t end) {
+  const poisson_rows::Stencil<double> s(*op);
+  int32_t* span = op->rowSpan.data();
+  for (int64_t row = begin; row < end; ++row) {
+    const double* d = s.diagonal + s.nx * row;
+    int64_t first = 0, last = s.nx;
+    while (first < s.nx && !(d[first] > 0.0)) ++first;
+    while (last > first && !(d[last - 1] > 0.0)) --last;
+    span[2 * row] = static_cast<int32_t>(first);
+    span[2 * row + 1] = static_cast<int32_t>(last);
+  }
+}
+
+}  // namespace
+
+void labelFluidRegions(CutCellPoisson* op) {
+  const int64_t cells = static_cast<int64_t>(op->diagonal.size());
+  startFluidRegions(op);
+  linkFluidRegions(op, 0, cells);
+  numberFluidRegions(op, 0, cells);
+}
+
+void appendLabelFluidRegions(CutCellPoisson* op, SlabPasses* passes) {
+  passes->addStep([op, passes] {
+    startFluidRegions(op);
+    const int64_t cells = static_cast<int64_t>(op->diagonal.size());
+    passes->addSerial(cells, 1, [op](int64_t begin, int64_t end) { linkFluidRegions(op, begin, end); });
+    passes->addSerial(cells, 1, [op](int64_t begin, int64_t end) { numberFluidRegions(op, begin, end); });
+  });
+}
+
+void computeRowSpans(TaskSystem& tasks, CutCellPoisson* op) {
+  SlabPasses passes(tasks);
+  appendComputeRowSpans(op, &passes);
+  passes.runAll();
+}
+
+void appendComputeRowSpans(CutCellPoisson* op, SlabPasses* passes) {
+  passes->addStep([op, passes] {
+    const poisson_rows::Stencil<double> s(*op);
+    op->rowSpan.resize(static_cast<size_t>(2 * s.rows()));
+    passes->addParallel(s.rows(), s.nx, s.rowGrain(),
+                        [op](int64_t begin, int64_t end) { computeRowSpansOfRows(op, begin, end); });
   });
 }
 
@@ -249,28 +429,33 @@ template void filterCutCellPoisson<float>(TaskSystem&, const CutCellPoisson&, fl
 
 void computeNetOutflow(TaskSystem& tasks, const MacGrid& grid, const FaceFractionField& fractions,
                        const CutCellPoisson& op, double* outflow) {
-  const MacGridSpec& g = grid.spec;
   parallelFor(tasks, grid.cellCount(), kCellGrain, [&](int64_t begin, int64_t end) {
-    for (int64_t c = begin; c < end; ++c) {
-      if (op.region[static_cast<size_t>(c)] < 0) {
-        outflow[c] = 0.0;
-        continue;
-      }
-      const int i = static_cast<int>(c % g.nx), j = static_cast<int>((c / g.nx) % g.ny),
-                k = static_cast<int>(c / (static_cast<int64_t>(g.nx) * g.ny));
-      double sum = 0.0;
-      forEachFace(i, j, k, [&](int a, bool high, int fi, int fj, int fk, int, int, int) {
-        const size_t f = grid.faceIndex(a, fi, fj, fk);
-        const bool wall = grid.isWallFace(a, fi, fj, fk);
-        const double open =
-            wall ? std::clamp(fractions.open[a][f], 0.0, 1.0) : effectiveOpenFraction(grid, fractions, a, fi, fj, fk);
-        const double fluidVelocity = wall ? 0.0 : grid.velocity[a][f];
-        const double flux = open * fluidVelocity + (1.0 - open) * fractions.solidVelocity[a][f];
-        sum += high ? flux : -flux;
-      });
-      outflow[c] = sum;
-    }
+    computeNetOutflowCells(grid, fractions, op, begin, end, outflow);
   });
+}
+
+void computeNetOutflowCells(const MacGrid& grid, const FaceFractionField& fractions, const CutCellPoisson& op,
+                            int64_t begin, int64_t end, double* outflow) {
+  const MacGridSpec& g = grid.spec;
+  for (int64_t c = begin; c < end; ++c) {
+    if (op.region[static_cast<size_t>(c)] < 0) {
+      outflow[c] = 0.0;
+      continue;
+    }
+    const int i = static_cast<int>(c % g.nx), j = static_cast<int>((c / g.nx) % g.ny),
+              k = static_cast<int>(c / (static_cast<int64_t>(g.nx) * g.ny));
+    double sum = 0.0;
+    forEachFace(i, j, k, [&](int a, bool high, int fi, int fj, int fk, int, int, int) {
+      const size_t f = grid.faceIndex(a, fi, fj, fk);
+      const bool wall = grid.isWallFace(a, fi, fj, fk);
+      const double open =
+          wall ? std::clamp(fractions.open[a][f], 0.0, 1.0) : effectiveOpenFraction(grid, fractions, a, fi, fj, fk);
+      const double fluidVelocity = wall ? 0.0 : grid.velocity[a][f];
+      const double flux = open * fluidVelocity + (1.0 - open) * fractions.solidVelocity[a][f];
+      sum += high ? flux : -flux;
+    });
+    outflow[c] = sum;
+  }
 }
 
 }  // namespace vp

@@ -29,6 +29,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "core/status.h"
@@ -37,6 +38,70 @@
 #include "fluid/mac_grid.h"
 
 namespace vp {
+
+// Work as a list of passes run in bounded slices: the pressure projection's sliced setup and
+// finish (pressure_projection.h); the whole-call builders run the same passes in one go, so
+// every pass has one implementation. (Generic; it lives here because the pressure code is its
+// only user.)
+//
+// A pass covers `units` units (grid rows, cells) of `samplesPerUnit` samples each. A slice
+// runs the units of consecutive passes in order up to a bound on samples, and at least one
+// unit, so a slice exceeds the bound only when it is a single unit. A pass runs as slabs of
+// units, in order, each unit once:
+// * parallel pass: the units write disjoint outputs and read nothing the pass writes, so
+//   where slabs are cut (and how a slab is chunked over workers, parallel_for.h) never
+//   changes results;
+// * serial pass: one call per slab, in order; it may carry state from slab to slab (a scan
+//   in cell order), so its results are those of one whole call.
+// A step is work without samples (sizing buffers, adding passes planned from what earlier
+// passes built); it runs in whichever slice reaches it. Passes a step adds run right after
+// it, before what followed it, so a builder's plan can read what the passes before it built.
+// Sizing allocates (and zero-fills) only on a first build or a change of grid; the passes
+// then write every value, so no pass clears an array first.
+class SlabPasses {
+ public:
+  using Body = std::function<void(int64_t begin, int64_t end)>;
+
+  SlabPasses() = default;
+  explicit SlabPasses(TaskSystem& tasks) : tasks_(&tasks) {}
+  // Empties the list (keeping its storage) for new work on `tasks`.
+  void reset(TaskSystem& tasks);
+
+  // body(begin, end) for chunks of `grain` units inside each slab, possibly concurrently.
+  void addParallel(int64_t units, int64_t samplesPerUnit, int64_t grain, Body body);
+  // body(begin, end) once per slab, in order.
+  void addSerial(int64_t units, int64_t samplesPerUnit, Body body);
+  // A pass that cannot be split: one unit of `samples`.
+  void addWhole(int64_t samples, std::function<void()> body);
+  void addStep(std::function<void()> step);
+
+  // Runs the next slice of at most maxSamples samples (maxSamples >= 1); true when nothing
+  // is left.
+  bool runSlice(int64_t maxSamples);
+  void runAll();
+  bool done() const { return next_ >= passes_.size(); }
+  // Of the last runSlice: samples run and units run.
+  int64_t lastSliceSamples() const { return lastSamples_; }
+  int64_t lastSliceUnits() const { return lastUnits_; }
+
+ private:
+  struct Pass {
+    int64_t units = 0;  // 0: a step
+    int64_t samplesPerUnit = 0;
+    int64_t grain = 0;  // 0: serial
+    Body body;
+    std::function<void()> step;
+  };
+  void add(Pass pass);
+
+  TaskSystem* tasks_ = nullptr;
+  std::vector<Pass> passes_;
+  size_t next_ = 0;      // the pass running or next to run
+  int64_t nextUnit_ = 0;  // its first unit not yet run
+  size_t insertAt_ = 0;  // while a step runs: where the passes it adds go
+  bool inStep_ = false;
+  int64_t lastSamples_ = 0, lastUnits_ = 0;
+};
 
 // The coefficients of the operator on a grid, in double (CutCellPoisson) or in single precision
 // (the multigrid's V-cycle, poisson_multigrid.h).
@@ -94,20 +159,40 @@ double effectiveOpenFraction(const MacGrid& grid, const FaceFractionField& fract
 Status buildCutCellPoisson(TaskSystem& tasks, const MacGrid& grid, const FaceFractionField& fractions,
                            CutCellPoisson* op, const double* liquidPhi = nullptr);
 
+// Sizes op's arrays for `grid`: the free-surface arrays (liquidPhi, surfaceDirichlet,
+// openFraction) only when `freeSurface`, air only when `air`, else empties them. Values are
+// left to the builder's passes, which write every one.
+void sizeCutCellPoisson(const MacGridSpec& grid, bool freeSurface, bool air, CutCellPoisson* op);
+
+// What buildCutCellPoisson checks of its inputs (the fractions' grid and array sizes).
+Status checkCutCellPoissonInputs(const MacGrid& grid, const FaceFractionField& fractions);
+
+// buildCutCellPoisson as passes (inputs checked; they and op must outlive the passes): the
+// couplings in slabs of face rows per axis, the diagonal in slabs of cells, then
+// labelFluidRegions' and computeRowSpans' passes.
+void appendBuildCutCellPoisson(const MacGrid& grid, const FaceFractionField& fractions, CutCellPoisson* op,
+                               const double* liquidPhi, SlabPasses* passes);
+
 // Per cell: diagonal minus the couplings of the cell's faces (open domain sides, free-surface
 // faces); 0 on non-fluid cells and where the difference is round-off (below 1e-12 of the
 // diagonal).
 double dirichletPart(const CutCellPoisson& op, int64_t cell);
 
 // Fills op->region, regionFloating, regionCellCount and fluidCellCount from the couplings and
-// diagonal: regions by flood fill through positive couplings, floating when none of a region's
-// cells has a Dirichlet part. Serial (a breadth-first search is sequential; O(cells) once per
-// build). Every builder of a CutCellPoisson calls it.
+// diagonal: a region is a set of fluid cells (diagonal > 0) connected through positive
+// couplings, numbered in the order of their first cell; floating when none of its cells has a
+// Dirichlet part. Every builder of a CutCellPoisson calls it.
+// Two serial scans in cell order (a union-find that links each cell to its coupled -x, -y, -z
+// neighbours, the smaller index becoming the root; then the numbering), so that they can stop
+// after any cell and resume: connectivity is a property of the whole grid, but a scan in a
+// fixed order gives the same labels however it is cut.
 void labelFluidRegions(CutCellPoisson* op);
+void appendLabelFluidRegions(CutCellPoisson* op, SlabPasses* passes);
 
 // Fills op->rowSpan from op->diagonal (a cell is fluid when its diagonal is positive). Every
 // builder of a CutCellPoisson calls it last.
 void computeRowSpans(TaskSystem& tasks, CutCellPoisson* op);
+void appendComputeRowSpans(CutCellPoisson* op, SlabPasses* passes);
 
 // out = L p over all cells (0 on non-fluid cells). p and out have cellCount entries.
 void applyCutCellPoisson(TaskSystem& tasks, const CutCellPoisson& op, const double* p, double* out);
@@ -128,5 +213,8 @@ void filterCutCellPoisson(TaskSystem& tasks, const CutCellPoisson& op, T* values
 // and the explicit coupling threw it at 20+ m/s).
 void computeNetOutflow(TaskSystem& tasks, const MacGrid& grid, const FaceFractionField& fractions,
                        const CutCellPoisson& op, double* outflow);
+// The same on cells [begin, end) only, on the calling thread.
+void computeNetOutflowCells(const MacGrid& grid, const FaceFractionField& fractions, const CutCellPoisson& op,
+                            int64_t begin, int64_t end, double* outflow);
 
 }  // namespace vp

@@ -84,41 +84,78 @@ const FluidSurface& FluidActor::surface() {
   return surface_;
 }
 
-void FluidActor::keepLevelSetHealthy() {
-  TaskSystem& tasks = *step_->input.tasks;
-  extendLevelSetIntoSolids(grid_.spec, cellWeights_, phi_, solidCells_);
-  RedistanceStats rs;
-  if (Status s = redistanceLevelSet(tasks, grid_.spec, phi_.data(), RedistanceSettings{}, redistance_, &rs); !ok(s))
-    log(LogLevel::Error, "fluid '%s': redistancing failed: %s", desc_.name.c_str(), lastError());
-  // Advection and redistancing both lose or gain a little volume every step; a uniform
-  // shift of the level set puts it back (the correction moves at most a cell per call, so
-  // large mismatches are caught up over a few steps instead of jumping the surface).
-  VolumeCorrectionResult vc;
-  if (Status s = correctLiquidVolume(tasks, grid_.spec, phi_.data(), cellWeights_.data(), targetVolume_,
-                                     VolumeCorrectionSettings{}, &vc);
-      !ok(s))
-    log(LogLevel::Error, "fluid '%s': volume correction failed: %s", desc_.name.c_str(), lastError());
+bool FluidActor::keepLevelSetHealthySlice() {
+  StepInProgress& st = *step_;
+  LevelSetUpkeep& u = st.levelSet;
+  TaskSystem& tasks = *st.input.tasks;
+  const int64_t slice = desc_.solver.samplesPerSlice;
+  auto failed = [&](const char* what, Status s) {
+    if (ok(s)) return false;
+    log(LogLevel::Error, "fluid '%s': %s failed: %s", desc_.name.c_str(), what, lastError());
+    return true;
+  };
+  switch (u.stage) {
+    case LevelSetUpkeep::Extend:
+      if (failed("solid extension", u.extension.prepare(grid_.spec, cellWeights_, phi_, solidCells_, slice))) break;
+      u.stage = LevelSetUpkeep::Extending;
+      [[fallthrough]];
+    case LevelSetUpkeep::Extending:
+      if (!u.extension.advance()) return false;
+      u.stage = LevelSetUpkeep::Redistancing;
+      if (failed("redistancing",
+                 u.redistance.prepare(tasks, grid_.spec, phi_.data(), RedistanceSettings{}, redistance_, slice)))
+        u.redistance = RedistanceRun{};
+      return false;
+    case LevelSetUpkeep::Redistancing:
+      if (!u.redistance.advance()) return false;
+      u.stage = LevelSetUpkeep::Correcting;
+      // Advection and redistancing both lose or gain a little volume every step; a uniform
+      // shift of the level set puts it back (the correction moves at most a cell per call, so
+      // large mismatches are caught up over a few steps instead of jumping the surface).
+      if (failed("volume correction", u.volume.prepare(tasks, grid_.spec, phi_.data(), cellWeights_.data(),
+                                                       targetVolume_, VolumeCorrectionSettings{}, slice)))
+        u.volume = VolumeCorrectionRun{};
+      return false;
+    case LevelSetUpkeep::Correcting:
+      if (!u.volume.advance()) return false;
+      break;
+  }
+  u.stage = LevelSetUpkeep::Extend;
+  return true;
 }
 
-void FluidActor::extrapolateLiquidVelocity() {
-  TaskSystem& tasks = *tasks_;
+VelocityExtrapolationSettings FluidActor::extrapolationSettings() const {
   VelocityExtrapolationSettings settings;
   // Advection traces at most cflNumber cells (plus the interpolation stencil) from any
   // liquid face within a sub-step.
   settings.layers = static_cast<int>(std::ceil(desc_.solver.cflNumber)) + 2;
   settings.minSourceOpenFraction = kMinExtrapolationSourceOpenFraction;
-  if (Status s = extrapolateVelocity(tasks, grid_, fractions_, phi_.data(), settings, extrapolation_); !ok(s)) {
-    log(LogLevel::Error, "fluid '%s': velocity extrapolation failed: %s", desc_.name.c_str(), lastError());
-    return;
-  }
   // Air faces out of reach of the liquid are never projected; left alone they would gather
   // gravity step after step and inflate the CFL sub-step count.
-  for (int a = 0; a < 3; ++a) {
-    const std::vector<uint8_t>& mark = extrapolation_.mark[a];
-    std::vector<double>& u = grid_.velocity[a];
-    for (size_t f = 0; f < u.size(); ++f)
-      if (mark[f] == kExtrapolationUnreached) u[f] = 0.0;
+  settings.zeroUnreached = true;
+  return settings;
+}
+
+void FluidActor::extrapolateLiquidVelocity() {
+  if (Status s = extrapolateVelocity(*tasks_, grid_, fractions_, phi_.data(), extrapolationSettings(), extrapolation_);
+      !ok(s))
+    log(LogLevel::Error, "fluid '%s': velocity extrapolation failed: %s", desc_.name.c_str(), lastError());
+}
+
+bool FluidActor::extrapolateLiquidVelocitySlice() {
+  StepInProgress& st = *step_;
+  if (!st.extrapolating) {
+    if (Status s = st.extrapolation.prepare(*st.input.tasks, grid_, fractions_, phi_.data(), extrapolationSettings(),
+                                            extrapolation_, desc_.solver.samplesPerSlice);
+        !ok(s)) {
+      log(LogLevel::Error, "fluid '%s': velocity extrapolation failed: %s", desc_.name.c_str(), lastError());
+      return true;
+    }
+    st.extrapolating = true;
   }
+  if (!st.extrapolation.advance()) return false;
+  st.extrapolating = false;
+  return true;
 }
 
 void FluidActor::diffuseVelocity() {
@@ -385,17 +422,19 @@ void FluidActor::queueSubstep(int) {
   job_.then(static_cast<int>(FluidSlice::AdvectVelocity), [this] { return advectVelocitySlab(); });
   job_.then(static_cast<int>(FluidSlice::AdvectScalars), [this] { return advectScalarsSlab(); });
   once(FluidSlice::Sources, &FluidActor::applySources);
-  if (liquid) once(FluidSlice::LevelSet, &FluidActor::keepLevelSetHealthy);
+  if (liquid) job_.then(static_cast<int>(FluidSlice::LevelSet), [this] { return keepLevelSetHealthySlice(); });
   if (desc_.kinematicViscosity > 0.0) once(FluidSlice::Viscosity, &FluidActor::diffuseVelocity);
   once(FluidSlice::Forces, &FluidActor::applyForces);
-  once(FluidSlice::PressureSetup, &FluidActor::beginProjection);
+  job_.then(static_cast<int>(FluidSlice::PressureSetup), [this] { return setUpProjectionSlice(); });
   job_.then(static_cast<int>(FluidSlice::PressureIteration), [this] { return iterateProjection(); });
-  once(FluidSlice::PressureUpdate, &FluidActor::finishProjection);
-  if (liquid) once(FluidSlice::Extrapolate, &FluidActor::extrapolateLiquidVelocity);
+  job_.then(static_cast<int>(FluidSlice::PressureUpdate), [this] { return finishProjectionSlice(); });
+  if (liquid)
+    job_.then(static_cast<int>(FluidSlice::Extrapolate), [this] { return extrapolateLiquidVelocitySlice(); });
 }
 
-void FluidActor::beginProjection() {
+bool FluidActor::setUpProjectionSlice() {
   StepInProgress& st = *step_;
+  if (st.projectionPrepared) return st.projectionFailed || st.projection.advanceSetup();
   PressureSolveSettings settings;
   settings.tolerance = desc_.solver.pressureTolerance;
   settings.maxIterations = desc_.solver.pressureMaxIterations;
@@ -403,10 +442,12 @@ void FluidActor::beginProjection() {
   // fractions.
   settings.operatorUnchanged = desc_.kind == FluidKind::Smoke && !pressureOperatorStale_;
   pressureOperatorStale_ = false;
-  st.projectionFailed = !ok(st.projection.begin(*st.input.tasks, grid_, fractions_, st.h, desc_.density, settings,
-                                                pressure_, liquidPhi()));
+  st.projectionPrepared = true;
+  st.projectionFailed = !ok(st.projection.prepare(*st.input.tasks, grid_, fractions_, st.h, desc_.density, settings,
+                                                  pressure_, liquidPhi(), desc_.solver.samplesPerSlice));
   if (st.projectionFailed)
     log(LogLevel::Error, "fluid '%s': pressure projection failed: %s", desc_.name.c_str(), lastError());
+  return st.projectionFailed || st.projection.advanceSetup();
 }
 
 bool FluidActor::iterateProjection() {
@@ -416,15 +457,16 @@ bool FluidActor::iterateProjection() {
   return st.projection.iterate();
 }
 
-void FluidActor::finishProjection() {
+bool FluidActor::finishProjectionSlice() {
   StepInProgress& st = *step_;
-  if (st.projectionFailed) return;
-  PressureSolveStats ps;
-  st.projection.finish(&ps);
+  if (!st.projectionFailed && !st.projection.advanceFinish()) return false;
+  st.projectionPrepared = false;
+  if (st.projectionFailed) return true;
+  const PressureSolveStats ps = st.projection.stats();
   PhaseStats& phase = st.stats->phase(Phase::Pressure);
   phase.residual = std::max(phase.residual, ps.relativeResidual);
   st.stats->residual = std::max(st.stats->residual, ps.relativeResidual);
-  if (!desc_.twoWayCoupling) return;
+  if (!desc_.twoWayCoupling) return true;
   for (size_t c = 0; c < st.input.colliders.size(); ++c) {
     const FluidCollider& fc = st.input.colliders[c];
     if (!fc.dynamic || fc.geometry == nullptr) continue;
@@ -434,6 +476,7 @@ void FluidActor::finishProjection() {
     st.loadSum[c].torque += l.torque / st.substeps;
     st.loadSum[c].addedMass += l.addedMass / st.substeps;
   }
+  return true;
 }
 
 void FluidActor::publish() {

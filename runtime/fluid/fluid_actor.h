@@ -21,8 +21,11 @@
 //              is 0 and stays so. Before the projection, so what it leaves is made
 //              divergence-free.
 //   Forces     buoyancy + vorticity confinement + dissipation (smoke) or gravity (liquid)
-//   Pressure   cut-cell projection: setup, one slice per CG iteration (to the tolerance or
-//              pressureMaxIterations, never cut by time), velocity update, loads
+//   Pressure   cut-cell projection: setup in slabs, one slice per CG iteration (to the
+//              tolerance or pressureMaxIterations, never cut by time), velocity update in
+//              slabs, loads
+// Passes over the grid (advection, level-set upkeep, extrapolation, the projection's setup
+// and update) run in slabs of at most solver.samplesPerSlice samples, one slab per slice.
 //   Surface    liquid: velocity extrapolation
 //   Publish    divergence guard, then what readers see becomes this step's result
 // The pressure loads on dynamic colliders, averaged over the sub-steps, are those of the last
@@ -42,6 +45,8 @@
 #include "fluid/face_fraction_field.h"
 #include "fluid/fluid_desc.h"
 #include "fluid/level_set_redistance.h"
+#include "fluid/level_set_solid_extension.h"
+#include "fluid/liquid_volume.h"
 #include "fluid/marching_cubes.h"
 #include "fluid/velocity_extrapolation.h"
 #include "fluid/mac_grid.h"
@@ -163,13 +168,18 @@ class FluidActor {
   bool advectVelocitySlab();
   bool advectScalarsSlab();
   void applySources();
-  void keepLevelSetHealthy();
+  // Solid extension, redistancing, volume correction: one slice per call; true when done.
+  bool keepLevelSetHealthySlice();
   void diffuseVelocity();
   void applyForces();
-  void beginProjection();
+  // The projection's setup, CG iterations and velocity update (with the loads): one slice per
+  // call; true when that part is done.
+  bool setUpProjectionSlice();
   bool iterateProjection();
-  void finishProjection();
-  void extrapolateLiquidVelocity();
+  bool finishProjectionSlice();
+  VelocityExtrapolationSettings extrapolationSettings() const;
+  void extrapolateLiquidVelocity();  // whole, for the first step's start
+  bool extrapolateLiquidVelocitySlice();
   void publish();
   void publishFields();
   static Phase phaseOf(FluidSlice kind);
@@ -185,6 +195,13 @@ class FluidActor {
     Eigen::Quaterniond rotation;
     Eigen::Vector3d translation, linearVelocity, angularVelocity;
   };
+  // The liquid's level-set upkeep in progress (one sub-step's).
+  struct LevelSetUpkeep {
+    enum Stage { Extend, Extending, Redistancing, Correcting } stage = Extend;
+    SolidExtensionRun extension;
+    RedistanceRun redistance;
+    VolumeCorrectionRun volume;
+  };
   // What the step in progress carries from stage to stage.
   struct StepInProgress {
     FluidStepInput input;
@@ -195,7 +212,11 @@ class FluidActor {
     VelocityAdvectionSlices velocityAdvection;
     ScalarAdvectionSlices scalarAdvection;
     int slab = 0;  // of the advection in progress
+    LevelSetUpkeep levelSet;
+    VelocityExtrapolationRun extrapolation;
+    bool extrapolating = false;
     PressureProjectionRun projection;
+    bool projectionPrepared = false;  // for the sub-step's projection in progress
     bool projectionFailed = false;
     bool diverged = false;
     ActorStats* stats = nullptr;  // of the frame now running

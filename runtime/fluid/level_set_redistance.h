@@ -48,11 +48,60 @@ struct RedistanceWorkspace {
   std::vector<double> distance;
   std::vector<uint8_t> layer;
   std::vector<int32_t> surface, band[2];  // band[0] red, band[1] black (i + j + k parity)
+  std::vector<int32_t> reached;  // breadth-first queue: surface cells, then band cells as claimed
+  std::vector<std::vector<int32_t>> chunkSurface;  // surface cells found per chunk of a slab
 };
 
 // phi: cellCount values in cell order, rewritten in place. Needs at least one sign change to
-// do anything; without one phi is only clamped to +-W h.
+// do anything; without one phi is only clamped to +-W h. Runs RedistanceRun in one slice.
 Status redistanceLevelSet(TaskSystem& tasks, const MacGridSpec& grid, double* phi, const RedistanceSettings& settings,
                           RedistanceWorkspace& workspace, RedistanceStats* stats);
+
+// redistanceLevelSet in slices, bitwise the same result however it is sliced and on any
+// number of workers. A slice does at most samplesPerSlice samples of work (one at least) and
+// runs on into the next pass when one ends, so slices cost about the same throughout:
+// - surface detection (1) and the final write (4): cells, in slabs of consecutive cells; a
+//   cell's result depends on phi alone.
+// - band layers (2): entries of the breadth-first queue, consecutive ones taken by the same
+//   serial loop. The search is order-dependent (a cell joins the layer of whichever neighbour
+//   reaches it first, and the band lists keep that order), so only the serial order keeps it.
+// - the eikonal iteration (3): one colour's band entries in slabs. A red cell reads only
+//   black ones and vice versa, so within a half-sweep no result depends on the order; the
+//   half-sweep's largest drop is a max, exact in any order, kept across its slabs.
+// prepare() checks the arguments and sizes the workspace but reads no values, so it may run
+// before earlier work on phi. Between prepare() and the last slice, phi and the workspace
+// belong to the run: nothing else may touch them.
+class RedistanceRun {
+ public:
+  Status prepare(TaskSystem& tasks, const MacGridSpec& grid, double* phi, const RedistanceSettings& settings,
+                 RedistanceWorkspace& workspace, int64_t samplesPerSlice);
+  // Runs one slice; true once all is done (also after a failed or missing prepare()).
+  bool advance();
+  bool done() const { return pass_ == Pass::Done; }
+  int64_t lastSliceSamples() const { return lastSliceSamples_; }
+  const RedistanceStats& stats() const { return stats_; }  // once done
+
+ private:
+  enum class Pass : uint8_t { Surface, Band, Sweep, Write, Done };
+  int64_t step(int64_t budget);  // part of the current pass; returns the samples it did
+  void detectSurface(int64_t begin, int64_t end);
+  int64_t claimBand(int64_t budget);
+  double sweepSlab(int64_t begin, int64_t end);
+  void finishSweep();
+  void writeSlab(int64_t begin, int64_t end);
+
+  TaskSystem* tasks_ = nullptr;
+  MacGridSpec grid_;
+  double* phi_ = nullptr;
+  RedistanceSettings settings_;
+  RedistanceWorkspace* ws_ = nullptr;
+  int64_t samplesPerSlice_ = 1, cells_ = 0, lastSliceSamples_ = 0;
+  int layers_ = 0;
+  Pass pass_ = Pass::Done;
+  int64_t position_ = 0;  // in the current pass (or half-sweep)
+  int colour_ = 0;        // of the half-sweep running
+  double drop_ = 0.0;     // largest drop of the sweep running
+  RedistanceStats stats_;
+};
 
 }  // namespace vp

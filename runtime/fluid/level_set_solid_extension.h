@@ -11,13 +11,54 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
+#include "core/status.h"
 #include "fluid/face_fraction_field.h"
 
 namespace vp {
 
+// cellWeights and phi: cellCount values in cell order; scratch is the run's list of unknown
+// cells. Does nothing when the sizes do not match the grid. Runs SolidExtensionRun in one
+// slice.
 void extendLevelSetIntoSolids(const MacGridSpec& grid, const std::vector<double>& cellWeights, std::vector<double>& phi,
                               std::vector<int64_t>& scratch);
+
+// extendLevelSetIntoSolids in slices, bitwise the same result however it is sliced. Serial. A
+// slice does at most samplesPerSlice samples of work (one at least) and runs on into the next
+// pass when one ends:
+// - listing the mostly-solid cells: cells in slabs of consecutive cells, appended in order;
+// - each layer's scan of the unknown cells: entries in slabs. The scan only reads (values are
+//   written after it), so no result depends on the order; the lists of cells found and still
+//   unknown keep the serial order;
+// - writing the layer's values: entries in slabs, each writing its own cell.
+// prepare() checks the sizes but reads no values, so it may run before earlier work on phi.
+// Between prepare() and the last slice, phi and scratch belong to the run and cellWeights
+// must stay as they are. A run kept from step to step reuses its storage.
+class SolidExtensionRun {
+ public:
+  Status prepare(const MacGridSpec& grid, const std::vector<double>& cellWeights, std::vector<double>& phi,
+                 std::vector<int64_t>& scratch, int64_t samplesPerSlice);
+  // Runs one slice; true once all is done (also after a failed or missing prepare()).
+  bool advance();
+  bool done() const { return pass_ == Pass::Done; }
+  int64_t lastSliceSamples() const { return lastSliceSamples_; }
+
+ private:
+  enum class Pass : uint8_t { Collect, Scan, Write, Done };
+  int64_t step(int64_t budget);  // part of the current pass; returns the samples it did
+
+  MacGridSpec grid_;
+  const std::vector<double>* weights_ = nullptr;
+  std::vector<double>* phi_ = nullptr;
+  std::vector<int64_t>* unknown_ = nullptr;
+  int64_t samplesPerSlice_ = 1, lastSliceSamples_ = 0;
+  Pass pass_ = Pass::Done;
+  int64_t position_ = 0;  // in the current pass
+  std::vector<int8_t> pending_;  // per cell: 1 while unknown
+  std::vector<int64_t> still_;   // unknown after this layer
+  std::vector<std::pair<int64_t, double>> found_;  // this layer's cells and values
+};
 
 }  // namespace vp

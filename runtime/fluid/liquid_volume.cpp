@@ -1,7 +1,10 @@
 // Smoothed-Heaviside liquid volume and its correction (see liquid_volume.h).
 #include "fluid/liquid_volume.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <utility>
 
 #include "core/parallel_for.h"
 
@@ -10,71 +13,36 @@ namespace {
 
 constexpr int64_t kCellGrain = 8192;
 
-struct VolumeAndSlope {
-  double volume = 0.0;  // sum of w H
-  double slope = 0.0;   // sum of w dH/dphi (<= 0)
-  VolumeAndSlope& operator+=(const VolumeAndSlope& o) {
-    volume += o.volume;
-    slope += o.slope;
-    return *this;
-  }
-};
-
 double fractionSlope(double phi, double width) {
   if (phi <= -width || phi >= width) return 0.0;
   return -0.5 * (1.0 + std::cos(M_PI * phi / width)) / width;
 }
 
-// The cells whose fraction can change under a shift of at most `reach`, packed: in chunk order,
-// so sums over them do not depend on the worker count.
-struct Band {
-  std::vector<double> phi, weight;
-  double fullWeight = 0.0;  // sum of w over cells that stay fully liquid
-};
-
-void gatherBand(TaskSystem& tasks, int64_t cells, const double* phi, const double* weight, double reach,
-                Band* band) {
-  const int64_t chunks = (cells + kCellGrain - 1) / kCellGrain;
-  std::vector<Band> parts(static_cast<size_t>(chunks));
-  parallelFor(tasks, chunks, 1, [&](int64_t first, int64_t last) {
-    for (int64_t chunk = first; chunk < last; ++chunk) {
-      Band& part = parts[static_cast<size_t>(chunk)];
-      const int64_t end = std::min(cells, (chunk + 1) * kCellGrain);
-      for (int64_t c = chunk * kCellGrain; c < end; ++c) {
-        const double w = weight != nullptr ? weight[c] : 1.0;
-        if (!(w > 0.0)) continue;
-        if (phi[c] <= -reach) {
-          part.fullWeight += w;
-        } else if (phi[c] < reach) {
-          part.phi.push_back(phi[c]);
-          part.weight.push_back(w);
-        }
-      }
+// Adds the slab [begin, end) of a sum over [0, n) that parallelReduce would cut into chunks
+// of kCellGrain: accumulate(b, e, acc) adds [b, e) onto acc in index order. The chunks the slab
+// completes go to sum.total in chunk order; one it leaves unfinished waits in sum.open, so
+// every chunk's partial is built up in order from zero, however the slabs cut it.
+template <class Sum, class Accumulate>
+void addSlab(TaskSystem& tasks, int64_t n, int64_t begin, int64_t end, const Accumulate& accumulate, Sum& sum) {
+  if (begin >= end) return;
+  const int64_t firstChunk = begin / kCellGrain, pieces = (end - 1) / kCellGrain - firstChunk + 1;
+  sum.pieces.resize(static_cast<size_t>(pieces));
+  sum.pieces[0] = std::move(sum.open);
+  for (int64_t p = 1; p < pieces; ++p) sum.pieces[static_cast<size_t>(p)] = {};
+  parallelFor(tasks, pieces, 1, [&](int64_t first, int64_t last) {
+    for (int64_t p = first; p < last; ++p) {
+      const int64_t chunk = firstChunk + p;
+      accumulate(std::max(begin, chunk * kCellGrain), std::min(end, (chunk + 1) * kCellGrain),
+                 sum.pieces[static_cast<size_t>(p)]);
     }
   });
-  band->phi.clear();
-  band->weight.clear();
-  band->fullWeight = 0.0;
-  for (const Band& part : parts) {
-    band->phi.insert(band->phi.end(), part.phi.begin(), part.phi.end());
-    band->weight.insert(band->weight.end(), part.weight.begin(), part.weight.end());
-    band->fullWeight += part.fullWeight;
+  sum.open = {};
+  for (int64_t p = 0; p < pieces; ++p) {
+    if (std::min(end, (firstChunk + p + 1) * kCellGrain) == std::min(n, (firstChunk + p + 1) * kCellGrain))
+      sum.total += sum.pieces[static_cast<size_t>(p)];
+    else
+      sum.open = std::move(sum.pieces[static_cast<size_t>(p)]);
   }
-}
-
-VolumeAndSlope evaluate(TaskSystem& tasks, const Band& band, double shift, double width) {
-  VolumeAndSlope sum = parallelReduce<VolumeAndSlope>(
-      tasks, static_cast<int64_t>(band.phi.size()), kCellGrain, [&](int64_t begin, int64_t end) {
-        VolumeAndSlope part;
-        for (int64_t b = begin; b < end; ++b) {
-          const double p = band.phi[static_cast<size_t>(b)] + shift, w = band.weight[static_cast<size_t>(b)];
-          part.volume += w * smoothedLiquidFraction(p, width);
-          part.slope += w * fractionSlope(p, width);
-        }
-        return part;
-      });
-  sum.volume += band.fullWeight;
-  return sum;
 }
 
 }  // namespace
@@ -121,6 +89,31 @@ void cellOpenFractions(TaskSystem& tasks, const FaceFractionField& fractions, st
 Status correctLiquidVolume(TaskSystem& tasks, const MacGridSpec& grid, double* phi, const double* cellWeight,
                            double targetVolume, const VolumeCorrectionSettings& settings,
                            VolumeCorrectionResult* result) {
+  VolumeCorrectionRun run;
+  VP_TRY(run.prepare(tasks, grid, phi, cellWeight, targetVolume, settings, std::numeric_limits<int64_t>::max()));
+  while (!run.advance()) {
+  }
+  if (result != nullptr) *result = run.result();
+  return Status::Ok;
+}
+
+VolumeCorrectionRun::Band& VolumeCorrectionRun::Band::operator+=(const Band& o) {
+  phi.insert(phi.end(), o.phi.begin(), o.phi.end());
+  weight.insert(weight.end(), o.weight.begin(), o.weight.end());
+  fullWeight += o.fullWeight;
+  return *this;
+}
+
+VolumeCorrectionRun::VolumeAndSlope& VolumeCorrectionRun::VolumeAndSlope::operator+=(const VolumeAndSlope& o) {
+  volume += o.volume;
+  slope += o.slope;
+  return *this;
+}
+
+Status VolumeCorrectionRun::prepare(TaskSystem& tasks, const MacGridSpec& grid, double* phi, const double* cellWeight,
+                                    double targetVolume, const VolumeCorrectionSettings& settings,
+                                    int64_t samplesPerSlice) {
+  pass_ = Pass::Done;
   if (phi == nullptr) return fail(Status::InvalidArgument, "volume correction: phi is null");
   if (!(targetVolume > 0.0) || !std::isfinite(targetVolume))
     return fail(Status::InvalidArgument, "volume correction: targetVolume = %g must be positive and finite",
@@ -131,39 +124,131 @@ Status correctLiquidVolume(TaskSystem& tasks, const MacGridSpec& grid, double* p
                 "volume correction: widthCells = %g, maxShiftCells = %g, relativeTolerance = %g must be positive "
                 "and maxIterations = %d at least 1",
                 settings.widthCells, settings.maxShiftCells, settings.relativeTolerance, settings.maxIterations);
-  const double h = grid.h, cellVolume = h * h * h;
-  const double width = settings.widthCells * h, maxShift = settings.maxShiftCells * h;
-  const int64_t cells = static_cast<int64_t>(grid.nx) * grid.ny * grid.nz;
-  Band band;
-  gatherBand(tasks, cells, phi, cellWeight, width + maxShift, &band);
-  const double target = targetVolume / cellVolume;  // in cells
-  // V(shift) decreases with the shift; keep a bracket [low, high] around the root.
-  double low = -maxShift, high = maxShift, shift = 0.0;
-  VolumeAndSlope at = evaluate(tasks, band, shift, width);
-  VolumeCorrectionResult out;
-  out.volumeBefore = at.volume * cellVolume;
-  for (; out.iterations < settings.maxIterations; ++out.iterations) {
-    const double excess = at.volume - target;
-    if (std::fabs(excess) <= settings.relativeTolerance * target) {
-      out.converged = true;
+  if (samplesPerSlice < 1)
+    return fail(Status::InvalidArgument, "volume correction: samplesPerSlice = %lld must be >= 1",
+                static_cast<long long>(samplesPerSlice));
+  tasks_ = &tasks;
+  grid_ = grid;
+  phi_ = phi;
+  weight_ = cellWeight;
+  settings_ = settings;
+  const double h = grid.h;
+  target_ = targetVolume / (h * h * h);
+  samplesPerSlice_ = samplesPerSlice;
+  cells_ = static_cast<int64_t>(grid.nx) * grid.ny * grid.nz;
+  lastSliceSamples_ = 0;
+  pass_ = Pass::Gather;
+  position_ = 0;
+  low_ = -settings.maxShiftCells * h;
+  high_ = settings.maxShiftCells * h;
+  shift_ = 0.0;
+  measured_ = false;
+  for (Band* b : {&band_.total, &band_.open}) {
+    b->phi.clear();
+    b->weight.clear();
+    b->fullWeight = 0.0;
+  }
+  result_ = VolumeCorrectionResult{};
+  return Status::Ok;
+}
+
+bool VolumeCorrectionRun::advance() {
+  lastSliceSamples_ = 0;
+  while (pass_ != Pass::Done && lastSliceSamples_ < samplesPerSlice_)
+    lastSliceSamples_ += step(samplesPerSlice_ - lastSliceSamples_);
+  return pass_ == Pass::Done;
+}
+
+int64_t VolumeCorrectionRun::step(int64_t budget) {
+  const double h = grid_.h, width = settings_.widthCells * h;
+  const int64_t passLength = pass_ == Pass::Evaluate ? static_cast<int64_t>(band_.total.phi.size()) : cells_;
+  const int64_t begin = position_, end = begin + std::min(budget, passLength - begin);
+  position_ = end;
+  switch (pass_) {
+    case Pass::Gather: {
+      const double reach = width + settings_.maxShiftCells * h;
+      addSlab(*tasks_, cells_, begin, end, [&](int64_t first, int64_t last, Band& part) {
+        for (int64_t c = first; c < last; ++c) {
+          const double w = weight_ != nullptr ? weight_[c] : 1.0;
+          if (!(w > 0.0)) continue;
+          if (phi_[c] <= -reach) {
+            part.fullWeight += w;
+          } else if (phi_[c] < reach) {
+            part.phi.push_back(phi_[c]);
+            part.weight.push_back(w);
+          }
+        }
+      }, band_);
+      if (end == cells_) startEvaluation();
       break;
     }
-    if (excess > 0.0) low = shift;  // too much liquid: the root is at a larger shift
-    else high = shift;
-    double next = at.slope < 0.0 ? shift - excess / at.slope : 0.5 * (low + high);
-    if (!(next > low && next < high)) next = 0.5 * (low + high);
-    if (high - low <= 1e-15 * h) break;  // the root is beyond the limit, or no surface moves
-    shift = next;
-    at = evaluate(tasks, band, shift, width);
+    case Pass::Evaluate: {
+      const Band& band = band_.total;
+      addSlab(*tasks_, passLength, begin, end, [&](int64_t first, int64_t last, VolumeAndSlope& part) {
+        for (int64_t b = first; b < last; ++b) {
+          const double p = band.phi[static_cast<size_t>(b)] + shift_, w = band.weight[static_cast<size_t>(b)];
+          part.volume += w * smoothedLiquidFraction(p, width);
+          part.slope += w * fractionSlope(p, width);
+        }
+      }, sums_);
+      if (end == passLength) evaluated();
+      break;
+    }
+    case Pass::Shift: {
+      const double shift = shift_;
+      double* phi = phi_;
+      parallelFor(*tasks_, end - begin, kCellGrain, [&](int64_t first, int64_t last) {
+        for (int64_t c = begin + first; c < begin + last; ++c) phi[c] += shift;
+      });
+      if (end == cells_) pass_ = Pass::Done;
+      break;
+    }
+    case Pass::Done:
+      break;
   }
-  out.volumeAfter = at.volume * cellVolume;
-  out.shift = shift;
-  if (shift != 0.0)
-    parallelFor(tasks, cells, kCellGrain, [&](int64_t begin, int64_t end) {
-      for (int64_t c = begin; c < end; ++c) phi[c] += shift;
-    });
-  if (result != nullptr) *result = out;
-  return Status::Ok;
+  return end - begin;
+}
+
+void VolumeCorrectionRun::startEvaluation() {
+  pass_ = Pass::Evaluate;
+  position_ = 0;
+  sums_.total = {};
+  sums_.open = {};
+}
+
+// An evaluation is complete: record it, then the next trial shift or the end.
+void VolumeCorrectionRun::evaluated() {
+  const double cellVolume = grid_.h * grid_.h * grid_.h;
+  at_ = sums_.total;
+  at_.volume += band_.total.fullWeight;
+  if (measured_) ++result_.iterations;
+  else result_.volumeBefore = at_.volume * cellVolume;
+  measured_ = true;
+  if (nextShift()) {
+    startEvaluation();
+    return;
+  }
+  result_.volumeAfter = at_.volume * cellVolume;
+  result_.shift = shift_;
+  pass_ = shift_ != 0.0 ? Pass::Shift : Pass::Done;
+  position_ = 0;
+}
+
+// Safeguarded Newton: bisection when a step leaves the bracket.
+bool VolumeCorrectionRun::nextShift() {
+  if (result_.iterations >= settings_.maxIterations) return false;
+  const double excess = at_.volume - target_;
+  if (std::fabs(excess) <= settings_.relativeTolerance * target_) {
+    result_.converged = true;
+    return false;
+  }
+  if (excess > 0.0) low_ = shift_;  // too much liquid: the root is at a larger shift
+  else high_ = shift_;
+  double next = at_.slope < 0.0 ? shift_ - excess / at_.slope : 0.5 * (low_ + high_);
+  if (!(next > low_ && next < high_)) next = 0.5 * (low_ + high_);
+  if (high_ - low_ <= 1e-15 * grid_.h) return false;  // the root is beyond the limit, or no surface moves
+  shift_ = next;
+  return true;
 }
 
 }  // namespace vp

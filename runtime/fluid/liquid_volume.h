@@ -23,6 +23,7 @@
 // (an emitter switched on) is caught up over several steps rather than in one jump.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "core/status.h"
@@ -60,9 +61,76 @@ struct VolumeCorrectionResult {
 };
 
 // targetVolume > 0 (m^3). phi is shifted in place (also when not converged: by the best shift
-// within the limit).
+// within the limit). Runs VolumeCorrectionRun in one slice.
 Status correctLiquidVolume(TaskSystem& tasks, const MacGridSpec& grid, double* phi, const double* cellWeight,
                            double targetVolume, const VolumeCorrectionSettings& settings,
                            VolumeCorrectionResult* result);
+
+// correctLiquidVolume in slices, bitwise the same result however it is sliced and on any
+// number of workers. A slice does at most samplesPerSlice samples of work (one at least) and
+// runs on into the next pass when one ends, so slices cost about the same throughout:
+// - gathering the band (the cells that a shift within the limit can change): cells in slabs;
+// - each evaluation of V and its slope at a trial shift (one per iteration): band entries in
+//   slabs. A cell's term depends on its own phi only, but the sums must be parallelReduce's
+//   (fixed chunks, added in chunk order): a slab adds the chunks it completes to the sum in
+//   order and passes the partial of a chunk it leaves unfinished on to the next slab;
+// - the shift of phi: cells in slabs.
+// The Newton/bisection update between evaluations is a few operations, done by the slice that
+// ends an evaluation. phi is read while the band is gathered and written by the last pass.
+// prepare() checks the arguments but reads no values, so it may run before earlier work on
+// phi. Between prepare() and the last slice, phi and cellWeight belong to the run: nothing
+// else may touch them. A run kept from step to step reuses its storage.
+class VolumeCorrectionRun {
+ public:
+  Status prepare(TaskSystem& tasks, const MacGridSpec& grid, double* phi, const double* cellWeight,
+                 double targetVolume, const VolumeCorrectionSettings& settings, int64_t samplesPerSlice);
+  // Runs one slice; true once all is done (also after a failed or missing prepare()).
+  bool advance();
+  bool done() const { return pass_ == Pass::Done; }
+  int64_t lastSliceSamples() const { return lastSliceSamples_; }
+  const VolumeCorrectionResult& result() const { return result_; }  // once done
+
+ private:
+  enum class Pass : uint8_t { Gather, Evaluate, Shift, Done };
+  // The cells whose fraction can change under the shifts allowed, in cell order.
+  struct Band {
+    std::vector<double> phi, weight;
+    double fullWeight = 0.0;  // sum of w over cells that stay fully liquid
+    Band& operator+=(const Band& o);
+  };
+  struct VolumeAndSlope {
+    double volume = 0.0;  // sum of w H
+    double slope = 0.0;   // sum of w dH/dphi (<= 0)
+    VolumeAndSlope& operator+=(const VolumeAndSlope& o);
+  };
+  // A sum over chunks added a slab at a time: `open` holds the partial of the chunk a slab
+  // left unfinished.
+  template <class T>
+  struct ChunkedSum {
+    T total, open;
+    std::vector<T> pieces;  // scratch: per chunk of a slab
+  };
+
+  int64_t step(int64_t budget);  // part of the current pass; returns the samples it did
+  void startEvaluation();
+  void evaluated();
+  bool nextShift();  // false when the iteration ends
+
+  TaskSystem* tasks_ = nullptr;
+  MacGridSpec grid_;
+  double* phi_ = nullptr;
+  const double* weight_ = nullptr;
+  VolumeCorrectionSettings settings_;
+  double target_ = 0.0;  // in cells
+  int64_t samplesPerSlice_ = 1, cells_ = 0, lastSliceSamples_ = 0;
+  Pass pass_ = Pass::Done;
+  int64_t position_ = 0;  // in the current pass
+  double low_ = 0.0, high_ = 0.0, shift_ = 0.0;  // V(shift) decreases: the root is in [low, high]
+  VolumeAndSlope at_;  // at shift_
+  bool measured_ = false;  // volumeBefore is known
+  ChunkedSum<Band> band_;
+  ChunkedSum<VolumeAndSlope> sums_;
+  VolumeCorrectionResult result_;
+};
 
 }  // namespace vp

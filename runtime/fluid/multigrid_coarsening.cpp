@@ -12,6 +12,8 @@ namespace vp {
 namespace {
 
 constexpr int64_t kRowGrain = 16;
+// Samples of a coarse cell whose pass reads its children.
+constexpr int64_t kChildren = 8;
 // Fully open fine face, coarsened: 4 fine couplings of 1, halved.
 constexpr double kVoxelCoupling = 2.0;
 
@@ -27,38 +29,24 @@ struct Dims {
   int64_t along(int a) const { return a == 0 ? nx : a == 1 ? ny : nz; }
 };
 
-void sizeLevel(const MacGridSpec& spec, CutCellPoisson* op) {
-  const Dims d(spec);
-  op->grid = spec;
-  op->coupling[0].assign(static_cast<size_t>((d.nx + 1) * d.ny * d.nz), 0.0);
-  op->coupling[1].assign(static_cast<size_t>(d.nx * (d.ny + 1) * d.nz), 0.0);
-  op->coupling[2].assign(static_cast<size_t>(d.nx * d.ny * (d.nz + 1)), 0.0);
-  op->diagonal.assign(static_cast<size_t>(d.cells()), 0.0);
-  op->air.clear();
-  op->liquidPhi.clear();
-  op->surfaceDirichlet.clear();
-  for (auto& open : op->openFraction) open.clear();
-}
-
-// Diagonal = couplings of the six faces + Dirichlet part; couplings must be set.
-void assembleDiagonal(TaskSystem& tasks, const std::vector<double>& dirichlet, CutCellPoisson* op) {
+// Diagonal = couplings of the six faces + Dirichlet part, cells of rows [begin, end);
+// couplings must be set.
+void assembleDiagonalRows(const std::vector<double>& dirichlet, CutCellPoisson* op, int64_t begin, int64_t end) {
   const Dims d(op->grid);
-  parallelFor(tasks, d.ny * d.nz, kRowGrain, [&](int64_t begin, int64_t end) {
-    for (int64_t row = begin; row < end; ++row) {
-      const int64_t j = row % d.ny, k = row / d.ny;
-      for (int64_t i = 0; i < d.nx; ++i) {
-        const int64_t c = d.cell(i, j, k);
-        double sum = 0.0;
-        for (int a = 0; a < 3; ++a) {
-          int64_t hi[3] = {i, j, k};
-          ++hi[a];
-          sum += op->coupling[a][static_cast<size_t>(d.face(a, i, j, k))];
-          sum += op->coupling[a][static_cast<size_t>(d.face(a, hi[0], hi[1], hi[2]))];
-        }
-        op->diagonal[static_cast<size_t>(c)] = sum + dirichlet[static_cast<size_t>(c)];
+  for (int64_t row = begin; row < end; ++row) {
+    const int64_t j = row % d.ny, k = row / d.ny;
+    for (int64_t i = 0; i < d.nx; ++i) {
+      const int64_t c = d.cell(i, j, k);
+      double sum = 0.0;
+      for (int a = 0; a < 3; ++a) {
+        int64_t hi[3] = {i, j, k};
+        ++hi[a];
+        sum += op->coupling[a][static_cast<size_t>(d.face(a, i, j, k))];
+        sum += op->coupling[a][static_cast<size_t>(d.face(a, hi[0], hi[1], hi[2]))];
       }
+      op->diagonal[static_cast<size_t>(c)] = sum + dirichlet[static_cast<size_t>(c)];
     }
-  });
+  }
 }
 
 // Calls visit(child cell index) for the children of coarse cell (I, J, K) that exist.
@@ -69,10 +57,11 @@ void forEachChild(const Dims& fine, int64_t I, int64_t J, int64_t K, const Visit
       for (int64_t i = 2 * I; i < 2 * I + 2 && i < fine.nx; ++i) visit(fine.cell(i, j, k));
 }
 
-// Calls visit(I, J, K) for every cell of grid d, in parallel over its rows.
+// Adds a parallel pass over the rows of grid d calling visit(I, J, K) for each cell; a cell
+// counts `samplesPerCell` samples (kChildren when it reads its children).
 template <class Visit>
-void forEachCell(TaskSystem& tasks, const Dims& d, const Visit& visit) {
-  parallelFor(tasks, d.ny * d.nz, kRowGrain, [&](int64_t begin, int64_t end) {
+void addCellPass(SlabPasses* passes, const Dims& d, int64_t samplesPerCell, Visit visit) {
+  passes->addParallel(d.ny * d.nz, d.nx * samplesPerCell, kRowGrain, [d, visit](int64_t begin, int64_t end) {
     for (int64_t row = begin; row < end; ++row)
       for (int64_t I = 0; I < d.nx; ++I) visit(I, row % d.ny, row / d.ny);
   });
@@ -91,35 +80,39 @@ void forEachCell(TaskSystem& tasks, const Dims& d, const Visit& visit) {
 // faces (the slanted plate, 1-3 fine cells thick) leak on the coarse levels, which then couple
 // both of its sides: iterations to 1e-6 on the plate tank at 64/128/192^3 fell from 11/12/13 to
 // 8/8/11 with the series rule (liquid tank 10/11/11 -> 7/7/11).
-void coarsenFaces(TaskSystem& tasks, const Dims& f, const Dims& c, int a, const std::vector<double>& in,
-                  const std::vector<double>& inner, std::vector<double>* outValues) {
+void addCoarseFacePass(SlabPasses* passes, const Dims& f, const Dims& c, int a, const std::vector<double>* in,
+                       const std::vector<double>* inner, std::vector<double>* out) {
   const int b = (a + 1) % 3, e = (a + 2) % 3;
-  const int64_t fineB = f.along(b), fineE = f.along(e);
-  std::vector<double>& out = *outValues;
-  out.assign(static_cast<size_t>(a == 0 ? (c.nx + 1) * c.ny * c.nz
-                                 : a == 1 ? c.nx * (c.ny + 1) * c.nz : c.nx * c.ny * (c.nz + 1)), 0.0);
   // Neighbouring faces along a are `stride` apart in every face layout.
   const int64_t stride = a == 0 ? 1 : a == 1 ? f.nx : f.nx * f.ny;
-  forEachCell(tasks, c, [&](int64_t I, int64_t J, int64_t K) {
-    const int64_t C[3] = {I, J, K};
-    if (C[a] == 0) return;
-    // 2I + 1 is the domain face when the coarse cell has one child along a.
-    const bool behindHigh = 2 * C[a] + 1 < f.along(a);
-    double sum = 0.0;
-    for (int64_t e2 = 2 * C[e]; e2 < 2 * C[e] + 2 && e2 < fineE; ++e2)
-      for (int64_t b2 = 2 * C[b]; b2 < 2 * C[b] + 2 && b2 < fineB; ++b2) {
-        int64_t x[3];
-        x[a] = 2 * C[a];
-        x[b] = b2;
-        x[e] = e2;
-        const int64_t face = f.face(a, x[0], x[1], x[2]);
-        const double shared = in[static_cast<size_t>(face)];
-        const double low = inner[static_cast<size_t>(face - stride)];
-        const double high = behindHigh ? inner[static_cast<size_t>(face + stride)] : 1.0;
-        if (!(shared > 0.0 && low > 0.0 && high > 0.0)) continue;
-        sum += behindHigh ? 2.0 / (0.5 / low + 1.0 / shared + 0.5 / high) : 1.5 / (0.5 / low + 1.0 / shared);
+  // The pass runs over the coarse face lattice, so it writes every face (0 on the domain's).
+  const int64_t faces[3] = {c.nx + (a == 0), c.ny + (a == 1), c.nz + (a == 2)};
+  passes->addParallel(faces[1] * faces[2], faces[0] * kChildren, kRowGrain, [=](int64_t begin, int64_t end) {
+    const int64_t fineB = f.along(b), fineE = f.along(e);
+    for (int64_t row = begin; row < end; ++row)
+      for (int64_t I = 0; I < faces[0]; ++I) {
+        const int64_t C[3] = {I, row % faces[1], row / faces[1]};
+        double& value = (*out)[static_cast<size_t>(c.face(a, C[0], C[1], C[2]))];
+        value = 0.0;
+        if (C[a] == 0 || C[a] == c.along(a)) continue;
+        // 2I + 1 is the domain face when the coarse cell has one child along a.
+        const bool behindHigh = 2 * C[a] + 1 < f.along(a);
+        double sum = 0.0;
+        for (int64_t e2 = 2 * C[e]; e2 < 2 * C[e] + 2 && e2 < fineE; ++e2)
+          for (int64_t b2 = 2 * C[b]; b2 < 2 * C[b] + 2 && b2 < fineB; ++b2) {
+            int64_t x[3];
+            x[a] = 2 * C[a];
+            x[b] = b2;
+            x[e] = e2;
+            const int64_t face = f.face(a, x[0], x[1], x[2]);
+            const double shared = (*in)[static_cast<size_t>(face)];
+            const double low = (*inner)[static_cast<size_t>(face - stride)];
+            const double high = behindHigh ? (*inner)[static_cast<size_t>(face + stride)] : 1.0;
+            if (!(shared > 0.0 && low > 0.0 && high > 0.0)) continue;
+            sum += behindHigh ? 2.0 / (0.5 / low + 1.0 / shared + 0.5 / high) : 1.5 / (0.5 / low + 1.0 / shared);
+          }
+        value = 0.5 * sum;
       }
-    out[static_cast<size_t>(c.face(a, I, J, K))] = 0.5 * sum;
   });
 }
 
@@ -136,26 +129,25 @@ void coarsenFaces(TaskSystem& tasks, const Dims& f, const Dims& c, int a, const 
 // centres lie 0.02 of a cell below the surface. Iterations to 1e-6 on the liquid tank without
 // colliders, 64/128^3: 7/7 summed, 6/6 placed again.
 // Where no such face exists (air pockets smaller than the coarse cell), the summed rule stays.
-void coarsenFreeSurface(TaskSystem& tasks, const CutCellPoisson& fine, const Dims& f, const Dims& c,
-                        CutCellPoisson* coarse) {
-  coarse->liquidPhi.assign(static_cast<size_t>(c.cells()), 0.0);
-  coarse->surfaceDirichlet.assign(static_cast<size_t>(c.cells()), 0.0);
-  std::vector<uint8_t> fluid(static_cast<size_t>(c.cells()), 0);
-  forEachCell(tasks, c, [&](int64_t I, int64_t J, int64_t K) {
+void addCoarseFreeSurfacePasses(SlabPasses* passes, const CutCellPoisson* fine, const Dims& f, const Dims& c,
+                                CutCellPoisson* coarse, std::vector<uint8_t>* fluidCells) {
+  addCellPass(passes, c, kChildren, [=](int64_t I, int64_t J, int64_t K) {
     double phi = 0.0;
     int children = 0;
     bool anyFluid = false;
     forEachChild(f, I, J, K, [&](int64_t child) {
-      phi += fine.liquidPhi[static_cast<size_t>(child)];
+      phi += fine->liquidPhi[static_cast<size_t>(child)];
       ++children;
-      anyFluid = anyFluid || fine.diagonal[static_cast<size_t>(child)] > 0.0;
+      anyFluid = anyFluid || fine->diagonal[static_cast<size_t>(child)] > 0.0;
     });
     const size_t cell = static_cast<size_t>(c.cell(I, J, K));
     coarse->liquidPhi[cell] = phi / children;
-    fluid[cell] = anyFluid ? 1 : 0;
+    (*fluidCells)[cell] = anyFluid ? 1 : 0;
   });
-  forEachCell(tasks, c, [&](int64_t I, int64_t J, int64_t K) {
+  addCellPass(passes, c, 1, [=](int64_t I, int64_t J, int64_t K) {
+    const std::vector<uint8_t>& fluid = *fluidCells;
     const size_t cell = static_cast<size_t>(c.cell(I, J, K));
+    coarse->surfaceDirichlet[cell] = 0.0;
     if (!fluid[cell]) return;
     const double phi = coarse->liquidPhi[cell];
     double surface = 0.0;
@@ -177,11 +169,21 @@ void coarsenFreeSurface(TaskSystem& tasks, const CutCellPoisson& fine, const Dim
         surface += open / theta;
       }
     if (!(surface > 0.0)) {
-      forEachChild(f, I, J, K, [&](int64_t child) { surface += fine.surfaceDirichlet[static_cast<size_t>(child)]; });
+      forEachChild(f, I, J, K, [&](int64_t child) { surface += fine->surfaceDirichlet[static_cast<size_t>(child)]; });
       surface *= 0.5;
     }
     coarse->surfaceDirichlet[cell] = surface;
   });
+}
+
+// The last passes of either coarsening: the diagonal from the couplings and scratch->dirichlet,
+// then the regions and row spans.
+void addCoarseDiagonalPasses(SlabPasses* passes, const Dims& c, CutCellPoisson* coarse, CoarseningScratch* scratch) {
+  passes->addParallel(c.ny * c.nz, c.nx, kRowGrain, [=](int64_t begin, int64_t end) {
+    assembleDiagonalRows(scratch->dirichlet, coarse, begin, end);
+  });
+  appendLabelFluidRegions(coarse, passes);
+  appendComputeRowSpans(coarse, passes);
 }
 
 }  // namespace
@@ -197,97 +199,112 @@ MacGridSpec coarseGridSpec(const MacGridSpec& fine) {
 
 Status coarsenCutCell(TaskSystem& tasks, const CutCellPoisson& fine, CutCellPoisson* coarse) {
   if (coarse == nullptr) return fail(Status::InvalidArgument, "multigrid coarsening: coarse is null");
-  const Dims f(fine.grid);
-  sizeLevel(coarseGridSpec(fine.grid), coarse);
-  const Dims c(coarse->grid);
-  const bool freeSurface = !fine.liquidPhi.empty();
-  for (int a = 0; a < 3; ++a) {
-    // Solids close a column, the free surface does not (its faces have coupling 0 only because
-    // the air has no row; the coarse surface is placed by coarsenFreeSurface).
-    const std::vector<double>& open = freeSurface ? fine.openFraction[a] : fine.coupling[a];
-    coarsenFaces(tasks, f, c, a, fine.coupling[a], open, &coarse->coupling[a]);
-    if (freeSurface) coarsenFaces(tasks, f, c, a, open, open, &coarse->openFraction[a]);
-  }
-  std::vector<double> dirichlet(static_cast<size_t>(c.cells()), 0.0);
-  forEachCell(tasks, c, [&](int64_t I, int64_t J, int64_t K) {
-    double sum = 0.0;
-    // The free-surface part is placed again at this level's spacing below.
-    forEachChild(f, I, J, K, [&](int64_t child) {
-      const double part = dirichletPart(fine, child);
-      sum += freeSurface ? std::max(0.0, part - fine.surfaceDirichlet[static_cast<size_t>(child)]) : part;
-    });
-    dirichlet[static_cast<size_t>(c.cell(I, J, K))] = 0.5 * sum;
-  });
-  if (freeSurface) {
-    coarsenFreeSurface(tasks, fine, f, c, coarse);
-    for (size_t cell = 0; cell < dirichlet.size(); ++cell) dirichlet[cell] += coarse->surfaceDirichlet[cell];
-  }
-  assembleDiagonal(tasks, dirichlet, coarse);
-  labelFluidRegions(coarse);
-  computeRowSpans(tasks, coarse);
+  SlabPasses passes(tasks);
+  CoarseningScratch scratch;
+  appendCoarsenCutCell(fine, coarse, &scratch, &passes);
+  passes.runAll();
   return Status::Ok;
 }
 
 Status coarsenVoxel(TaskSystem& tasks, const CutCellPoisson& fine, const std::array<DomainSide, 6>& sides,
                     CutCellPoisson* coarse) {
   if (coarse == nullptr) return fail(Status::InvalidArgument, "multigrid coarsening: coarse is null");
-  const Dims f(fine.grid);
-  sizeLevel(coarseGridSpec(fine.grid), coarse);
-  const Dims c(coarse->grid);
-  // McAdams et al.'s labels: a coarse cell is air (Dirichlet) when any child is, else fluid
-  // when any child is, else solid.
-  const bool freeSurface = !fine.air.empty();
-  std::vector<uint8_t> fluid(static_cast<size_t>(c.cells()), 0);
-  if (freeSurface) coarse->air.assign(static_cast<size_t>(c.cells()), 0);
-  else coarse->air.clear();
-  parallelFor(tasks, c.ny * c.nz, kRowGrain, [&](int64_t begin, int64_t end) {
-    for (int64_t row = begin; row < end; ++row) {
-      const int64_t J = row % c.ny, K = row / c.ny;
-      for (int64_t I = 0; I < c.nx; ++I) {
-        bool anyFluid = false, anyAir = false;
-        forEachChild(f, I, J, K, [&](int64_t child) {
-          anyFluid = anyFluid || fine.diagonal[static_cast<size_t>(child)] > 0.0;
-          anyAir = anyAir || (freeSurface && fine.air[static_cast<size_t>(child)] != 0);
-        });
-        const size_t cell = static_cast<size_t>(c.cell(I, J, K));
-        fluid[cell] = anyFluid && !anyAir ? 1 : 0;
-        if (anyAir) coarse->air[cell] = 1;
-      }
-    }
-  });
-  std::vector<double> dirichlet(static_cast<size_t>(c.cells()), 0.0);
-  parallelFor(tasks, c.ny * c.nz, kRowGrain, [&](int64_t begin, int64_t end) {
-    for (int64_t row = begin; row < end; ++row) {
-      const int64_t J = row % c.ny, K = row / c.ny;
-      for (int64_t I = 0; I < c.nx; ++I) {
-        const int64_t C[3] = {I, J, K};
-        const int64_t cell = c.cell(I, J, K);
-        if (!fluid[static_cast<size_t>(cell)]) continue;
-        double open = 0.0;
-        for (int a = 0; a < 3; ++a) {
-          if (C[a] == 0 && sides[2 * a] == DomainSide::Open) open += kVoxelCoupling;
-          if (C[a] == c.along(a) - 1 && sides[2 * a + 1] == DomainSide::Open) open += kVoxelCoupling;
-          // A face to an air neighbour is Dirichlet (p = 0 at the neighbour's centre).
-          if (freeSurface && C[a] + 1 < c.along(a)) {
-            int64_t high[3] = {I, J, K};
-            ++high[a];
-            if (coarse->air[static_cast<size_t>(c.cell(high[0], high[1], high[2]))]) open += kVoxelCoupling;
-          }
-          if (C[a] == 0) continue;
-          int64_t low[3] = {I, J, K};
-          --low[a];
-          const size_t lowCell = static_cast<size_t>(c.cell(low[0], low[1], low[2]));
-          if (fluid[lowCell]) coarse->coupling[a][static_cast<size_t>(c.face(a, I, J, K))] = kVoxelCoupling;
-          else if (freeSurface && coarse->air[lowCell]) open += kVoxelCoupling;
-        }
-        dirichlet[static_cast<size_t>(cell)] = open;
-      }
-    }
-  });
-  assembleDiagonal(tasks, dirichlet, coarse);
-  labelFluidRegions(coarse);
-  computeRowSpans(tasks, coarse);
+  SlabPasses passes(tasks);
+  CoarseningScratch scratch;
+  appendCoarsenVoxel(fine, sides, coarse, &scratch, &passes);
+  passes.runAll();
   return Status::Ok;
+}
+
+void appendCoarsenCutCell(const CutCellPoisson& fine, CutCellPoisson* coarse, CoarseningScratch* scratch,
+                          SlabPasses* passes) {
+  const CutCellPoisson* fp = &fine;
+  passes->addStep([fp, coarse, scratch, passes] {
+    const Dims f(fp->grid);
+    const bool freeSurface = !fp->liquidPhi.empty();
+    sizeCutCellPoisson(coarseGridSpec(fp->grid), freeSurface, false, coarse);
+    const Dims c(coarse->grid);
+    scratch->dirichlet.resize(static_cast<size_t>(c.cells()));
+    if (freeSurface) scratch->fluid.resize(static_cast<size_t>(c.cells()));
+    for (int a = 0; a < 3; ++a) {
+      // Solids close a column, the free surface does not (its faces have coupling 0 only because
+      // the air has no row; the coarse surface is placed by the free-surface passes).
+      const std::vector<double>* open = freeSurface ? &fp->openFraction[a] : &fp->coupling[a];
+      addCoarseFacePass(passes, f, c, a, &fp->coupling[a], open, &coarse->coupling[a]);
+      if (freeSurface) addCoarseFacePass(passes, f, c, a, open, open, &coarse->openFraction[a]);
+    }
+    if (freeSurface) addCoarseFreeSurfacePasses(passes, fp, f, c, coarse, &scratch->fluid);
+    addCellPass(passes, c, kChildren, [=](int64_t I, int64_t J, int64_t K) {
+      double sum = 0.0;
+      // The free-surface part is placed again at this level's spacing (its passes above).
+      forEachChild(f, I, J, K, [&](int64_t child) {
+        const double part = dirichletPart(*fp, child);
+        sum += freeSurface ? std::max(0.0, part - fp->surfaceDirichlet[static_cast<size_t>(child)]) : part;
+      });
+      const size_t cell = static_cast<size_t>(c.cell(I, J, K));
+      double dirichlet = 0.5 * sum;
+      if (freeSurface) dirichlet += coarse->surfaceDirichlet[cell];
+      scratch->dirichlet[cell] = dirichlet;
+    });
+    addCoarseDiagonalPasses(passes, c, coarse, scratch);
+  });
+}
+
+void appendCoarsenVoxel(const CutCellPoisson& fine, const std::array<DomainSide, 6>& sides, CutCellPoisson* coarse,
+                        CoarseningScratch* scratch, SlabPasses* passes) {
+  const CutCellPoisson* fp = &fine;
+  passes->addStep([fp, sides, coarse, scratch, passes] {
+    const Dims f(fp->grid);
+    // McAdams et al.'s labels: a coarse cell is air (Dirichlet) when any child is, else fluid
+    // when any child is, else solid.
+    const bool freeSurface = !fp->air.empty();
+    sizeCutCellPoisson(coarseGridSpec(fp->grid), false, freeSurface, coarse);
+    const Dims c(coarse->grid);
+    scratch->dirichlet.resize(static_cast<size_t>(c.cells()));
+    scratch->fluid.resize(static_cast<size_t>(c.cells()));
+    uint8_t* fluid = scratch->fluid.data();
+    addCellPass(passes, c, kChildren, [=](int64_t I, int64_t J, int64_t K) {
+      bool anyFluid = false, anyAir = false;
+      forEachChild(f, I, J, K, [&](int64_t child) {
+        anyFluid = anyFluid || fp->diagonal[static_cast<size_t>(child)] > 0.0;
+        anyAir = anyAir || (freeSurface && fp->air[static_cast<size_t>(child)] != 0);
+      });
+      const size_t cell = static_cast<size_t>(c.cell(I, J, K));
+      fluid[cell] = anyFluid && !anyAir ? 1 : 0;
+      if (freeSurface) coarse->air[cell] = anyAir ? 1 : 0;
+    });
+    // Only couplings between two fluid cells are set below.
+    for (int a = 0; a < 3; ++a) {
+      double* coupling = coarse->coupling[a].data();
+      passes->addParallel(static_cast<int64_t>(coarse->coupling[a].size()), 1, 4096,
+                          [coupling](int64_t begin, int64_t end) { std::fill(coupling + begin, coupling + end, 0.0); });
+    }
+    addCellPass(passes, c, 1, [=](int64_t I, int64_t J, int64_t K) {
+      const int64_t C[3] = {I, J, K};
+      const int64_t cell = c.cell(I, J, K);
+      scratch->dirichlet[static_cast<size_t>(cell)] = 0.0;
+      if (!fluid[cell]) return;
+      double open = 0.0;
+      for (int a = 0; a < 3; ++a) {
+        if (C[a] == 0 && sides[2 * a] == DomainSide::Open) open += kVoxelCoupling;
+        if (C[a] == c.along(a) - 1 && sides[2 * a + 1] == DomainSide::Open) open += kVoxelCoupling;
+        // A face to an air neighbour is Dirichlet (p = 0 at the neighbour's centre).
+        if (freeSurface && C[a] + 1 < c.along(a)) {
+          int64_t high[3] = {I, J, K};
+          ++high[a];
+          if (coarse->air[static_cast<size_t>(c.cell(high[0], high[1], high[2]))]) open += kVoxelCoupling;
+        }
+        if (C[a] == 0) continue;
+        int64_t low[3] = {I, J, K};
+        --low[a];
+        const size_t lowCell = static_cast<size_t>(c.cell(low[0], low[1], low[2]));
+        if (fluid[lowCell]) coarse->coupling[a][static_cast<size_t>(c.face(a, I, J, K))] = kVoxelCoupling;
+        else if (freeSurface && coarse->air[lowCell]) open += kVoxelCoupling;
+      }
+      scratch->dirichlet[static_cast<size_t>(cell)] = open;
+    });
+    addCoarseDiagonalPasses(passes, c, coarse, scratch);
+  });
 }
 
 }  // namespace vp

@@ -34,6 +34,7 @@
 
 #include <array>
 #include <cstdint>
+#include <vector>
 
 #include "core/status.h"
 #include "core/task_system.h"
@@ -49,5 +50,23 @@ Status coarsenCutCell(TaskSystem& tasks, const CutCellPoisson& fine, CutCellPois
 
 Status coarsenVoxel(TaskSystem& tasks, const CutCellPoisson& fine, const std::array<DomainSide, 6>& sides,
                     CutCellPoisson* coarse);
+
+// Per coarse cell, between the passes of one coarsening (kept by the caller so a rebuild every
+// step does not reallocate; one level at a time).
+struct CoarseningScratch {
+  std::vector<double> dirichlet;
+  std::vector<uint8_t> fluid;
+};
+
+// The coarsenings as passes (cut_cell_poisson.h's SlabPasses), each in slabs of coarse rows
+// (cut-cell: the faces per axis, the free surface's level set then its terms, the Dirichlet
+// parts; voxel: the labels, the couplings cleared, the couplings and Dirichlet parts), then
+// the diagonal and labelFluidRegions' and computeRowSpans' passes. Nothing of `fine` is read
+// before the first pass runs, so the passes before them may build it. fine, coarse and
+// scratch must outlive the passes.
+void appendCoarsenCutCell(const CutCellPoisson& fine, CutCellPoisson* coarse, CoarseningScratch* scratch,
+                          SlabPasses* passes);
+void appendCoarsenVoxel(const CutCellPoisson& fine, const std::array<DomainSide, 6>& sides, CutCellPoisson* coarse,
+                        CoarseningScratch* scratch, SlabPasses* passes);
 
 }  // namespace vp

@@ -146,52 +146,70 @@ void smoothRedBlackCells(TaskSystem& tasks, const PoissonCoefficients<float>& op
 
 void findBoundaryCells(TaskSystem& tasks, const CutCellPoisson& op, double fullCoupling,
                        BoundaryCellLists* byColour) {
-  const Stencil<double> s(op);
-  std::vector<uint8_t> cut(static_cast<size_t>(s.rows() * s.nx), 0);
-  forEachRow(tasks, s, [&](int64_t j, int64_t k, int64_t c0) {
-    const Row<double> r(s, j, k, nullptr);
-    for (int64_t i = 0; i < s.nx; ++i) {
-      const double d = r.diagonal[i];
-      if (!(d > 0.0)) continue;
-      // Domain-boundary faces (coupling 0 on every level) are planar and grid-aligned, which
-      // the transfers handle (multigrid_transfer.h); only faces inside the grid count.
-      const bool inside[6] = {i > 0, i + 1 < s.nx, j > 0, j + 1 < s.ny, k > 0, k + 1 < s.nz};
-      const double faces[6] = {r.cu[i], r.cu[i + 1], r.cvLow[i], r.cvHigh[i], r.cwLow[i], r.cwHigh[i]};
-      bool isCut = false, onDomainBoundary = false;
-      double couplings = 0.0;
-      for (int f = 0; f < 6; ++f) {
-        couplings += faces[f];
-        onDomainBoundary = onDomainBoundary || !inside[f];
-        isCut = isCut || (inside[f] && faces[f] < fullCoupling * (1.0 - 1e-12));
-      }
-      // A Dirichlet part away from the domain sides is a free-surface face.
-      isCut = isCut || (!onDomainBoundary && d > couplings * (1.0 + 1e-12));
-      cut[static_cast<size_t>(c0 + i)] = isCut ? 1 : 0;
-    }
-  });
-  for (std::vector<BoundaryCell>& list : *byColour) list.clear();
-  // Serial, in cell order, so the lists (and the sweeps' results) never depend on the workers.
-  const int64_t step[6] = {-1, 1, -s.nx, s.nx, -s.sz, s.sz};
-  for (int64_t k = 0; k < s.nz; ++k)
-    for (int64_t j = 0; j < s.ny; ++j) {
-      const int64_t row = j + s.ny * k;
-      for (int64_t i = 0; i < s.nx; ++i) {
-        const int64_t c = i + s.nx * row;
-        if (!(s.diagonal[c] > 0.0)) continue;
-        const bool inside[6] = {i > 0, i + 1 < s.nx, j > 0, j + 1 < s.ny, k > 0, k + 1 < s.nz};
-        bool near = cut[static_cast<size_t>(c)] != 0;
-        for (int f = 0; f < 6; ++f) near = near || (inside[f] && cut[static_cast<size_t>(c + step[f])]);
-        if (!near) continue;
+  SlabPasses passes(tasks);
+  std::vector<uint8_t> cut;
+  appendFindBoundaryCells(op, fullCoupling, byColour, &cut, &passes);
+  passes.runAll();
+}
+
+void appendFindBoundaryCells(const CutCellPoisson& op, double fullCoupling, BoundaryCellLists* byColour,
+                             std::vector<uint8_t>* cutCells, SlabPasses* passes) {
+  const CutCellPoisson* level = &op;
+  passes->addStep([level, fullCoupling, byColour, cutCells, passes] {
+    const Stencil<double> s(*level);
+    cutCells->resize(static_cast<size_t>(s.rows() * s.nx));
+    for (std::vector<BoundaryCell>& list : *byColour) list.clear();
+    uint8_t* cut = cutCells->data();
+    passes->addParallel(s.rows(), s.nx, s.rowGrain(), [s, cut, fullCoupling](int64_t begin, int64_t end) {
+      for (int64_t row = begin; row < end; ++row) {
+        const int64_t j = row % s.ny, k = row / s.ny, c0 = s.nx * row;
         const Row<double> r(s, j, k, nullptr);
-        const double faces[6] = {r.cu[i], r.cu[i + 1], r.cvLow[i], r.cvHigh[i], r.cwLow[i], r.cwHigh[i]};
-        BoundaryCell e;
-        e.cell = static_cast<int32_t>(c);
-        // Domain-side faces hold coupling 0 already (cut_cell_poisson.h); `inside` makes sure.
-        for (int f = 0; f < 6; ++f) e.coupling[f] = inside[f] ? static_cast<float>(faces[f]) : 0.0f;
-        e.inverseDiagonal = static_cast<float>(1.0 / s.diagonal[c]);
-        (*byColour)[static_cast<size_t>((i + j + k) & 1)].push_back(e);
+        for (int64_t i = 0; i < s.nx; ++i) {
+          const double d = r.diagonal[i];
+          cut[c0 + i] = 0;
+          if (!(d > 0.0)) continue;
+          // Domain-boundary faces (coupling 0 on every level) are planar and grid-aligned, which
+          // the transfers handle (multigrid_transfer.h); only faces inside the grid count.
+          const bool inside[6] = {i > 0, i + 1 < s.nx, j > 0, j + 1 < s.ny, k > 0, k + 1 < s.nz};
+          const double faces[6] = {r.cu[i], r.cu[i + 1], r.cvLow[i], r.cvHigh[i], r.cwLow[i], r.cwHigh[i]};
+          bool isCut = false, onDomainBoundary = false;
+          double couplings = 0.0;
+          for (int f = 0; f < 6; ++f) {
+            couplings += faces[f];
+            onDomainBoundary = onDomainBoundary || !inside[f];
+            isCut = isCut || (inside[f] && faces[f] < fullCoupling * (1.0 - 1e-12));
+          }
+          // A Dirichlet part away from the domain sides is a free-surface face.
+          isCut = isCut || (!onDomainBoundary && d > couplings * (1.0 + 1e-12));
+          cut[c0 + i] = isCut ? 1 : 0;
+        }
       }
-    }
+    });
+    // Serial, rows in order, so the lists (and the sweeps' results) never depend on the workers
+    // or on the slabs.
+    passes->addSerial(s.rows(), s.nx, [s, cut, byColour](int64_t begin, int64_t end) {
+      const int64_t step[6] = {-1, 1, -s.nx, s.nx, -s.sz, s.sz};
+      for (int64_t row = begin; row < end; ++row) {
+        const int64_t j = row % s.ny, k = row / s.ny;
+        for (int64_t i = 0; i < s.nx; ++i) {
+          const int64_t c = i + s.nx * row;
+          if (!(s.diagonal[c] > 0.0)) continue;
+          const bool inside[6] = {i > 0, i + 1 < s.nx, j > 0, j + 1 < s.ny, k > 0, k + 1 < s.nz};
+          bool near = cut[c] != 0;
+          for (int f = 0; f < 6; ++f) near = near || (inside[f] && cut[c + step[f]]);
+          if (!near) continue;
+          const Row<double> r(s, j, k, nullptr);
+          const double faces[6] = {r.cu[i], r.cu[i + 1], r.cvLow[i], r.cvHigh[i], r.cwLow[i], r.cwHigh[i]};
+          BoundaryCell e;
+          e.cell = static_cast<int32_t>(c);
+          // Domain-side faces hold coupling 0 already (cut_cell_poisson.h); `inside` makes sure.
+          for (int f = 0; f < 6; ++f) e.coupling[f] = inside[f] ? static_cast<float>(faces[f]) : 0.0f;
+          e.inverseDiagonal = static_cast<float>(1.0 / s.diagonal[c]);
+          (*byColour)[static_cast<size_t>((i + j + k) & 1)].push_back(e);
+        }
+      }
+    });
+  });
 }
 
 template <class T>

@@ -62,45 +62,47 @@ void gatherRows(const AxisWeights& w, int64_t count, const Line& line, T* out) {
   }
 }
 
-// Calls body(fine cell, coarse index, weight) for the 8 stencil entries of every fluid fine
-// cell, in parallel over fine rows.
-template <class Body>
-void forEachFineStencil(TaskSystem& tasks, const CutCellPoisson& fine, const CutCellPoisson& coarse,
-                        const TransferSides& sides, const Body& body) {
-  const int64_t nx = fine.grid.nx, ny = fine.grid.ny, nz = fine.grid.nz;
-  const int64_t cx = coarse.grid.nx, cy = coarse.grid.ny, cz = coarse.grid.nz;
-  parallelFor(tasks, ny * nz, kRowGrain, [&](int64_t begin, int64_t end) {
-    for (int64_t row = begin; row < end; ++row) {
-      const int64_t j = row % ny, k = row / ny;
-      const AxisStencil sy(j, cy, sides, 1), sz(k, cz, sides, 2);
-      for (int64_t i = 0; i < nx; ++i) {
-        const int64_t c = i + nx * row;
-        if (!(fine.diagonal[static_cast<size_t>(c)] > 0.0)) continue;
-        const AxisStencil sx(i, cx, sides, 0);
-        for (int z = 0; z < 2; ++z)
-          for (int y = 0; y < 2; ++y) {
-            const double pyz = sy.presence[y] * sz.presence[z];
-            const int64_t base = cx * (sy.index[y] + cy * sz.index[z]);
-            body(c, base + sx.index[0], pyz * sx.presence[0]);
-            body(c, base + sx.index[1], pyz * sx.presence[1]);
-          }
-      }
-    }
-  });
-}
-
 }  // namespace
 
 void computeProlongationScale(TaskSystem& tasks, const CutCellPoisson& fine, const CutCellPoisson& coarse,
                               const TransferSides& sides, std::vector<double>* scale) {
-  const int64_t cells = static_cast<int64_t>(fine.diagonal.size());
-  std::vector<double>& s = *scale;
-  s.assign(static_cast<size_t>(cells), 0.0);
-  forEachFineStencil(tasks, fine, coarse, sides, [&](int64_t c, int64_t coarseCell, double w) {
-    if (coarse.diagonal[static_cast<size_t>(coarseCell)] > 0.0) s[static_cast<size_t>(c)] += w;
-  });
-  parallelFor(tasks, cells, 4096, [&](int64_t begin, int64_t end) {
-    for (int64_t c = begin; c < end; ++c) s[static_cast<size_t>(c)] = s[c] > 0.0 ? 1.0 / s[c] : 0.0;
+  SlabPasses passes(tasks);
+  appendComputeProlongationScale(fine, coarse, sides, scale, &passes);
+  passes.runAll();
+}
+
+void appendComputeProlongationScale(const CutCellPoisson& fine, const CutCellPoisson& coarse,
+                                    const TransferSides& sides, std::vector<double>* scale, SlabPasses* passes) {
+  const CutCellPoisson* fp = &fine;
+  const CutCellPoisson* cp = &coarse;
+  passes->addStep([fp, cp, sides, scale, passes] {
+    const int64_t nx = fp->grid.nx, ny = fp->grid.ny, nz = fp->grid.nz;
+    scale->resize(static_cast<size_t>(nx * ny * nz));
+    // Per fine row: each cell's sum of the weights of its fluid coarse neighbours (the 8
+    // stencil entries), then its inverse.
+    passes->addParallel(ny * nz, nx, kRowGrain, [=](int64_t begin, int64_t end) {
+      const int64_t cx = cp->grid.nx, cy = cp->grid.ny, cz = cp->grid.nz;
+      double* s = scale->data();
+      for (int64_t row = begin; row < end; ++row) {
+        const int64_t j = row % ny, k = row / ny;
+        const AxisStencil sy(j, cy, sides, 1), sz(k, cz, sides, 2);
+        for (int64_t i = 0; i < nx; ++i) {
+          const int64_t c = i + nx * row;
+          double sum = 0.0;
+          if (fp->diagonal[static_cast<size_t>(c)] > 0.0) {
+            const AxisStencil sx(i, cx, sides, 0);
+            for (int z = 0; z < 2; ++z)
+              for (int y = 0; y < 2; ++y) {
+                const double pyz = sy.presence[y] * sz.presence[z];
+                const int64_t base = cx * (sy.index[y] + cy * sz.index[z]);
+                for (int x = 0; x < 2; ++x)
+                  if (cp->diagonal[static_cast<size_t>(base + sx.index[x])] > 0.0) sum += pyz * sx.presence[x];
+              }
+          }
+          s[c] = sum > 0.0 ? 1.0 / sum : 0.0;
+        }
+      }
+    });
   });
 }
 
@@ -109,7 +111,6 @@ void prolongateAdd(TaskSystem& tasks, const CutCellPoisson& fine, const CutCellP
                    const TransferSides& sides, const T* scale, const T* coarseX, T* fineX) {
   const int64_t nx = fine.grid.nx, ny = fine.grid.ny, nz = fine.grid.nz;
   const int64_t cx = coarse.grid.nx, cy = coarse.grid.ny, cz = coarse.grid.nz;
-  // Written out rather than through forEachFineStencil: the sum stays in a register.
   parallelFor(tasks, ny * nz, kRowGrain, [&](int64_t begin, int64_t end) {
     for (int64_t row = begin; row < end; ++row) {
       const int64_t j = row % ny, k = row / ny;

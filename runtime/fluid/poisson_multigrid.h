@@ -34,6 +34,7 @@
 #include "core/task_system.h"
 #include "fluid/cut_cell_poisson.h"
 #include "fluid/mac_grid.h"
+#include "fluid/multigrid_coarsening.h"
 #include "fluid/multigrid_smoother.h"
 #include "fluid/multigrid_transfer.h"
 
@@ -71,6 +72,8 @@ struct PoissonMultigrid {
   std::vector<std::vector<float>> x, b, r;            // per level; level 0: the caller's r and z
   std::vector<float> restrictScratch;
   std::vector<double> scaleScratch;
+  CoarseningScratch coarseningScratch;
+  std::vector<uint8_t> boundaryScratch;
 
   int levelCount() const { return 1 + static_cast<int>(coarse.size()); }
 };
@@ -79,6 +82,17 @@ struct PoissonMultigrid {
 // coarsening's coarse faces. Rebuild whenever the fine operator changes.
 Status buildPoissonMultigrid(TaskSystem& tasks, const CutCellPoisson& fine, const std::array<DomainSide, 6>& sides,
                              const MultigridSettings& settings, PoissonMultigrid* multigrid);
+
+// What buildPoissonMultigrid checks of the settings and of the fine grid's size.
+Status checkPoissonMultigrid(const MacGridSpec& fineGrid, const MultigridSettings& settings);
+
+// buildPoissonMultigrid as passes (cut_cell_poisson.h's SlabPasses; settings checked), per
+// coarse level: its coarsening (multigrid_coarsening.h) and prolongation scales in slabs of
+// rows; then per level the single-precision copy in slabs of values and the boundary cells
+// (multigrid_smoother.h). Nothing of `fine` is read before the first pass runs, so fine may
+// be built by the passes before them; fine and multigrid must outlive the passes.
+void appendBuildPoissonMultigrid(const CutCellPoisson& fine, const std::array<DomainSide, 6>& sides,
+                                 const MultigridSettings& settings, PoissonMultigrid* multigrid, SlabPasses* passes);
 
 // z = M r (one V-cycle); r and z have fine.cellCount entries and must not alias.
 void applyPoissonMultigrid(TaskSystem& tasks, const CutCellPoisson& fine, PoissonMultigrid& multigrid,

@@ -83,27 +83,75 @@ Status projectVelocity(TaskSystem& tasks, MacGrid& grid, const FaceFractionField
                        PressureState& warmStart, PressureSolveStats* stats,
                        const double* liquidPhi = nullptr);
 
-// The same projection in slices, for a fluid step spread over several frames: begin (operator,
-// preconditioner, right-hand side, first residual), one CG iteration per iterate(), then
-// finish (velocity update). The deadline is the caller's: the solve stops only at the
-// tolerance or maxIterations, so the result does not depend on where the calls are split.
-// Everything passed to begin must outlive the run and stay untouched until finish.
+// The same projection in slices, for a fluid step spread over several frames:
+//   prepare()                             checks and records the arguments, no heavy work
+//   advanceSetup() until it returns true  operator, preconditioner, right-hand side, CG start
+//   iterate() until it returns true       one CG iteration per call (solved() says whether done)
+//   advanceFinish() until it returns true the velocity update; then stats()
+// begin() and finish() are the setup and the finish in one call each (projectVelocity uses
+// them), running the same passes. The deadline is the caller's: the solve stops only at the
+// tolerance or maxIterations, and no pass's results depend on where slices are cut (nor on
+// the worker count), so the projection is bitwise the same however it is sliced.
+//
+// A setup or finish slice runs passes (cut_cell_poisson.h's SlabPasses) up to samplesPerSlice
+// samples, and at least one unit of a pass. Samples are cells or faces, except that a coarse
+// cell whose pass reads its children counts their 8. The passes, in order, and their units:
+//   unless the operator is kept (operatorUnchanged):
+//     operator (cut_cell_poisson.h)  couplings: face rows per axis; diagonal: cells;
+//                                    region labels: cells, in two scans in cell order;
+//                                    row spans: rows
+//     Mic0Pcg: MIC(0) factorization  ONE unit of all cells (a serial dependency chain through
+//                                    the grid, and only the baseline)
+//     multigrid (poisson_multigrid.h), per coarse level: its coarsening (faces per axis, free
+//                                    surface, Dirichlet parts, diagonal, regions, row spans)
+//                                    and prolongation scales: rows; then per level its single-
+//                                    precision copy: values; its boundary cells: rows
+//   right-hand side and the pressure cleared off fluid: cells
+//   CG start                         ONE unit of all cells: the first residual, a
+//                                    preconditioner application and the norms, like an
+//                                    iteration (its global sums stay whole)
+// Finish: the velocity update: face rows per axis.
+// Everything passed to prepare must outlive the run and stay untouched until the finish's
+// last slice; the run must not move in between.
 class PressureProjectionRun {
  public:
-  Status begin(TaskSystem& tasks, MacGrid& grid, const FaceFractionField& fractions, double dt, double density,
-               const PressureSolveSettings& settings, PressureState& state, const double* liquidPhi = nullptr);
+  // samplesPerSlice >= 1 bounds the setup and finish slices.
+  Status prepare(TaskSystem& tasks, MacGrid& grid, const FaceFractionField& fractions, double dt, double density,
+                 const PressureSolveSettings& settings, PressureState& state, const double* liquidPhi,
+                 int64_t samplesPerSlice);
+  // One setup slice; true when the setup is done (the CG has started).
+  bool advanceSetup();
   // One CG iteration; true when the solve has ended.
   bool iterate() { return cg_->iterate(); }
-  bool solved() const { return cg_->finished(); }
+  bool solved() const { return cg_ != nullptr && cg_->finished(); }
+  // One finish slice (after the solve); true when the velocity is updated.
+  bool advanceFinish();
+  // After the finish (budgetCut is the caller's, false here).
+  PressureSolveStats stats() const;
+  // Of the last setup or finish slice: its samples, and the units of passes it ran. A slice
+  // exceeds samplesPerSlice only when it is one unit.
+  int64_t lastSliceSamples() const { return passes_.lastSliceSamples(); }
+  int64_t lastSliceUnits() const { return passes_.lastSliceUnits(); }
+
+  // prepare without a bound, then the whole setup.
+  Status begin(TaskSystem& tasks, MacGrid& grid, const FaceFractionField& fractions, double dt, double density,
+               const PressureSolveSettings& settings, PressureState& state, const double* liquidPhi = nullptr);
+  // The whole finish; stats may be null.
   void finish(PressureSolveStats* stats);
 
  private:
+  void appendSetup(const PressureSolveSettings& settings, bool keepOperator);
+  void updateVelocityRows(int axis, int64_t begin, int64_t end);
+
   TaskSystem* tasks_ = nullptr;
   MacGrid* grid_ = nullptr;
   const FaceFractionField* fractions_ = nullptr;
   PressureState* state_ = nullptr;
   const double* liquidPhi_ = nullptr;
   double dt_ = 0.0, density_ = 0.0;
+  int64_t samplesPerSlice_ = 0;
+  bool finishing_ = false;  // passes_ holds the finish
+  SlabPasses passes_;
   LinearSystem system_;
   std::unique_ptr<ConjugateGradientRun> cg_;
 };

@@ -20,7 +20,8 @@
 // which linear extrapolation over several layers would amplify.
 //
 // Parallel and deterministic: within a layer every target reads only faces of earlier layers
-// and writes only itself (its mark is set after the layer's scan).
+// and writes only itself (its mark is set after the scan of its slab of rows, to the layer's
+// own number, which no face of the layer takes as a source).
 #pragma once
 
 #include <cstdint>
@@ -39,6 +40,9 @@ struct VelocityExtrapolationSettings {
   // Open liquid faces less open than this are targets, not known: a sliver's projected
   // velocity is barely constrained by the solve (fluid_actor.cpp).
   double minSourceOpenFraction = 0.0;
+  // true: targets beyond the layers get velocity 0 (air faces out of the liquid's reach are
+  // never projected; left alone they would gather gravity step after step).
+  bool zeroUnreached = false;
 };
 
 // Per face after a call: 0 known, 1 .. layers the layer that set it, kExtrapolationUnreached
@@ -51,9 +55,52 @@ struct VelocityExtrapolationState {
   std::vector<uint8_t> mark[3];
 };
 
-// liquidPhi: cellCount values (free_surface.h). layers in [0, 250].
+// liquidPhi: cellCount values (free_surface.h). layers in [0, 250]. Runs
+// VelocityExtrapolationRun in one slice.
 Status extrapolateVelocity(TaskSystem& tasks, MacGrid& grid, const FaceFractionField& fractions,
                            const double* liquidPhi, const VelocityExtrapolationSettings& settings,
                            VelocityExtrapolationState& state);
+
+// extrapolateVelocity in slices, bitwise the same result however it is sliced and on any
+// number of workers. Every pass (the marks, each layer of each axis, the zeroing) computes a
+// face from values no other face of the pass writes, so a pass's face rows are cut into slabs
+// of consecutive rows. A slice does at most samplesPerSlice faces (one row at least) and runs
+// on into the next pass when one ends, so slices cost about the same throughout. A layer's
+// marks are set after each slab's scan: a face set by layer L is marked L, which the rest of
+// the layer does not take as a source (it takes marks < L), however the layer is cut.
+// prepare() checks the arguments and sizes the marks but reads no values, so it may run before
+// earlier work on the velocities. Between prepare() and the last slice, grid.velocity and the
+// marks belong to the run, and the fractions and liquidPhi must stay as they are. A run kept
+// from step to step reuses its storage.
+class VelocityExtrapolationRun {
+ public:
+  Status prepare(TaskSystem& tasks, MacGrid& grid, const FaceFractionField& fractions, const double* liquidPhi,
+                 const VelocityExtrapolationSettings& settings, VelocityExtrapolationState& state,
+                 int64_t samplesPerSlice);
+  // Runs one slice; true once all is done (also after a failed or missing prepare()).
+  bool advance();
+  bool done() const { return pass_ == Pass::Done; }
+  int64_t lastSliceSamples() const { return lastSliceSamples_; }
+
+ private:
+  enum class Pass : uint8_t { Mark, Layer, Zero, Done };
+  void markRows(int64_t begin, int64_t end);
+  void extrapolateRows(int64_t begin, int64_t end);
+  void zeroRows(int64_t begin, int64_t end);
+  void nextAxis();
+
+  TaskSystem* tasks_ = nullptr;
+  MacGrid* grid_ = nullptr;
+  const FaceFractionField* fractions_ = nullptr;
+  const double* liquidPhi_ = nullptr;
+  VelocityExtrapolationSettings settings_;
+  VelocityExtrapolationState* state_ = nullptr;
+  int64_t samplesPerSlice_ = 1, lastSliceSamples_ = 0;
+  Pass pass_ = Pass::Done;
+  int axis_ = 0, layer_ = 0;
+  int64_t row_ = 0;         // next face row of the axis (rows are numbered j + dims.y * k)
+  int64_t layerFaces_ = 0;  // faces the running layer has set
+  std::vector<std::vector<int64_t>> assigned_;  // per chunk of a slab: the faces it set
+};
 
 }  // namespace vp
