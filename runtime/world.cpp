@@ -350,24 +350,21 @@ void World::stepFluids(double dt, const Deadline& frame, bool floorsHeld, StepSt
   for (FluidHandle h : handles) priorities.push_back(fluid(h)->desc().priority);
   std::vector<ActorStats> actors(handles.size());
   std::vector<SliceBudget> budgets(handles.size());
-  // Which fluids run this frame, by priority: those with time, and those their rate cap forces.
-  std::vector<int> served;
+  // No time for the fluids when the frame is spent, or when a deformable ended above its
+  // floor (the floors come first); a fluid then runs only what its rate cap forces.
+  const bool noTime = !frame.unlimited() && (!floorsHeld || frame.remainingMs() <= 0.0);
+  std::vector<int> served;  // by priority
   for (int i : FramePlan::byPriority(priorities)) {
     FluidActor& f = *fluid(handles[i]);
     ActorSchedule& s = f.schedule();
     s.pendingDt += dt;
     actors[i] = actorStats(ActorKind::Fluid, handles[i].index1, handles[i].generation, priorities[i], 0.0);
     actors[i].interval = s.interval;
+    actors[i].progress = f.progress();
     FramePlan::Fluid planned{priorities[i], &s, f.lastStepSlices(), f.stepInProgress() ? f.stepSlicesRun() : 0};
     budgets[i].minSlices = FramePlan::fluidMinSlices(planned);
-    // A deformable above its floor this frame: the floors come first.
-    const bool noTime = !frame.unlimited() && (!floorsHeld || frame.remainingMs() <= 0.0);
-    if (budgets[i].minSlices == 0 && noTime) {
-      ++s.stepFrames;
-      actors[i].progress = f.progress();
-      continue;  // its step waits for the next frame
-    }
-    if (noTime) budgets[i].share = frame.within(0.0);
+    ++s.stepFrames;
+    if (noTime && budgets[i].minSlices == 0) continue;  // its step waits for the next frame
     served.push_back(i);
   }
   const bool concurrent = runsConcurrently(static_cast<int>(served.size()));
@@ -376,7 +373,9 @@ void World::stepFluids(double dt, const Deadline& frame, bool floorsHeld, StepSt
     FluidActor& f = *fluid(handles[i]);
     ActorSchedule& s = f.schedule();
     SliceBudget& budget = budgets[i];
-    if (budget.share.unlimited() && !frame.unlimited()) {
+    if (noTime) {
+      budget.share = frame.within(0.0);
+    } else if (!frame.unlimited()) {
       // Side by side, each has the rest of the frame; in turn, its share of what is left.
       int equals = 0;
       bool lowerAfter = false;
@@ -386,18 +385,18 @@ void World::stepFluids(double dt, const Deadline& frame, bool floorsHeld, StepSt
       }
       budget.share = concurrent ? frame.share(1.0) : FramePlan::fluidShare(frame, s, equals, lowerAfter);
     }
-    FluidStepInput input;
+    FluidStepInput input;  // read only when a step begins
     if (!f.stepInProgress()) {
       input.dt = s.pendingDt;
+      input.gravity = config_.gravity;
+      input.tasks = tasks_.get();
+      input.colliders = colliders;
       s.pendingDt = 0.0;
       s.stepMs = 0.0;
     }
-    input.gravity = config_.gravity;
-    input.tasks = tasks_.get();
-    input.colliders = colliders;
     ActorStats& a = actors[i];
     const double start = frame.elapsedMs();
-    a.completedStep = f.advance(input, budget, &a);
+    f.advance(input, budget, &a);
     a.totalMs = frame.elapsedMs() - start;
   });
   for (int i : served) {
@@ -406,7 +405,6 @@ void World::stepFluids(double dt, const Deadline& frame, bool floorsHeld, StepSt
     ActorStats& a = actors[i];
     stats->maxSliceMs = std::max(stats->maxSliceMs, f.maxSliceMs());
     if (budgets[i].minSlices > 0 && a.slices > 0 && (frame.expired() || !floorsHeld)) stats->budgetInfeasible = true;
-    ++s.stepFrames;
     s.stepMs += a.totalMs;
     if (a.completedStep) {
       // Frames since the last completed step, the waiting ones included.

@@ -333,9 +333,7 @@ double FluidActor::maxSpeed(TaskSystem& tasks) const {
 }
 
 void FluidActor::step(const FluidStepInput& input, ActorStats* stats, std::vector<FluidColliderLoad>* loads) {
-  SliceBudget unlimited;
-  unlimited.minSlices = std::numeric_limits<int>::max();
-  while (!advance(input, unlimited, stats)) {
+  while (!advance(input, SliceBudget{}, stats)) {  // an unlimited share: one call
   }
   if (loads != nullptr) loads->insert(loads->end(), shown_.loads.begin(), shown_.loads.end());
 }
@@ -347,9 +345,10 @@ bool FluidActor::advance(const FluidStepInput& input, const SliceBudget& budget,
   int ran = 0;
   maxSliceMs_ = 0.0;
   while (!job_.done()) {
-    // A slice of a kind never measured is expected to cost nothing: it runs while any time is left.
+    // A slice of a kind never measured is expected to cost nothing: it runs while any time is
+    // left (an unlimited share has infinite time left).
     const double remaining = budget.share.remainingMs();
-    const bool fits = budget.share.unlimited() || (remaining > 0.0 && remaining >= job_.expectedNextMs());
+    const bool fits = remaining > 0.0 && remaining >= job_.expectedNextMs();
     if (!fits && ran >= budget.minSlices) break;
     const FluidSlice kind = static_cast<FluidSlice>(job_.nextKind());
     const double ms = job_.runNext(clock);

@@ -58,7 +58,7 @@ struct CoarseningScratch {
   std::vector<uint8_t> fluid;
 };
 
-// The coarsenings as passes (cut_cell_poisson.h's SlabPasses), each in slabs of coarse rows
+// The coarsenings as passes (core/slab_passes.h), each in slabs of coarse rows
 // (cut-cell: the faces per axis, the free surface's level set then its terms, the Dirichlet
 // parts; voxel: the labels, the couplings cleared, the couplings and Dirichlet parts), then
 // the diagonal and labelFluidRegions' and computeRowSpans' passes. Nothing of `fine` is read

@@ -74,7 +74,7 @@ void smoothRedBlackCells(TaskSystem& tasks, const PoissonCoefficients<float>& op
 // poorly represented by the coarse levels, and their number grows with the surface.
 void findBoundaryCells(TaskSystem& tasks, const CutCellPoisson& op, double fullCoupling,
                        BoundaryCellLists* byColour);
-// The same as passes (cut_cell_poisson.h's SlabPasses): the cut flags (into `cut`, one per
+// The same as passes (core/slab_passes.h): the cut flags (into `cut`, one per
 // cell) in slabs of rows, then the lists in rows taken in order. Nothing is read before the
 // first pass runs; the arguments must outlive the passes.
 void appendFindBoundaryCells(const CutCellPoisson& op, double fullCoupling, BoundaryCellLists* byColour,

@@ -31,7 +31,7 @@ struct TransferSides {
 // Per fine cell: 1 / S_i, 0 on non-fluid fine cells and where no coarse neighbour is fluid.
 void computeProlongationScale(TaskSystem& tasks, const CutCellPoisson& fine, const CutCellPoisson& coarse,
                               const TransferSides& sides, std::vector<double>* scale);
-// The same as passes (cut_cell_poisson.h's SlabPasses), in slabs of fine rows; nothing is read
+// The same as passes (core/slab_passes.h), in slabs of fine rows; nothing is read
 // before the first runs. The arguments must outlive the passes.
 void appendComputeProlongationScale(const CutCellPoisson& fine, const CutCellPoisson& coarse,
                                     const TransferSides& sides, std::vector<double>* scale, SlabPasses* passes);

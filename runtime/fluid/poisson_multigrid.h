@@ -86,7 +86,7 @@ Status buildPoissonMultigrid(TaskSystem& tasks, const CutCellPoisson& fine, cons
 // What buildPoissonMultigrid checks of the settings and of the fine grid's size.
 Status checkPoissonMultigrid(const MacGridSpec& fineGrid, const MultigridSettings& settings);
 
-// buildPoissonMultigrid as passes (cut_cell_poisson.h's SlabPasses; settings checked), per
+// buildPoissonMultigrid as passes (core/slab_passes.h; settings checked), per
 // coarse level: its coarsening (multigrid_coarsening.h) and prolongation scales in slabs of
 // rows; then per level the single-precision copy in slabs of values and the boundary cells
 // (multigrid_smoother.h). Nothing of `fine` is read before the first pass runs, so fine may

@@ -93,7 +93,7 @@ Status projectVelocity(TaskSystem& tasks, MacGrid& grid, const FaceFractionField
 // tolerance or maxIterations, and no pass's results depend on where slices are cut (nor on
 // the worker count), so the projection is bitwise the same however it is sliced.
 //
-// A setup or finish slice runs passes (cut_cell_poisson.h's SlabPasses) up to samplesPerSlice
+// A setup or finish slice runs passes (core/slab_passes.h) up to samplesPerSlice
 // samples, and at least one unit of a pass. Samples are cells or faces, except that a coarse
 // cell whose pass reads its children counts their 8. The passes, in order, and their units:
 //   unless the operator is kept (operatorUnchanged):
