@@ -45,7 +45,11 @@ int FramePlan::fluidMinSlices(const Fluid& f) {
   // At the cap the step ends whatever it costs (it may need more slices than the last one).
   if (framesAfterThis >= kMaxInterval) return std::numeric_limits<int>::max();
   if (f.expectedSlices <= 0) return 0;
-  const double due = std::ceil(static_cast<double>(f.expectedSlices) * framesAfterThis / kMaxInterval);
+  // Paced to end a frame before the cap, so a step that needs more slices than the last one
+  // (more iterations, smaller slabs) has a frame to spread them over.
+  const int paceFrames = kMaxInterval - 1;
+  const double due =
+      std::ceil(static_cast<double>(f.expectedSlices) * std::min(framesAfterThis, paceFrames) / paceFrames);
   return std::max(0, static_cast<int>(due) - f.slicesDone);
 }
 

@@ -59,6 +59,11 @@ class FramePlan {
     return average < 0.0 ? sample : average + kSmoothing * (sample - average);
   }
 
+  // Slab slices are sized (core/slice_sizer.h) to last about this part of the frame budget,
+  // so one slice stays well under the budget's quarter that a frame may overrun by.
+  static constexpr double kSliceFraction = 1.0 / 8.0;
+  static double targetSliceMs(double budgetMs) { return budgetMs > 0.0 ? kSliceFraction * budgetMs : 0.0; }
+
   // A deformable as the plan sees it this frame.
   struct Deformable {
     int priority = 0;

@@ -6,6 +6,7 @@
 
 #include "core/log.h"
 #include "core/parallel_for.h"
+#include "core/run_delay.h"
 
 namespace vp {
 
@@ -148,13 +149,32 @@ Status World::step(double dt) {
   stats.dt = dt;
   stats.budgetMs = config_.frameBudgetMs;
   stats.colliderCount = static_cast<int>(colliders_.size());
+  const double runDelayAtStart = poolRunDelayMs();
   stepRigidBodies(dt, frame, &stats);
   const bool floorsHeld = stepDeformables(dt, frame, &stats);
   stepFluids(dt, frame, floorsHeld, &stats);
   finishStats(frame, &stats);
+  balanceWorkers(frame, runDelayAtStart);
   stats_ = std::move(stats);
   stepping_.store(false, std::memory_order_release);
   return Status::Ok;
+}
+
+double World::poolRunDelayMs() const {
+  const double workers = tasks_->workerRunDelayMs();
+  const double caller = threadRunDelayMs();
+  return workers < 0.0 || caller < 0.0 ? -1.0 : workers + caller;
+}
+
+void World::balanceWorkers(const Deadline& frame, double runDelayAtStart) {
+  if (runDelayAtStart < 0.0) return;  // no statistics: the workers stay on
+  const double delay = poolRunDelayMs();
+  const bool used = tasks_->workerCount() > 1;
+  const bool on = contention_.noteFrame(frame.elapsedMs(), delay < 0.0 ? -1.0 : delay - runDelayAtStart, used);
+  if (on != used) {
+    log(LogLevel::Debug, "worker threads %s", on ? "back on (probe)" : "off: the cores are busy with other work");
+    tasks_->setWorkersEnabled(on);
+  }
 }
 
 namespace {
@@ -363,6 +383,7 @@ void World::stepFluids(double dt, const Deadline& frame, bool floorsHeld, StepSt
     actors[i].progress = f.progress();
     FramePlan::Fluid planned{priorities[i], &s, f.lastStepSlices(), f.stepInProgress() ? f.stepSlicesRun() : 0};
     budgets[i].minSlices = FramePlan::fluidMinSlices(planned);
+    budgets[i].targetSliceMs = FramePlan::targetSliceMs(stats->budgetMs);
     ++s.stepFrames;
     if (noTime && budgets[i].minSlices == 0) continue;  // its step waits for the next frame
     served.push_back(i);

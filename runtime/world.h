@@ -12,6 +12,7 @@
 #include "core/budget_clock.h"
 #include "core/slot_map.h"
 #include "core/task_system.h"
+#include "core/worker_contention.h"
 #include "deform/deformable_body.h"
 #include "fluid/fluid_actor.h"
 #include "frame_plan.h"
@@ -92,12 +93,17 @@ class World {
   // Actors that do not depend on each other in a stage run side by side on the worker pool,
   // each its own parallel loops inline, when there are at least two and no more than workers.
   bool runsConcurrently(int actors) const;
+  // The built-in pool's workers go off while other work keeps the cores busy
+  // (core/worker_contention.h); the run delay is that of the pool's threads and the caller.
+  double poolRunDelayMs() const;
+  void balanceWorkers(const Deadline& frame, double runDelayAtStart);
   template <class Work>
   void runActors(bool concurrent, int count, const Work& work);
   ActorStats actorStats(ActorKind kind, uint32_t index1, uint32_t generation, int priority, double dt) const;
 
   WorldConfig config_;
   std::unique_ptr<TaskSystem> tasks_;
+  WorkerContention contention_;
   CollisionWorld collision_;
   SlotMap<Collider> colliders_;
   SlotMap<DeformableBody> deformables_;

@@ -7,6 +7,8 @@
 #include <thread>
 #include <vector>
 
+#include "core/run_delay.h"
+
 namespace vp {
 namespace {
 
@@ -69,8 +71,10 @@ class HostTaskSystem final : public TaskSystem {
 // world.
 class ThreadPool final : public TaskSystem {
  public:
-  explicit ThreadPool(int workers) : workers_(workers) {
+  explicit ThreadPool(int workers) : workers_(workers), delays_(static_cast<size_t>(workers)) {
     for (int w = 1; w < workers; ++w) threads_.emplace_back([this, w] { workerLoop(static_cast<uint32_t>(w)); });
+    // Each worker opens its own statistics first thing; wait for them so reads never race.
+    while (started_.load(std::memory_order_acquire) < workers - 1) std::this_thread::yield();
   }
   ~ThreadPool() override {
     {
@@ -84,7 +88,7 @@ class ThreadPool final : public TaskSystem {
   void run(TaskFn task, int32_t itemCount, int32_t minRange, void* context) override {
     if (itemCount <= 0) return;
     int32_t block = std::max<int32_t>(std::max(1, minRange), itemCount / (workers_ * 4));
-    if (t_insideTask || itemCount <= block) {
+    if (t_insideTask || !enabled_ || itemCount <= block) {
       task(0, itemCount, 0, context);
       return;
     }
@@ -107,7 +111,18 @@ class ThreadPool final : public TaskSystem {
       if (spin > kSpinLimit) std::this_thread::yield();
   }
 
-  int workerCount() const override { return workers_; }
+  int workerCount() const override { return enabled_ ? workers_ : 1; }
+
+  double workerRunDelayMs() const override {
+    double sum = 0.0;
+    for (size_t w = 1; w < delays_.size(); ++w) {
+      const double ms = delays_[w].readMs();
+      if (ms < 0.0) return -1.0;
+      sum += ms;
+    }
+    return sum;
+  }
+  void setWorkersEnabled(bool on) override { enabled_ = on; }
 
  private:
   // About 20-50 microseconds of polling: longer than the gap between a solver's passes,
@@ -123,6 +138,8 @@ class ThreadPool final : public TaskSystem {
   }
 
   void workerLoop(uint32_t worker) {
+    delays_[worker] = RunDelayReader::forThisThread();
+    started_.fetch_add(1, std::memory_order_release);
     uint64_t seen = 0;
     for (;;) {
       int spin = 0;
@@ -145,6 +162,9 @@ class ThreadPool final : public TaskSystem {
   }
 
   int workers_;
+  bool enabled_ = true;  // set by the calling thread between runs
+  std::vector<RunDelayReader> delays_;  // per worker; [0] (the caller) unused
+  std::atomic<int> started_{0};
   std::vector<std::thread> threads_;
   std::mutex mutex_;
   std::condition_variable wake_;

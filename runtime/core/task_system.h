@@ -25,7 +25,15 @@ class TaskSystem {
   virtual ~TaskSystem() = default;
   // Runs task over [0, itemCount) and returns when all of it has run.
   virtual void run(TaskFn task, int32_t itemCount, int32_t minRange, void* taskContext) = 0;
+  // The workers run() uses now (the calling thread included).
   virtual int workerCount() const = 0;
+
+  // Milliseconds the built-in pool's own threads have waited runnable for a CPU since they
+  // started (core/run_delay.h); < 0 where unknown (no statistics, or the host's threads).
+  virtual double workerRunDelayMs() const { return -1.0; }
+  // Whether run() hands items to the other workers (the default) or runs them all on the
+  // calling thread. Results are the same either way: item boundaries never depend on it.
+  virtual void setWorkersEnabled(bool) {}
 
   // workerCount includes the calling thread (1 = everything inline).
   static std::unique_ptr<TaskSystem> create(const TaskHooks& hooks, int workerCount);

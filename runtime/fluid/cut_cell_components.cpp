@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include "core/parallel_for.h"
@@ -261,85 +262,107 @@ bool sampleSplitCell(const PreparedCollider* const* colliders, int count, const 
   return true;
 }
 
-}  // namespace
-
-Status closeSplitCellPieces(TaskSystem& tasks, const PreparedCollider* const* colliders, int count, const Aabb& box,
-                            FaceFractionField* field, CutCellComponentStats* stats) {
-  if (field == nullptr) return fail(Status::InvalidArgument, "split cut cells: field is null");
-  if (count < 0 || (count > 0 && colliders == nullptr))
-    return fail(Status::InvalidArgument, "split cut cells: colliders null or count %d < 0", count);
-  if (stats != nullptr) *stats = CutCellComponentStats{};
-  if (count == 0 || box.empty()) return Status::Ok;
-  const MacGridSpec& g = field->grid;
-  // Decisions are made for the cells around the box; their neighbours (one more layer) are
-  // sampled too, since a face's decision reads both cells.
-  const CellBox apply = cellBoxAround(g, box, 0);
-  const CellBox sampled = cellBoxAround(g, box, 1);
-  if (apply.empty()) return Status::Ok;
-  const int rows = (sampled.hi[1] - sampled.lo[1] + 1) * (sampled.hi[2] - sampled.lo[2] + 1);
-  std::vector<std::vector<SplitCell>> rowSplits(static_cast<size_t>(rows));
-  std::vector<int64_t> rowCut(static_cast<size_t>(rows), 0);
-  FaceFractionField& f = *field;
-  std::vector<uint8_t> thin(static_cast<size_t>(count));
-  for (int c = 0; c < count; ++c) thin[static_cast<size_t>(c)] = minWidthLowerBound(*colliders[c]) < kThickWidthCells * g.h;
-  parallelFor(tasks, rows, 4, [&](int64_t begin, int64_t end) {
-    const PreparedCollider* near[kMaxColliders];
-    for (int64_t row = begin; row < end; ++row) {
-      const int j = sampled.lo[1] + static_cast<int>(row % (sampled.hi[1] - sampled.lo[1] + 1));
-      const int k = sampled.lo[2] + static_cast<int>(row / (sampled.hi[1] - sampled.lo[1] + 1));
-      for (int i = sampled.lo[0]; i <= sampled.hi[0]; ++i) {
-        bool allOpen = true, allClosed = true;
-        for (int face = 0; face < 6; ++face) {
-          const double o = faceOpen(f, i, j, k, face);
-          allOpen = allOpen && o >= 1.0;
-          allClosed = allClosed && o <= 0.0;
-        }
-        if (allOpen || allClosed) continue;
-        const Eigen::Vector3d low = g.origin + g.h * Eigen::Vector3d(i, j, k);
-        Aabb cellBounds;
-        cellBounds.lo = low;
-        cellBounds.hi = g.origin + g.h * Eigen::Vector3d(i + 1, j + 1, k + 1);
-        int n = 0;
-        bool anyThin = false;
-        for (int c = 0; c < count && n < kMaxColliders; ++c)
-          if (colliders[c]->bounds.overlaps(cellBounds)) {
-            near[n++] = colliders[c];
-            anyThin = anyThin || thin[static_cast<size_t>(c)];
-          }
-        // One thick collider splits the cell only around one of its edges (kThickWidthCells),
-        // unless a domain side closes the way round; several colliders can meet in a thin wall.
-        const bool onDomainSide =
-            i == 0 || j == 0 || k == 0 || i == g.nx - 1 || j == g.ny - 1 || k == g.nz - 1;
-        if (n == 0 || (n == 1 && !anyThin && !onDomainSide)) continue;
-        if (n == 1 && near[0]->shape.kind != ShapeKind::TriangleMesh && convexLeavesOnePiece(*near[0], low, g.h))
-          continue;
-        ++rowCut[static_cast<size_t>(row)];
-        SplitCell s;
-        s.cell = static_cast<int64_t>(cellIndex(g, i, j, k));
-        if (sampleSplitCell(near, n, g, Eigen::Vector3d(i, j, k), &s)) rowSplits[static_cast<size_t>(row)].push_back(s);
-      }
-    }
-  });
-  // Rows are in cell order (k, then j, then i), so the concatenation is sorted by cell.
-  std::vector<SplitCell> split;
-  int64_t cut = 0;
-  for (size_t r = 0; r < rowSplits.size(); ++r) {
-    split.insert(split.end(), rowSplits[r].begin(), rowSplits[r].end());
-    cut += rowCut[r];
+// One pass over a box: the cells' rows are sampled (in parallel: a row writes only its own
+// entries and reads face fractions the pass leaves alone), then the split cells' faces are
+// closed in cell order. Kept alive by the passes that use it.
+class SplitCellPass {
+ public:
+  SplitCellPass(const PreparedCollider* const* colliders, int count, const Aabb& box, FaceFractionField* field,
+                CutCellComponentStats* stats)
+      : colliders_(colliders), count_(count), field_(field), stats_(stats) {
+    const MacGridSpec& g = field->grid;
+    // Decisions are made for the cells around the box; their neighbours (one more layer) are
+    // sampled too, since a face's decision reads both cells.
+    apply_ = cellBoxAround(g, box, 0);
+    sampled_ = cellBoxAround(g, box, 1);
+    const int rows = apply_.empty() ? 0 : (sampled_.hi[1] - sampled_.lo[1] + 1) * (sampled_.hi[2] - sampled_.lo[2] + 1);
+    rowSplits_.resize(static_cast<size_t>(rows));
+    rowCut_.assign(static_cast<size_t>(rows), 0);
+    thin_.resize(static_cast<size_t>(count));
+    for (int c = 0; c < count; ++c)
+      thin_[static_cast<size_t>(c)] = minWidthLowerBound(*colliders[c]) < kThickWidthCells * g.h;
   }
-  auto findSplit = [&](int64_t cell) -> const SplitCell* {
-    auto it = std::lower_bound(split.begin(), split.end(), cell,
+  int64_t rows() const { return static_cast<int64_t>(rowSplits_.size()); }
+  int rowLength() const { return sampled_.hi[0] - sampled_.lo[0] + 1; }
+
+  void sampleRows(int64_t begin, int64_t end);
+  void closeMinorPieces();
+
+ private:
+  const SplitCell* findSplit(int64_t cell) const {
+    auto it = std::lower_bound(split_.begin(), split_.end(), cell,
                                [](const SplitCell& s, int64_t c) { return s.cell < c; });
-    return it != split.end() && it->cell == cell ? &*it : nullptr;
-  };
+    return it != split_.end() && it->cell == cell ? &*it : nullptr;
+  }
+
+  const PreparedCollider* const* colliders_;
+  int count_;
+  FaceFractionField* field_;
+  CutCellComponentStats* stats_;
+  CellBox apply_, sampled_;
+  std::vector<uint8_t> thin_;
+  std::vector<std::vector<SplitCell>> rowSplits_;
+  std::vector<int64_t> rowCut_;
+  std::vector<SplitCell> split_;
+};
+
+void SplitCellPass::sampleRows(int64_t begin, int64_t end) {
+  const MacGridSpec& g = field_->grid;
+  FaceFractionField& f = *field_;
+  const PreparedCollider* near[kMaxColliders];
+  for (int64_t row = begin; row < end; ++row) {
+    const int j = sampled_.lo[1] + static_cast<int>(row % (sampled_.hi[1] - sampled_.lo[1] + 1));
+    const int k = sampled_.lo[2] + static_cast<int>(row / (sampled_.hi[1] - sampled_.lo[1] + 1));
+    for (int i = sampled_.lo[0]; i <= sampled_.hi[0]; ++i) {
+      bool allOpen = true, allClosed = true;
+      for (int face = 0; face < 6; ++face) {
+        const double o = faceOpen(f, i, j, k, face);
+        allOpen = allOpen && o >= 1.0;
+        allClosed = allClosed && o <= 0.0;
+      }
+      if (allOpen || allClosed) continue;
+      const Eigen::Vector3d low = g.origin + g.h * Eigen::Vector3d(i, j, k);
+      Aabb cellBounds;
+      cellBounds.lo = low;
+      cellBounds.hi = g.origin + g.h * Eigen::Vector3d(i + 1, j + 1, k + 1);
+      int n = 0;
+      bool anyThin = false;
+      for (int c = 0; c < count_ && n < kMaxColliders; ++c)
+        if (colliders_[c]->bounds.overlaps(cellBounds)) {
+          near[n++] = colliders_[c];
+          anyThin = anyThin || thin_[static_cast<size_t>(c)];
+        }
+      // One thick collider splits the cell only around one of its edges (kThickWidthCells),
+      // unless a domain side closes the way round; several colliders can meet in a thin wall.
+      const bool onDomainSide = i == 0 || j == 0 || k == 0 || i == g.nx - 1 || j == g.ny - 1 || k == g.nz - 1;
+      if (n == 0 || (n == 1 && !anyThin && !onDomainSide)) continue;
+      if (n == 1 && near[0]->shape.kind != ShapeKind::TriangleMesh && convexLeavesOnePiece(*near[0], low, g.h))
+        continue;
+      ++rowCut_[static_cast<size_t>(row)];
+      SplitCell s;
+      s.cell = static_cast<int64_t>(cellIndex(g, i, j, k));
+      if (sampleSplitCell(near, n, g, Eigen::Vector3d(i, j, k), &s)) rowSplits_[static_cast<size_t>(row)].push_back(s);
+    }
+  }
+}
+
+void SplitCellPass::closeMinorPieces() {
+  const MacGridSpec& g = field_->grid;
+  FaceFractionField& f = *field_;
+  // Rows are in cell order (k, then j, then i), so the concatenation is sorted by cell.
+  int64_t cut = 0;
+  for (size_t r = 0; r < rowSplits_.size(); ++r) {
+    split_.insert(split_.end(), rowSplits_[r].begin(), rowSplits_[r].end());
+    cut += rowCut_[r];
+  }
   int64_t closed = 0, splitApplied = 0;
   const int cells[3] = {g.nx, g.ny, g.nz};
-  for (const SplitCell& s : split) {
+  for (const SplitCell& s : split_) {
     const int i = static_cast<int>(s.cell % g.nx), j = static_cast<int>((s.cell / g.nx) % g.ny),
               k = static_cast<int>(s.cell / (static_cast<int64_t>(g.nx) * g.ny));
     const int at[3] = {i, j, k};
     bool inApply = true;
-    for (int d = 0; d < 3; ++d) inApply = inApply && at[d] >= apply.lo[d] && at[d] <= apply.hi[d];
+    for (int d = 0; d < 3; ++d) inApply = inApply && at[d] >= apply_.lo[d] && at[d] <= apply_.hi[d];
     if (!inApply) continue;
     ++splitApplied;
     for (int face = 0; face < 6; ++face) {
@@ -360,11 +383,44 @@ Status closeSplitCellPieces(TaskSystem& tasks, const PreparedCollider* const* co
       }
     }
   }
-  if (stats != nullptr) {
-    stats->cutCells = cut;
-    stats->splitCells = splitApplied;
-    stats->closedFaces = closed;
+  if (stats_ != nullptr) {
+    stats_->cutCells = cut;
+    stats_->splitCells = splitApplied;
+    stats_->closedFaces = closed;
   }
+}
+
+Status checkSplitCellArgs(int count, const PreparedCollider* const* colliders, const FaceFractionField* field) {
+  if (field == nullptr) return fail(Status::InvalidArgument, "split cut cells: field is null");
+  if (count < 0 || (count > 0 && colliders == nullptr))
+    return fail(Status::InvalidArgument, "split cut cells: colliders null or count %d < 0", count);
+  return Status::Ok;
+}
+
+// A cell costs about this many of the samples that bound a slice when it is only checked
+// for cut faces; the few sampled on the node lattice cost far more, spread over the rows.
+constexpr int64_t kSamplesPerCell = 32;
+
+}  // namespace
+
+Status closeSplitCellPieces(TaskSystem& tasks, const PreparedCollider* const* colliders, int count, const Aabb& box,
+                            FaceFractionField* field, CutCellComponentStats* stats) {
+  SlabPasses passes(tasks);
+  VP_TRY(addSplitCellPasses(passes, colliders, count, box, field, stats));
+  passes.runAll();
+  return Status::Ok;
+}
+
+Status addSplitCellPasses(SlabPasses& passes, const PreparedCollider* const* colliders, int count, const Aabb& box,
+                          FaceFractionField* field, CutCellComponentStats* stats) {
+  VP_TRY(checkSplitCellArgs(count, colliders, field));
+  if (stats != nullptr) *stats = CutCellComponentStats{};
+  if (count == 0 || box.empty()) return Status::Ok;
+  auto pass = std::make_shared<SplitCellPass>(colliders, count, box, field, stats);
+  if (pass->rows() == 0) return Status::Ok;
+  passes.addParallel(pass->rows(), pass->rowLength() * kSamplesPerCell, 4,
+                     [pass](int64_t begin, int64_t end) { pass->sampleRows(begin, end); });
+  passes.addWhole(pass->rowLength() * pass->rows(), [pass] { pass->closeMinorPieces(); });
   return Status::Ok;
 }
 

@@ -54,6 +54,7 @@
 #include <cstdint>
 
 #include "collide/face_coverage.h"
+#include "core/slab_passes.h"
 #include "core/status.h"
 #include "core/task_system.h"
 #include "fluid/face_fraction_field.h"
@@ -73,5 +74,12 @@ struct CutCellComponentStats {
 // `stats` may be null.
 Status closeSplitCellPieces(TaskSystem& tasks, const PreparedCollider* const* colliders, int count, const Aabb& box,
                             FaceFractionField* field, CutCellComponentStats* stats);
+
+// The same as passes of bounded slices (core/slab_passes.h): the cells' rows are sampled in
+// parallel, then the faces are closed in one serial pass. The collider array, the colliders
+// and the field must stay as they are, but for earlier passes, until these have run; `stats`
+// (may be null) is filled by the last pass.
+Status addSplitCellPasses(SlabPasses& passes, const PreparedCollider* const* colliders, int count, const Aabb& box,
+                          FaceFractionField* field, CutCellComponentStats* stats);
 
 }  // namespace vp

@@ -89,25 +89,67 @@ int clampIndex(double x, int lo, int hi) {
   return static_cast<int>(x);
 }
 
+// The faces of one axis touching a box: rows along i, indexed by (j, k).
+struct FaceRows {
+  int axis = 0;
+  int lo[3] = {0, 0, 0}, hi[3] = {-1, -1, -1};  // inclusive
+  int64_t rows() const { return hi[0] < lo[0] ? 0 : int64_t(hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1); }
+  int rowLength() const { return hi[0] - lo[0] + 1; }
+};
+
+// Recomputing a face costs about this many of the samples that bound a slice (an advection
+// sample): a coverage evaluation per collider near it.
+constexpr int64_t kSamplesPerFace = 128;
+
+FaceRows faceRowsAround(const FaceFractionField& field, const Aabb& box, int axis) {
+  FaceRows r;
+  r.axis = axis;
+  if (box.empty()) return r;
+  const MacGridSpec& g = field.grid;
+  const Eigen::Vector3d lo = (box.lo - g.origin) / g.h, hi = (box.hi - g.origin) / g.h;
+  const Eigen::Vector3i dims = field.faceDims(axis);
+  for (int d = 0; d < 3; ++d) {
+    // Faces of axis a sit at integer coordinates along a, span [j, j+1] across; one extra
+    // face each side keeps the range conservative under rounding.
+    const double l = (d == axis) ? std::ceil(lo[d]) - 1.0 : std::ceil(lo[d]) - 2.0;
+    const double u = std::floor(hi[d]) + 1.0;
+    r.lo[d] = clampIndex(l, 0, dims[d] - 1);
+    r.hi[d] = clampIndex(u, 0, dims[d] - 1);
+  }
+  return r;
+}
+
+void recomputeRows(const PreparedCollider* const* colliders, int count, const FaceRows& r, int64_t begin,
+                   int64_t end, FaceFractionField* field) {
+  const int rowsPerK = r.hi[1] - r.lo[1] + 1;
+  for (int64_t row = begin; row < end; ++row) {
+    const int j = r.lo[1] + static_cast<int>(row % rowsPerK), k = r.lo[2] + static_cast<int>(row / rowsPerK);
+    for (int i = r.lo[0]; i <= r.hi[0]; ++i) recomputeFace(colliders, count, r.axis, i, j, k, field);
+  }
+}
+
 void recomputeBox(const PreparedCollider* const* colliders, int count, const Aabb& box,
                   FaceFractionField* field) {
-  if (box.empty()) return;
-  const MacGridSpec& g = field->grid;
-  const Eigen::Vector3d lo = (box.lo - g.origin) / g.h, hi = (box.hi - g.origin) / g.h;
   for (int a = 0; a < 3; ++a) {
-    const Eigen::Vector3i dims = field->faceDims(a);
-    int r0[3], r1[3];
-    for (int d = 0; d < 3; ++d) {
-      // Faces of axis a sit at integer coordinates along a, span [j, j+1] across; one extra
-      // face each side keeps the range conservative under rounding.
-      const double l = (d == a) ? std::ceil(lo[d]) - 1.0 : std::ceil(lo[d]) - 2.0;
-      const double u = std::floor(hi[d]) + 1.0;
-      r0[d] = clampIndex(l, 0, dims[d] - 1);
-      r1[d] = clampIndex(u, 0, dims[d] - 1);
-    }
-    for (int k = r0[2]; k <= r1[2]; ++k)
-      for (int j = r0[1]; j <= r1[1]; ++j)
-        for (int i = r0[0]; i <= r1[0]; ++i) recomputeFace(colliders, count, a, i, j, k, field);
+    const FaceRows r = faceRowsAround(*field, box, a);
+    recomputeRows(colliders, count, r, 0, r.rows(), field);
+  }
+}
+
+void addBoxPasses(SlabPasses& passes, const PreparedCollider* const* colliders, int count, const Aabb& box,
+                  FaceFractionField* field) {
+  for (int a = 0; a < 3; ++a) {
+    const FaceRows r = faceRowsAround(*field, box, a);
+    passes.addParallel(r.rows(), r.rowLength() * kSamplesPerFace, 1, [=](int64_t begin, int64_t end) {
+      recomputeRows(colliders, count, r, begin, end, field);
+    });
+  }
+}
+
+void openAllFaces(FaceFractionField* field) {
+  for (int a = 0; a < 3; ++a) {
+    std::fill(field->open[a].begin(), field->open[a].end(), 1.0);
+    std::fill(field->solidVelocity[a].begin(), field->solidVelocity[a].end(), 0.0);
   }
 }
 
@@ -158,10 +200,7 @@ Status initFaceFractionField(const MacGridSpec& grid, FaceFractionField* field) 
 Status computeFaceFractions(const PreparedCollider* const* colliders, int count,
                             FaceFractionField* field) {
   VP_TRY(checkArgs(colliders, count, field));
-  for (int a = 0; a < 3; ++a) {
-    std::fill(field->open[a].begin(), field->open[a].end(), 1.0);
-    std::fill(field->solidVelocity[a].begin(), field->solidVelocity[a].end(), 0.0);
-  }
+  openAllFaces(field);
   for (int c = 0; c < count; ++c) recomputeBox(colliders, count, colliders[c]->bounds, field);
   return Status::Ok;
 }
@@ -172,6 +211,26 @@ Status updateFaceFractions(const PreparedCollider* const* colliders, int count,
   VP_TRY(checkArgs(colliders, count, field));
   recomputeBox(colliders, count, oldBounds, field);
   recomputeBox(colliders, count, newBounds, field);
+  return Status::Ok;
+}
+
+Status addFaceFractionPasses(SlabPasses& passes, const PreparedCollider* const* colliders, int count,
+                             FaceFractionField* field) {
+  VP_TRY(checkArgs(colliders, count, field));
+  for (int a = 0; a < 3; ++a)
+    passes.addParallel(static_cast<int64_t>(field->open[a].size()), 1, 4096, [field, a](int64_t begin, int64_t end) {
+      std::fill(field->open[a].begin() + begin, field->open[a].begin() + end, 1.0);
+      std::fill(field->solidVelocity[a].begin() + begin, field->solidVelocity[a].begin() + end, 0.0);
+    });
+  for (int c = 0; c < count; ++c) addBoxPasses(passes, colliders, count, colliders[c]->bounds, field);
+  return Status::Ok;
+}
+
+Status addFaceFractionUpdatePasses(SlabPasses& passes, const PreparedCollider* const* colliders, int count,
+                                   const Aabb& oldBounds, const Aabb& newBounds, FaceFractionField* field) {
+  VP_TRY(checkArgs(colliders, count, field));
+  addBoxPasses(passes, colliders, count, oldBounds, field);
+  addBoxPasses(passes, colliders, count, newBounds, field);
   return Status::Ok;
 }
 

@@ -21,8 +21,9 @@
 //                     colliders' values weighted by their individual coverage.
 #pragma once
 
-#include "core/status.h"
 #include "collide/face_coverage.h"
+#include "core/slab_passes.h"
+#include "core/status.h"
 
 #include <vector>
 
@@ -59,5 +60,14 @@ Status computeFaceFractions(const PreparedCollider* const* colliders, int count,
 Status updateFaceFractions(const PreparedCollider* const* colliders, int count,
                            const Aabb& oldBounds, const Aabb& newBounds,
                            FaceFractionField* field);
+
+// The same two as passes of bounded slices (core/slab_passes.h), for a fluid step spread
+// over frames: one unit per row of faces, rows in parallel (a face's value depends on the
+// colliders only, so where slabs are cut changes nothing). The collider array, the colliders
+// and the field must stay as they are, but for these passes, until the passes have run.
+Status addFaceFractionPasses(SlabPasses& passes, const PreparedCollider* const* colliders, int count,
+                             FaceFractionField* field);
+Status addFaceFractionUpdatePasses(SlabPasses& passes, const PreparedCollider* const* colliders, int count,
+                                   const Aabb& oldBounds, const Aabb& newBounds, FaceFractionField* field);
 
 }  // namespace vp

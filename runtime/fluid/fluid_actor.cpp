@@ -34,6 +34,7 @@ Status FluidActor::create(FluidDesc desc, TaskSystem& tasks, std::unique_ptr<Flu
   std::unique_ptr<FluidActor> actor(new FluidActor(std::move(desc)));
   FluidActor& a = *actor;
   a.tasks_ = &tasks;
+  a.slabs_.assign(static_cast<size_t>(FluidSlice::Count), SliceSizer(a.desc_.solver.samplesPerSlice));
   VP_TRY(initMacGrid(a.desc_.grid, a.desc_.sides, &a.grid_));
   VP_TRY(initFaceFractionField(a.desc_.grid, &a.fractions_));
   const size_t cells = static_cast<size_t>(a.grid_.cellCount());
@@ -88,7 +89,7 @@ bool FluidActor::keepLevelSetHealthySlice() {
   StepInProgress& st = *step_;
   LevelSetUpkeep& u = st.levelSet;
   TaskSystem& tasks = *st.input.tasks;
-  const int64_t slice = desc_.solver.samplesPerSlice;
+  const int64_t slice = slabSamples(FluidSlice::LevelSet);
   auto failed = [&](const char* what, Status s) {
     if (ok(s)) return false;
     log(LogLevel::Error, "fluid '%s': %s failed: %s", desc_.name.c_str(), what, lastError());
@@ -146,7 +147,7 @@ bool FluidActor::extrapolateLiquidVelocitySlice() {
   StepInProgress& st = *step_;
   if (!st.extrapolating) {
     if (Status s = st.extrapolation.prepare(*st.input.tasks, grid_, fractions_, phi_.data(), extrapolationSettings(),
-                                            extrapolation_, desc_.solver.samplesPerSlice);
+                                            extrapolation_, slabSamples(FluidSlice::Extrapolate));
         !ok(s)) {
       log(LogLevel::Error, "fluid '%s': velocity extrapolation failed: %s", desc_.name.c_str(), lastError());
       return true;
@@ -180,7 +181,8 @@ bool FluidActor::advectVelocitySlab() {
     if (desc_.kind == FluidKind::Liquid && !extrapolation_.mark[0].empty() &&
         st.speed * st.h <= solver.cflNumber * grid_.spec.h)
       skip = FaceSkipMask{extrapolation_.mark, kExtrapolationUnreached};
-    st.velocityAdvection.prepare(grid_, st.h, solver.advection, advection_, skip, desc_.solver.samplesPerSlice);
+    st.velocityAdvection.prepare(grid_, st.h, solver.advection, advection_, skip,
+                                 slabSamples(FluidSlice::AdvectVelocity));
   }
   st.velocityAdvection.runSlice(*st.input.tasks, st.slab++);
   if (st.slab < st.velocityAdvection.sliceCount()) return false;
@@ -204,14 +206,14 @@ bool FluidActor::advectScalarsSlab() {
       std::vector<double>* scalars[2] = {&smokeDensity_, &temperature_};
       const double solidValues[2] = {0.0, desc_.smoke.ambientTemperature};
       st.scalarAdvection.prepare(grid_, st.h, scheme, scalars, 2, advection_, &openFaces_, solidValues, 0.0,
-                                 desc_.solver.samplesPerSlice);
+                                 slabSamples(FluidSlice::AdvectScalars));
     } else {
       // The level set is extended into solids on purpose (level_set_solid_extension.h) and
       // sampled as it is. Cells farther from the surface than the sub-step moves it, plus the
       // forward and backward traces' stencils, keep their sign, and redistancing rewrites them.
       std::vector<double>* scalars[1] = {&phi_};
       st.scalarAdvection.prepare(grid_, st.h, scheme, scalars, 1, advection_, nullptr, nullptr,
-                                 st.speed * st.h + 3.0 * grid_.spec.h, desc_.solver.samplesPerSlice);
+                                 st.speed * st.h + 3.0 * grid_.spec.h, slabSamples(FluidSlice::AdvectScalars));
     }
   }
   st.scalarAdvection.runSlice(*st.input.tasks, st.slab++);
@@ -251,10 +253,10 @@ void FluidActor::applyForces() {
   }
 }
 
-Status FluidActor::updateFractions(const std::vector<FluidCollider>& colliders) {
-  std::vector<const PreparedCollider*> geometry;
+Status FluidActor::addFractionUpdatePasses(SlabPasses& passes) {
+  std::vector<const PreparedCollider*>& geometry = step_->fractionColliders;
   std::vector<ColliderSnapshot> now;
-  for (const FluidCollider& c : colliders) {
+  for (const FluidCollider& c : step_->input.colliders) {
     if (c.geometry == nullptr) continue;
     geometry.push_back(c.geometry);
     const ColliderShape& s = c.geometry->shape;
@@ -271,9 +273,9 @@ Status FluidActor::updateFractions(const std::vector<FluidCollider>& colliders) 
   if (!sameSet) {
     // A collider came or went: a full recompute is simpler than tracking the union of
     // everything that changed, and it happens only on such events.
-    VP_TRY(computeFaceFractions(geometry.data(), count, &fractions_));
+    VP_TRY(addFaceFractionPasses(passes, geometry.data(), count, &fractions_));
     for (const PreparedCollider* c : geometry)
-      VP_TRY(closeSplitCellPieces(*tasks_, geometry.data(), count, c->bounds, &fractions_, nullptr));
+      VP_TRY(addSplitCellPasses(passes, geometry.data(), count, c->bounds, &fractions_, nullptr));
     fractionsChanged_ = pressureOperatorStale_ = true;
   } else {
     for (size_t i = 0; i < now.size(); ++i) {
@@ -284,17 +286,17 @@ Status FluidActor::updateFractions(const std::vector<FluidCollider>& colliders) 
       // A body moving elsewhere in the world changes no face here (and must not make the
       // pressure operator look stale).
       if (!moved || !(a.bounds.overlaps(domain) || b.bounds.overlaps(domain))) continue;
-      VP_TRY(updateFaceFractions(geometry.data(), count, a.bounds, b.bounds, &fractions_));
+      VP_TRY(addFaceFractionUpdatePasses(passes, geometry.data(), count, a.bounds, b.bounds, &fractions_));
       // A collider moving a little per step (a paddle) has nearly the same box before and
       // after: one pass over their union instead of two over the overlap.
       if (a.bounds.overlaps(b.bounds)) {
         Aabb both;
         both.lo = a.bounds.lo.cwiseMin(b.bounds.lo);
         both.hi = a.bounds.hi.cwiseMax(b.bounds.hi);
-        VP_TRY(closeSplitCellPieces(*tasks_, geometry.data(), count, both, &fractions_, nullptr));
+        VP_TRY(addSplitCellPasses(passes, geometry.data(), count, both, &fractions_, nullptr));
       } else {
-        VP_TRY(closeSplitCellPieces(*tasks_, geometry.data(), count, a.bounds, &fractions_, nullptr));
-        VP_TRY(closeSplitCellPieces(*tasks_, geometry.data(), count, b.bounds, &fractions_, nullptr));
+        VP_TRY(addSplitCellPasses(passes, geometry.data(), count, a.bounds, &fractions_, nullptr));
+        VP_TRY(addSplitCellPasses(passes, geometry.data(), count, b.bounds, &fractions_, nullptr));
       }
       fractionsChanged_ = pressureOperatorStale_ = true;
     }
@@ -354,6 +356,7 @@ bool FluidActor::advance(const FluidStepInput& input, const SliceBudget& budget,
     const double ms = job_.runNext(clock);
     stats->phase(phaseOf(kind)).ms += ms;
     maxSliceMs_ = std::max(maxSliceMs_, ms);
+    if (runsSlabs(kind)) slabs_[static_cast<size_t>(kind)].noteSlice(ms, budget.targetSliceMs);
     ++ran;
   }
   stats->slices += ran;
@@ -362,6 +365,7 @@ bool FluidActor::advance(const FluidStepInput& input, const SliceBudget& budget,
   if (!job_.done()) return false;
   stats->simulatedDt = step_->input.dt;
   stats->diverged = stats->diverged || step_->diverged;
+  for (SliceSizer& sizer : slabs_) sizer.adapt(budget.targetSliceMs);
   lastStepSlices_ = job_.slicesRun();
   step_.reset();
   return true;
@@ -377,20 +381,29 @@ void FluidActor::beginStep(const FluidStepInput& input) {
   step_ = std::make_unique<StepInProgress>();
   step_->input = input;
   job_.reset();
-  job_.thenOnce(static_cast<int>(FluidSlice::Fractions), [this] { updateFractionsStage(); });
+  job_.thenOnce(static_cast<int>(FluidSlice::Fractions), [this] { planFractionUpdate(); });
+  job_.then(static_cast<int>(FluidSlice::Fractions), [this] { return updateFractionsSlice(); });
+  job_.thenOnce(static_cast<int>(FluidSlice::Plan), [this] { finishFractionUpdate(); });
   job_.thenOnce(static_cast<int>(FluidSlice::Plan), [this] { planSubsteps(); });
 }
 
-void FluidActor::updateFractionsStage() {
-  TaskSystem& tasks = *step_->input.tasks;
-  if (Status st = updateFractions(step_->input.colliders); st != Status::Ok)
+void FluidActor::planFractionUpdate() {
+  SlabPasses& passes = step_->fractionUpdate;
+  passes.reset(*step_->input.tasks);
+  if (Status st = addFractionUpdatePasses(passes); st != Status::Ok) {
     log(LogLevel::Error, "fluid '%s': face fractions failed: %s", desc_.name.c_str(), lastError());
-  if (desc_.kind == FluidKind::Liquid) {
-    cellOpenFractions(tasks, fractions_, &cellWeights_);
-    if (targetVolume_ < 0.0) {
-      targetVolume_ = vp::liquidVolume(tasks, grid_.spec, phi_.data(), cellWeights_.data());
-      extrapolateLiquidVelocity();
-    }
+    passes.reset(*step_->input.tasks);
+  }
+  if (desc_.kind == FluidKind::Liquid) addCellOpenFractionPasses(passes, fractions_, &cellWeights_);
+}
+
+bool FluidActor::updateFractionsSlice() { return step_->fractionUpdate.runSlice(slabSamples(FluidSlice::Fractions)); }
+
+void FluidActor::finishFractionUpdate() {
+  // The first step's start: the liquid's volume to keep, and a velocity field to advect by.
+  if (desc_.kind == FluidKind::Liquid && targetVolume_ < 0.0) {
+    targetVolume_ = vp::liquidVolume(*step_->input.tasks, grid_.spec, phi_.data(), cellWeights_.data());
+    extrapolateLiquidVelocity();
   }
 }
 
@@ -443,7 +456,7 @@ bool FluidActor::setUpProjectionSlice() {
   pressureOperatorStale_ = false;
   st.projectionPrepared = true;
   st.projectionFailed = !ok(st.projection.prepare(*st.input.tasks, grid_, fractions_, st.h, desc_.density, settings,
-                                                  pressure_, liquidPhi(), desc_.solver.samplesPerSlice));
+                                                  pressure_, liquidPhi(), slabSamples(FluidSlice::PressureUpdate)));
   if (st.projectionFailed)
     log(LogLevel::Error, "fluid '%s': pressure projection failed: %s", desc_.name.c_str(), lastError());
   return st.projectionFailed || st.projection.advanceSetup();
@@ -522,6 +535,18 @@ void FluidActor::publishFields() {
   shown_.levelSet = phi_;
   shown_.pressure = pressure_.pressure;
   shown_.cellWeights = cellWeights_;
+}
+
+bool FluidActor::runsSlabs(FluidSlice kind) {
+  switch (kind) {
+    case FluidSlice::Fractions:
+    case FluidSlice::AdvectVelocity:
+    case FluidSlice::AdvectScalars:
+    case FluidSlice::LevelSet:
+    case FluidSlice::PressureUpdate:
+    case FluidSlice::Extrapolate: return true;
+    default: return false;  // the projection's setup also has pieces that are not slabs
+  }
 }
 
 Phase FluidActor::phaseOf(FluidSlice kind) {

@@ -24,8 +24,10 @@
 //   Pressure   cut-cell projection: setup in slabs, one slice per CG iteration (to the
 //              tolerance or pressureMaxIterations, never cut by time), velocity update in
 //              slabs, loads
-// Passes over the grid (advection, level-set upkeep, extrapolation, the projection's setup
-// and update) run in slabs of at most solver.samplesPerSlice samples, one slab per slice.
+// Passes over the grid (fractions, advection, level-set upkeep, extrapolation, the
+// projection's setup and update) run in slabs, one slab per slice, of a number of samples
+// that starts at solver.samplesPerSlice and follows the slices' measured cost toward the
+// budget's target slice length (core/slice_sizer.h).
 //   Surface    liquid: velocity extrapolation
 //   Publish    divergence guard, then what readers see becomes this step's result
 // The pressure loads on dynamic colliders, averaged over the sub-steps, are those of the last
@@ -39,6 +41,7 @@
 
 #include "collide/face_coverage.h"
 #include "core/budget_clock.h"
+#include "core/slice_sizer.h"
 #include "core/sliced_job.h"
 #include "core/task_system.h"
 #include "fluid/advection.h"
@@ -92,6 +95,7 @@ struct FluidSurface {
 struct SliceBudget {
   Deadline share;
   int minSlices = 0;
+  double targetSliceMs = 0.0;  // what a slab slice should last (FramePlan::targetSliceMs); 0: any
 };
 
 // The kinds of slice a fluid step is made of (their measured costs are kept per kind).
@@ -161,7 +165,9 @@ class FluidActor {
   explicit FluidActor(FluidDesc desc) : desc_(std::move(desc)) {}
   void beginStep(const FluidStepInput& input);
   // The stages (see the top of this file).
-  void updateFractionsStage();
+  void planFractionUpdate();
+  bool updateFractionsSlice();  // one slice of the planned update per call; true when done
+  void finishFractionUpdate();
   void planSubsteps();
   void queueSubstep(int sub);
   // One slab of the sub-step's advection per call; true when the last is done.
@@ -183,8 +189,9 @@ class FluidActor {
   void publish();
   void publishFields();
   static Phase phaseOf(FluidSlice kind);
+  static bool runsSlabs(FluidSlice kind);
 
-  Status updateFractions(const std::vector<FluidCollider>& colliders);
+  Status addFractionUpdatePasses(SlabPasses& passes);
   double maxSpeed(TaskSystem& tasks) const;
   Aabb domainBounds() const;
   const double* liquidPhi() const { return desc_.kind == FluidKind::Liquid ? phi_.data() : nullptr; }
@@ -209,6 +216,8 @@ class FluidActor {
     int substeps = 1;
     double h = 0.0;      // sub-step
     std::vector<PressureLoad> loadSum;  // per input collider
+    std::vector<const PreparedCollider*> fractionColliders;  // the input's, with geometry
+    SlabPasses fractionUpdate;
     VelocityAdvectionSlices velocityAdvection;
     ScalarAdvectionSlices scalarAdvection;
     int slab = 0;  // of the advection in progress
@@ -243,6 +252,8 @@ class FluidActor {
   VorticityWorkspace vorticity_;
   ViscosityWorkspace viscosity_;
   TaskSystem* tasks_ = nullptr;  // the world's, for on-request work (surface extraction)
+  std::vector<SliceSizer> slabs_;  // per FluidSlice kind
+  int64_t slabSamples(FluidSlice kind) const { return slabs_[static_cast<size_t>(kind)].samples(); }
   // Liquid: the volume the level set must keep (initial + emitted - drained), the cells'
   // open fractions that weight it, and the level-set workspaces.
   double targetVolume_ = 0.0;

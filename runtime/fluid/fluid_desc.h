@@ -56,9 +56,9 @@ struct FluidSolverSettings {
   int maxSubsteps = 4;       // more are not taken; the scheme stays stable, only less accurate
   double pressureTolerance = 1e-4;  // relative residual of the pressure solve
   int pressureMaxIterations = 200;
-  // Samples one slice of a grid pass covers (fluid_actor.h): small enough that a slice stays a
-  // small part of a frame budget on the grids a game frame can afford, large enough that the
-  // per-slice dispatch is negligible. Not in the C ABI; tests lower it to split small grids.
+  // Samples one slice of a grid pass covers at most (fluid_actor.h; under a budget the slabs
+  // shrink from it on a slower machine, core/slice_sizer.h): large enough that the per-slice
+  // dispatch is negligible. Not in the C ABI; tests lower it to split small grids.
   int64_t samplesPerSlice = int64_t(1) << 14;
 };
 

@@ -66,23 +66,41 @@ double liquidVolume(TaskSystem& tasks, const MacGridSpec& grid, const double* ph
   return sum * grid.h * grid.h * grid.h;
 }
 
-void cellOpenFractions(TaskSystem& tasks, const FaceFractionField& fractions, std::vector<double>* weights) {
+namespace {
+
+void cellOpenFractionRange(const FaceFractionField& fractions, int64_t begin, int64_t end, double* weights) {
   const MacGridSpec& g = fractions.grid;
-  const int64_t cells = static_cast<int64_t>(g.nx) * g.ny * g.nz;
+  for (int64_t c = begin; c < end; ++c) {
+    const int i = static_cast<int>(c % g.nx), j = static_cast<int>((c / g.nx) % g.ny),
+              k = static_cast<int>(c / (static_cast<int64_t>(g.nx) * g.ny));
+    double sum = 0.0;
+    for (int a = 0; a < 3; ++a) {
+      Eigen::Vector3i high(i, j, k);
+      high[a] += 1;
+      sum += fractions.open[a][fractions.faceIndex(a, i, j, k)] +
+             fractions.open[a][fractions.faceIndex(a, high.x(), high.y(), high.z())];
+    }
+    weights[c] = sum / 6.0;
+  }
+}
+
+int64_t cellCount(const MacGridSpec& g) { return static_cast<int64_t>(g.nx) * g.ny * g.nz; }
+
+}  // namespace
+
+void cellOpenFractions(TaskSystem& tasks, const FaceFractionField& fractions, std::vector<double>* weights) {
+  const int64_t cells = cellCount(fractions.grid);
   weights->resize(static_cast<size_t>(cells));
   parallelFor(tasks, cells, kCellGrain, [&](int64_t begin, int64_t end) {
-    for (int64_t c = begin; c < end; ++c) {
-      const int i = static_cast<int>(c % g.nx), j = static_cast<int>((c / g.nx) % g.ny),
-                k = static_cast<int>(c / (static_cast<int64_t>(g.nx) * g.ny));
-      double sum = 0.0;
-      for (int a = 0; a < 3; ++a) {
-        Eigen::Vector3i high(i, j, k);
-        high[a] += 1;
-        sum += fractions.open[a][fractions.faceIndex(a, i, j, k)] +
-               fractions.open[a][fractions.faceIndex(a, high.x(), high.y(), high.z())];
-      }
-      (*weights)[static_cast<size_t>(c)] = sum / 6.0;
-    }
+    cellOpenFractionRange(fractions, begin, end, weights->data());
+  });
+}
+
+void addCellOpenFractionPasses(SlabPasses& passes, const FaceFractionField& fractions, std::vector<double>* weights) {
+  const int64_t cells = cellCount(fractions.grid);
+  weights->resize(static_cast<size_t>(cells));
+  passes.addParallel(cells, 1, kCellGrain, [&fractions, w = weights->data()](int64_t begin, int64_t end) {
+    cellOpenFractionRange(fractions, begin, end, w);
   });
 }
 

@@ -26,6 +26,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/slab_passes.h"
 #include "core/status.h"
 #include "core/task_system.h"
 #include "fluid/face_fraction_field.h"
@@ -45,6 +46,8 @@ double liquidVolume(TaskSystem& tasks, const MacGridSpec& grid, const double* ph
 // empty or a fully covered cell, and within a few tens of percent of a cut cell's fraction,
 // which matters only in the thin shell of cells that colliders cut.
 void cellOpenFractions(TaskSystem& tasks, const FaceFractionField& fractions, std::vector<double>* weights);
+// The same as a pass of bounded slices (core/slab_passes.h); sizes `weights` now.
+void addCellOpenFractionPasses(SlabPasses& passes, const FaceFractionField& fractions, std::vector<double>* weights);
 
 struct VolumeCorrectionSettings {
   double widthCells = kDefaultHeavisideWidthCells;

@@ -35,12 +35,16 @@ TEST(FramePlan, StaggersDeformablesOverTheirInterval) {
 TEST(FramePlan, AFluidStepMustGoItsShareOfTheWayEachFrameAtTheCap) {
   ActorSchedule s;
   FramePlan::Fluid f{0, &s, 80, 0};
-  EXPECT_EQ(FramePlan::fluidMinSlices(f), 80 / FramePlan::kMaxInterval);
+  // Paced to end a frame before the cap: 1/7 of the way per frame.
+  const int pace = FramePlan::kMaxInterval - 1;
+  EXPECT_EQ(FramePlan::fluidMinSlices(f), (80 + pace - 1) / pace);
   f.slicesDone = 40;
-  s.stepFrames = 3;  // after this frame it must be half way: done already
+  s.stepFrames = 2;  // after this frame it must be 3/7 of the way: done already
   EXPECT_EQ(FramePlan::fluidMinSlices(f), 0);
-  s.stepFrames = FramePlan::kMaxInterval - 2;  // after this frame it must be 7/8 of the way
-  EXPECT_EQ(FramePlan::fluidMinSlices(f), 70 - 40);
+  s.stepFrames = 4;  // after this frame 5/7 of the way: 58 slices
+  EXPECT_EQ(FramePlan::fluidMinSlices(f), 58 - 40);
+  s.stepFrames = FramePlan::kMaxInterval - 2;  // the paced end: all it expects to need
+  EXPECT_EQ(FramePlan::fluidMinSlices(f), 80 - 40);
   s.stepFrames = FramePlan::kMaxInterval - 1;  // its last frame: all that is left, however much
   EXPECT_EQ(FramePlan::fluidMinSlices(f), std::numeric_limits<int>::max());
   FramePlan::Fluid unknown{0, &s, 0, 0};
@@ -239,13 +243,19 @@ TEST(FrameBudgetPlan, ABudgetTooSmallForAnyFloorCapsTheRatesAndSaysSo) {
   }
   EXPECT_TRUE(infeasible);
   EXPECT_EQ(maxInterval, FramePlan::kMaxInterval);
-  // The last fluid's time: all simulated but what its step in progress has not finished.
-  EXPECT_GE(simulated, (frames - FramePlan::kMaxInterval - 1) * dt - 1e-9);
-  // A budget change takes effect on the next frame: unlimited, every actor completes a step.
+  // The last fluid's time: at most its step in progress and the frames since it began (each
+  // at most kMaxInterval) are not simulated yet.
+  EXPECT_GE(simulated, (frames - 2 * FramePlan::kMaxInterval) * dt - 1e-9);
+  // A budget change takes effect on the next frame: unlimited, every actor completes a step
+  // (the one in progress, then one with the time since it began), and no time was lost.
   ASSERT_EQ(w.world->setFrameBudget(0.0), Status::Ok);
-  for (int frame = 0; frame < 2; ++frame) ASSERT_EQ(w.world->step(dt), Status::Ok);
+  for (int frame = 0; frame < 2; ++frame) {
+    ASSERT_EQ(w.world->step(dt), Status::Ok);
+    simulated += w.world->lastStats().actors.back().simulatedDt;
+  }
   for (const ActorStats& a : w.world->lastStats().actors) EXPECT_TRUE(a.completedStep);
   EXPECT_EQ(w.world->lastStats().budgetMs, 0.0);
+  EXPECT_NEAR(simulated, (frames + 2) * dt, 1e-9);
 }
 
 }  // namespace

@@ -87,6 +87,37 @@ TEST(ParallelFor, HostTaskHooksGiveTheSameResult) {
   EXPECT_GE(pool.enqueued, 1);
 }
 
+// With its workers off (worker_contention.h) the pool runs everything on the caller, and
+// the results are bitwise those with them on.
+TEST(ParallelFor, WorkersOffRunInlineWithTheSameResult) {
+  const std::vector<double> values = makeValues();
+  auto tasks = TaskSystem::create(TaskHooks{}, 2);
+  const double on = chaoticSum(*tasks, values);
+  tasks->setWorkersEnabled(false);
+  EXPECT_EQ(tasks->workerCount(), 1);
+  std::atomic<int> otherThreads{0};
+  const std::thread::id caller = std::this_thread::get_id();
+  parallelFor(*tasks, 1000, 1, [&](int64_t, int64_t) { otherThreads += std::this_thread::get_id() != caller; });
+  EXPECT_EQ(otherThreads.load(), 0);
+  const double off = chaoticSum(*tasks, values);
+  EXPECT_EQ(std::memcmp(&on, &off, sizeof on), 0);
+  tasks->setWorkersEnabled(true);
+  EXPECT_EQ(tasks->workerCount(), 2);
+}
+
+#if defined(__linux__)
+// The pool's run delay (run_delay.h) is known on Linux and never decreases.
+TEST(ParallelFor, ThePoolReportsItsThreadsRunDelay) {
+  auto tasks = TaskSystem::create(TaskHooks{}, 3);
+  const double before = tasks->workerRunDelayMs();
+  ASSERT_GE(before, 0.0);
+  const std::vector<double> values = makeValues();
+  chaoticSum(*tasks, values);
+  EXPECT_GE(tasks->workerRunDelayMs(), before);
+  EXPECT_LT(TaskSystem::create(TaskHooks{}, 1)->workerRunDelayMs(), 0.0);  // no workers of its own
+}
+#endif
+
 TEST(ParallelFor, NestedLoopsRunInline) {
   auto tasks = TaskSystem::create(TaskHooks{}, 4);
   std::atomic<int64_t> total{0};

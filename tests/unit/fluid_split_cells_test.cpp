@@ -87,6 +87,22 @@ ColliderShape plateShape(const Eigen::Matrix3d& rotation, const Eigen::Vector3d&
   return plate;
 }
 
+// A plate one cell thick, smaller than the grid, and a sphere whose cells its moves overlap.
+ColliderShape movingPlate(double h) {
+  ColliderShape plate = plateShape(Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()).toRotationMatrix(),
+                                   Eigen::Vector3d(0.45, 0.5, 0.5), h);
+  plate.halfExtents = Eigen::Vector3d(0.2, 0.5 * h, 0.25);
+  return plate;
+}
+
+ColliderShape sphereNearThePlate() {
+  ColliderShape sphere;
+  sphere.kind = ShapeKind::Sphere;
+  sphere.radius = 0.15;
+  sphere.translation = Eigen::Vector3d(0.62, 0.7, 0.5);
+  return sphere;
+}
+
 // A plate one cell thick spanning the grid, at several angles and offsets: before the pass
 // the open faces chain from below the plate to above it (through the cells it splits), after
 // it no open face chain crosses, and the cells wholly on either side keep their faces.
@@ -153,13 +169,8 @@ TEST(FluidSplitCells, IncrementalUpdateOfAMovingPlateMatchesAFullRecompute) {
   auto tasks = TaskSystem::create(TaskHooks{}, 2);
   const int n = 24;
   const double h = 1.0 / n;
-  ColliderShape plate = plateShape(Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()).toRotationMatrix(),
-                                   Eigen::Vector3d(0.45, 0.5, 0.5), h);
-  plate.halfExtents = Eigen::Vector3d(0.2, 0.5 * h, 0.25);
-  ColliderShape sphere;
-  sphere.kind = ShapeKind::Sphere;
-  sphere.radius = 0.15;
-  sphere.translation = Eigen::Vector3d(0.62, 0.7, 0.5);
+  ColliderShape plate = movingPlate(h);
+  const ColliderShape sphere = sphereNearThePlate();
   FractionScene moving;
   makeFractions(n, {plate, sphere}, &moving);
   closeSplitPieces(*tasks, &moving);
@@ -179,6 +190,58 @@ TEST(FluidSplitCells, IncrementalUpdateOfAMovingPlateMatchesAFullRecompute) {
     makeFractions(n, {plate, sphere}, &fresh);
     closeSplitPieces(*tasks, &fresh);
     for (int a = 0; a < 3; ++a) EXPECT_EQ(moving.fractions.open[a], fresh.fractions.open[a]) << "step " << step;
+  }
+}
+
+// The same update as passes run in slices (what a fluid step spread over frames does): any
+// slice size gives bitwise the fractions of the whole calls, full recompute and moving plate.
+TEST(FluidSplitCells, FractionPassesInSlicesMatchTheWholeCalls) {
+  auto tasks = TaskSystem::create(TaskHooks{}, 2);
+  const int n = 24;
+  const double h = 1.0 / n;
+  ColliderShape plate = movingPlate(h);
+  plate.angularVelocity = Eigen::Vector3d(0.0, 1.5, 0.0);
+  const ColliderShape sphere = sphereNearThePlate();
+  FractionScene whole;
+  makeFractions(n, {plate, sphere}, &whole);
+  closeSplitPieces(*tasks, &whole);
+  std::vector<const PreparedCollider*> list{&whole.colliders[0], &whole.colliders[1]};
+  for (int64_t sliceSamples : {int64_t(1), int64_t(997), int64_t(1) << 14}) {
+    FaceFractionField sliced;
+    ASSERT_EQ(initFaceFractionField(whole.grid, &sliced), Status::Ok);
+    SlabPasses passes(*tasks);
+    ASSERT_EQ(addFaceFractionPasses(passes, list.data(), 2, &sliced), Status::Ok);
+    for (const PreparedCollider* c : list)
+      ASSERT_EQ(addSplitCellPasses(passes, list.data(), 2, c->bounds, &sliced, nullptr), Status::Ok);
+    int slices = 1;
+    while (!passes.runSlice(sliceSamples)) ++slices;
+    EXPECT_GT(slices, sliceSamples > 1000 ? 2 : 100);
+    for (int a = 0; a < 3; ++a) {
+      ASSERT_EQ(sliced.open[a], whole.fractions.open[a]) << "full, axis " << a << ", slices of " << sliceSamples;
+      ASSERT_EQ(sliced.solidVelocity[a], whole.fractions.solidVelocity[a]) << "axis " << a;
+    }
+  }
+  FaceFractionField moving = whole.fractions;
+  for (int step = 0; step < 3; ++step) {
+    const Aabb oldBounds = whole.colliders[0].bounds;
+    plate.rotation = Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitY()) * plate.rotation;
+    ASSERT_EQ(setColliderPose(&whole.colliders[0], plate.rotation, plate.translation), Status::Ok);
+    const Aabb newBounds = whole.colliders[0].bounds;
+    ASSERT_EQ(updateFaceFractions(list.data(), 2, oldBounds, newBounds, &whole.fractions), Status::Ok);
+    ASSERT_EQ(closeSplitCellPieces(*tasks, list.data(), 2, oldBounds, &whole.fractions, nullptr), Status::Ok);
+    ASSERT_EQ(closeSplitCellPieces(*tasks, list.data(), 2, newBounds, &whole.fractions, nullptr), Status::Ok);
+    SlabPasses passes(*tasks);
+    ASSERT_EQ(addFaceFractionUpdatePasses(passes, list.data(), 2, oldBounds, newBounds, &moving), Status::Ok);
+    CutCellComponentStats stats;
+    ASSERT_EQ(addSplitCellPasses(passes, list.data(), 2, oldBounds, &moving, nullptr), Status::Ok);
+    ASSERT_EQ(addSplitCellPasses(passes, list.data(), 2, newBounds, &moving, &stats), Status::Ok);
+    while (!passes.runSlice(333)) {
+    }
+    EXPECT_GT(stats.cutCells, 0);
+    for (int a = 0; a < 3; ++a) {
+      ASSERT_EQ(moving.open[a], whole.fractions.open[a]) << "step " << step << ", axis " << a;
+      ASSERT_EQ(moving.solidVelocity[a], whole.fractions.solidVelocity[a]) << "step " << step << ", axis " << a;
+    }
   }
 }
 

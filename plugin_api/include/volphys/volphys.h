@@ -174,7 +174,12 @@ VP_API int vpFluidIdIsNull(vpFluidId id);
 typedef struct vpWorldDef {
   uint32_t structSize;
   vpVec3 gravity;              /* default (0, -9.81, 0) */
-  int32_t workerCount;         /* worker threads incl. the caller, 1..64; default 1 */
+  int32_t workerCount;         /* worker threads incl. the caller, 1..64; default 1. The built-in
+                                  pool stops handing work to its other threads while the machine
+                                  has no core free for them (other processes busy; Linux, from
+                                  the threads' scheduler run delay) and tries again later, so a
+                                  preempted worker never holds up a frame; results are the same
+                                  either way. */
   float frameBudgetMs;         /* wall time one vpWorldStep may take; 0 = unlimited; default 16.
                                   The frame plan (README, "Frame budget"): the Bullet step runs
                                   first (not divisible). Deformables then run by priority (higher
@@ -187,13 +192,15 @@ typedef struct vpWorldDef {
                                   step is a sequence of slices that may span frames (each step
                                   simulates the time since the last), readers see the last
                                   completed step, and slicing never changes results. A slice
-                                  starts only when the time left covers its measured cost.
-                                  Guarantee: a step exceeds the budget by at most one slice (a CG
-                                  iteration or one stage or slab of a fluid step) beyond its
-                                  estimate. Its limit: a single slice cannot be cut, and when the
-                                  floors and the rate caps cannot fit (a fluid step spanning 8
-                                  frames must finish; a deformable at k = 8 reaches its floor),
-                                  the step overruns and vpStepStats.budgetInfeasible says so. */
+                                  starts only when the time left covers its measured cost;
+                                  slabs of grid work shrink until one lasts about 1/8 of the
+                                  budget on this machine. Guarantee: a step exceeds the budget
+                                  by at most one slice (a CG iteration or one stage or slab of
+                                  a fluid step) beyond its estimate. Its limit: a single slice
+                                  cannot be cut, and when the floors and the rate caps cannot
+                                  fit (a fluid step spanning 8 frames must finish; a deformable
+                                  at k = 8 reaches its floor), the step overruns and
+                                  vpStepStats.budgetInfeasible says so. */
   float rigidMaxSubstep;       /* Bullet sub-step length bound in seconds; default 1/120 */
   vpEnqueueTaskFn* enqueueTask;/* both NULL: built-in thread pool with workerCount threads */
   vpFinishTaskFn* finishTask;
