@@ -163,9 +163,10 @@ void checkFrames(World& world, int frames, double budgetMs, double tickMs) {
     // Each actor's timers read the tick clock a few times after its share ends (its stats,
     // the phase laps after a solve), a tick each here and nothing measurable in real time.
     const double bookkeepingMs = 4 * tickMs * static_cast<double>(s.actors.size());
-    if (!s.budgetInfeasible)
+    if (!s.budgetInfeasible) {
       EXPECT_LE(s.totalMs, budgetMs + s.maxSliceMs + bookkeepingMs)
           << "frame " << frame << " at " << budgetMs << " ms, longest slice " << s.maxSliceMs;
+    }
     bool fluidRan = false, floorMissed = false;
     int fluid = 0;
     for (const ActorStats& a : s.actors) {
@@ -175,8 +176,9 @@ void checkFrames(World& world, int frames, double budgetMs, double tickMs) {
       }
       if (a.kind == ActorKind::Deformable && a.completedStep) floorMissed = floorMissed || a.floorMissed;
     }
-    if (!s.budgetInfeasible)
+    if (!s.budgetInfeasible) {
       EXPECT_FALSE(fluidRan && floorMissed) << "frame " << frame << " at " << budgetMs << " ms";
+    }
   }
   // Each fluid's time is simulated or pending, never lost: at most the cap's frames wait.
   for (size_t f = 0; f < world.fluidCount(); ++f) {
@@ -218,7 +220,9 @@ TEST(FrameBudgetPlan, ATightBudgetRaisesTheLowerPriorityIntervalFirst) {
       if (a.kind != ActorKind::Deformable) continue;
       (a.priority == 1 ? heroMax : extraMax) = std::max(a.priority == 1 ? heroMax : extraMax, a.interval);
     }
-    if (extraMax < FramePlan::kMaxInterval) EXPECT_EQ(heroMax, 1) << "frame " << frame;
+    if (extraMax < FramePlan::kMaxInterval) {
+      EXPECT_EQ(heroMax, 1) << "frame " << frame;
+    }
   }
   EXPECT_GT(extraMax, 1);
 }
