@@ -73,7 +73,7 @@ class FramePlan {
   struct Fluid {
     int priority = 0;
     ActorSchedule* schedule = nullptr;
-    int expectedSlices = 0;  // slices of a whole step (the last one's count; 0: unknown)
+    int expectedSlices = 0;  // slices of a whole step (FluidActor::expectedStepSlices; 0: unknown)
     int slicesDone = 0;      // of the step in progress
   };
 

@@ -381,7 +381,7 @@ void World::stepFluids(double dt, const Deadline& frame, bool floorsHeld, StepSt
     actors[i] = actorStats(ActorKind::Fluid, handles[i].index1, handles[i].generation, priorities[i], 0.0);
     actors[i].interval = s.interval;
     actors[i].progress = f.progress();
-    FramePlan::Fluid planned{priorities[i], &s, f.lastStepSlices(), f.stepInProgress() ? f.stepSlicesRun() : 0};
+    FramePlan::Fluid planned{priorities[i], &s, f.expectedStepSlices(), f.stepInProgress() ? f.stepSlicesRun() : 0};
     budgets[i].minSlices = FramePlan::fluidMinSlices(planned);
     budgets[i].targetSliceMs = FramePlan::targetSliceMs(stats->budgetMs);
     ++s.stepFrames;

@@ -367,6 +367,7 @@ bool FluidActor::advance(const FluidStepInput& input, const SliceBudget& budget,
   stats->diverged = stats->diverged || step_->diverged;
   for (SliceSizer& sizer : slabs_) sizer.adapt(budget.targetSliceMs);
   lastStepSlices_ = job_.slicesRun();
+  expectedStepSlices_ = std::max(lastStepSlices_, lastStepSlices_ + (expectedStepSlices_ - lastStepSlices_) * 3 / 4);
   step_.reset();
   return true;
 }
@@ -374,7 +375,7 @@ bool FluidActor::advance(const FluidStepInput& input, const SliceBudget& budget,
 double FluidActor::progress() const {
   if (job_.done()) return step_ ? 1.0 : 0.0;
   const int done = job_.slicesRun();
-  return static_cast<double>(done) / std::max(done + job_.slicesQueued(), lastStepSlices_);
+  return static_cast<double>(done) / std::max(done + job_.slicesQueued(), expectedStepSlices_);
 }
 
 void FluidActor::beginStep(const FluidStepInput& input) {

@@ -128,8 +128,8 @@ class FluidActor {
   // Runs `edit` on the working fields; readers see the edit at once. Refused (false) while a
   // step is in progress: the step would overwrite it.
   bool editFields(const std::function<void(EditableFields&)>& edit);
-  // The fraction of the step in progress done so far (by slices, against the last completed
-  // step's count); 0 when none is in progress.
+  // The fraction of the step in progress done so far (by slices, against expectedStepSlices);
+  // 0 when none is in progress.
   double progress() const;
   // Expected cost of the next slice (0 when unknown or none is queued).
   double expectedSliceMs() const { return job_.done() ? 0.0 : job_.expectedNextMs(); }
@@ -137,6 +137,11 @@ class FluidActor {
   int stepSlicesRun() const { return job_.slicesRun(); }
   // Slices of the last completed step (0 before the first).
   int lastStepSlices() const { return lastStepSlices_; }
+  // Slices a step is expected to take (0 before the first completed): the most any recent
+  // step took, forgetting a quarter of the excess per step, since a step's count grows with
+  // its CG iterations and sub-steps and when its slabs shrink (the frame plan paces the step
+  // by it, and an underestimate leaves the rest for the step's last frame).
+  int expectedStepSlices() const { return expectedStepSlices_; }
 
   // What readers see: the last completed step.
   const FluidDesc& desc() const { return desc_; }
@@ -264,6 +269,7 @@ class FluidActor {
   SlicedJob job_{static_cast<int>(FluidSlice::Count)};
   std::unique_ptr<StepInProgress> step_;
   int lastStepSlices_ = 0;
+  int expectedStepSlices_ = 0;
   double maxSliceMs_ = 0.0;
   ActorSchedule schedule_;  // the frame plan's state of this fluid
   ShownState shown_;
