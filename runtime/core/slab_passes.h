@@ -71,4 +71,14 @@ class SlabPasses {
   int64_t lastSamples_ = 0, lastUnits_ = 0;
 };
 
+// The sample loop of the sliced runs that keep their own pass state (the level-set upkeep):
+// step(samplesLeft) does part of the work and returns the samples it did; runs it until done()
+// or maxSamples are spent and returns the samples run.
+template <class Done, class Step>
+int64_t runSamplesUpTo(int64_t maxSamples, const Done& done, const Step& step) {
+  int64_t ran = 0;
+  while (!done() && ran < maxSamples) ran += step(maxSamples - ran);
+  return ran;
+}
+
 }  // namespace vp

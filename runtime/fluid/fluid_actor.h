@@ -131,8 +131,6 @@ class FluidActor {
   // The fraction of the step in progress done so far (by slices, against expectedStepSlices);
   // 0 when none is in progress.
   double progress() const;
-  // Expected cost of the next slice (0 when unknown or none is queued).
-  double expectedSliceMs() const { return job_.done() ? 0.0 : job_.expectedNextMs(); }
   // Slices run so far by the step in progress.
   int stepSlicesRun() const { return job_.slicesRun(); }
   // Slices of the last completed step (0 before the first).

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "core/parallel_for.h"
+#include "core/slab_passes.h"
 #include "fluid/free_surface.h"
 
 namespace vp {
@@ -112,9 +113,8 @@ Status RedistanceRun::prepare(TaskSystem& tasks, const MacGridSpec& grid, double
 }
 
 bool RedistanceRun::advance() {
-  lastSliceSamples_ = 0;
-  while (pass_ != Pass::Done && lastSliceSamples_ < samplesPerSlice_)
-    lastSliceSamples_ += step(samplesPerSlice_ - lastSliceSamples_);
+  lastSliceSamples_ = runSamplesUpTo(
+      samplesPerSlice_, [this] { return pass_ == Pass::Done; }, [this](int64_t left) { return step(left); });
   return pass_ == Pass::Done;
 }
 

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <limits>
 
+#include "core/slab_passes.h"
+
 namespace vp {
 
 void extendLevelSetIntoSolids(const MacGridSpec& g, const std::vector<double>& cellWeights, std::vector<double>& phi,
@@ -38,9 +40,8 @@ Status SolidExtensionRun::prepare(const MacGridSpec& grid, const std::vector<dou
 }
 
 bool SolidExtensionRun::advance() {
-  lastSliceSamples_ = 0;
-  while (pass_ != Pass::Done && lastSliceSamples_ < samplesPerSlice_)
-    lastSliceSamples_ += step(samplesPerSlice_ - lastSliceSamples_);
+  lastSliceSamples_ = runSamplesUpTo(
+      samplesPerSlice_, [this] { return pass_ == Pass::Done; }, [this](int64_t left) { return step(left); });
   return pass_ == Pass::Done;
 }
 

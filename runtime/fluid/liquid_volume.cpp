@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "core/parallel_for.h"
+#include "core/slab_passes.h"
 
 namespace vp {
 namespace {
@@ -171,9 +172,8 @@ Status VolumeCorrectionRun::prepare(TaskSystem& tasks, const MacGridSpec& grid, 
 }
 
 bool VolumeCorrectionRun::advance() {
-  lastSliceSamples_ = 0;
-  while (pass_ != Pass::Done && lastSliceSamples_ < samplesPerSlice_)
-    lastSliceSamples_ += step(samplesPerSlice_ - lastSliceSamples_);
+  lastSliceSamples_ = runSamplesUpTo(
+      samplesPerSlice_, [this] { return pass_ == Pass::Done; }, [this](int64_t left) { return step(left); });
   return pass_ == Pass::Done;
 }
 
