@@ -6,14 +6,13 @@ namespace vp {
 
 namespace {
 // No change while the longest slice is within this factor of the target either way (measured
-// costs jitter); at most this factor per step the other way (one preempted slice must not
-// shrink the slabs to nothing).
+// costs jitter). SliceSizer::kMaxChange bounds a change the other way: one preempted slice
+// must not shrink the slabs to nothing.
 constexpr double kDeadBand = 1.25;
-constexpr double kMaxChange = 2.0;
 }  // namespace
 
 SliceSizer::SliceSizer(int64_t preferredSamples)
-    : preferred_(std::max<int64_t>(preferredSamples, 1)), samples_(preferred_) {}
+    : preferred_(std::max<int64_t>(preferredSamples, 1)), samples_(std::min(kMinSamples, preferred_)) {}
 
 void SliceSizer::noteSlice(double ms, double targetMs) {
   longestMs_ = std::max(longestMs_, ms);

@@ -3,9 +3,11 @@
 // gets smaller slabs, so one slice stays a small part of the frame budget on any machine.
 // Where slabs are cut never changes results, so neither does this.
 //
-// The slabs only shrink from the size they start at, and grow back to it: a slice's length
-// says how many samples fit only when the slice was full, and a pass smaller than one slab
-// (a small grid) would otherwise grow the slabs without bound.
+// The slabs start at the floor and grow, by at most kMaxChange per piece of work, up to a
+// preferred size: a first slice's cost is unknown (and a first pass over memory not touched
+// yet costs several times a later one); a slice's length says how many samples fit only when
+// the slice was full, and a pass smaller than one slab (a small grid) would otherwise grow
+// the slabs without bound.
 #pragma once
 
 #include <cstdint>
@@ -14,7 +16,8 @@ namespace vp {
 
 class SliceSizer {
  public:
-  // Starts at (and never exceeds) preferredSamples (at least 1).
+  // Starts at min(kMinSamples, preferredSamples) and never exceeds preferredSamples (at
+  // least 1).
   explicit SliceSizer(int64_t preferredSamples);
 
   int64_t samples() const { return samples_; }
@@ -26,12 +29,13 @@ class SliceSizer {
   // targetMs <= 0 (unbudgeted): nothing changes in either.
   void adapt(double targetMs);
 
-  // The fewest samples adapt() goes down to (unless it started below): a few hundred
-  // microseconds of work on a slow machine, so a slice's fixed cost stays small.
+  // The fewest samples it goes down to (unless preferred is fewer): a few hundred microseconds
+  // of work on a slow machine, so a slice's fixed cost stays small.
   static constexpr int64_t kMinSamples = int64_t(1) << 10;
 
  private:
   void scale(double factor);
+  static constexpr double kMaxChange = 2.0;
 
   int64_t preferred_, samples_;
   double longestMs_ = 0.0;

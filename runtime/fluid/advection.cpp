@@ -104,27 +104,33 @@ Eigen::Vector3d latticeCoordinate(const MacGridSpec& s, const Eigen::Vector3d& x
 int64_t rowCount(const Eigen::Vector3i& d) { return static_cast<int64_t>(d.y()) * d.z(); }
 
 // Runs body(i, j, k, index) over the samples of rows [rowBegin, rowEnd) of a lattice with
-// dims d, parallel over rows.
+// dims d, in order.
 template <class Body>
-void forEachSampleInRows(TaskSystem& tasks, const Eigen::Vector3i& d, int64_t rowBegin, int64_t rowEnd,
-                         const Body& body) {
-  parallelFor(tasks, rowEnd - rowBegin, kRowGrain, [&](int64_t begin, int64_t end) {
-    for (int64_t row = rowBegin + begin; row < rowBegin + end; ++row) {
-      const int j = static_cast<int>(row % d.y()), k = static_cast<int>(row / d.y());
-      size_t index = static_cast<size_t>(row) * static_cast<size_t>(d.x());
-      for (int i = 0; i < d.x(); ++i, ++index) body(i, j, k, index);
-    }
-  });
+void forEachSampleInRows(const Eigen::Vector3i& d, int64_t rowBegin, int64_t rowEnd, const Body& body) {
+  for (int64_t row = rowBegin; row < rowEnd; ++row) {
+    const int j = static_cast<int>(row % d.y()), k = static_cast<int>(row / d.y());
+    size_t index = static_cast<size_t>(row) * static_cast<size_t>(d.x());
+    for (int i = 0; i < d.x(); ++i, ++index) body(i, j, k, index);
+  }
 }
 
 template <class Body>
 void forEachSample(TaskSystem& tasks, const Eigen::Vector3i& d, const Body& body) {
-  forEachSampleInRows(tasks, d, 0, rowCount(d), body);
+  parallelFor(tasks, rowCount(d), kRowGrain,
+              [&](int64_t begin, int64_t end) { forEachSampleInRows(d, begin, end, body); });
 }
 
 template <class Body>
-void forEachSampleInSlab(TaskSystem& tasks, const AdvectionSlabList::Slab& slab, const Body& body) {
-  forEachSampleInRows(tasks, slab.dims, slab.rowBegin, slab.rowEnd, body);
+void forEachSampleIn(const AdvectionRows& rows, const Body& body) {
+  forEachSampleInRows(rows.dims, rows.rowBegin, rows.rowEnd, body);
+}
+
+// Adds a pass over the rows of a lattice with dims d: run(rows) for chunks of rows.
+template <class Run>
+void addRowPass(SlabPasses& passes, int target, const Eigen::Vector3i& d, const Run& run) {
+  if (d.x() <= 0) return;
+  passes.addParallel(rowCount(d), d.x(), kRowGrain,
+                     [run, target, d](int64_t begin, int64_t end) { run(AdvectionRows{target, d, begin, end}); });
 }
 
 // What both velocity passes read for the faces of one axis.
@@ -169,7 +175,7 @@ struct ScalarCellRules {
   }
 };
 
-ScalarCellRules scalarCellRules(const AdvectionSlabList::Slab& slab, const CellOpenFaces* openFaces,
+ScalarCellRules scalarCellRules(const AdvectionRows& slab, const CellOpenFaces* openFaces,
                                 const std::vector<double>& solidValues, double keepBeyond,
                                 const AdvectionWorkspace& work) {
   ScalarCellRules rules;
@@ -183,30 +189,21 @@ ScalarCellRules scalarCellRules(const AdvectionSlabList::Slab& slab, const CellO
 
 }  // namespace
 
-void AdvectionSlabList::appendPass(Pass pass, int target, const Eigen::Vector3i& dims, int64_t maxSamplesPerSlab) {
-  const int64_t rows = rowCount(dims);
-  if (rows <= 0 || dims.x() <= 0) return;
-  const int64_t rowsPerSlab = std::clamp<int64_t>(maxSamplesPerSlab / dims.x(), 1, rows);
-  // Near-equal slabs rather than full ones and a remainder, so their costs stay alike.
-  const int64_t slabCount = (rows + rowsPerSlab - 1) / rowsPerSlab;
-  for (int64_t s = 0; s < slabCount; ++s)
-    slabs_.push_back(Slab{pass, target, dims, s * rows / slabCount, (s + 1) * rows / slabCount});
-}
-
-void VelocityAdvectionSlices::prepare(MacGrid& grid, double dt, AdvectionScheme scheme, AdvectionWorkspace& work,
-                                      const FaceSkipMask& skip, int64_t maxSamplesPerSlice) {
+void VelocityAdvectionSlices::prepare(TaskSystem& tasks, MacGrid& grid, double dt, AdvectionScheme scheme,
+                                      AdvectionWorkspace& work, const FaceSkipMask& skip) {
   grid_ = &grid;
   work_ = &work;
   dt_ = dt;
   maccormack_ = scheme == AdvectionScheme::MacCormack;
   skip_ = skip;
-  slabs_.clear();
+  passes_.reset(tasks);
   size_t largestAxis = 0;
   for (int a = 0; a < 3; ++a) {
     work.advected[a].resize(grid.velocity[a].size());
     largestAxis = std::max(largestAxis, grid.velocity[a].size());
-    slabs_.appendPass(AdvectionSlabList::Pass::Forward, a, grid.faceDims(a), maxSamplesPerSlice);
-    if (maccormack_) slabs_.appendPass(AdvectionSlabList::Pass::Correction, a, grid.faceDims(a), maxSamplesPerSlice);
+    addRowPass(passes_, a, grid.faceDims(a), [this](const AdvectionRows& rows) { forwardPass(rows); });
+    if (maccormack_)
+      addRowPass(passes_, a, grid.faceDims(a), [this](const AdvectionRows& rows) { correctionPass(rows); });
   }
   // The axes take turns with the MacCormack arrays: an axis is done before the next starts.
   if (maccormack_) {
@@ -216,21 +213,13 @@ void VelocityAdvectionSlices::prepare(MacGrid& grid, double dt, AdvectionScheme 
   }
 }
 
-void VelocityAdvectionSlices::runSlice(TaskSystem& tasks, int slice) {
-  const AdvectionSlabList::Slab& slab = slabs_[slice];
-  if (slab.pass == AdvectionSlabList::Pass::Forward)
-    forwardPass(tasks, slab);
-  else
-    correctionPass(tasks, slab);
-}
-
-void VelocityAdvectionSlices::forwardPass(TaskSystem& tasks, const AdvectionSlabList::Slab& slab) {
+void VelocityAdvectionSlices::forwardPass(const AdvectionRows& slab) {
   AdvectionWorkspace& work = *work_;
   const VelocityAxisInputs in(*grid_, skip_, slab.target);
   const bool maccormack = maccormack_;
   const double dt = dt_;
   double* fwd = maccormack ? work.forward.data() : work.advected[slab.target].data();
-  forEachSampleInSlab(tasks, slab, [&](int i, int j, int k, size_t f) {
+  forEachSampleIn(slab, [&](int i, int j, int k, size_t f) {
     if (in.skipped(f)) {
       fwd[f] = in.old[f];
       if (maccormack) work.rangeLo[f] = work.rangeHi[f] = in.old[f];
@@ -242,13 +231,13 @@ void VelocityAdvectionSlices::forwardPass(TaskSystem& tasks, const AdvectionSlab
   });
 }
 
-void VelocityAdvectionSlices::correctionPass(TaskSystem& tasks, const AdvectionSlabList::Slab& slab) {
+void VelocityAdvectionSlices::correctionPass(const AdvectionRows& slab) {
   AdvectionWorkspace& work = *work_;
   const VelocityAxisInputs in(*grid_, skip_, slab.target);
   const double dt = dt_;
   const std::vector<double>& fwd = work.forward;
   std::vector<double>& out = work.advected[slab.target];
-  forEachSampleInSlab(tasks, slab, [&](int i, int j, int k, size_t f) {
+  forEachSampleIn(slab, [&](int i, int j, int k, size_t f) {
     if (in.skipped(f)) {
       out[f] = in.old[f];
       return;
@@ -271,8 +260,8 @@ void VelocityAdvectionSlices::finish() {
 void advectVelocity(TaskSystem& tasks, MacGrid& grid, double dt, AdvectionScheme scheme, AdvectionWorkspace& work,
                     const FaceSkipMask& skip) {
   VelocityAdvectionSlices slices;
-  slices.prepare(grid, dt, scheme, work, skip, std::numeric_limits<int64_t>::max());
-  for (int slice = 0; slice < slices.sliceCount(); ++slice) slices.runSlice(tasks, slice);
+  slices.prepare(tasks, grid, dt, scheme, work, skip);
+  slices.runSlice(std::numeric_limits<int64_t>::max());
   slices.finish();
 }
 
@@ -320,10 +309,9 @@ void buildCellOpenFaces(TaskSystem& tasks, const MacGrid& grid, const FaceFracti
   });
 }
 
-void ScalarAdvectionSlices::prepare(const MacGrid& grid, double dt, AdvectionScheme scheme,
+void ScalarAdvectionSlices::prepare(TaskSystem& tasks, const MacGrid& grid, double dt, AdvectionScheme scheme,
                                     std::vector<double>* const* fields, int fieldCount, AdvectionWorkspace& work,
-                                    const CellOpenFaces* openFaces, const double* solidValues, double keepBeyond,
-                                    int64_t maxSamplesPerSlice) {
+                                    const CellOpenFaces* openFaces, const double* solidValues, double keepBeyond) {
   grid_ = &grid;
   work_ = &work;
   dt_ = dt;
@@ -334,7 +322,7 @@ void ScalarAdvectionSlices::prepare(const MacGrid& grid, double dt, AdvectionSch
   solidValues_.clear();
   if (solidValues != nullptr) solidValues_.assign(solidValues, solidValues + fields_.size());
   keepBeyond_ = keepBeyond;
-  slabs_.clear();
+  passes_.reset(tasks);
   if (fields_.empty()) return;
   const Eigen::Vector3i d(grid.spec.nx, grid.spec.ny, grid.spec.nz);
   const size_t cells = static_cast<size_t>(grid.cellCount());
@@ -350,32 +338,15 @@ void ScalarAdvectionSlices::prepare(const MacGrid& grid, double dt, AdvectionSch
     work.rangeLo.resize(cells);
     work.rangeHi.resize(cells);
   }
-  slabs_.appendPass(AdvectionSlabList::Pass::Trace, 0, d, maxSamplesPerSlice);
+  addRowPass(passes_, 0, d, [this](const AdvectionRows& rows) { tracePass(rows); });
   for (int which = 0; which < static_cast<int>(fields_.size()); ++which) {
-    slabs_.appendPass(AdvectionSlabList::Pass::Forward, which, d, maxSamplesPerSlice);
-    if (maccormack_) slabs_.appendPass(AdvectionSlabList::Pass::Correction, which, d, maxSamplesPerSlice);
+    addRowPass(passes_, which, d, [this](const AdvectionRows& rows) { forwardPass(rows); });
+    if (maccormack_) addRowPass(passes_, which, d, [this](const AdvectionRows& rows) { correctionPass(rows); });
+    passes_.addStep([this, which] { fields_[static_cast<size_t>(which)]->swap(work_->advected[0]); });
   }
 }
 
-void ScalarAdvectionSlices::runSlice(TaskSystem& tasks, int slice) {
-  const AdvectionSlabList::Slab& slab = slabs_[slice];
-  switch (slab.pass) {
-    case AdvectionSlabList::Pass::Trace:
-      tracePass(tasks, slab);
-      return;
-    case AdvectionSlabList::Pass::Forward:
-      forwardPass(tasks, slab);
-      break;
-    case AdvectionSlabList::Pass::Correction:
-      correctionPass(tasks, slab);
-      break;
-  }
-  const bool fieldsLastPass = !maccormack_ || slab.pass == AdvectionSlabList::Pass::Correction;
-  if (fieldsLastPass && slab.rowEnd == rowCount(slab.dims))
-    fields_[static_cast<size_t>(slab.target)]->swap(work_->advected[0]);
-}
-
-void ScalarAdvectionSlices::tracePass(TaskSystem& tasks, const AdvectionSlabList::Slab& slab) {
+void ScalarAdvectionSlices::tracePass(const AdvectionRows& slab) {
   const MacGrid& grid = *grid_;
   AdvectionWorkspace& work = *work_;
   const size_t cells = static_cast<size_t>(grid.cellCount());
@@ -383,7 +354,7 @@ void ScalarAdvectionSlices::tracePass(TaskSystem& tasks, const AdvectionSlabList
   const double* first = fields_[0]->data();
   const double keepBeyond = keepBeyond_, dt = dt_;
   const bool maccormack = maccormack_;
-  forEachSampleInSlab(tasks, slab, [&](int i, int j, int k, size_t c) {
+  forEachSampleIn(slab, [&](int i, int j, int k, size_t c) {
     if (keepBeyond > 0.0 && std::abs(first[c]) >= keepBeyond) {
       work.kept[c] = 1;
       return;
@@ -395,14 +366,14 @@ void ScalarAdvectionSlices::tracePass(TaskSystem& tasks, const AdvectionSlabList
   });
 }
 
-void ScalarAdvectionSlices::forwardPass(TaskSystem& tasks, const AdvectionSlabList::Slab& slab) {
+void ScalarAdvectionSlices::forwardPass(const AdvectionRows& slab) {
   AdvectionWorkspace& work = *work_;
   const ScalarCellRules rules = scalarCellRules(slab, openFaces_, solidValues_, keepBeyond_, work);
   const std::vector<double>& old = *fields_[static_cast<size_t>(slab.target)];
   const bool maccormack = maccormack_;
   // Semi-Lagrangian: the forward result is the advected field.
   double* fwd = maccormack ? work.forward.data() : work.advected[0].data();
-  forEachSampleInSlab(tasks, slab, [&](int, int, int, size_t c) {
+  forEachSampleIn(slab, [&](int, int, int, size_t c) {
     if (rules.solid(c) || rules.keeps(c)) {
       fwd[c] = rules.solid(c) ? rules.solidResult(old, c) : old[c];
       if (maccormack) work.rangeLo[c] = work.rangeHi[c] = fwd[c];
@@ -414,13 +385,13 @@ void ScalarAdvectionSlices::forwardPass(TaskSystem& tasks, const AdvectionSlabLi
   });
 }
 
-void ScalarAdvectionSlices::correctionPass(TaskSystem& tasks, const AdvectionSlabList::Slab& slab) {
+void ScalarAdvectionSlices::correctionPass(const AdvectionRows& slab) {
   AdvectionWorkspace& work = *work_;
   const ScalarCellRules rules = scalarCellRules(slab, openFaces_, solidValues_, keepBeyond_, work);
   const std::vector<double>& old = *fields_[static_cast<size_t>(slab.target)];
   const size_t cells = static_cast<size_t>(grid_->cellCount());
   std::vector<double>& out = work.advected[0];
-  forEachSampleInSlab(tasks, slab, [&](int, int, int, size_t c) {
+  forEachSampleIn(slab, [&](int, int, int, size_t c) {
     if (rules.solid(c) || rules.keeps(c)) {
       out[c] = work.forward[c];
       return;
@@ -434,9 +405,8 @@ void advectCellScalars(TaskSystem& tasks, const MacGrid& grid, double dt, Advect
                        std::vector<double>* const* fields, int fieldCount, AdvectionWorkspace& work,
                        const CellOpenFaces* openFaces, const double* solidValues, double keepBeyond) {
   ScalarAdvectionSlices slices;
-  slices.prepare(grid, dt, scheme, fields, fieldCount, work, openFaces, solidValues, keepBeyond,
-                 std::numeric_limits<int64_t>::max());
-  for (int slice = 0; slice < slices.sliceCount(); ++slice) slices.runSlice(tasks, slice);
+  slices.prepare(tasks, grid, dt, scheme, fields, fieldCount, work, openFaces, solidValues, keepBeyond);
+  slices.runSlice(std::numeric_limits<int64_t>::max());
 }
 
 }  // namespace vp

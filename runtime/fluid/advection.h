@@ -32,6 +32,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/slab_passes.h"
 #include "core/task_system.h"
 #include "fluid/face_fraction_field.h"
 #include "fluid/fluid_desc.h"
@@ -84,85 +85,82 @@ void advectCellScalars(TaskSystem& tasks, const MacGrid& grid, double dt, Advect
                        const CellOpenFaces* openFaces = nullptr, const double* solidValues = nullptr,
                        double keepBeyond = 0.0);
 
-// The slices of a sequence of passes over sample lattices: each pass's rows (x-lines) cut into
-// near-equal slabs of at most maxSamplesPerSlab samples, but never less than one row.
-class AdvectionSlabList {
- public:
-  enum class Pass : uint8_t { Trace, Forward, Correction };
-  struct Slab {
-    Pass pass;
-    int target;  // the axis or field the pass works on
-    Eigen::Vector3i dims;  // of the pass's lattice
-    int64_t rowBegin, rowEnd;  // rows are numbered j + dims.y * k
-    int64_t samples() const { return (rowEnd - rowBegin) * dims.x(); }
-  };
-
-  void clear() { slabs_.clear(); }
-  void appendPass(Pass pass, int target, const Eigen::Vector3i& dims, int64_t maxSamplesPerSlab);
-  int count() const { return static_cast<int>(slabs_.size()); }
-  const Slab& operator[](int slab) const { return slabs_[static_cast<size_t>(slab)]; }
-
- private:
-  std::vector<Slab> slabs_;
+// Rows [rowBegin, rowEnd) (x-lines, numbered j + dims.y * k) of one pass's sample lattice:
+// the unit a slice of advection runs (core/slab_passes.h cuts the passes into slices).
+struct AdvectionRows {
+  int target;  // the axis or field the pass works on
+  Eigen::Vector3i dims;  // of the pass's lattice
+  int64_t rowBegin, rowEnd;
 };
 
 // One sub-step's velocity advection (advectVelocity) as a sequence of slices: for each axis,
 // for each pass (semi-Lagrangian: one; MacCormack: forward, then correction), that axis's face
-// rows in slabs of at most maxSamplesPerSlice samples (one row at least). The slices write the
-// workspace only, so grid.velocity stays the old field that every trace samples until
-// finish() swaps the advected one in.
+// rows, as SlabPasses (core/slab_passes.h) that a slice runs up to a bound on samples, decided
+// per slice (one row at least). The slices write the workspace only, so grid.velocity stays
+// the old field that every trace samples until finish() swaps the advected one in.
 //
 // Between prepare() and finish() the grid, the workspace and the skip marks must outlive this
-// object and be left alone by everything else. Slices run in order, each once.
+// object and be left alone by everything else; the object stays where it is (its passes
+// point at it).
 class VelocityAdvectionSlices {
  public:
-  // Sizes the workspace and lists the slices.
-  void prepare(MacGrid& grid, double dt, AdvectionScheme scheme, AdvectionWorkspace& work, const FaceSkipMask& skip,
-               int64_t maxSamplesPerSlice);
-  int sliceCount() const { return slabs_.count(); }
-  int64_t sliceSamples(int slice) const { return slabs_[slice].samples(); }
+  VelocityAdvectionSlices() = default;
+  VelocityAdvectionSlices(const VelocityAdvectionSlices&) = delete;
+  VelocityAdvectionSlices& operator=(const VelocityAdvectionSlices&) = delete;
+
+  // Sizes the workspace and lists the passes, which run on `tasks`.
+  void prepare(TaskSystem& tasks, MacGrid& grid, double dt, AdvectionScheme scheme, AdvectionWorkspace& work,
+               const FaceSkipMask& skip);
+  // Runs the next slice of at most maxSamples face samples (one row at least), parallel over
+  // its rows; true when every pass is done.
+  bool runSlice(int64_t maxSamples) { return passes_.runSlice(maxSamples); }
+  int64_t lastSliceSamples() const { return passes_.lastSliceSamples(); }
   // Parallel inside, over the slab's rows.
   void runSlice(TaskSystem& tasks, int slice);
   // After the last slice: grid.velocity becomes the advected velocity.
   void finish();
 
  private:
-  void forwardPass(TaskSystem& tasks, const AdvectionSlabList::Slab& slab);
-  void correctionPass(TaskSystem& tasks, const AdvectionSlabList::Slab& slab);
+  void forwardPass(const AdvectionRows& rows);
+  void correctionPass(const AdvectionRows& rows);
 
   MacGrid* grid_ = nullptr;
   AdvectionWorkspace* work_ = nullptr;
   double dt_ = 0.0;
   bool maccormack_ = false;
   FaceSkipMask skip_;
-  AdvectionSlabList slabs_;
+  SlabPasses passes_;
 };
 
-// advectCellScalars as a sequence of slices: the trace pass shared by all fields in slabs,
-// then per field its passes (semi-Lagrangian: one; MacCormack: forward, then correction) in
-// slabs of at most maxSamplesPerSlice cells (one row at least). The slice that completes a
-// field's last pass swaps the field with its advected values, as advectCellScalars does, so
-// after the last slice every field is advected and nothing is left to finish.
+// advectCellScalars as a sequence of slices: the trace pass shared by all fields, then per
+// field its passes (semi-Lagrangian: one; MacCormack: forward, then correction), as
+// SlabPasses that a slice runs up to a bound on cells (one row at least). Right after a
+// field's last pass the field is swapped with its advected values, as advectCellScalars does,
+// so after the last slice every field is advected and nothing is left to finish.
 //
 // Between prepare() and the last slice the grid, the fields, the workspace and openFaces must
 // outlive this object and be left alone by everything else; the list of field pointers and
-// solidValues are copied. Slices run in order, each once.
+// solidValues are copied. The object stays where it is (its passes point at it).
 class ScalarAdvectionSlices {
  public:
-  // Arguments as advectCellScalars'. Sizes the workspace and lists the slices (none when
-  // fieldCount <= 0).
-  void prepare(const MacGrid& grid, double dt, AdvectionScheme scheme, std::vector<double>* const* fields,
-               int fieldCount, AdvectionWorkspace& work, const CellOpenFaces* openFaces, const double* solidValues,
-               double keepBeyond, int64_t maxSamplesPerSlice);
-  int sliceCount() const { return slabs_.count(); }
-  int64_t sliceSamples(int slice) const { return slabs_[slice].samples(); }
-  // Parallel inside, over the slab's rows.
-  void runSlice(TaskSystem& tasks, int slice);
+  ScalarAdvectionSlices() = default;
+  ScalarAdvectionSlices(const ScalarAdvectionSlices&) = delete;
+  ScalarAdvectionSlices& operator=(const ScalarAdvectionSlices&) = delete;
+
+  // Arguments as advectCellScalars'. Sizes the workspace and lists the passes, which run on
+  // `tasks` (none when fieldCount <= 0).
+  void prepare(TaskSystem& tasks, const MacGrid& grid, double dt, AdvectionScheme scheme,
+               std::vector<double>* const* fields, int fieldCount, AdvectionWorkspace& work,
+               const CellOpenFaces* openFaces, const double* solidValues, double keepBeyond);
+  // Runs the next slice of at most maxSamples cell samples (one row at least), parallel over
+  // its rows; true when every pass is done.
+  bool runSlice(int64_t maxSamples) { return passes_.runSlice(maxSamples); }
+  int64_t lastSliceSamples() const { return passes_.lastSliceSamples(); }
 
  private:
-  void tracePass(TaskSystem& tasks, const AdvectionSlabList::Slab& slab);
-  void forwardPass(TaskSystem& tasks, const AdvectionSlabList::Slab& slab);
-  void correctionPass(TaskSystem& tasks, const AdvectionSlabList::Slab& slab);
+  void tracePass(const AdvectionRows& rows);
+  void forwardPass(const AdvectionRows& rows);
+  void correctionPass(const AdvectionRows& rows);
 
   const MacGrid* grid_ = nullptr;
   AdvectionWorkspace* work_ = nullptr;
@@ -172,7 +170,7 @@ class ScalarAdvectionSlices {
   const CellOpenFaces* openFaces_ = nullptr;
   std::vector<double> solidValues_;  // per field; empty: solid cells keep their values
   double keepBeyond_ = 0.0;
-  AdvectionSlabList slabs_;
+  SlabPasses passes_;
 };
 
 }  // namespace vp

@@ -89,20 +89,26 @@ int clampIndex(double x, int lo, int hi) {
   return static_cast<int>(x);
 }
 
-// The faces of one axis touching a box: rows along i, indexed by (j, k).
-struct FaceRows {
+// The faces of one axis touching a box, numbered along i first, then j, then k.
+struct FaceBox {
   int axis = 0;
   int lo[3] = {0, 0, 0}, hi[3] = {-1, -1, -1};  // inclusive
-  int64_t rows() const { return hi[0] < lo[0] ? 0 : int64_t(hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1); }
-  int rowLength() const { return hi[0] - lo[0] + 1; }
+  int64_t faces() const {
+    int64_t n = 1;
+    for (int d = 0; d < 3; ++d) n *= hi[d] < lo[d] ? 0 : hi[d] - lo[d] + 1;
+    return n;
+  }
 };
 
 // Recomputing a face costs about this many of the samples that bound a slice (an advection
 // sample): a coverage evaluation per collider near it.
 constexpr int64_t kSamplesPerFace = 128;
+// Faces per parallel chunk: a face near a collider costs far more than one away from it, so
+// chunks are small.
+constexpr int64_t kFaceGrain = 4;
 
-FaceRows faceRowsAround(const FaceFractionField& field, const Aabb& box, int axis) {
-  FaceRows r;
+FaceBox facesAround(const FaceFractionField& field, const Aabb& box, int axis) {
+  FaceBox r;
   r.axis = axis;
   if (box.empty()) return r;
   const MacGridSpec& g = field.grid;
@@ -119,29 +125,31 @@ FaceRows faceRowsAround(const FaceFractionField& field, const Aabb& box, int axi
   return r;
 }
 
-void recomputeRows(const PreparedCollider* const* colliders, int count, const FaceRows& r, int64_t begin,
-                   int64_t end, FaceFractionField* field) {
-  const int rowsPerK = r.hi[1] - r.lo[1] + 1;
-  for (int64_t row = begin; row < end; ++row) {
-    const int j = r.lo[1] + static_cast<int>(row % rowsPerK), k = r.lo[2] + static_cast<int>(row / rowsPerK);
-    for (int i = r.lo[0]; i <= r.hi[0]; ++i) recomputeFace(colliders, count, r.axis, i, j, k, field);
+void recomputeFaces(const PreparedCollider* const* colliders, int count, const FaceBox& r, int64_t begin,
+                    int64_t end, FaceFractionField* field) {
+  const int64_t nx = r.hi[0] - r.lo[0] + 1, ny = r.hi[1] - r.lo[1] + 1;
+  for (int64_t n = begin; n < end; ++n) {
+    const int i = r.lo[0] + static_cast<int>(n % nx), j = r.lo[1] + static_cast<int>(n / nx % ny),
+              k = r.lo[2] + static_cast<int>(n / nx / ny);
+    recomputeFace(colliders, count, r.axis, i, j, k, field);
   }
 }
 
 void recomputeBox(const PreparedCollider* const* colliders, int count, const Aabb& box,
                   FaceFractionField* field) {
   for (int a = 0; a < 3; ++a) {
-    const FaceRows r = faceRowsAround(*field, box, a);
-    recomputeRows(colliders, count, r, 0, r.rows(), field);
+    const FaceBox r = facesAround(*field, box, a);
+    recomputeFaces(colliders, count, r, 0, r.faces(), field);
   }
 }
 
+// Faces, not rows, are the unit: one row of faces along a collider can cost a whole slice.
 void addBoxPasses(SlabPasses& passes, const PreparedCollider* const* colliders, int count, const Aabb& box,
                   FaceFractionField* field) {
   for (int a = 0; a < 3; ++a) {
-    const FaceRows r = faceRowsAround(*field, box, a);
-    passes.addParallel(r.rows(), r.rowLength() * kSamplesPerFace, 1, [=](int64_t begin, int64_t end) {
-      recomputeRows(colliders, count, r, begin, end, field);
+    const FaceBox r = facesAround(*field, box, a);
+    passes.addParallel(r.faces(), kSamplesPerFace, kFaceGrain, [=](int64_t begin, int64_t end) {
+      recomputeFaces(colliders, count, r, begin, end, field);
     });
   }
 }

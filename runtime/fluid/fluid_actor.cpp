@@ -172,7 +172,7 @@ void FluidActor::diffuseVelocity() {
 
 bool FluidActor::advectVelocitySlab() {
   StepInProgress& st = *step_;
-  if (st.slab == 0) {
+  if (!st.advecting) {
     const FluidSolverSettings& solver = desc_.solver;
     // A liquid's air faces beyond the extrapolated layers are zeroed after the projection and
     // out of reach of the liquid while a sub-step moves things at most cflNumber cells (the
@@ -181,19 +181,18 @@ bool FluidActor::advectVelocitySlab() {
     if (desc_.kind == FluidKind::Liquid && !extrapolation_.mark[0].empty() &&
         st.speed * st.h <= solver.cflNumber * grid_.spec.h)
       skip = FaceSkipMask{extrapolation_.mark, kExtrapolationUnreached};
-    st.velocityAdvection.prepare(grid_, st.h, solver.advection, advection_, skip,
-                                 slabSamples(FluidSlice::AdvectVelocity));
+    st.velocityAdvection.prepare(*st.input.tasks, grid_, st.h, solver.advection, advection_, skip);
+    st.advecting = true;
   }
-  st.velocityAdvection.runSlice(*st.input.tasks, st.slab++);
-  if (st.slab < st.velocityAdvection.sliceCount()) return false;
+  if (!st.velocityAdvection.runSlice(slabSamples(FluidSlice::AdvectVelocity))) return false;
   st.velocityAdvection.finish();
-  st.slab = 0;
+  st.advecting = false;
   return true;
 }
 
 bool FluidActor::advectScalarsSlab() {
   StepInProgress& st = *step_;
-  if (st.slab == 0) {
+  if (!st.advecting) {
     TaskSystem& tasks = *st.input.tasks;
     const AdvectionScheme scheme = desc_.solver.advection;
     if (desc_.kind == FluidKind::Smoke) {
@@ -205,20 +204,19 @@ bool FluidActor::advectScalarsSlab() {
       }
       std::vector<double>* scalars[2] = {&smokeDensity_, &temperature_};
       const double solidValues[2] = {0.0, desc_.smoke.ambientTemperature};
-      st.scalarAdvection.prepare(grid_, st.h, scheme, scalars, 2, advection_, &openFaces_, solidValues, 0.0,
-                                 slabSamples(FluidSlice::AdvectScalars));
+      st.scalarAdvection.prepare(tasks, grid_, st.h, scheme, scalars, 2, advection_, &openFaces_, solidValues, 0.0);
     } else {
       // The level set is extended into solids on purpose (level_set_solid_extension.h) and
       // sampled as it is. Cells farther from the surface than the sub-step moves it, plus the
       // forward and backward traces' stencils, keep their sign, and redistancing rewrites them.
       std::vector<double>* scalars[1] = {&phi_};
-      st.scalarAdvection.prepare(grid_, st.h, scheme, scalars, 1, advection_, nullptr, nullptr,
-                                 st.speed * st.h + 3.0 * grid_.spec.h, slabSamples(FluidSlice::AdvectScalars));
+      st.scalarAdvection.prepare(tasks, grid_, st.h, scheme, scalars, 1, advection_, nullptr, nullptr,
+                                 st.speed * st.h + 3.0 * grid_.spec.h);
     }
+    st.advecting = true;
   }
-  st.scalarAdvection.runSlice(*st.input.tasks, st.slab++);
-  if (st.slab < st.scalarAdvection.sliceCount()) return false;
-  st.slab = 0;
+  if (!st.scalarAdvection.runSlice(slabSamples(FluidSlice::AdvectScalars))) return false;
+  st.advecting = false;
   return true;
 }
 
@@ -344,6 +342,7 @@ bool FluidActor::advance(const FluidStepInput& input, const SliceBudget& budget,
   if (job_.done()) beginStep(input);
   step_->stats = stats;
   const Clock& clock = budget.share.clock();
+  sliceTargetMs_ = budget.targetSliceMs;
   int ran = 0;
   maxSliceMs_ = 0.0;
   while (!job_.done()) {

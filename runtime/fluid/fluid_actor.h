@@ -25,9 +25,10 @@
 //              tolerance or pressureMaxIterations, never cut by time), velocity update in
 //              slabs, loads
 // Passes over the grid (fractions, advection, level-set upkeep, extrapolation, the
-// projection's setup and update) run in slabs, one slab per slice, of a number of samples
-// that starts at solver.samplesPerSlice and follows the slices' measured cost toward the
-// budget's target slice length (core/slice_sizer.h).
+// projection's setup and update) run in slabs, one slab per slice, of at most
+// solver.samplesPerSlice samples; under a budget, of a number of samples that starts small
+// and follows the slices' measured cost toward the budget's target slice length
+// (core/slice_sizer.h).
 //   Surface    liquid: velocity extrapolation
 //   Publish    divergence guard, then what readers see becomes this step's result
 // The pressure loads on dynamic colliders, averaged over the sub-steps, are those of the last
@@ -173,7 +174,7 @@ class FluidActor {
   void finishFractionUpdate();
   void planSubsteps();
   void queueSubstep(int sub);
-  // One slab of the sub-step's advection per call; true when the last is done.
+  // One slice of the sub-step's advection per call; true when the last is done.
   bool advectVelocitySlab();
   bool advectScalarsSlab();
   void applySources();
@@ -223,7 +224,7 @@ class FluidActor {
     SlabPasses fractionUpdate;
     VelocityAdvectionSlices velocityAdvection;
     ScalarAdvectionSlices scalarAdvection;
-    int slab = 0;  // of the advection in progress
+    bool advecting = false;  // an advection pass list is prepared and running
     LevelSetUpkeep levelSet;
     VelocityExtrapolationRun extrapolation;
     bool extrapolating = false;
@@ -256,7 +257,11 @@ class FluidActor {
   ViscosityWorkspace viscosity_;
   TaskSystem* tasks_ = nullptr;  // the world's, for on-request work (surface extraction)
   std::vector<SliceSizer> slabs_;  // per FluidSlice kind
-  int64_t slabSamples(FluidSlice kind) const { return slabs_[static_cast<size_t>(kind)].samples(); }
+  // Unbudgeted, the slabs are as large as the solver settings allow.
+  int64_t slabSamples(FluidSlice kind) const {
+    return sliceTargetMs_ > 0.0 ? slabs_[static_cast<size_t>(kind)].samples() : desc_.solver.samplesPerSlice;
+  }
+  double sliceTargetMs_ = 0.0;  // of the advance() running
   // Liquid: the volume the level set must keep (initial + emitted - drained), the cells'
   // open fractions that weight it, and the level-set workspaces.
   double targetVolume_ = 0.0;
