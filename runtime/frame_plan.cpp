@@ -40,17 +40,17 @@ Deadline FramePlan::fluidShare(const Deadline& frame, const ActorSchedule& s, in
   return equal.within(kMargin * s.expectedMs);
 }
 
-int FramePlan::fluidMinSlices(const Fluid& f) {
+int64_t FramePlan::fluidMinWork(const Fluid& f) {
   const int framesAfterThis = f.schedule->stepFrames + 1;
-  // At the cap the step ends whatever it costs (it may need more slices than the last one).
-  if (framesAfterThis >= kMaxInterval) return std::numeric_limits<int>::max();
-  if (f.expectedSlices <= 0) return 0;
-  // Paced to end a frame before the cap, so a step that needs more slices than the last one
-  // (more iterations, smaller slabs) has a frame to spread them over.
+  // At the cap the step ends whatever it costs (it may need more work than expected).
+  if (framesAfterThis >= kMaxInterval) return std::numeric_limits<int64_t>::max();
+  if (f.expectedWork <= 0) return 0;
+  // Paced to end a frame before the cap, so a step that needs more work than expected (more
+  // iterations or sub-steps) has a frame to spread it over.
   const int paceFrames = kMaxInterval - 1;
   const double due =
-      std::ceil(static_cast<double>(f.expectedSlices) * std::min(framesAfterThis, paceFrames) / paceFrames);
-  return std::max(0, static_cast<int>(due) - f.slicesDone);
+      std::ceil(static_cast<double>(f.expectedWork) * std::min(framesAfterThis, paceFrames) / paceFrames);
+  return std::max<int64_t>(0, static_cast<int64_t>(due) - f.workDone);
 }
 
 bool FramePlan::adjustIntervals(const std::vector<Deformable>& deformables, const std::vector<bool>& missed,

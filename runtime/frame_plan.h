@@ -73,8 +73,8 @@ class FramePlan {
   struct Fluid {
     int priority = 0;
     ActorSchedule* schedule = nullptr;
-    int expectedSlices = 0;  // slices of a whole step (FluidActor::expectedStepSlices; 0: unknown)
-    int slicesDone = 0;      // of the step in progress
+    int64_t expectedWork = 0;  // of a whole step (core/work_progress.h; 0: unknown)
+    int64_t workDone = 0;      // of the step in progress
   };
 
   // Order of service: indices into the lists by priority (higher first), stable.
@@ -100,9 +100,9 @@ class FramePlan {
   // priority otherwise (`equals`: itself and the later fluids of its priority; `lowerAfter`:
   // fluids of lower priority follow).
   static Deadline fluidShare(const Deadline& frame, const ActorSchedule& s, int equals, bool lowerAfter);
-  // Slices a fluid must run this frame whatever the budget, so that its step never spans
-  // more than about kMaxInterval frames.
-  static int fluidMinSlices(const Fluid& f);
+  // The work (core/work_progress.h) a fluid must do this frame whatever the budget, so that
+  // its step never spans more than about kMaxInterval frames.
+  static int64_t fluidMinWork(const Fluid& f);
 
   // After the frame: a deformable that missed its floor raises the interval of the
   // lowest-priority deformable below the cap (`deformables` in slot order; `missed[i]`:

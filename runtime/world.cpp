@@ -381,11 +381,11 @@ void World::stepFluids(double dt, const Deadline& frame, bool floorsHeld, StepSt
     actors[i] = actorStats(ActorKind::Fluid, handles[i].index1, handles[i].generation, priorities[i], 0.0);
     actors[i].interval = s.interval;
     actors[i].progress = f.progress();
-    FramePlan::Fluid planned{priorities[i], &s, f.expectedStepSlices(), f.stepInProgress() ? f.stepSlicesRun() : 0};
-    budgets[i].minSlices = FramePlan::fluidMinSlices(planned);
+    FramePlan::Fluid planned{priorities[i], &s, f.stepWork().expected(), f.stepInProgress() ? f.stepWork().done() : 0};
+    budgets[i].minWork = FramePlan::fluidMinWork(planned);
     budgets[i].targetSliceMs = FramePlan::targetSliceMs(stats->budgetMs);
     ++s.stepFrames;
-    if (noTime && budgets[i].minSlices == 0) continue;  // its step waits for the next frame
+    if (noTime && budgets[i].minWork == 0) continue;  // its step waits for the next frame
     served.push_back(i);
   }
   const bool concurrent = runsConcurrently(static_cast<int>(served.size()));
@@ -425,7 +425,7 @@ void World::stepFluids(double dt, const Deadline& frame, bool floorsHeld, StepSt
     ActorSchedule& s = f.schedule();
     ActorStats& a = actors[i];
     stats->maxSliceMs = std::max(stats->maxSliceMs, f.maxSliceMs());
-    if (budgets[i].minSlices > 0 && a.slices > 0 && (frame.expired() || !floorsHeld)) stats->budgetInfeasible = true;
+    if (budgets[i].minWork > 0 && a.slices > 0 && (frame.expired() || !floorsHeld)) stats->budgetInfeasible = true;
     s.stepMs += a.totalMs;
     if (a.completedStep) {
       // Frames since the last completed step, the waiting ones included.

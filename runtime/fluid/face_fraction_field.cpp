@@ -101,8 +101,10 @@ struct FaceBox {
 };
 
 // Recomputing a face costs about this many of the samples that bound a slice (an advection
-// sample): a coverage evaluation per collider near it.
-constexpr int64_t kSamplesPerFace = 128;
+// sample): a coverage evaluation per collider near it, measured in the frame-budget benchmark
+// over the faces around the default scene's moving colliders (those on a collider cost
+// several times more, those beside it less).
+constexpr int64_t kSamplesPerFace = 256;
 // Faces per parallel chunk: a face near a collider costs far more than one away from it, so
 // chunks are small.
 constexpr int64_t kFaceGrain = 4;

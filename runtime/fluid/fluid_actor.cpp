@@ -95,20 +95,25 @@ bool FluidActor::keepLevelSetHealthySlice() {
     log(LogLevel::Error, "fluid '%s': %s failed: %s", desc_.name.c_str(), what, lastError());
     return true;
   };
+  bool done = false;  // the run in progress; its samples are the slice's work
   switch (u.stage) {
     case LevelSetUpkeep::Extend:
       if (failed("solid extension", u.extension.prepare(grid_.spec, cellWeights_, phi_, solidCells_, slice))) break;
       u.stage = LevelSetUpkeep::Extending;
       [[fallthrough]];
     case LevelSetUpkeep::Extending:
-      if (!u.extension.advance()) return false;
+      done = u.extension.advance();
+      sliceWork_ = u.extension.lastSliceSamples();
+      if (!done) return false;
       u.stage = LevelSetUpkeep::Redistancing;
       if (failed("redistancing",
                  u.redistance.prepare(tasks, grid_.spec, phi_.data(), RedistanceSettings{}, redistance_, slice)))
         u.redistance = RedistanceRun{};
       return false;
     case LevelSetUpkeep::Redistancing:
-      if (!u.redistance.advance()) return false;
+      done = u.redistance.advance();
+      sliceWork_ = u.redistance.lastSliceSamples();
+      if (!done) return false;
       u.stage = LevelSetUpkeep::Correcting;
       // Advection and redistancing both lose or gain a little volume every step; a uniform
       // shift of the level set puts it back (the correction moves at most a cell per call, so
@@ -118,7 +123,9 @@ bool FluidActor::keepLevelSetHealthySlice() {
         u.volume = VolumeCorrectionRun{};
       return false;
     case LevelSetUpkeep::Correcting:
-      if (!u.volume.advance()) return false;
+      done = u.volume.advance();
+      sliceWork_ = u.volume.lastSliceSamples();
+      if (!done) return false;
       break;
   }
   u.stage = LevelSetUpkeep::Extend;
@@ -154,7 +161,9 @@ bool FluidActor::extrapolateLiquidVelocitySlice() {
     }
     st.extrapolating = true;
   }
-  if (!st.extrapolation.advance()) return false;
+  const bool done = st.extrapolation.advance();
+  sliceWork_ = st.extrapolation.lastSliceSamples();
+  if (!done) return false;
   st.extrapolating = false;
   return true;
 }
@@ -184,7 +193,9 @@ bool FluidActor::advectVelocitySlab() {
     st.velocityAdvection.prepare(*st.input.tasks, grid_, st.h, solver.advection, advection_, skip);
     st.advecting = true;
   }
-  if (!st.velocityAdvection.runSlice(slabSamples(FluidSlice::AdvectVelocity))) return false;
+  const bool done = st.velocityAdvection.runSlice(slabSamples(FluidSlice::AdvectVelocity));
+  sliceWork_ = st.velocityAdvection.lastSliceSamples();
+  if (!done) return false;
   st.velocityAdvection.finish();
   st.advecting = false;
   return true;
@@ -215,7 +226,9 @@ bool FluidActor::advectScalarsSlab() {
     }
     st.advecting = true;
   }
-  if (!st.scalarAdvection.runSlice(slabSamples(FluidSlice::AdvectScalars))) return false;
+  const bool done = st.scalarAdvection.runSlice(slabSamples(FluidSlice::AdvectScalars));
+  sliceWork_ = st.scalarAdvection.lastSliceSamples();
+  if (!done) return false;
   st.advecting = false;
   return true;
 }
@@ -344,15 +357,20 @@ bool FluidActor::advance(const FluidStepInput& input, const SliceBudget& budget,
   const Clock& clock = budget.share.clock();
   sliceTargetMs_ = budget.targetSliceMs;
   int ran = 0;
+  int64_t workRun = 0;
   maxSliceMs_ = 0.0;
   while (!job_.done()) {
     // A slice of a kind never measured is expected to cost nothing: it runs while any time is
     // left (an unlimited share has infinite time left).
     const double remaining = budget.share.remainingMs();
     const bool fits = remaining > 0.0 && remaining >= job_.expectedNextMs();
-    if (!fits && ran >= budget.minSlices) break;
+    if (!fits && workRun >= budget.minWork) break;
     const FluidSlice kind = static_cast<FluidSlice>(job_.nextKind());
+    sliceWork_ = 0;
     const double ms = job_.runNext(clock);
+    const int64_t work = sliceWork_ > 0 ? sliceWork_ : grid_.cellCount();
+    work_.add(work);
+    workRun += work;
     stats->phase(phaseOf(kind)).ms += ms;
     maxSliceMs_ = std::max(maxSliceMs_, ms);
     if (runsSlabs(kind)) slabs_[static_cast<size_t>(kind)].noteSlice(ms, budget.targetSliceMs);
@@ -366,21 +384,21 @@ bool FluidActor::advance(const FluidStepInput& input, const SliceBudget& budget,
   stats->diverged = stats->diverged || step_->diverged;
   for (SliceSizer& sizer : slabs_) sizer.adapt(budget.targetSliceMs);
   lastStepSlices_ = job_.slicesRun();
-  expectedStepSlices_ = std::max(lastStepSlices_, lastStepSlices_ + (expectedStepSlices_ - lastStepSlices_) * 3 / 4);
+  work_.finish();
   step_.reset();
   return true;
 }
 
 double FluidActor::progress() const {
   if (job_.done()) return step_ ? 1.0 : 0.0;
-  const int done = job_.slicesRun();
-  return static_cast<double>(done) / std::max(done + job_.slicesQueued(), expectedStepSlices_);
+  return work_.fraction();
 }
 
 void FluidActor::beginStep(const FluidStepInput& input) {
   step_ = std::make_unique<StepInProgress>();
   step_->input = input;
   job_.reset();
+  work_.begin();
   job_.thenOnce(static_cast<int>(FluidSlice::Fractions), [this] { planFractionUpdate(); });
   job_.then(static_cast<int>(FluidSlice::Fractions), [this] { return updateFractionsSlice(); });
   job_.thenOnce(static_cast<int>(FluidSlice::Plan), [this] { finishFractionUpdate(); });
@@ -397,7 +415,12 @@ void FluidActor::planFractionUpdate() {
   if (desc_.kind == FluidKind::Liquid) addCellOpenFractionPasses(passes, fractions_, &cellWeights_);
 }
 
-bool FluidActor::updateFractionsSlice() { return step_->fractionUpdate.runSlice(slabSamples(FluidSlice::Fractions)); }
+bool FluidActor::updateFractionsSlice() {
+  SlabPasses& passes = step_->fractionUpdate;
+  const bool done = passes.runSlice(slabSamples(FluidSlice::Fractions));
+  sliceWork_ = passes.lastSliceSamples();
+  return done;
+}
 
 void FluidActor::finishFractionUpdate() {
   // The first step's start: the liquid's volume to keep, and a velocity field to advect by.
@@ -446,7 +469,12 @@ void FluidActor::queueSubstep(int) {
 
 bool FluidActor::setUpProjectionSlice() {
   StepInProgress& st = *step_;
-  if (st.projectionPrepared) return st.projectionFailed || st.projection.advanceSetup();
+  if (st.projectionPrepared) {
+    if (st.projectionFailed) return true;
+    const bool done = st.projection.advanceSetup();
+    sliceWork_ = st.projection.lastSliceSamples();
+    return done;
+  }
   PressureSolveSettings settings;
   settings.tolerance = desc_.solver.pressureTolerance;
   settings.maxIterations = desc_.solver.pressureMaxIterations;
@@ -471,7 +499,11 @@ bool FluidActor::iterateProjection() {
 
 bool FluidActor::finishProjectionSlice() {
   StepInProgress& st = *step_;
-  if (!st.projectionFailed && !st.projection.advanceFinish()) return false;
+  if (!st.projectionFailed) {
+    const bool done = st.projection.advanceFinish();
+    sliceWork_ = st.projection.lastSliceSamples();
+    if (!done) return false;
+  }
   st.projectionPrepared = false;
   if (st.projectionFailed) return true;
   const PressureSolveStats ps = st.projection.stats();

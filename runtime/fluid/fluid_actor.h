@@ -45,6 +45,7 @@
 #include "core/slice_sizer.h"
 #include "core/sliced_job.h"
 #include "core/task_system.h"
+#include "core/work_progress.h"
 #include "fluid/advection.h"
 #include "fluid/face_fraction_field.h"
 #include "fluid/fluid_desc.h"
@@ -92,10 +93,11 @@ struct FluidSurface {
 };
 
 // Which slices may run now: while the share leaves room for the next slice's expected cost,
-// and in any case until minSlices have run (the plan's progress floor).
+// and in any case until minWork has been done (the plan's progress floor, in the units of
+// core/work_progress.h).
 struct SliceBudget {
   Deadline share;
-  int minSlices = 0;
+  int64_t minWork = 0;
   double targetSliceMs = 0.0;  // what a slab slice should last (FramePlan::targetSliceMs); 0: any
 };
 
@@ -129,18 +131,14 @@ class FluidActor {
   // Runs `edit` on the working fields; readers see the edit at once. Refused (false) while a
   // step is in progress: the step would overwrite it.
   bool editFields(const std::function<void(EditableFields&)>& edit);
-  // The fraction of the step in progress done so far (by slices, against expectedStepSlices);
-  // 0 when none is in progress.
+  // The fraction of the step in progress done so far (by work, against the work a step is
+  // expected to take); 0 when none is in progress.
   double progress() const;
-  // Slices run so far by the step in progress.
-  int stepSlicesRun() const { return job_.slicesRun(); }
+  // The work of the step in progress, or of the steps before (core/work_progress.h): samples
+  // for slab slices, a pass over the grid (its cell count) for any other slice.
+  const WorkProgress& stepWork() const { return work_; }
   // Slices of the last completed step (0 before the first).
   int lastStepSlices() const { return lastStepSlices_; }
-  // Slices a step is expected to take (0 before the first completed): the most any recent
-  // step took, forgetting a quarter of the excess per step, since a step's count grows with
-  // its CG iterations and sub-steps and when its slabs shrink (the frame plan paces the step
-  // by it, and an underestimate leaves the rest for the step's last frame).
-  int expectedStepSlices() const { return expectedStepSlices_; }
 
   // What readers see: the last completed step.
   const FluidDesc& desc() const { return desc_; }
@@ -272,7 +270,8 @@ class FluidActor {
   SlicedJob job_{static_cast<int>(FluidSlice::Count)};
   std::unique_ptr<StepInProgress> step_;
   int lastStepSlices_ = 0;
-  int expectedStepSlices_ = 0;
+  WorkProgress work_;
+  int64_t sliceWork_ = 0;  // samples the running slice did (0: not a slab slice)
   double maxSliceMs_ = 0.0;
   ActorSchedule schedule_;  // the frame plan's state of this fluid
   ShownState shown_;

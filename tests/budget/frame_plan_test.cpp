@@ -34,22 +34,22 @@ TEST(FramePlan, StaggersDeformablesOverTheirInterval) {
 
 TEST(FramePlan, AFluidStepMustGoItsShareOfTheWayEachFrameAtTheCap) {
   ActorSchedule s;
-  FramePlan::Fluid f{0, &s, 80, 0};
+  FramePlan::Fluid f{0, &s, 80000, 0};
   // Paced to end a frame before the cap: 1/7 of the way per frame.
-  const int pace = FramePlan::kMaxInterval - 1;
-  EXPECT_EQ(FramePlan::fluidMinSlices(f), (80 + pace - 1) / pace);
-  f.slicesDone = 40;
+  const int64_t pace = FramePlan::kMaxInterval - 1;
+  EXPECT_EQ(FramePlan::fluidMinWork(f), (80000 + pace - 1) / pace);
+  f.workDone = 40000;
   s.stepFrames = 2;  // after this frame it must be 3/7 of the way: done already
-  EXPECT_EQ(FramePlan::fluidMinSlices(f), 0);
-  s.stepFrames = 4;  // after this frame 5/7 of the way: 58 slices
-  EXPECT_EQ(FramePlan::fluidMinSlices(f), 58 - 40);
+  EXPECT_EQ(FramePlan::fluidMinWork(f), 0);
+  s.stepFrames = 4;  // after this frame 5/7 of the way: 57143 (rounded up)
+  EXPECT_EQ(FramePlan::fluidMinWork(f), 57143 - 40000);
   s.stepFrames = FramePlan::kMaxInterval - 2;  // the paced end: all it expects to need
-  EXPECT_EQ(FramePlan::fluidMinSlices(f), 80 - 40);
+  EXPECT_EQ(FramePlan::fluidMinWork(f), 80000 - 40000);
   s.stepFrames = FramePlan::kMaxInterval - 1;  // its last frame: all that is left, however much
-  EXPECT_EQ(FramePlan::fluidMinSlices(f), std::numeric_limits<int>::max());
+  EXPECT_EQ(FramePlan::fluidMinWork(f), std::numeric_limits<int64_t>::max());
   FramePlan::Fluid unknown{0, &s, 0, 0};
   s.stepFrames = 0;
-  EXPECT_EQ(FramePlan::fluidMinSlices(unknown), 0);
+  EXPECT_EQ(FramePlan::fluidMinWork(unknown), 0);
 }
 
 TEST(FramePlan, AMissedFloorRaisesTheLowestPriorityIntervalFirst) {
