@@ -187,6 +187,31 @@ ScalarCellRules scalarCellRules(const AdvectionRows& slab, const CellOpenFaces* 
   return rules;
 }
 
+// What the outward velocities of the open domain sides carry out of their boundary cells'
+// values over dt, in value x cells (a face passes u dt h^2 of volume, a cell holds h^3).
+double openSideOutflow(const MacGrid& grid, const double* values, double dt) {
+  const MacGridSpec& s = grid.spec;
+  const int n[3] = {s.nx, s.ny, s.nz};
+  double out = 0.0;
+  for (int a = 0; a < 3; ++a)
+    for (int high = 0; high < 2; ++high) {
+      if (grid.side(a, high != 0) != DomainSide::Open) continue;
+      const int b = (a + 1) % 3, c = (a + 2) % 3;
+      for (int q = 0; q < n[c]; ++q)
+        for (int p = 0; p < n[b]; ++p) {
+          int face[3], cell[3];
+          face[a] = high ? n[a] : 0;
+          cell[a] = high ? n[a] - 1 : 0;
+          face[b] = cell[b] = p;
+          face[c] = cell[c] = q;
+          const double u = grid.velocity[a][grid.faceIndex(a, face[0], face[1], face[2])];
+          const double outward = high ? u : -u;
+          if (outward > 0.0) out += outward * dt / s.h * values[grid.cellIndex(cell[0], cell[1], cell[2])];
+        }
+    }
+  return out;
+}
+
 }  // namespace
 
 void VelocityAdvectionSlices::prepare(TaskSystem& tasks, MacGrid& grid, double dt, AdvectionScheme scheme,
@@ -311,7 +336,8 @@ void buildCellOpenFaces(TaskSystem& tasks, const MacGrid& grid, const FaceFracti
 
 void ScalarAdvectionSlices::prepare(TaskSystem& tasks, const MacGrid& grid, double dt, AdvectionScheme scheme,
                                     std::vector<double>* const* fields, int fieldCount, AdvectionWorkspace& work,
-                                    const CellOpenFaces* openFaces, const double* solidValues, double keepBeyond) {
+                                    const CellOpenFaces* openFaces, const double* solidValues, double keepBeyond,
+                                    int conservedField) {
   grid_ = &grid;
   work_ = &work;
   dt_ = dt;
@@ -338,12 +364,47 @@ void ScalarAdvectionSlices::prepare(TaskSystem& tasks, const MacGrid& grid, doub
     work.rangeLo.resize(cells);
     work.rangeHi.resize(cells);
   }
+  const bool conserve = conservedField >= 0 && conservedField < static_cast<int>(fields_.size());
+  if (conserve) addConservationPasses(conservedField, true);
   addRowPass(passes_, 0, d, [this](const AdvectionRows& rows) { tracePass(rows); });
   for (int which = 0; which < static_cast<int>(fields_.size()); ++which) {
     addRowPass(passes_, which, d, [this](const AdvectionRows& rows) { forwardPass(rows); });
     if (maccormack_) addRowPass(passes_, which, d, [this](const AdvectionRows& rows) { correctionPass(rows); });
     passes_.addStep([this, which] { fields_[static_cast<size_t>(which)]->swap(work_->advected[0]); });
+    if (conserve && which == conservedField) addConservationPasses(which, false);
   }
+}
+
+void ScalarAdvectionSlices::addConservationPasses(int field, bool before) {
+  const MacGrid& grid = *grid_;
+  const Eigen::Vector3i d(grid.spec.nx, grid.spec.ny, grid.spec.nz);
+  rowSums_.resize(static_cast<size_t>(rowCount(d)));
+  addRowPass(passes_, field, d, [this](const AdvectionRows& rows) {
+    const double* values = fields_[static_cast<size_t>(rows.target)]->data();
+    for (int64_t row = rows.rowBegin; row < rows.rowEnd; ++row) {
+      const double* v = values + row * rows.dims.x();
+      double sum = 0.0;
+      for (int i = 0; i < rows.dims.x(); ++i) sum += v[i];
+      rowSums_[static_cast<size_t>(row)] = sum;
+    }
+  });
+  if (before) {
+    passes_.addStep([this, field] {
+      double total = 0.0;
+      for (double s : rowSums_) total += s;
+      targetTotal_ = total - openSideOutflow(*grid_, fields_[static_cast<size_t>(field)]->data(), dt_);
+    });
+    return;
+  }
+  passes_.addStep([this] {
+    double total = 0.0;
+    for (double s : rowSums_) total += s;
+    scale_ = total > 0.0 ? std::max(targetTotal_, 0.0) / total : 1.0;
+  });
+  addRowPass(passes_, field, d, [this](const AdvectionRows& rows) {
+    double* values = fields_[static_cast<size_t>(rows.target)]->data();
+    for (int64_t c = rows.rowBegin * rows.dims.x(); c < rows.rowEnd * rows.dims.x(); ++c) values[c] *= scale_;
+  });
 }
 
 void ScalarAdvectionSlices::tracePass(const AdvectionRows& slab) {
@@ -403,9 +464,11 @@ void ScalarAdvectionSlices::correctionPass(const AdvectionRows& slab) {
 
 void advectCellScalars(TaskSystem& tasks, const MacGrid& grid, double dt, AdvectionScheme scheme,
                        std::vector<double>* const* fields, int fieldCount, AdvectionWorkspace& work,
-                       const CellOpenFaces* openFaces, const double* solidValues, double keepBeyond) {
+                       const CellOpenFaces* openFaces, const double* solidValues, double keepBeyond,
+                       int conservedField) {
   ScalarAdvectionSlices slices;
-  slices.prepare(tasks, grid, dt, scheme, fields, fieldCount, work, openFaces, solidValues, keepBeyond);
+  slices.prepare(tasks, grid, dt, scheme, fields, fieldCount, work, openFaces, solidValues, keepBeyond,
+                 conservedField);
   slices.runSlice(std::numeric_limits<int64_t>::max());
 }
 

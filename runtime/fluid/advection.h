@@ -80,10 +80,18 @@ void advectVelocity(TaskSystem& tasks, MacGrid& grid, double dt, AdvectionScheme
 // level set that is redistanced after advection, cells farther from the surface than the
 // step can move it (plus the interpolation stencil) keep their sign, and redistancing
 // rewrites their magnitude anyway.
+// conservedField (optional, >= 0): that field's total is kept (a smoke density): after
+// advection it is scaled so that its sum is the old sum less what the outward velocities of
+// the open domain sides carried out of their boundary cells over dt. What flows in through an
+// open side brings none (a conserved field's ambient value is 0). Neither scheme conserves
+// on its own: trilinear back-traces gain where the interpolated velocity converges (a
+// plume's base), and MacCormack's clamp to the stencil's range adds more, so a hot plume
+// held far more smoke than it was given. A uniform scale is the correction that keeps the
+// field's shape and sign (as the liquid's volume correction is a uniform shift).
 void advectCellScalars(TaskSystem& tasks, const MacGrid& grid, double dt, AdvectionScheme scheme,
                        std::vector<double>* const* fields, int fieldCount, AdvectionWorkspace& work,
                        const CellOpenFaces* openFaces = nullptr, const double* solidValues = nullptr,
-                       double keepBeyond = 0.0);
+                       double keepBeyond = 0.0, int conservedField = -1);
 
 // Rows [rowBegin, rowEnd) (x-lines, numbered j + dims.y * k) of one pass's sample lattice:
 // the unit a slice of advection runs (core/slab_passes.h cuts the passes into slices).
@@ -123,6 +131,9 @@ class VelocityAdvectionSlices {
  private:
   void forwardPass(const AdvectionRows& rows);
   void correctionPass(const AdvectionRows& rows);
+  // The conserved field's total: row sums in parallel, added in row order (the same on any
+  // number of workers), the target, and the scale that meets it.
+  void addConservationPasses(int field, bool before);
 
   MacGrid* grid_ = nullptr;
   AdvectionWorkspace* work_ = nullptr;
@@ -151,7 +162,8 @@ class ScalarAdvectionSlices {
   // `tasks` (none when fieldCount <= 0).
   void prepare(TaskSystem& tasks, const MacGrid& grid, double dt, AdvectionScheme scheme,
                std::vector<double>* const* fields, int fieldCount, AdvectionWorkspace& work,
-               const CellOpenFaces* openFaces, const double* solidValues, double keepBeyond);
+               const CellOpenFaces* openFaces, const double* solidValues, double keepBeyond,
+               int conservedField = -1);
   // Runs the next slice of at most maxSamples cell samples (one row at least), parallel over
   // its rows; true when every pass is done.
   bool runSlice(int64_t maxSamples) { return passes_.runSlice(maxSamples); }
@@ -161,6 +173,9 @@ class ScalarAdvectionSlices {
   void tracePass(const AdvectionRows& rows);
   void forwardPass(const AdvectionRows& rows);
   void correctionPass(const AdvectionRows& rows);
+  // The conserved field's total: row sums in parallel, added in row order (the same on any
+  // number of workers), the target, and the scale that meets it.
+  void addConservationPasses(int field, bool before);
 
   const MacGrid* grid_ = nullptr;
   AdvectionWorkspace* work_ = nullptr;
@@ -170,6 +185,8 @@ class ScalarAdvectionSlices {
   const CellOpenFaces* openFaces_ = nullptr;
   std::vector<double> solidValues_;  // per field; empty: solid cells keep their values
   double keepBeyond_ = 0.0;
+  std::vector<double> rowSums_;
+  double targetTotal_ = 0.0, scale_ = 1.0;
   SlabPasses passes_;
 };
 

@@ -215,7 +215,8 @@ bool FluidActor::advectScalarsSlab() {
       }
       std::vector<double>* scalars[2] = {&smokeDensity_, &temperature_};
       const double solidValues[2] = {0.0, desc_.smoke.ambientTemperature};
-      st.scalarAdvection.prepare(tasks, grid_, st.h, scheme, scalars, 2, advection_, &openFaces_, solidValues, 0.0);
+      st.scalarAdvection.prepare(tasks, grid_, st.h, scheme, scalars, 2, advection_, &openFaces_, solidValues, 0.0,
+                                 /*conservedField=*/0);
     } else {
       // The level set is extended into solids on purpose (level_set_solid_extension.h) and
       // sampled as it is. Cells farther from the surface than the sub-step moves it, plus the

@@ -13,6 +13,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cstdio>
+#include <cstdlib>
 #include <algorithm>
 #include <vector>
 
@@ -70,6 +72,15 @@ void runDefaultScene(benchmark::State& state, double budgetMs) {
       const StepStats& s = world->lastStats();
       ms.push_back(s.totalMs);
       maxSlice = std::max(maxSlice, s.maxSliceMs);
+      if (getenv("VP_TRACE") && (s.totalMs > 1.1 * budgetMs || s.maxSliceMs > budgetMs / 4)) {
+        fprintf(stderr, "f%d total %.2f maxslice %.2f workers %d |", f, s.totalMs, s.maxSliceMs, world->tasks().workerCount());
+        for (const ActorStats& a : s.actors) {
+          fprintf(stderr, " k%d t%.2f sl%d int%d prog%.2f", int(a.kind), a.totalMs, a.slices, a.interval, a.progress);
+          for (int p = 0; p < kPhaseCount; ++p) if (a.phases[p].ms > 0.5) fprintf(stderr, " p%d=%.2f/%d", p, a.phases[p].ms, a.phases[p].iterations);
+          fprintf(stderr, ";");
+        }
+        fprintf(stderr, "\n");
+      }
       for (const ActorStats& a : s.actors)
         if (a.kind == ActorKind::Deformable && a.completedStep) {
           residuals.push_back(a.residual);

@@ -167,6 +167,7 @@ struct ScalarCase {
   bool openFaces;
   bool solidValues;
   double keepBeyond;
+  int conservedField = -1;
 };
 
 TEST(FluidAdvectionSlices, ScalarsMatchTheWholeCallForEverySlicingAndWorkerCount) {
@@ -178,7 +179,9 @@ TEST(FluidAdvectionSlices, ScalarsMatchTheWholeCallForEverySlicingAndWorkerCount
                               {"open faces", true, false, 0.0},
                               {"open faces, solid values", true, true, 0.0},
                               {"keep beyond", false, false, 0.25},
-                              {"all", true, true, 0.25}};
+                              {"all", true, true, 0.25},
+                              {"conserved", true, true, 0.0, 0},
+                              {"conserved second", false, false, 0.0, 1}};
   for (AdvectionScheme scheme : kSchemes)
     for (const ScalarCase& c : cases) {
       // With keepBeyond the first field is a level set, as a liquid's.
@@ -189,7 +192,8 @@ TEST(FluidAdvectionSlices, ScalarsMatchTheWholeCallForEverySlicingAndWorkerCount
       std::vector<double> expected[2] = {initial[0], initial[1]};
       std::vector<double>* expectedFields[2] = {&expected[0], &expected[1]};
       AdvectionWorkspace whole;
-      advectCellScalars(*reference, grid, subStep(), scheme, expectedFields, 2, whole, openFaces, solid, c.keepBeyond);
+      advectCellScalars(*reference, grid, subStep(), scheme, expectedFields, 2, whole, openFaces, solid, c.keepBeyond,
+                        c.conservedField);
       ASSERT_NE(expected[0], initial[0]);
       for (int workers : {1, 3}) {
         auto tasks = TaskSystem::create(TaskHooks{}, workers);
@@ -202,7 +206,8 @@ TEST(FluidAdvectionSlices, ScalarsMatchTheWholeCallForEverySlicingAndWorkerCount
           {
             // The object keeps its own copy of the field list: this one is gone before the slices run.
             std::vector<double>* fields[2] = {&sliced[0], &sliced[1]};
-            slices.prepare(*tasks, grid, subStep(), scheme, fields, 2, work, openFaces, solid, c.keepBeyond);
+            slices.prepare(*tasks, grid, subStep(), scheme, fields, 2, work, openFaces, solid, c.keepBeyond,
+                           c.conservedField);
           }
           for (int n = 0; !slices.runSlice(boundOf(bound, n)); ++n) {
           }
