@@ -33,6 +33,15 @@ std::unique_ptr<FluidActor> makeActor(TaskSystem& tasks, FluidDesc desc) {
   return actor;
 }
 
+// Cells whose centre lies inside the shape: those an emitter of that shape feeds.
+int cellsInside(const MacGrid& g, const FluidShape& shape) {
+  int count = 0;
+  for (int k = 0; k < g.spec.nz; ++k)
+    for (int j = 0; j < g.spec.ny; ++j)
+      for (int i = 0; i < g.spec.nx; ++i) count += shape.signedDistance(g.cellCentre(i, j, k)) < 0.0;
+  return count;
+}
+
 double kineticEnergy(const MacGrid& g) {
   double e = 0.0;
   for (int a = 0; a < 3; ++a)
@@ -214,10 +223,7 @@ TEST(FluidSmoke, HotSmokeRisesAndEmitterAddsItsRate) {
   input.gravity = Vec3(0, -9.81, 0);
   input.tasks = tasks.get();
   const MacGrid& g = actor->grid();
-  int emitterCells = 0;
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) emitterCells += e.shape.signedDistance(g.cellCentre(i, j, k)) < 0.0;
+  const int emitterCells = cellsInside(g, e.shape);
   ActorStats first;
   actor->step(input, &first, nullptr);
   // One step: advection of a zero field moves nothing, so the emitter's cells hold rate * dt.
@@ -264,10 +270,7 @@ double smokeHeldOverEmitted(bool openTop, int steps) {
   d.emitters.push_back(e);
   auto actor = makeActor(*tasks, d);
   const MacGrid& g = actor->grid();
-  int emitterCells = 0;
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) emitterCells += e.shape.signedDistance(g.cellCentre(i, j, k)) < 0.0;
+  const int emitterCells = cellsInside(g, e.shape);
   FluidStepInput input;
   input.dt = 1.0 / 60.0;
   input.gravity = Vec3(0, -9.81, 0);
