@@ -10,11 +10,10 @@
 // stopped by the benchmark): the budget must hold on a busier machine too.
 #include <benchmark/benchmark.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <cstdio>
-#include <cstdlib>
 #include <algorithm>
 #include <vector>
 
@@ -31,12 +30,17 @@ double percentile(std::vector<double> v, double q) {
   return v[rank];
 }
 
-// A child process that spins until killed.
+// A child process that spins until killed, or until the benchmark dies (a benchmark killed
+// part way, e.g. by a closed pipe, would otherwise leave it spinning and load every later
+// measurement).
 class BusyProcess {
  public:
   BusyProcess() {
+    const pid_t parent = getpid();
     pid_ = fork();
     if (pid_ == 0) {
+      prctl(PR_SET_PDEATHSIG, SIGKILL);
+      if (getppid() != parent) _exit(0);  // the parent died before prctl
       volatile unsigned long spin = 0;
       for (;;) spin = spin + 1;
     }
@@ -72,15 +76,6 @@ void runDefaultScene(benchmark::State& state, double budgetMs) {
       const StepStats& s = world->lastStats();
       ms.push_back(s.totalMs);
       maxSlice = std::max(maxSlice, s.maxSliceMs);
-      if (getenv("VP_TRACE") && (s.totalMs > 1.1 * budgetMs || s.maxSliceMs > budgetMs / 4)) {
-        fprintf(stderr, "f%d total %.2f maxslice %.2f workers %d |", f, s.totalMs, s.maxSliceMs, world->tasks().workerCount());
-        for (const ActorStats& a : s.actors) {
-          fprintf(stderr, " k%d t%.2f sl%d int%d prog%.2f", int(a.kind), a.totalMs, a.slices, a.interval, a.progress);
-          for (int p = 0; p < kPhaseCount; ++p) if (a.phases[p].ms > 0.5) fprintf(stderr, " p%d=%.2f/%d", p, a.phases[p].ms, a.phases[p].iterations);
-          fprintf(stderr, ";");
-        }
-        fprintf(stderr, "\n");
-      }
       for (const ActorStats& a : s.actors)
         if (a.kind == ActorKind::Deformable && a.completedStep) {
           residuals.push_back(a.residual);
