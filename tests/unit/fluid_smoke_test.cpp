@@ -251,7 +251,7 @@ TEST(FluidSmoke, HotSmokeRisesAndEmitterAddsItsRate) {
 // A hot plume from an emitter (buoyancy, MacCormack, vorticity confinement as the sample
 // scenes use): the smoke held must be what the emitter put in, less what left through open
 // sides. Neither advection scheme conserves on its own (advection.h): without the step's
-// correction this plume gains a quarter or more of what was emitted within a second.
+// correction this plume gains far more than the tolerance within a second.
 double smokeHeldOverEmitted(bool openTop, int steps) {
   auto tasks = TaskSystem::create(TaskHooks{}, 2);
   const int n = 32;
