@@ -100,10 +100,10 @@ struct FaceBox {
   }
 };
 
-// Recomputing a face costs about this many of the samples that bound a slice (an advection
-// sample): a coverage evaluation per collider near it, measured in the frame-budget benchmark
-// over the faces around the default scene's moving colliders (those on a collider cost
-// several times more, those beside it less).
+// Recomputing a face costs at least this many of the samples that bound a slice (an
+// advection sample): a coverage evaluation per collider near it. Traced in the frame-budget
+// benchmark around the default scene's moving colliders, faces beside a collider cost about
+// this much and faces on it several times more; the slab sizer corrects for the rest.
 constexpr int64_t kSamplesPerFace = 256;
 // Faces per parallel chunk: a face near a collider costs far more than one away from it, so
 // chunks are small.
