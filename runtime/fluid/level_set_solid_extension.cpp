@@ -57,7 +57,7 @@ int64_t SolidExtensionRun::step(int64_t budget) {
   switch (pass_) {
     case Pass::Collect:
       for (int64_t c = begin; c < end; ++c) {
-        const bool solid = (*weights_)[static_cast<size_t>(c)] < 0.5;
+        const bool solid = (*weights_)[static_cast<size_t>(c)] < kMaxCoveredCellWeight;
         pending_[static_cast<size_t>(c)] = solid ? 1 : 0;
         if (solid) unknown.push_back(c);
       }

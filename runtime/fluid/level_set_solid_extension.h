@@ -4,10 +4,10 @@
 // air under the surface, and the cells it uncovers then read as a bubble under it: the
 // pressure there drops to zero and the body loses its buoyancy).
 //
-// Mostly-solid cells (open weight < 1/2, see cellOpenFractions) take, layer by layer from
-// the fluid side, the mean phi of their already-known face neighbours: liquid below a
-// floating body's waterline, air above it. Redistancing afterwards turns the values into
-// distances again.
+// Covered cells (open weight below kMaxCoveredCellWeight, see cellOpenFractions) take, layer
+// by layer from the fluid side, the mean phi of their already-known face neighbours: liquid
+// below a floating body's waterline, air above it. Redistancing afterwards turns the values
+// into distances again.
 #pragma once
 
 #include <cstdint>
@@ -18,6 +18,16 @@
 #include "fluid/face_fraction_field.h"
 
 namespace vp {
+
+// A cell that a collider's side cuts parallel to the grid is open through one whole face, so
+// its open weight is at least 1/6 however deep the cut: liquid flows through it, and its phi
+// must be the one advection gives it, or its surface cannot rise with what flows in.
+// Extending such a cell ties its surface to its neighbours', and the projection then drains
+// the inflow up the cut column through a surface that never moves, as a jet up the collider's
+// wall far faster than the flow (fluid_liquid_cut_wall_test.cpp). Below half that weight, less
+// than half a face is open in all: a covered cell but for slivers, whose phi is what the
+// collider dragged in.
+constexpr double kMaxCoveredCellWeight = 1.0 / 12.0;
 
 // cellWeights and phi: cellCount values in cell order; scratch is the run's list of unknown
 // cells. Does nothing when the sizes do not match the grid. Runs SolidExtensionRun in one

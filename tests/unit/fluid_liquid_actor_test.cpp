@@ -8,6 +8,7 @@
 
 #include "collide/face_coverage.h"
 #include "fluid/fluid_actor.h"
+#include "fluid_liquid_test_util.h"
 #include "world.h"
 #include "world_test_util.h"
 
@@ -29,27 +30,6 @@ FluidDesc liquidTank(int nx, int ny, int nz, double h, double fillHeight) {
   water.centre = Vec3(nx * h / 2, fillHeight / 2, nz * h / 2);
   d.initialLiquid.push_back(water);
   return d;
-}
-
-double maxFaceSpeedInLiquid(const FluidActor& actor) {
-  const MacGrid& g = actor.grid();
-  const std::vector<double>& phi = actor.levelSet();
-  double worst = 0.0;
-  for (int a = 0; a < 3; ++a) {
-    const Eigen::Vector3i d = g.faceDims(a);
-    for (int k = 0; k < d.z(); ++k)
-      for (int j = 0; j < d.y(); ++j)
-        for (int i = 0; i < d.x(); ++i) {
-          Eigen::Vector3i lo(i, j, k);
-          lo[a] = std::max(lo[a] - 1, 0);
-          Eigen::Vector3i hi(i, j, k);
-          hi[a] = std::min(hi[a], (a == 0 ? g.spec.nx : a == 1 ? g.spec.ny : g.spec.nz) - 1);
-          if (phi[g.cellIndex(lo.x(), lo.y(), lo.z())] >= 0.0 && phi[g.cellIndex(hi.x(), hi.y(), hi.z())] >= 0.0)
-            continue;
-          worst = std::max(worst, std::abs(g.velocity[a][g.faceIndex(a, i, j, k)]));
-        }
-  }
-  return worst;
 }
 
 TEST(FluidLiquid, HydrostaticRestAroundATiltedBoxAndASphere) {
@@ -82,7 +62,7 @@ TEST(FluidLiquid, HydrostaticRestAroundATiltedBoxAndASphere) {
     ActorStats stats;
     actor->step(input, &stats, nullptr);
     ASSERT_FALSE(stats.diverged);
-    worst = std::max(worst, maxFaceSpeedInLiquid(*actor));
+    worst = std::max(worst, testutil::maxLiquidFaceSpeed(actor->grid(), actor->levelSet()));
   }
   const double speedScale = std::sqrt(9.81 * fill);
   // The liquid's surface sits at `fill` minus what the solids displace (they are below it).
@@ -143,7 +123,7 @@ TEST(FluidLiquid, SloshingTankKeepsItsVolume) {
     actor->step(input, &stats, nullptr);
     ASSERT_FALSE(stats.diverged);
     worstDrift = std::max(worstDrift, std::abs(actor->liquidVolume() - v0) / v0);
-    fastest = std::max(fastest, maxFaceSpeedInLiquid(*actor));
+    fastest = std::max(fastest, testutil::maxLiquidFaceSpeed(actor->grid(), actor->levelSet()));
   }
   std::printf("sloshing: volume %.5f m^3, worst drift over 500 steps %.2e, fastest %.2f m/s\n", v0, worstDrift, fastest);
   EXPECT_GT(fastest, 0.5) << "the dam must break and slosh";

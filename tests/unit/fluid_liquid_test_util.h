@@ -3,7 +3,9 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <vector>
 
 #include "collide/face_coverage.h"
@@ -42,6 +44,22 @@ void forEachFace(const MacGrid& grid, const Visit& visit) {
       for (int j = 0; j < d.y(); ++j)
         for (int i = 0; i < d.x(); ++i) visit(a, i, j, k, grid.faceIndex(a, i, j, k));
   }
+}
+
+// The largest |u| over the faces next to a liquid cell (phi < 0 on either side; a boundary
+// face looks at its one cell).
+inline double maxLiquidFaceSpeed(const MacGrid& grid, const std::vector<double>& phi) {
+  const int cells[3] = {grid.spec.nx, grid.spec.ny, grid.spec.nz};
+  double worst = 0.0;
+  forEachFace(grid, [&](int a, int i, int j, int k, size_t face) {
+    Eigen::Vector3i low(i, j, k), high(i, j, k);
+    low[a] = std::max(low[a] - 1, 0);
+    high[a] = std::min(high[a], cells[a] - 1);
+    if (phi[grid.cellIndex(low.x(), low.y(), low.z())] >= 0.0 && phi[grid.cellIndex(high.x(), high.y(), high.z())] >= 0.0)
+      return;
+    worst = std::max(worst, std::abs(grid.velocity[a][face]));
+  });
+  return worst;
 }
 
 // sdf(x) at every cell centre, in cell order.
