@@ -7,10 +7,10 @@
 
 #include "core/log.h"
 #include "core/parallel_for.h"
-#include "fluid/cut_cell_components.h"
 #include "fluid/fluid_sources.h"
-#include "fluid/level_set_solid_extension.h"
-#include "fluid/liquid_volume.h"
+#include "fluid/solids/cut_cell_components.h"
+#include "fluid/surface/level_set_solid_extension.h"
+#include "fluid/surface/liquid_volume.h"
 
 namespace vp {
 

@@ -1,7 +1,7 @@
 // MAC grid allocation and velocity sampling (layout in mac_grid.h).
 #include "fluid/mac_grid.h"
 
-#include "fluid/grid_sampling.h"
+#include "fluid/advection/grid_sampling.h"
 
 #include <algorithm>
 #include <cmath>

@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "core/status.h"
-#include "fluid/face_fraction_field.h"
+#include "fluid/solids/face_fraction_field.h"
 
 namespace vp {
 

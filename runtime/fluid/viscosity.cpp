@@ -5,8 +5,8 @@
 #include <cmath>
 
 #include "core/parallel_for.h"
-#include "fluid/cut_cell_poisson.h"
-#include "fluid/free_surface.h"
+#include "fluid/pressure/cut_cell_poisson.h"
+#include "fluid/surface/free_surface.h"
 
 namespace vp {
 namespace {

@@ -44,8 +44,8 @@
 #include "core/budget_clock.h"
 #include "core/status.h"
 #include "core/task_system.h"
-#include "fluid/face_fraction_field.h"
 #include "fluid/mac_grid.h"
+#include "fluid/solids/face_fraction_field.h"
 #include "linalg/conjugate_gradient.h"
 
 namespace vp {

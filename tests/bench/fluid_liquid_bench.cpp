@@ -7,11 +7,11 @@
 #include <cmath>
 
 #include "core/task_system.h"
-#include "fluid/level_set_redistance.h"
-#include "fluid/liquid_volume.h"
 #include "fluid/mac_grid.h"
-#include "fluid/marching_cubes.h"
-#include "fluid/velocity_extrapolation.h"
+#include "fluid/surface/level_set_redistance.h"
+#include "fluid/surface/liquid_volume.h"
+#include "fluid/surface/marching_cubes.h"
+#include "fluid/surface/velocity_extrapolation.h"
 
 namespace vp::bench {
 namespace {

@@ -39,7 +39,7 @@
 
 #include "../unit/fluid_pressure_scenes.h"
 #include "core/parallel_for.h"
-#include "fluid/multigrid_smoother.h"
+#include "fluid/pressure/multigrid_smoother.h"
 
 namespace vp::bench {
 namespace {

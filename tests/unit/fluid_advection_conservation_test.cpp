@@ -6,7 +6,7 @@
 #include <numeric>
 #include <vector>
 
-#include "fluid/advection.h"
+#include "fluid/advection/advection.h"
 
 namespace vp {
 namespace {

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "fluid/advection.h"
+#include "fluid/advection/advection.h"
 
 namespace vp {
 namespace {

@@ -10,7 +10,7 @@
 #include <limits>
 #include <vector>
 
-#include "fluid/advection.h"
+#include "fluid/advection/advection.h"
 
 namespace vp {
 namespace {

@@ -1,6 +1,6 @@
 // Face fraction field over a MAC grid, and the multi-collider (union) policy.
 #include "collide/face_coverage.h"
-#include "fluid/face_fraction_field.h"
+#include "fluid/solids/face_fraction_field.h"
 #include "fluid_face_test_util.h"
 
 #include <gtest/gtest.h>

@@ -3,7 +3,7 @@
 // its inner and outer spheres (exact sphere path) on every face; a 20K-triangle mesh must be
 // fast enough to fill a grid.
 #include "collide/face_coverage.h"
-#include "fluid/face_fraction_field.h"
+#include "fluid/solids/face_fraction_field.h"
 #include "fluid_face_test_util.h"
 
 #include <gtest/gtest.h>

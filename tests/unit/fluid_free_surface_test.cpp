@@ -8,9 +8,9 @@
 #include <cstdio>
 
 #include "collide/face_coverage.h"
-#include "fluid/cut_cell_poisson.h"
-#include "fluid/free_surface.h"
-#include "fluid/pressure_projection.h"
+#include "fluid/pressure/cut_cell_poisson.h"
+#include "fluid/pressure/pressure_projection.h"
+#include "fluid/surface/free_surface.h"
 #include "fluid_liquid_test_util.h"
 
 namespace vp {

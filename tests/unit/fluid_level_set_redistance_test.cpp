@@ -5,8 +5,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "fluid/free_surface.h"
-#include "fluid/level_set_redistance.h"
+#include "fluid/surface/free_surface.h"
+#include "fluid/surface/level_set_redistance.h"
 #include "fluid_liquid_test_util.h"
 
 namespace vp {

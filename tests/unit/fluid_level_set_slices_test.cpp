@@ -13,10 +13,10 @@
 
 #include "collide/face_coverage.h"
 #include "fluid/fluid_desc.h"
-#include "fluid/level_set_redistance.h"
-#include "fluid/level_set_solid_extension.h"
-#include "fluid/liquid_volume.h"
-#include "fluid/velocity_extrapolation.h"
+#include "fluid/surface/level_set_redistance.h"
+#include "fluid/surface/level_set_solid_extension.h"
+#include "fluid/surface/liquid_volume.h"
+#include "fluid/surface/velocity_extrapolation.h"
 #include "fluid_liquid_test_util.h"
 
 namespace vp {

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "collide/face_coverage.h"
-#include "fluid/face_fraction_field.h"
 #include "fluid/mac_grid.h"
+#include "fluid/solids/face_fraction_field.h"
 
 namespace vp {
 namespace testutil {

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "fluid/liquid_volume.h"
 #include "fluid/mac_grid.h"
+#include "fluid/surface/liquid_volume.h"
 #include "fluid_liquid_test_util.h"
 
 namespace vp {

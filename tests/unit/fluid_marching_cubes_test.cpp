@@ -8,8 +8,8 @@
 #include <map>
 #include <random>
 
-#include "fluid/liquid_volume.h"
-#include "fluid/marching_cubes.h"
+#include "fluid/surface/liquid_volume.h"
+#include "fluid/surface/marching_cubes.h"
 #include "fluid_liquid_test_util.h"
 
 namespace vp {

@@ -7,7 +7,7 @@
 #include <random>
 
 #include "core/budget_clock.h"
-#include "fluid/multigrid_coarsening.h"
+#include "fluid/pressure/multigrid_coarsening.h"
 #include "fluid_pressure_scenes.h"
 
 namespace vp {

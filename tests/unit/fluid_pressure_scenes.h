@@ -17,12 +17,12 @@
 #include "core/budget_clock.h"
 #include "core/status.h"
 #include "core/task_system.h"
-#include "fluid/cut_cell_poisson.h"
-#include "fluid/face_fraction_field.h"
 #include "fluid/mac_grid.h"
-#include "fluid/mic0_preconditioner.h"
-#include "fluid/poisson_multigrid.h"
-#include "fluid/pressure_projection.h"
+#include "fluid/pressure/cut_cell_poisson.h"
+#include "fluid/pressure/mic0_preconditioner.h"
+#include "fluid/pressure/poisson_multigrid.h"
+#include "fluid/pressure/pressure_projection.h"
+#include "fluid/solids/face_fraction_field.h"
 #include "linalg/conjugate_gradient.h"
 
 namespace vp {

@@ -10,8 +10,8 @@
 #include <limits>
 #include <random>
 
-#include "fluid/cut_cell_poisson.h"
-#include "fluid/pressure_projection.h"
+#include "fluid/pressure/cut_cell_poisson.h"
+#include "fluid/pressure/pressure_projection.h"
 #include "fluid_pressure_scenes.h"
 
 namespace vp {

@@ -8,11 +8,11 @@
 #include <random>
 
 #include "collide/face_coverage.h"
-#include "fluid/cut_cell_poisson.h"
-#include "fluid/face_fraction_field.h"
 #include "fluid/mac_grid.h"
-#include "fluid/mic0_preconditioner.h"
-#include "fluid/pressure_projection.h"
+#include "fluid/pressure/cut_cell_poisson.h"
+#include "fluid/pressure/mic0_preconditioner.h"
+#include "fluid/pressure/pressure_projection.h"
+#include "fluid/solids/face_fraction_field.h"
 #include "fluid_liquid_test_util.h"
 #include "fluid_pressure_scenes.h"
 

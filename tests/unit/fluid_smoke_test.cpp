@@ -8,8 +8,8 @@
 #include <cstdio>
 
 #include "collide/face_coverage.h"
-#include "fluid/cut_cell_poisson.h"
 #include "fluid/fluid_actor.h"
+#include "fluid/pressure/cut_cell_poisson.h"
 
 namespace vp {
 namespace {

@@ -9,10 +9,10 @@
 
 #include "collide/face_coverage.h"
 #include "core/task_system.h"
-#include "fluid/cut_cell_components.h"
-#include "fluid/cut_cell_poisson.h"
-#include "fluid/face_fraction_field.h"
-#include "fluid/grid_sampling.h"
+#include "fluid/advection/grid_sampling.h"
+#include "fluid/pressure/cut_cell_poisson.h"
+#include "fluid/solids/cut_cell_components.h"
+#include "fluid/solids/face_fraction_field.h"
 
 namespace vp {
 namespace {

@@ -7,9 +7,9 @@
 #include <cstdio>
 
 #include "collide/face_coverage.h"
-#include "fluid/cut_cell_poisson.h"
-#include "fluid/free_surface.h"
-#include "fluid/velocity_extrapolation.h"
+#include "fluid/pressure/cut_cell_poisson.h"
+#include "fluid/surface/free_surface.h"
+#include "fluid/surface/velocity_extrapolation.h"
 #include "fluid_liquid_test_util.h"
 
 namespace vp {

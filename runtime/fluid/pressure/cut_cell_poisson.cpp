@@ -1,0 +1,387 @@
+// Implicit cut-cell pressure operator (see cut_cell_poisson.h).
+#include "fluid/pressure/cut_cell_poisson.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/parallel_for.h"
+#include "fluid/pressure/poisson_rows.h"
+#include "fluid/surface/free_surface.h"
+
+namespace vp {
+namespace {
+
+constexpr int64_t kCellGrain = 4096;
+
+// Calls visit(axis, highSide, i, j, k of the face, i, j, k of the neighbour cell) for the six faces.
+template <class Visit>
+void forEachFace(int i, int j, int k, const Visit& visit) {
+  visit(0, false, i, j, k, i - 1, j, k);
+  visit(0, true, i + 1, j, k, i + 1, j, k);
+  visit(1, false, i, j, k, i, j - 1, k);
+  visit(1, true, i, j + 1, k, i, j + 1, k);
+  visit(2, false, i, j, k, i, j, k - 1);
+  visit(2, true, i, j, k + 1, i, j, k + 1);
+}
+
+bool inside(const MacGridSpec& g, int i, int j, int k) {
+  return i >= 0 && j >= 0 && k >= 0 && i < g.nx && j < g.ny && k < g.nz;
+}
+
+}  // namespace
+
+double effectiveOpenFraction(const MacGrid& grid, const FaceFractionField& fractions, int axis, int i,
+                             int j, int k) {
+  if (grid.isWallFace(axis, i, j, k)) return 0.0;
+  const double open = fractions.open[axis][grid.faceIndex(axis, i, j, k)];
+  return open < kMinOpenFraction ? 0.0 : open;
+}
+
+Status checkCutCellPoissonInputs(const MacGrid& grid, const FaceFractionField& fractions) {
+  if (!sameGrid(grid.spec, fractions.grid))
+    return fail(Status::InvalidArgument,
+                "cut-cell poisson: face fractions grid (%d, %d, %d, h %g) differs from the MAC grid "
+                "(%d, %d, %d, h %g)", fractions.grid.nx, fractions.grid.ny, fractions.grid.nz,
+                fractions.grid.h, grid.spec.nx, grid.spec.ny, grid.spec.nz, grid.spec.h);
+  for (int a = 0; a < 3; ++a) {
+    if (fractions.open[a].size() != grid.velocity[a].size() ||
+        fractions.solidVelocity[a].size() != grid.velocity[a].size())
+      return fail(Status::InvalidArgument, "cut-cell poisson: face arrays of axis %d have %zu entries, "
+                  "expected %zu", a, fractions.open[a].size(), grid.velocity[a].size());
+  }
+  // Region labels hold cell indices while they are built (labelFluidRegions).
+  if (grid.cellCount() > INT32_MAX)
+    return fail(Status::InvalidArgument, "cut-cell poisson: grid (%d, %d, %d) has too many cells for 32-bit labels",
+                grid.spec.nx, grid.spec.ny, grid.spec.nz);
+  return Status::Ok;
+}
+
+Status buildCutCellPoisson(TaskSystem& tasks, const MacGrid& grid, const FaceFractionField& fractions,
+                           CutCellPoisson* op, const double* liquidPhi) {
+  if (op == nullptr) return fail(Status::InvalidArgument, "cut-cell poisson: op is null");
+  VP_TRY(checkCutCellPoissonInputs(grid, fractions));
+  SlabPasses passes(tasks);
+  appendBuildCutCellPoisson(grid, fractions, op, liquidPhi, &passes);
+  passes.runAll();
+  return Status::Ok;
+}
+
+namespace {
+
+// Couplings (and, with a free surface, open fractions) of the faces of axis a in face rows
+// [begin, end); only interior faces couple, index 1 .. cells-1 along the axis.
+void buildCouplingRows(const MacGrid& grid, const FaceFractionField& fractions, const double* liquidPhi, int a,
+                       int64_t begin, int64_t end, CutCellPoisson* op) {
+  const Eigen::Vector3i d = grid.faceDims(a);
+  std::vector<double>& c = op->coupling[a];
+  for (int64_t row = begin; row < end; ++row) {
+    const int j = static_cast<int>(row % d.y()), k = static_cast<int>(row / d.y());
+    for (int i = 0; i < d.x(); ++i) {
+      const int along = a == 0 ? i : a == 1 ? j : k;
+      const size_t face = grid.faceIndex(a, i, j, k);
+      c[face] = 0.0;
+      if (liquidPhi != nullptr) op->openFraction[a][face] = 0.0;
+      if (along == 0 || along == d[a] - 1) continue;
+      const double open = effectiveOpenFraction(grid, fractions, a, i, j, k);
+      if (liquidPhi != nullptr) {
+        op->openFraction[a][face] = open;
+        // Only liquid-liquid faces couple; a liquid-air face is a diagonal term below.
+        Eigen::Vector3i low(i, j, k);
+        low[a] -= 1;
+        if (!isLiquid(liquidPhi[grid.cellIndex(i, j, k)]) ||
+            !isLiquid(liquidPhi[grid.cellIndex(low.x(), low.y(), low.z())]))
+          continue;
+      }
+      c[face] = open;
+    }
+  }
+}
+
+// Diagonal (and, with a free surface, air flags, level set and surface terms) of cells [begin, end).
+void buildDiagonalCells(const MacGrid& grid, const FaceFractionField& fractions, const double* liquidPhi,
+                        int64_t begin, int64_t end, CutCellPoisson* op) {
+  const MacGridSpec& g = grid.spec;
+  for (int64_t c = begin; c < end; ++c) {
+    const int i = static_cast<int>(c % g.nx), j = static_cast<int>((c / g.nx) % g.ny),
+              k = static_cast<int>(c / (static_cast<int64_t>(g.nx) * g.ny));
+    if (liquidPhi != nullptr) {
+      op->liquidPhi[static_cast<size_t>(c)] = liquidPhi[c];
+      op->air[static_cast<size_t>(c)] = 0;
+      op->surfaceDirichlet[static_cast<size_t>(c)] = 0.0;
+    }
+    if (liquidPhi != nullptr && !isLiquid(liquidPhi[c])) {
+      op->diagonal[static_cast<size_t>(c)] = 0.0;  // air: p = 0, no row
+      bool open = false;
+      forEachFace(i, j, k, [&](int a, bool, int fi, int fj, int fk, int, int, int) {
+        open = open || effectiveOpenFraction(grid, fractions, a, fi, fj, fk) > 0.0;
+      });
+      op->air[static_cast<size_t>(c)] = open ? 1 : 0;
+      continue;
+    }
+    double sum = 0.0, surface = 0.0;
+    forEachFace(i, j, k, [&](int a, bool, int fi, int fj, int fk, int ni, int nj, int nk) {
+      const double open = effectiveOpenFraction(grid, fractions, a, fi, fj, fk);
+      if (liquidPhi != nullptr && open > 0.0 && inside(g, ni, nj, nk)) {
+        const double phiNb = liquidPhi[grid.cellIndex(ni, nj, nk)];
+        if (!isLiquid(phiNb)) {
+          const double term = open / freeSurfaceTheta(liquidPhi[c], phiNb);
+          sum += term;  // summed in face order as ever, so the fine operator is bitwise unchanged
+          surface += term;
+          return;
+        }
+      }
+      sum += open;
+    });
+    op->diagonal[static_cast<size_t>(c)] = sum;
+    if (liquidPhi != nullptr) op->surfaceDirichlet[static_cast<size_t>(c)] = surface;
+  }
+}
+
+template <class T>
+void sizeOrClear(std::vector<T>& values, bool used, size_t count) {
+  if (used) values.resize(count);
+  else values.clear();
+}
+
+}  // namespace
+
+void sizeCutCellPoisson(const MacGridSpec& grid, bool freeSurface, bool air, CutCellPoisson* op) {
+  const size_t nx = static_cast<size_t>(grid.nx), ny = static_cast<size_t>(grid.ny), nz = static_cast<size_t>(grid.nz);
+  const size_t faces[3] = {(nx + 1) * ny * nz, nx * (ny + 1) * nz, nx * ny * (nz + 1)};
+  op->grid = grid;
+  for (int a = 0; a < 3; ++a) {
+    op->coupling[a].resize(faces[a]);
+    sizeOrClear(op->openFraction[a], freeSurface, faces[a]);
+  }
+  op->diagonal.resize(nx * ny * nz);
+  sizeOrClear(op->air, air, nx * ny * nz);
+  sizeOrClear(op->liquidPhi, freeSurface, nx * ny * nz);
+  sizeOrClear(op->surfaceDirichlet, freeSurface, nx * ny * nz);
+}
+
+void appendBuildCutCellPoisson(const MacGrid& grid, const FaceFractionField& fractions, CutCellPoisson* op,
+                               const double* liquidPhi, SlabPasses* passes) {
+  const MacGrid* g = &grid;
+  const FaceFractionField* f = &fractions;
+  passes->addStep([g, f, op, liquidPhi, passes] {
+    sizeCutCellPoisson(g->spec, liquidPhi != nullptr, liquidPhi != nullptr, op);
+    for (int a = 0; a < 3; ++a) {
+      const Eigen::Vector3i d = g->faceDims(a);
+      passes->addParallel(static_cast<int64_t>(d.z()) * d.y(), d.x(), 16, [g, f, op, liquidPhi, a](int64_t b, int64_t e) {
+        buildCouplingRows(*g, *f, liquidPhi, a, b, e, op);
+      });
+    }
+    passes->addParallel(g->cellCount(), 1, kCellGrain, [g, f, op, liquidPhi](int64_t b, int64_t e) {
+      buildDiagonalCells(*g, *f, liquidPhi, b, e, op);
+    });
+    appendLabelFluidRegions(op, passes);
+    appendComputeRowSpans(op, passes);
+  });
+}
+
+namespace {
+
+// Calls visit(axis, face index, neighbour cell index or -1 outside the grid) for the six faces
+// of cell c.
+template <class Visit>
+void forEachCellFace(const MacGridSpec& g, int64_t c, const Visit& visit) {
+  const int64_t nx = g.nx, ny = g.ny, nz = g.nz, sz = nx * ny;
+  const int64_t i = c % nx, j = (c / nx) % ny, k = c / sz;
+  const int64_t fu = i + (nx + 1) * (j + ny * k), fv = i + nx * (j + (ny + 1) * k);
+  visit(0, fu, i > 0 ? c - 1 : -1);
+  visit(0, fu + 1, i + 1 < nx ? c + 1 : -1);
+  visit(1, fv, j > 0 ? c - nx : -1);
+  visit(1, fv + nx, j + 1 < ny ? c + nx : -1);
+  visit(2, c, k > 0 ? c - sz : -1);
+  visit(2, c + sz, k + 1 < nz ? c + sz : -1);
+}
+
+}  // namespace
+
+double dirichletPart(const CutCellPoisson& op, int64_t cell) {
+  const double diag = op.diagonal[static_cast<size_t>(cell)];
+  if (!(diag > 0.0)) return 0.0;
+  double rest = diag;
+  forEachCellFace(op.grid, cell, [&](int a, int64_t face, int64_t) { rest -= op.coupling[a][static_cast<size_t>(face)]; });
+  return rest > 1e-12 * diag ? rest : 0.0;
+}
+
+namespace {
+
+void startFluidRegions(CutCellPoisson* op) {
+  op->region.resize(op->diagonal.size());
+  op->regionFloating.clear();
+  op->regionCellCount.clear();
+  op->fluidCellCount = 0;
+}
+
+int32_t findRoot(int32_t* parent, int32_t c) {
+  while (parent[c] != c) {
+    parent[c] = parent[parent[c]];  // path halving: links only ever point to smaller indices
+    c = parent[c];
+  }
+  return c;
+}
+
+// First scan, cells [begin, end) in order: region[c] becomes a smaller cell of c's region so
+// far (c itself for a root), -1 off fluid. Linking the larger root under the smaller keeps
+// every link pointing down, so each region's root ends as its first cell.
+void linkFluidRegions(CutCellPoisson* op, int64_t begin, int64_t end) {
+  int32_t* parent = op->region.data();
+  for (int64_t c = begin; c < end; ++c) {
+    if (!(op->diagonal[static_cast<size_t>(c)] > 0.0)) {
+      parent[c] = -1;
+      continue;
+    }
+    parent[c] = static_cast<int32_t>(c);
+    forEachCellFace(op->grid, c, [&](int a, int64_t face, int64_t nb) {
+      if (nb < 0 || nb > c || parent[nb] < 0 || !(op->coupling[a][static_cast<size_t>(face)] > 0.0)) return;
+      const int32_t r = findRoot(parent, static_cast<int32_t>(nb)), s = findRoot(parent, static_cast<int32_t>(c));
+      if (r != s) parent[std::max(r, s)] = std::min(r, s);
+    });
+  }
+}
+
+// Second scan, in order: a root opens the next region; any other cell takes the region of its
+// link, a smaller cell already numbered.
+void numberFluidRegions(CutCellPoisson* op, int64_t begin, int64_t end) {
+  int32_t* region = op->region.data();
+  for (int64_t c = begin; c < end; ++c) {
+    const int32_t link = region[c];
+    if (link < 0) continue;
+    int32_t id;
+    if (link == c) {
+      id = static_cast<int32_t>(op->regionFloating.size());
+      op->regionFloating.push_back(1);
+      op->regionCellCount.push_back(0);
+    } else {
+      id = region[link];
+    }
+    region[c] = id;
+    if (dirichletPart(*op, c) > 0.0) op->regionFloating[static_cast<size_t>(id)] = 0;
+    ++op->regionCellCount[static_cast<size_t>(id)];
+    ++op->fluidCellCount;
+  }
+}
+
+void computeRowSpansOfRows(CutCellPoisson* op, int64_t begin, int64_t end) {
+  const poisson_rows::Stencil<double> s(*op);
+  int32_t* span = op->rowSpan.data();
+  for (int64_t row = begin; row < end; ++row) {
+    const double* d = s.diagonal + s.nx * row;
+    int64_t first = 0, last = s.nx;
+    while (first < s.nx && !(d[first] > 0.0)) ++first;
+    while (last > first && !(d[last - 1] > 0.0)) --last;
+    span[2 * row] = static_cast<int32_t>(first);
+    span[2 * row + 1] = static_cast<int32_t>(last);
+  }
+}
+
+}  // namespace
+
+void labelFluidRegions(CutCellPoisson* op) {
+  const int64_t cells = static_cast<int64_t>(op->diagonal.size());
+  startFluidRegions(op);
+  linkFluidRegions(op, 0, cells);
+  numberFluidRegions(op, 0, cells);
+}
+
+void appendLabelFluidRegions(CutCellPoisson* op, SlabPasses* passes) {
+  passes->addStep([op, passes] {
+    startFluidRegions(op);
+    const int64_t cells = static_cast<int64_t>(op->diagonal.size());
+    passes->addSerial(cells, 1, [op](int64_t begin, int64_t end) { linkFluidRegions(op, begin, end); });
+    passes->addSerial(cells, 1, [op](int64_t begin, int64_t end) { numberFluidRegions(op, begin, end); });
+  });
+}
+
+void computeRowSpans(TaskSystem& tasks, CutCellPoisson* op) {
+  SlabPasses passes(tasks);
+  appendComputeRowSpans(op, &passes);
+  passes.runAll();
+}
+
+void appendComputeRowSpans(CutCellPoisson* op, SlabPasses* passes) {
+  passes->addStep([op, passes] {
+    const poisson_rows::Stencil<double> s(*op);
+    op->rowSpan.resize(static_cast<size_t>(2 * s.rows()));
+    passes->addParallel(s.rows(), s.nx, s.rowGrain(),
+                        [op](int64_t begin, int64_t end) { computeRowSpansOfRows(op, begin, end); });
+  });
+}
+
+void applyCutCellPoisson(TaskSystem& tasks, const CutCellPoisson& op, const double* p, double* out) {
+  const poisson_rows::Stencil<double> s(op);
+  poisson_rows::forEachRow(tasks, s, [&](int64_t j, int64_t k, int64_t c0) {
+    const int64_t row = j + s.ny * k;
+    double* o = out + c0;
+    poisson_rows::clearOutsideSpan(s, row, o);
+    const poisson_rows::Row<double> r(s, j, k, p);
+    for (int64_t i = s.spanBegin(row), e = s.spanEnd(row); i < e; ++i) {
+      const double d = r.diagonal[i];
+      o[i] = d > 0.0 ? d * r.x[i] - r.neighbourSum(i) : 0.0;
+    }
+  });
+}
+
+template <class T>
+void filterCutCellPoisson(TaskSystem& tasks, const CutCellPoisson& op, T* values) {
+  const size_t cells = op.region.size();
+  const size_t regions = op.regionFloating.size();
+  bool anyFloating = false;
+  for (uint8_t f : op.regionFloating) anyFloating = anyFloating || f != 0;
+  if (!anyFloating) {
+    parallelFor(tasks, static_cast<int64_t>(cells), kCellGrain, [&](int64_t begin, int64_t end) {
+      for (int64_t c = begin; c < end; ++c)
+        if (op.region[static_cast<size_t>(c)] < 0) values[c] = T(0);
+    });
+    return;
+  }
+  std::vector<double> mean(regions, 0.0);
+  for (size_t c = 0; c < cells; ++c) {
+    const int32_t r = op.region[c];
+    if (r < 0) values[c] = 0.0;
+    else if (op.regionFloating[r]) mean[r] += values[c];
+  }
+  for (size_t r = 0; r < regions; ++r) mean[r] /= static_cast<double>(op.regionCellCount[r]);
+  for (size_t c = 0; c < cells; ++c) {
+    const int32_t r = op.region[c];
+    if (r >= 0 && op.regionFloating[r]) values[c] = static_cast<T>(values[c] - mean[r]);
+  }
+}
+
+template void filterCutCellPoisson<double>(TaskSystem&, const CutCellPoisson&, double*);
+template void filterCutCellPoisson<float>(TaskSystem&, const CutCellPoisson&, float*);
+
+void computeNetOutflow(TaskSystem& tasks, const MacGrid& grid, const FaceFractionField& fractions,
+                       const CutCellPoisson& op, double* outflow) {
+  parallelFor(tasks, grid.cellCount(), kCellGrain, [&](int64_t begin, int64_t end) {
+    computeNetOutflowCells(grid, fractions, op, begin, end, outflow);
+  });
+}
+
+void computeNetOutflowCells(const MacGrid& grid, const FaceFractionField& fractions, const CutCellPoisson& op,
+                            int64_t begin, int64_t end, double* outflow) {
+  const MacGridSpec& g = grid.spec;
+  for (int64_t c = begin; c < end; ++c) {
+    if (op.region[static_cast<size_t>(c)] < 0) {
+      outflow[c] = 0.0;
+      continue;
+    }
+    const int i = static_cast<int>(c % g.nx), j = static_cast<int>((c / g.nx) % g.ny),
+              k = static_cast<int>(c / (static_cast<int64_t>(g.nx) * g.ny));
+    double sum = 0.0;
+    forEachFace(i, j, k, [&](int a, bool high, int fi, int fj, int fk, int, int, int) {
+      const size_t f = grid.faceIndex(a, fi, fj, fk);
+      const bool wall = grid.isWallFace(a, fi, fj, fk);
+      const double open =
+          wall ? std::clamp(fractions.open[a][f], 0.0, 1.0) : effectiveOpenFraction(grid, fractions, a, fi, fj, fk);
+      const double fluidVelocity = wall ? 0.0 : grid.velocity[a][f];
+      const double flux = open * fluidVelocity + (1.0 - open) * fractions.solidVelocity[a][f];
+      sum += high ? flux : -flux;
+    });
+    outflow[c] = sum;
+  }
+}
+
+}  // namespace vp

@@ -1,0 +1,237 @@
+// Red-black Gauss-Seidel, damped Jacobi and the residual of a multigrid level (see
+// multigrid_smoother.h).
+#include "fluid/pressure/multigrid_smoother.h"
+
+#include <algorithm>
+
+#include "core/parallel_for.h"
+#include "fluid/pressure/poisson_rows.h"
+
+namespace vp {
+namespace {
+
+using poisson_rows::clearOutsideSpan;
+using poisson_rows::forEachRow;
+using poisson_rows::kCellsPerChunk;
+using poisson_rows::Row;
+using poisson_rows::Stencil;
+
+// Boundary lists are short (about 1% of the cells at 128^3) and swept 16 times per level and
+// cycle: chunks this large keep lists below it on the calling thread, where a dispatch to the
+// pool would cost more than the sweep.
+constexpr int64_t kBoundaryCellsPerChunk = 16384;
+// Slabs of planes a fused red-black sweep is cut into (fixed, so the work split never depends
+// on the worker count; the values never depend on it at all).
+constexpr int64_t kSlabsPerSweep = 16;
+
+// Gauss-Seidel update of the cells of one colour in one row. kFromZero: the sweep starts from
+// x = 0 without x having been cleared, so the first colour ignores its neighbours (they are 0)
+// and both colours write every cell, non-fluid ones included (0), which makes a separate
+// clearing pass unnecessary.
+template <bool kFromZero, class T>
+void updateRow(const Stencil<T>& s, int64_t j, int64_t k, const T* b, T* x, int colour, bool firstColour) {
+  const Row<T> r(s, j, k, x);
+  const int64_t row = j + s.ny * k, c0 = s.nx * row;
+  T* xr = x + c0;
+  const T* br = b + c0;
+  if (kFromZero && firstColour) clearOutsideSpan(s, row, xr);
+  const int64_t begin = s.spanBegin(row), end = s.spanEnd(row);
+  for (int64_t i = begin + ((begin + j + k + colour) & 1); i < end; i += 2) {
+    const T d = r.diagonal[i];
+    if (kFromZero) xr[i] = d > T(0) ? (br[i] + (firstColour ? T(0) : r.neighbourSum(i))) / d : T(0);
+    else if (d > T(0)) xr[i] = (br[i] + r.neighbourSum(i)) / d;
+  }
+}
+
+template <bool kFromZero, class T>
+void updatePlane(const Stencil<T>& s, int64_t k, const T* b, T* x, int colour, bool firstColour) {
+  for (int64_t j = 0; j < s.ny; ++j) updateRow<kFromZero>(s, j, k, b, x, colour, firstColour);
+}
+
+// Both colours in one pass over memory: plane k gets its first colour, then plane k - 1 its
+// second (which needs the first colour on k - 2, k - 1 and k: all done), so each plane is
+// streamed once while it is still in cache instead of twice. The values are exactly those of
+// two full half-sweeps. Parallel over slabs of planes: the first and the last plane of a slab
+// take their second colour in a second phase, because in the first phase the neighbouring
+// slabs' first-colour updates still read those planes' old second-colour values, and then
+// the neighbours' first colour is all done.
+template <bool kFromZero, class T>
+void fusedSweep(TaskSystem& tasks, const Stencil<T>& s, const T* b, T* x, int first) {
+  const int second = 1 - first;
+  const int64_t slabPlanes = std::max<int64_t>(2, (s.nz + kSlabsPerSweep - 1) / kSlabsPerSweep);
+  const int64_t slabs = (s.nz + slabPlanes - 1) / slabPlanes;
+  auto slabRange = [&](int64_t slab, int64_t* k0, int64_t* k1) {
+    *k0 = slab * slabPlanes;
+    *k1 = std::min(s.nz, *k0 + slabPlanes);
+  };
+  parallelFor(tasks, slabs, 1, [&](int64_t begin, int64_t end) {
+    for (int64_t slab = begin; slab < end; ++slab) {
+      int64_t k0, k1;
+      slabRange(slab, &k0, &k1);
+      for (int64_t k = k0; k < k1; ++k) {
+        updatePlane<kFromZero>(s, k, b, x, first, true);
+        if (k - 1 > k0) updatePlane<kFromZero>(s, k - 1, b, x, second, false);
+      }
+    }
+  });
+  parallelFor(tasks, slabs, 1, [&](int64_t begin, int64_t end) {
+    for (int64_t slab = begin; slab < end; ++slab) {
+      int64_t k0, k1;
+      slabRange(slab, &k0, &k1);
+      updatePlane<kFromZero>(s, k0, b, x, second, false);
+      if (k1 - 1 > k0) updatePlane<kFromZero>(s, k1 - 1, b, x, second, false);
+    }
+  });
+}
+
+}  // namespace
+
+template <class T>
+void smoothRedBlack(TaskSystem& tasks, const PoissonCoefficients<T>& op, const T* b, T* x, bool reverse,
+                    bool fromZero) {
+  const Stencil<T> s(op);
+  if (fromZero) fusedSweep<true>(tasks, s, b, x, reverse ? 1 : 0);
+  else fusedSweep<false>(tasks, s, b, x, reverse ? 1 : 0);
+}
+
+template <class T>
+void smoothJacobi(TaskSystem& tasks, const PoissonCoefficients<T>& op, const T* b, T* x, T* scratch, double weight,
+                  int sweeps, bool fromZero) {
+  const Stencil<T> s(op);
+  const T w = static_cast<T>(weight);
+  // Ping-pong between x and scratch, so a sweep is one pass and only an odd count copies back.
+  // From zero the first sweep is w D^-1 b: no neighbour reads, nothing to clear.
+  const T* in = x;
+  T* out = fromZero ? x : scratch;  // the sweep from zero reads nothing: it may write x
+  for (int sweep = 0; sweep < sweeps; ++sweep) {
+    const bool first = fromZero && sweep == 0;
+    forEachRow(tasks, s, [&](int64_t j, int64_t k, int64_t c0) {
+      const Row<T> r(s, j, k, first ? nullptr : in);
+      const int64_t row = j + s.ny * k;
+      clearOutsideSpan(s, row, out + c0);
+      for (int64_t i = s.spanBegin(row), e = s.spanEnd(row); i < e; ++i) {
+        const T d = r.diagonal[i];
+        if (!(d > T(0))) out[c0 + i] = T(0);
+        else if (first) out[c0 + i] = w * b[c0 + i] / d;
+        else out[c0 + i] = r.x[i] + w * (b[c0 + i] + r.neighbourSum(i) - d * r.x[i]) / d;
+      }
+    });
+    in = out;
+    out = out == x ? scratch : x;
+  }
+  if (in != x) {
+    parallelFor(tasks, s.rows() * s.nx, kCellsPerChunk, [&](int64_t begin, int64_t end) {
+      for (int64_t c = begin; c < end; ++c) x[c] = in[c];
+    });
+  }
+}
+
+void smoothRedBlackCells(TaskSystem& tasks, const PoissonCoefficients<float>& op, const BoundaryCellLists& byColour,
+                         const float* b, float* x, bool reverse) {
+  const int64_t nx = op.grid.nx, sz = nx * op.grid.ny;
+  const int64_t step[6] = {-1, 1, -nx, nx, -sz, sz};
+  for (int half = 0; half < 2; ++half) {
+    const std::vector<BoundaryCell>& list = byColour[static_cast<size_t>(reverse ? 1 - half : half)];
+    parallelFor(tasks, static_cast<int64_t>(list.size()), kBoundaryCellsPerChunk, [&](int64_t begin, int64_t end) {
+      for (int64_t n = begin; n < end; ++n) {
+        const BoundaryCell& e = list[static_cast<size_t>(n)];
+        const int64_t c = e.cell;
+        float sum = 0.0f;
+        for (int f = 0; f < 6; ++f) sum += e.coupling[f] * x[e.coupling[f] != 0.0f ? c + step[f] : c];
+        x[c] = (b[c] + sum) * e.inverseDiagonal;
+      }
+    });
+  }
+}
+
+void findBoundaryCells(TaskSystem& tasks, const CutCellPoisson& op, double fullCoupling,
+                       BoundaryCellLists* byColour) {
+  SlabPasses passes(tasks);
+  std::vector<uint8_t> cut;
+  appendFindBoundaryCells(op, fullCoupling, byColour, &cut, &passes);
+  passes.runAll();
+}
+
+void appendFindBoundaryCells(const CutCellPoisson& op, double fullCoupling, BoundaryCellLists* byColour,
+                             std::vector<uint8_t>* cutCells, SlabPasses* passes) {
+  const CutCellPoisson* level = &op;
+  passes->addStep([level, fullCoupling, byColour, cutCells, passes] {
+    const Stencil<double> s(*level);
+    cutCells->resize(static_cast<size_t>(s.rows() * s.nx));
+    for (std::vector<BoundaryCell>& list : *byColour) list.clear();
+    uint8_t* cut = cutCells->data();
+    passes->addParallel(s.rows(), s.nx, s.rowGrain(), [s, cut, fullCoupling](int64_t begin, int64_t end) {
+      for (int64_t row = begin; row < end; ++row) {
+        const int64_t j = row % s.ny, k = row / s.ny, c0 = s.nx * row;
+        const Row<double> r(s, j, k, nullptr);
+        for (int64_t i = 0; i < s.nx; ++i) {
+          const double d = r.diagonal[i];
+          cut[c0 + i] = 0;
+          if (!(d > 0.0)) continue;
+          // Domain-boundary faces (coupling 0 on every level) are planar and grid-aligned, which
+          // the transfers handle (multigrid_transfer.h); only faces inside the grid count.
+          const bool inside[6] = {i > 0, i + 1 < s.nx, j > 0, j + 1 < s.ny, k > 0, k + 1 < s.nz};
+          const double faces[6] = {r.cu[i], r.cu[i + 1], r.cvLow[i], r.cvHigh[i], r.cwLow[i], r.cwHigh[i]};
+          bool isCut = false, onDomainBoundary = false;
+          double couplings = 0.0;
+          for (int f = 0; f < 6; ++f) {
+            couplings += faces[f];
+            onDomainBoundary = onDomainBoundary || !inside[f];
+            isCut = isCut || (inside[f] && faces[f] < fullCoupling * (1.0 - 1e-12));
+          }
+          // A Dirichlet part away from the domain sides is a free-surface face.
+          isCut = isCut || (!onDomainBoundary && d > couplings * (1.0 + 1e-12));
+          cut[c0 + i] = isCut ? 1 : 0;
+        }
+      }
+    });
+    // Serial, rows in order, so the lists (and the sweeps' results) never depend on the workers
+    // or on the slabs.
+    passes->addSerial(s.rows(), s.nx, [s, cut, byColour](int64_t begin, int64_t end) {
+      const int64_t step[6] = {-1, 1, -s.nx, s.nx, -s.sz, s.sz};
+      for (int64_t row = begin; row < end; ++row) {
+        const int64_t j = row % s.ny, k = row / s.ny;
+        for (int64_t i = 0; i < s.nx; ++i) {
+          const int64_t c = i + s.nx * row;
+          if (!(s.diagonal[c] > 0.0)) continue;
+          const bool inside[6] = {i > 0, i + 1 < s.nx, j > 0, j + 1 < s.ny, k > 0, k + 1 < s.nz};
+          bool near = cut[c] != 0;
+          for (int f = 0; f < 6; ++f) near = near || (inside[f] && cut[c + step[f]]);
+          if (!near) continue;
+          const Row<double> r(s, j, k, nullptr);
+          const double faces[6] = {r.cu[i], r.cu[i + 1], r.cvLow[i], r.cvHigh[i], r.cwLow[i], r.cwHigh[i]};
+          BoundaryCell e;
+          e.cell = static_cast<int32_t>(c);
+          // Domain-side faces hold coupling 0 already (cut_cell_poisson.h); `inside` makes sure.
+          for (int f = 0; f < 6; ++f) e.coupling[f] = inside[f] ? static_cast<float>(faces[f]) : 0.0f;
+          e.inverseDiagonal = static_cast<float>(1.0 / s.diagonal[c]);
+          (*byColour)[static_cast<size_t>((i + j + k) & 1)].push_back(e);
+        }
+      }
+    });
+  });
+}
+
+template <class T>
+void computeResidual(TaskSystem& tasks, const PoissonCoefficients<T>& op, const T* b, const T* x, T* r) {
+  const Stencil<T> s(op);
+  forEachRow(tasks, s, [&](int64_t j, int64_t k, int64_t c0) {
+    const Row<T> row(s, j, k, x);
+    const int64_t index = j + s.ny * k;
+    clearOutsideSpan(s, index, r + c0);
+    for (int64_t i = s.spanBegin(index), e = s.spanEnd(index); i < e; ++i) {
+      const T d = row.diagonal[i];
+      r[c0 + i] = d > T(0) ? b[c0 + i] + row.neighbourSum(i) - d * row.x[i] : T(0);
+    }
+  });
+}
+
+#define VP_INSTANTIATE_SMOOTHERS(T)                                                                         \
+  template void smoothRedBlack<T>(TaskSystem&, const PoissonCoefficients<T>&, const T*, T*, bool, bool);         \
+  template void smoothJacobi<T>(TaskSystem&, const PoissonCoefficients<T>&, const T*, T*, T*, double, int, bool); \
+  template void computeResidual<T>(TaskSystem&, const PoissonCoefficients<T>&, const T*, const T*, T*);
+VP_INSTANTIATE_SMOOTHERS(double)
+VP_INSTANTIATE_SMOOTHERS(float)
+#undef VP_INSTANTIATE_SMOOTHERS
+
+}  // namespace vp

@@ -1,0 +1,87 @@
+// Smoothers and residual of one pressure multigrid level (a CutCellPoisson), parallel over grid
+// rows through parallel_for.
+//
+// Red-black Gauss-Seidel: cells with (i + j + k) even are red, the others black; the 7-point
+// operator couples only cells of different colours, so each half-sweep updates its colour in any
+// order (in parallel, and bitwise independent of the worker count). One sweep is red then black;
+// its adjoint (in the A inner product) is black then red, which the V-cycle uses after the
+// coarse correction so that the whole cycle is a symmetric operator.
+//
+// Damped Jacobi: x += w D^-1 (b - A x), symmetric by itself.
+//
+// Measured (BM_PressureSolve, cutcell_mgpcg vs cutcell_mgpcg_jacobi, 2 sweeps each plus the
+// Gauss-Seidel boundary sweeps; 2-core machine shared with other builds, medians of 3; the
+// plate figures are from before the series coarse couplings, which took GS to 8/8/11 and
+// Jacobi to 8/9 at 64/128^3):
+//   iterations to 1e-6   sphere 64/128/192^3: GS 7/7/8,  Jacobi 8/8/9
+//                        plate  64/128/192^3: GS 11/12/13, Jacobi 12/12/14
+//   ms                   sphere: GS 130/1407/5555, Jacobi 324/1437/5223
+//                        plate:  GS 428/2413/9471, Jacobi 206/1955/7917
+// A Jacobi sweep is one contiguous (vectorizable) pass, a fused red-black sweep one strided pass
+// plus a second phase on two planes per slab: Jacobi costs ~15% less per sweep and needs ~10%
+// more iterations, so the two are level within this machine's noise. Gauss-Seidel stays the
+// default for the lower iteration count (fewer CG dot products and operator applications).
+//
+// Non-fluid cells (diagonal 0) are never written: they hold 0 and keep it.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/task_system.h"
+#include "fluid/pressure/cut_cell_poisson.h"
+
+namespace vp {
+
+enum class PoissonSmoother { RedBlackGaussSeidel, DampedJacobi };
+
+// One red-black sweep (red then black; black then red when `reverse`). `fromZero`: the sweep
+// starts from x = 0 whatever x holds (every cell is written, non-fluid ones with 0).
+// T is double or float (the V-cycle runs in single precision, poisson_multigrid.h).
+template <class T>
+void smoothRedBlack(TaskSystem& tasks, const PoissonCoefficients<T>& op, const T* b, T* x, bool reverse,
+                    bool fromZero = false);
+
+// `sweeps` damped Jacobi sweeps; `scratch` has the level's cell count; `fromZero` as for
+// smoothRedBlack.
+template <class T>
+void smoothJacobi(TaskSystem& tasks, const PoissonCoefficients<T>& op, const T* b, T* x, T* scratch, double weight,
+                  int sweeps, bool fromZero = false);
+
+// Boundary smoothing (McAdams et al. 2010): Gauss-Seidel restricted to the listed cells, split
+// by colour (red list then black list; black then red when `reverse`), so it parallelizes like
+// the full sweep and its reverse is its adjoint.
+// A listed cell carries its own coefficients, packed at build time in the V-cycle's single
+// precision, and the inverse of its diagonal, so a sweep reads the list and x (and b) only; a
+// face with coupling 0 (closed, or a domain side) reads the cell itself, so no neighbour outside
+// the grid is ever read.
+struct BoundaryCell {
+  int32_t cell;
+  float coupling[6];  // faces -x, +x, -y, +y, -z, +z
+  float inverseDiagonal;
+};
+using BoundaryCellLists = std::array<std::vector<BoundaryCell>, 2>;  // red, black
+
+void smoothRedBlackCells(TaskSystem& tasks, const PoissonCoefficients<float>& op, const BoundaryCellLists& byColour,
+                         const float* b, float* x, bool reverse);
+
+// The fluid cells within one face step of a cut cell, split by colour: red cells in
+// byColour[0], black in byColour[1], each in cell order. A cell is cut when a face inside the
+// grid has a coupling below the level's full value `fullCoupling` (solids, slivers) or when it
+// has a Dirichlet part away from the domain sides (free surface). The multigrid's convergence
+// degrades with resolution without these sweeps: sliver cells (open fractions near 0) are
+// poorly represented by the coarse levels, and their number grows with the surface.
+void findBoundaryCells(TaskSystem& tasks, const CutCellPoisson& op, double fullCoupling,
+                       BoundaryCellLists* byColour);
+// The same as passes (core/slab_passes.h): the cut flags (into `cut`, one per
+// cell) in slabs of rows, then the lists in rows taken in order. Nothing is read before the
+// first pass runs; the arguments must outlive the passes.
+void appendFindBoundaryCells(const CutCellPoisson& op, double fullCoupling, BoundaryCellLists* byColour,
+                             std::vector<uint8_t>* cut, SlabPasses* passes);
+
+// r = b - A x on fluid cells, 0 elsewhere.
+template <class T>
+void computeResidual(TaskSystem& tasks, const PoissonCoefficients<T>& op, const T* b, const T* x, T* r);
+
+}  // namespace vp

@@ -1,0 +1,196 @@
+// Renormalized trilinear prolongation and its transpose (see multigrid_transfer.h).
+#include "fluid/pressure/multigrid_transfer.h"
+
+#include <cmath>
+
+#include "core/parallel_for.h"
+
+namespace vp {
+namespace {
+
+constexpr int64_t kRowGrain = 16;
+
+// The two coarse cells fine index i interpolates from along one axis, with their weights. A
+// neighbour outside [0, coarseCount) is a ghost: behind a Wall side it is dropped (weight 0, a
+// valid index so it can be read); behind an Open side it is the Dirichlet ghost -x_parent, which
+// puts the zero at the domain face, so it becomes weight -1/4 on the parent. `presence` is the
+// weight the renormalization counts (the ghost is there, only with a mirrored value).
+struct AxisStencil {
+  int64_t index[2];
+  double weight[2];
+  double presence[2];
+  AxisStencil(int64_t i, int64_t coarseCount, const TransferSides& sides, int axis) {
+    const int64_t parent = i >> 1, side = (i & 1) ? parent + 1 : parent - 1;
+    index[0] = parent;
+    weight[0] = presence[0] = 0.75;
+    const bool inside = side >= 0 && side < coarseCount;
+    const bool dirichlet = !inside && sides.open[2 * axis + (side < 0 ? 0 : 1)];
+    index[1] = inside ? side : parent;
+    weight[1] = inside ? 0.25 : dirichlet ? -0.25 : 0.0;
+    presence[1] = inside || dirichlet ? 0.25 : 0.0;
+  }
+};
+
+// The transpose of AxisStencil along one axis: the weights P gives coarse index I at the fine
+// indices first .. first + 3 (= 2I - 1 .. 2I + 2), 0 for fine indices outside the grid.
+struct AxisWeights {
+  int64_t first;
+  double weight[4];
+  AxisWeights(int64_t I, int64_t fineCount, int64_t coarseCount, const TransferSides& sides, int axis)
+      : first(2 * I - 1) {
+    for (int x = 0; x < 4; ++x) {
+      weight[x] = 0.0;
+      const int64_t i = first + x;
+      if (i < 0 || i >= fineCount) continue;
+      const AxisStencil s(i, coarseCount, sides, axis);
+      for (int e = 0; e < 2; ++e)
+        if (s.index[e] == I) weight[x] += s.weight[e];
+    }
+  }
+};
+
+// out = sum_t w.weight[t] * line(w.first + t), over rows of `count` values: one pass of the
+// separable restriction along y or z.
+template <class T, class Line>
+void gatherRows(const AxisWeights& w, int64_t count, const Line& line, T* out) {
+  for (int64_t I = 0; I < count; ++I) out[I] = T(0);
+  for (int t = 0; t < 4; ++t) {
+    if (w.weight[t] == 0.0) continue;
+    const T weight = static_cast<T>(w.weight[t]);
+    const T* in = line(w.first + t);
+    for (int64_t I = 0; I < count; ++I) out[I] += weight * in[I];
+  }
+}
+
+}  // namespace
+
+void computeProlongationScale(TaskSystem& tasks, const CutCellPoisson& fine, const CutCellPoisson& coarse,
+                              const TransferSides& sides, std::vector<double>* scale) {
+  SlabPasses passes(tasks);
+  appendComputeProlongationScale(fine, coarse, sides, scale, &passes);
+  passes.runAll();
+}
+
+void appendComputeProlongationScale(const CutCellPoisson& fine, const CutCellPoisson& coarse,
+                                    const TransferSides& sides, std::vector<double>* scale, SlabPasses* passes) {
+  const CutCellPoisson* fp = &fine;
+  const CutCellPoisson* cp = &coarse;
+  passes->addStep([fp, cp, sides, scale, passes] {
+    const int64_t nx = fp->grid.nx, ny = fp->grid.ny, nz = fp->grid.nz;
+    scale->resize(static_cast<size_t>(nx * ny * nz));
+    // Per fine row: each cell's sum of the weights of its fluid coarse neighbours (the 8
+    // stencil entries), then its inverse.
+    passes->addParallel(ny * nz, nx, kRowGrain, [=](int64_t begin, int64_t end) {
+      const int64_t cx = cp->grid.nx, cy = cp->grid.ny, cz = cp->grid.nz;
+      double* s = scale->data();
+      for (int64_t row = begin; row < end; ++row) {
+        const int64_t j = row % ny, k = row / ny;
+        const AxisStencil sy(j, cy, sides, 1), sz(k, cz, sides, 2);
+        for (int64_t i = 0; i < nx; ++i) {
+          const int64_t c = i + nx * row;
+          double sum = 0.0;
+          if (fp->diagonal[static_cast<size_t>(c)] > 0.0) {
+            const AxisStencil sx(i, cx, sides, 0);
+            for (int z = 0; z < 2; ++z)
+              for (int y = 0; y < 2; ++y) {
+                const double pyz = sy.presence[y] * sz.presence[z];
+                const int64_t base = cx * (sy.index[y] + cy * sz.index[z]);
+                for (int x = 0; x < 2; ++x)
+                  if (cp->diagonal[static_cast<size_t>(base + sx.index[x])] > 0.0) sum += pyz * sx.presence[x];
+              }
+          }
+          s[c] = sum > 0.0 ? 1.0 / sum : 0.0;
+        }
+      }
+    });
+  });
+}
+
+template <class T>
+void prolongateAdd(TaskSystem& tasks, const CutCellPoisson& fine, const CutCellPoisson& coarse,
+                   const TransferSides& sides, const T* scale, const T* coarseX, T* fineX) {
+  const int64_t nx = fine.grid.nx, ny = fine.grid.ny, nz = fine.grid.nz;
+  const int64_t cx = coarse.grid.nx, cy = coarse.grid.ny, cz = coarse.grid.nz;
+  parallelFor(tasks, ny * nz, kRowGrain, [&](int64_t begin, int64_t end) {
+    for (int64_t row = begin; row < end; ++row) {
+      const int64_t j = row % ny, k = row / ny;
+      const AxisStencil sy(j, cy, sides, 1), sz(k, cz, sides, 2);
+      const T* lines[4];
+      T wyz[4];
+      for (int z = 0; z < 2; ++z)
+        for (int y = 0; y < 2; ++y) {
+          lines[2 * z + y] = coarseX + cx * (sy.index[y] + cy * sz.index[z]);
+          wyz[2 * z + y] = static_cast<T>(sy.weight[y] * sz.weight[z]);
+        }
+      for (int64_t i = 0; i < nx; ++i) {
+        const int64_t c = i + nx * row;
+        const T s = scale[c];
+        if (s == T(0)) continue;
+        const AxisStencil sx(i, cx, sides, 0);
+        const T w0 = static_cast<T>(sx.weight[0]), w1 = static_cast<T>(sx.weight[1]);
+        T sum = T(0);
+        for (int l = 0; l < 4; ++l) sum += wyz[l] * (w0 * lines[l][sx.index[0]] + w1 * lines[l][sx.index[1]]);
+        fineX[c] += s * sum;
+      }
+    }
+  });
+}
+
+template <class T>
+void restrictResidual(TaskSystem& tasks, const CutCellPoisson& fine, const CutCellPoisson& coarse,
+                      const TransferSides& sides, const T* scale, const T* fineR, T* coarseB, std::vector<T>* scratch) {
+  const int64_t nx = fine.grid.nx, ny = fine.grid.ny, nz = fine.grid.nz;
+  const int64_t cx = coarse.grid.nx, cy = coarse.grid.ny, cz = coarse.grid.nz;
+  // R is P^T with P's weights a product over the axes, so it runs as three 1D gathers (x, then
+  // y, then z), each coarse value collecting the fine indices 2I-1 .. 2I+2 whose stencils name
+  // it with the weight their AxisStencil gives it (AxisWeights): 4 + 4 + 4 multiply-adds per
+  // coarse value of each pass instead of 64.
+  std::vector<AxisWeights> wx, wy, wz;
+  for (int64_t I = 0; I < cx; ++I) wx.emplace_back(I, nx, cx, sides, 0);
+  for (int64_t J = 0; J < cy; ++J) wy.emplace_back(J, ny, cy, sides, 1);
+  for (int64_t K = 0; K < cz; ++K) wz.emplace_back(K, nz, cz, sides, 2);
+  scratch->resize(static_cast<size_t>(cx * ny * nz + cx * cy * nz));
+  T* alongX = scratch->data();           // cx * ny * nz
+  T* alongY = alongX + cx * ny * nz;     // cx * cy * nz
+  parallelFor(tasks, ny * nz, kRowGrain, [&](int64_t begin, int64_t end) {
+    for (int64_t row = begin; row < end; ++row) {
+      const T* r = fineR + nx * row;
+      const T* sc = scale + nx * row;
+      for (int64_t I = 0; I < cx; ++I) {
+        const AxisWeights& w = wx[static_cast<size_t>(I)];
+        T sum = T(0);
+        for (int x = 0; x < 4; ++x)
+          if (w.weight[x] != 0.0) sum += static_cast<T>(w.weight[x]) * sc[w.first + x] * r[w.first + x];
+        alongX[I + cx * row] = sum;
+      }
+    }
+  });
+  parallelFor(tasks, cy * nz, kRowGrain, [&](int64_t begin, int64_t end) {
+    for (int64_t row = begin; row < end; ++row) {
+      const int64_t J = row % cy, k = row / cy;
+      gatherRows(wy[static_cast<size_t>(J)], cx, [&](int64_t j) { return alongX + cx * (j + ny * k); },
+                 alongY + cx * row);
+    }
+  });
+  parallelFor(tasks, cy * cz, kRowGrain, [&](int64_t begin, int64_t end) {
+    for (int64_t row = begin; row < end; ++row) {
+      const int64_t J = row % cy, K = row / cy;
+      T* out = coarseB + cx * row;
+      gatherRows(wz[static_cast<size_t>(K)], cx, [&](int64_t k) { return alongY + cx * (J + cy * k); }, out);
+      const double* diagonal = coarse.diagonal.data() + cx * row;
+      for (int64_t I = 0; I < cx; ++I)
+        if (!(diagonal[I] > 0.0)) out[I] = T(0);
+    }
+  });
+}
+
+#define VP_INSTANTIATE_TRANSFERS(T)                                                                        \
+  template void prolongateAdd<T>(TaskSystem&, const CutCellPoisson&, const CutCellPoisson&, const TransferSides&, \
+                                 const T*, const T*, T*);                                                      \
+  template void restrictResidual<T>(TaskSystem&, const CutCellPoisson&, const CutCellPoisson&,                   \
+                                    const TransferSides&, const T*, const T*, T*, std::vector<T>*);
+VP_INSTANTIATE_TRANSFERS(double)
+VP_INSTANTIATE_TRANSFERS(float)
+#undef VP_INSTANTIATE_TRANSFERS
+
+}  // namespace vp

@@ -1,0 +1,185 @@
+// Multigrid hierarchy and V-cycle for the cut-cell pressure operator (see poisson_multigrid.h).
+#include "fluid/pressure/poisson_multigrid.h"
+
+#include <algorithm>
+#include <cstdint>
+
+#include "core/parallel_for.h"
+#include "fluid/pressure/multigrid_coarsening.h"
+
+namespace vp {
+namespace {
+
+constexpr int64_t kValueGrain = 4096;
+
+// `sweeps` sweeps (adjoint order when `adjoint`); `fromZero`: x holds anything and the smoothing
+// starts from 0 (both smoothers fold the clearing into their first sweep).
+void smooth(TaskSystem& tasks, const PoissonCoefficients<float>& op, const MultigridSettings& s, const float* b,
+            float* x, std::vector<float>& scratch, int sweeps, bool adjoint, bool fromZero) {
+  if (s.smoother == PoissonSmoother::DampedJacobi) {
+    smoothJacobi(tasks, op, b, x, scratch.data(), s.jacobiWeight, sweeps, fromZero);
+    return;
+  }
+  for (int i = 0; i < sweeps; ++i) smoothRedBlack(tasks, op, b, x, adjoint, fromZero && i == 0);
+}
+
+// Pre-smoothing (from zero): full sweeps then boundary sweeps; post-smoothing: the adjoint, in
+// reverse order.
+void smoothLevel(TaskSystem& tasks, const PoissonCoefficients<float>& op, const MultigridSettings& s,
+                 const BoundaryCellLists& boundary, const float* b, float* x, std::vector<float>& scratch,
+                 bool post) {
+  if (!post) smooth(tasks, op, s, b, x, scratch, s.sweeps, false, true);
+  for (int i = 0; i < s.boundarySweeps; ++i) smoothRedBlackCells(tasks, op, boundary, b, x, post);
+  if (post) smooth(tasks, op, s, b, x, scratch, s.sweeps, true, false);
+}
+
+template <class From, class To>
+void convertValues(const From* from, To* to, int64_t begin, int64_t end) {
+  for (int64_t i = begin; i < end; ++i) to[i] = static_cast<To>(from[i]);
+}
+
+template <class From, class To>
+void convertVector(TaskSystem& tasks, int64_t count, const From* from, To* to) {
+  parallelFor(tasks, count, kValueGrain, [&](int64_t begin, int64_t end) { convertValues(from, to, begin, end); });
+}
+
+// A pass converting `from` into `to` (sized by it when the pass is added).
+template <class From, class To>
+void addConversion(SlabPasses* passes, const std::vector<From>* from, std::vector<To>* to) {
+  to->resize(from->size());
+  passes->addParallel(static_cast<int64_t>(from->size()), 1, kValueGrain, [from, to](int64_t begin, int64_t end) {
+    convertValues(from->data(), to->data(), begin, end);
+  });
+}
+
+void addSinglePrecision(SlabPasses* passes, const CutCellPoisson* in, PoissonCoefficients<float>* out) {
+  passes->addStep([passes, in, out] {
+    out->grid = in->grid;
+    out->rowSpan = in->rowSpan;
+    for (int a = 0; a < 3; ++a) addConversion(passes, &in->coupling[a], &out->coupling[a]);
+    addConversion(passes, &in->diagonal, &out->diagonal);
+  });
+}
+
+bool canCoarsen(const MacGridSpec& g, int coarsestSize) {
+  return std::min({g.nx, g.ny, g.nz}) >= 2 * coarsestSize;
+}
+
+}  // namespace
+
+Status checkPoissonMultigrid(const MacGridSpec& fineGrid, const MultigridSettings& settings) {
+  if (settings.sweeps < 1 || settings.coarsestSweeps < 1 || settings.boundarySweeps < 0)
+    return fail(Status::InvalidArgument,
+                "multigrid: sweeps = %d and coarsestSweeps = %d must be >= 1, boundarySweeps = %d >= 0",
+                settings.sweeps, settings.coarsestSweeps, settings.boundarySweeps);
+  if (settings.coarsestSize < 1)
+    return fail(Status::InvalidArgument, "multigrid: coarsestSize = %d must be >= 1", settings.coarsestSize);
+  if (!(settings.jacobiWeight > 0.0 && settings.jacobiWeight <= 1.0))
+    return fail(Status::InvalidArgument, "multigrid: jacobiWeight = %g must lie in (0, 1]", settings.jacobiWeight);
+  // Boundary cell lists index cells with 32 bits (multigrid_smoother.h).
+  if (static_cast<int64_t>(fineGrid.nx) * fineGrid.ny * fineGrid.nz > INT32_MAX)
+    return fail(Status::InvalidArgument, "multigrid: grid (%d, %d, %d) has too many cells for 32-bit indices",
+                fineGrid.nx, fineGrid.ny, fineGrid.nz);
+  return Status::Ok;
+}
+
+Status buildPoissonMultigrid(TaskSystem& tasks, const CutCellPoisson& fine, const std::array<DomainSide, 6>& sides,
+                             const MultigridSettings& settings, PoissonMultigrid* mg) {
+  if (mg == nullptr) return fail(Status::InvalidArgument, "multigrid: output is null");
+  VP_TRY(checkPoissonMultigrid(fine.grid, settings));
+  SlabPasses passes(tasks);
+  appendBuildPoissonMultigrid(fine, sides, settings, mg, &passes);
+  passes.runAll();
+  return Status::Ok;
+}
+
+void appendBuildPoissonMultigrid(const CutCellPoisson& fine, const std::array<DomainSide, 6>& sides,
+                                 const MultigridSettings& settings, PoissonMultigrid* mg, SlabPasses* passes) {
+  const CutCellPoisson* fp = &fine;
+  passes->addStep([fp, sides, settings, mg, passes] {
+    mg->settings = settings;
+    for (int side = 0; side < 6; ++side) mg->sides.open[side] = sides[static_cast<size_t>(side)] == DomainSide::Open;
+    int levels = 1;
+    for (MacGridSpec g = fp->grid; canCoarsen(g, settings.coarsestSize); g = coarseGridSpec(g)) ++levels;
+    // resize() keeps the existing levels' buffers, so a rebuild every frame does not reallocate.
+    mg->coarse.resize(static_cast<size_t>(levels - 1));
+    mg->coarseFloating.assign(static_cast<size_t>(levels - 1), 0);
+    mg->prolongScale.resize(static_cast<size_t>(levels - 1));
+    mg->single.resize(static_cast<size_t>(levels));
+    mg->boundaryCells.resize(static_cast<size_t>(levels));
+    mg->x.resize(static_cast<size_t>(levels));
+    mg->b.resize(static_cast<size_t>(levels));
+    mg->r.resize(static_cast<size_t>(levels));
+    auto level = [fp, mg](int l) { return l == 0 ? fp : &mg->coarse[static_cast<size_t>(l - 1)]; };
+    for (int l = 1; l < levels; ++l) {
+      const CutCellPoisson* from = level(l - 1);
+      CutCellPoisson* to = &mg->coarse[static_cast<size_t>(l - 1)];
+      if (settings.coarsening == MultigridCoarsening::CutCell)
+        appendCoarsenCutCell(*from, to, &mg->coarseningScratch, passes);
+      else
+        appendCoarsenVoxel(*from, sides, to, &mg->coarseningScratch, passes);
+      appendComputeProlongationScale(*from, *to, mg->sides, &mg->scaleScratch, passes);
+      passes->addStep([mg, to, l, passes] {
+        mg->coarseFloating[static_cast<size_t>(l - 1)] =
+            std::any_of(to->regionFloating.begin(), to->regionFloating.end(), [](uint8_t f) { return f != 0; });
+        addConversion(passes, &mg->scaleScratch, &mg->prolongScale[static_cast<size_t>(l - 1)]);
+      });
+    }
+    for (int l = 0; l < levels; ++l) addSinglePrecision(passes, level(l), &mg->single[static_cast<size_t>(l)]);
+    // Full coupling doubles per level: 4 full fine faces, halved (multigrid_coarsening.h); the
+    // voxel levels' full coupling follows the same rule.
+    double fullCoupling = 1.0;
+    for (int l = 0; l < levels; ++l, fullCoupling *= 2.0)
+      if (settings.boundarySweeps > 0)
+        appendFindBoundaryCells(*level(l), fullCoupling, &mg->boundaryCells[static_cast<size_t>(l)],
+                                &mg->boundaryScratch, passes);
+    passes->addStep([mg, level, levels] {
+      for (int l = 0; l < levels; ++l) {
+        const size_t cells = level(l)->diagonal.size();
+        mg->r[static_cast<size_t>(l)].resize(cells);
+        mg->x[static_cast<size_t>(l)].resize(cells);
+        mg->b[static_cast<size_t>(l)].resize(cells);
+      }
+    });
+  });
+}
+
+void applyPoissonMultigrid(TaskSystem& tasks, const CutCellPoisson& fine, PoissonMultigrid& mg, const double* r,
+                           double* z) {
+  const MultigridSettings& s = mg.settings;
+  const int levels = mg.levelCount();
+  auto op = [&](int l) -> const CutCellPoisson& { return l == 0 ? fine : mg.coarse[static_cast<size_t>(l - 1)]; };
+  auto single = [&](int l) -> const PoissonCoefficients<float>& { return mg.single[static_cast<size_t>(l)]; };
+  auto xOf = [&](int l) { return mg.x[static_cast<size_t>(l)].data(); };
+  auto bOf = [&](int l) { return mg.b[static_cast<size_t>(l)].data(); };
+  auto filter = [&](int l, float* v) {
+    if (l > 0 && mg.coarseFloating[static_cast<size_t>(l - 1)]) filterCutCellPoisson(tasks, op(l), v);
+  };
+  auto scratchOf = [&](int l) -> std::vector<float>& { return mg.r[static_cast<size_t>(l)]; };
+  const int64_t fineCells = static_cast<int64_t>(fine.diagonal.size());
+  convertVector(tasks, fineCells, r, bOf(0));
+
+  // Every level's x starts from 0; the first smoothing sweep clears it (smooth, fromZero).
+  for (int l = 0; l + 1 < levels; ++l) {
+    smoothLevel(tasks, single(l), s, mg.boundaryCells[static_cast<size_t>(l)], bOf(l), xOf(l), scratchOf(l), false);
+    float* residual = scratchOf(l).data();
+    computeResidual(tasks, single(l), bOf(l), xOf(l), residual);
+    float* coarseB = bOf(l + 1);
+    restrictResidual(tasks, op(l), op(l + 1), mg.sides, mg.prolongScale[static_cast<size_t>(l)].data(), residual,
+                     coarseB, &mg.restrictScratch);
+    filter(l + 1, coarseB);
+  }
+  const int last = levels - 1;
+  smooth(tasks, single(last), s, bOf(last), xOf(last), scratchOf(last), s.coarsestSweeps, false, true);
+  smooth(tasks, single(last), s, bOf(last), xOf(last), scratchOf(last), s.coarsestSweeps, true, false);
+  filter(last, xOf(last));
+  for (int l = last - 1; l >= 0; --l) {
+    prolongateAdd(tasks, op(l), op(l + 1), mg.sides, mg.prolongScale[static_cast<size_t>(l)].data(), xOf(l + 1),
+                  xOf(l));
+    smoothLevel(tasks, single(l), s, mg.boundaryCells[static_cast<size_t>(l)], bOf(l), xOf(l), scratchOf(l), true);
+    filter(l, xOf(l));
+  }
+  convertVector(tasks, fineCells, xOf(0), z);
+}
+
+}  // namespace vp

@@ -1,0 +1,192 @@
+// Layered velocity extrapolation (see velocity_extrapolation.h).
+#include "fluid/surface/velocity_extrapolation.h"
+
+#include <algorithm>
+#include <limits>
+
+#include "core/parallel_for.h"
+#include "fluid/pressure/cut_cell_poisson.h"
+#include "fluid/surface/free_surface.h"
+
+namespace vp {
+namespace {
+
+constexpr int64_t kRowGrain = 16;  // face rows (one row = dimX faces) per parallel chunk
+constexpr int kMaxLayers = 250;    // marks are bytes; 254 and 255 are reserved
+
+}  // namespace
+
+Status extrapolateVelocity(TaskSystem& tasks, MacGrid& grid, const FaceFractionField& fractions,
+                           const double* liquidPhi, const VelocityExtrapolationSettings& settings,
+                           VelocityExtrapolationState& state) {
+  VelocityExtrapolationRun run;
+  VP_TRY(run.prepare(tasks, grid, fractions, liquidPhi, settings, state, std::numeric_limits<int64_t>::max()));
+  while (!run.advance()) {
+  }
+  return Status::Ok;
+}
+
+Status VelocityExtrapolationRun::prepare(TaskSystem& tasks, MacGrid& grid, const FaceFractionField& fractions,
+                                         const double* liquidPhi, const VelocityExtrapolationSettings& settings,
+                                         VelocityExtrapolationState& state, int64_t samplesPerSlice) {
+  pass_ = Pass::Done;
+  if (liquidPhi == nullptr) return fail(Status::InvalidArgument, "velocity extrapolation: liquidPhi is null");
+  if (settings.layers < 0 || settings.layers > kMaxLayers)
+    return fail(Status::InvalidArgument, "velocity extrapolation: layers = %d must be in [0, %d]", settings.layers,
+                kMaxLayers);
+  if (!sameGrid(grid.spec, fractions.grid))
+    return fail(Status::InvalidArgument, "velocity extrapolation: face fractions belong to another grid");
+  if (samplesPerSlice < 1)
+    return fail(Status::InvalidArgument, "velocity extrapolation: samplesPerSlice = %lld must be >= 1",
+                static_cast<long long>(samplesPerSlice));
+  tasks_ = &tasks;
+  grid_ = &grid;
+  fractions_ = &fractions;
+  liquidPhi_ = liquidPhi;
+  settings_ = settings;
+  state_ = &state;
+  samplesPerSlice_ = samplesPerSlice;
+  lastSliceSamples_ = 0;
+  for (int a = 0; a < 3; ++a) state.mark[a].resize(grid.velocity[a].size());
+  pass_ = Pass::Mark;
+  axis_ = 0;
+  layer_ = 0;
+  row_ = 0;
+  layerFaces_ = 0;
+  return Status::Ok;
+}
+
+// Slabs of whole face rows: as many as the slice has room for, one when it has done nothing.
+bool VelocityExtrapolationRun::advance() {
+  lastSliceSamples_ = 0;
+  while (pass_ != Pass::Done) {
+    const Eigen::Vector3i d = grid_->faceDims(axis_);
+    const int64_t rows = static_cast<int64_t>(d.z()) * d.y();
+    int64_t take = std::min(rows - row_, std::max<int64_t>(samplesPerSlice_ - lastSliceSamples_, 0) / d.x());
+    if (take == 0) {
+      if (lastSliceSamples_ > 0) break;
+      take = 1;
+    }
+    const int64_t begin = row_;
+    row_ += take;
+    lastSliceSamples_ += take * d.x();
+    switch (pass_) {
+      case Pass::Mark: markRows(begin, row_); break;
+      case Pass::Layer: extrapolateRows(begin, row_); break;
+      case Pass::Zero: zeroRows(begin, row_); break;
+      case Pass::Done: break;
+    }
+    if (row_ == rows) nextAxis();
+  }
+  return pass_ == Pass::Done;
+}
+
+// The pass after one axis is done: the next axis, the next layer (none when the last one set
+// nothing or was the last), the zeroing, the end.
+void VelocityExtrapolationRun::nextAxis() {
+  row_ = 0;
+  if (++axis_ < 3) return;
+  axis_ = 0;
+  const bool moreLayers = pass_ == Pass::Mark    ? settings_.layers > 0
+                          : pass_ == Pass::Layer ? layerFaces_ > 0 && layer_ < settings_.layers
+                                                 : false;
+  if (moreLayers) {
+    pass_ = Pass::Layer;
+    ++layer_;
+    layerFaces_ = 0;
+  } else {
+    pass_ = pass_ != Pass::Zero && settings_.zeroUnreached ? Pass::Zero : Pass::Done;
+  }
+}
+
+void VelocityExtrapolationRun::markRows(int64_t begin, int64_t end) {
+  const MacGrid& grid = *grid_;
+  const MacGridSpec& g = grid.spec;
+  const int a = axis_;
+  const Eigen::Vector3i d = grid.faceDims(a);
+  const int cellsAlong = g.nx * (a == 0) + g.ny * (a == 1) + g.nz * (a == 2);
+  uint8_t* mark = state_->mark[a].data();
+  parallelFor(*tasks_, end - begin, kRowGrain, [&](int64_t first, int64_t last) {
+    for (int64_t row = begin + first; row < begin + last; ++row) {
+      const int j = static_cast<int>(row % d.y()), k = static_cast<int>(row / d.y());
+      for (int i = 0; i < d.x(); ++i) {
+        const size_t f = grid.faceIndex(a, i, j, k);
+        if (grid.isWallFace(a, i, j, k)) {
+          mark[f] = kExtrapolationFixed;
+          continue;
+        }
+        const double openFraction = effectiveOpenFraction(grid, *fractions_, a, i, j, k);
+        const bool open = openFraction > 0.0;
+        Eigen::Vector3i low(i, j, k);
+        low[a] -= 1;
+        const int along = low[a] + 1;
+        const bool liquid = (along > 0 && isLiquid(liquidPhi_[grid.cellIndex(low.x(), low.y(), low.z())])) ||
+                            (along < cellsAlong && isLiquid(liquidPhi_[grid.cellIndex(i, j, k)]));
+        if (open && liquid && openFraction >= settings_.minSourceOpenFraction) mark[f] = 0;
+        else if (open || settings_.intoClosedFaces) mark[f] = kExtrapolationUnreached;
+        else mark[f] = kExtrapolationFixed;
+      }
+    }
+  });
+}
+
+// One layer on rows [begin, end) of an axis: a parallel scan writes the new faces' velocities
+// (they are unreached, so no other face of this layer reads them) and lists them per chunk;
+// their marks are set after the scan, so every face of the layer saw the marks of the earlier
+// layers only.
+void VelocityExtrapolationRun::extrapolateRows(int64_t begin, int64_t end) {
+  const int layer = layer_;
+  const Eigen::Vector3i d = grid_->faceDims(axis_);
+  uint8_t* mark = state_->mark[axis_].data();
+  double* u = grid_->velocity[axis_].data();
+  const int64_t sy = d.x(), sz = static_cast<int64_t>(d.x()) * d.y();
+  const int64_t chunks = (end - begin + kRowGrain - 1) / kRowGrain;
+  if (static_cast<int64_t>(assigned_.size()) < chunks) assigned_.resize(static_cast<size_t>(chunks));
+  parallelFor(*tasks_, chunks, 1, [&](int64_t firstChunk, int64_t lastChunk) {
+    for (int64_t chunk = firstChunk; chunk < lastChunk; ++chunk) {
+      std::vector<int64_t>& out = assigned_[static_cast<size_t>(chunk)];
+      out.clear();
+      for (int64_t row = begin + chunk * kRowGrain; row < std::min(end, begin + (chunk + 1) * kRowGrain); ++row) {
+        const int j = static_cast<int>(row % d.y()), k = static_cast<int>(row / d.y());
+        const int64_t first = row * sy;
+        for (int i = 0; i < d.x(); ++i) {
+          const int64_t f = first + i;
+          if (mark[f] != kExtrapolationUnreached) continue;
+          double sum = 0.0;
+          int n = 0;
+          auto take = [&](int64_t nb) {
+            if (mark[nb] < layer) {
+              sum += u[nb];
+              ++n;
+            }
+          };
+          if (i > 0) take(f - 1);
+          if (i + 1 < d.x()) take(f + 1);
+          if (j > 0) take(f - sy);
+          if (j + 1 < d.y()) take(f + sy);
+          if (k > 0) take(f - sz);
+          if (k + 1 < d.z()) take(f + sz);
+          if (n == 0) continue;
+          u[f] = sum / n;
+          out.push_back(f);
+        }
+      }
+    }
+  });
+  for (int64_t chunk = 0; chunk < chunks; ++chunk) {
+    for (int64_t f : assigned_[static_cast<size_t>(chunk)]) mark[f] = static_cast<uint8_t>(layer);
+    layerFaces_ += static_cast<int64_t>(assigned_[static_cast<size_t>(chunk)].size());
+  }
+}
+
+void VelocityExtrapolationRun::zeroRows(int64_t begin, int64_t end) {
+  const int64_t rowLength = grid_->faceDims(axis_).x();
+  const uint8_t* mark = state_->mark[axis_].data();
+  double* u = grid_->velocity[axis_].data();
+  parallelFor(*tasks_, (end - begin) * rowLength, kRowGrain * rowLength, [&](int64_t first, int64_t last) {
+    for (int64_t f = begin * rowLength + first; f < begin * rowLength + last; ++f)
+      if (mark[f] == kExtrapolationUnreached) u[f] = 0.0;
+  });
+}
+
+}  // namespace vp
