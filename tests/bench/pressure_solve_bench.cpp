@@ -23,6 +23,10 @@
 //                  precision): one pass streaming x (read and written back, 8), b 4,
 //                  diagonal 4, couplings 12: 28 bytes per span cell, nothing outside (a sweep
 //                  that does not start from zero leaves those cells alone)
+//   vcycle_per_matvec  one application of the preconditioner (a V-cycle, multigrid only) over
+//                  one application of the fine operator L p above, both medians of 5 in the
+//                  same iteration: what a CG iteration pays for its preconditioner, in units of
+//                  its own operator (a well-built V-cycle costs 4 to 6)
 //   triad_gbps     STREAM triad a = b + s c over 3 arrays of 64 MiB each (far beyond the
 //                  last-level cache), 24 bytes per element, on the same task system, measured
 //                  in the same run
@@ -40,6 +44,7 @@
 #include "../unit/fluid_pressure_scenes.h"
 #include "core/parallel_for.h"
 #include "fluid/pressure/multigrid_smoother.h"
+#include "fluid/pressure/poisson_multigrid.h"
 
 namespace vp::bench {
 namespace {
@@ -148,6 +153,10 @@ void BM_PressureSolve(benchmark::State& state, PressureSolver which, PoissonSmoo
           (kResidualBytesPerCell * inSpans + kClearedFloatBytesPerCell * outside) / residual / 1e9;
       const double sweep = medianSeconds(5, [&] { smoothRedBlack(tasks, level0, b.data(), r.data(), false); });
       state.counters["smoother_gbps"] = kSweepBytesPerCell * inSpans / sweep / 1e9;
+      std::vector<double> z(p.size());
+      const double vcycle =
+          medianSeconds(5, [&] { applyPoissonMultigrid(tasks, s.poisson, solver.mg, s.rhs.data(), z.data()); });
+      state.counters["vcycle_per_matvec"] = vcycle / apply;
     }
     state.counters["triad_gbps"] = triadGbps();
   }
