@@ -4,17 +4,22 @@
 // BM_FluidLiquidStep/N dam break: a column of water (0.4 of the tank wide, 0.8 high) falls
 //                      around a box obstacle into a closed tank of N^3 cells.
 // Counters: hz (steps per second of wall time), pressure_ms and pressure_iters per step, and
-// the other phases' ms per step (surface_ms: redistancing, volume correction, extrapolation).
+// the other phases' ms per step (surface_ms: redistancing, volume correction, extrapolation);
+// bytes_per_cell: the bytes allocated after the warm-up steps less before the fluid was
+// created, over its cells (what the fluid keeps: fields, fractions, workspaces, solver levels); triad_gbps: STREAM triad on as many workers as the world's, in the same run.
 #include <benchmark/benchmark.h>
 
+#include "memory_bandwidth.h"
 #include "world.h"
 
 namespace vp {
 namespace {
 
+constexpr int kWorkers = 2;
+
 std::unique_ptr<World> makeWorld() {
   WorldConfig config;
-  config.workerCount = 2;
+  config.workerCount = kWorkers;
   config.frameBudgetMs = 0.0;  // measure the full cost; budget behaviour has its own benchmark
   std::unique_ptr<World> world;
   World::create(config, &world);
@@ -32,9 +37,11 @@ Status addStaticSphere(World& world, const Vec3& centre, double radius) {
 }
 
 // Warm-up steps let the flow develop (an empty domain solves in 0 iterations), then every
-// timed iteration is one world step.
-void runFluidSteps(benchmark::State& state, World& world, int warmup) {
+// timed iteration is one world step. allocatedBefore: bench::allocatedBytes() before the fluid
+// was created.
+void runFluidSteps(benchmark::State& state, World& world, int warmup, double cells, double allocatedBefore) {
   for (int s = 0; s < warmup; ++s) world.step(1.0 / 60.0);
+  const double fluidBytes = bench::allocatedBytes() - allocatedBefore;
   double pressureMs = 0.0, iterations = 0.0, advectMs = 0.0, forcesMs = 0.0, fractionsMs = 0.0, surfaceMs = 0.0;
   for (auto _ : state) {
     world.step(1.0 / 60.0);
@@ -56,6 +63,9 @@ void runFluidSteps(benchmark::State& state, World& world, int warmup) {
   state.counters["forces_ms"] = forcesMs / n;
   state.counters["fractions_ms"] = fractionsMs / n;
   state.counters["surface_ms"] = surfaceMs / n;
+  state.counters["bytes_per_cell"] = fluidBytes / cells;
+  auto tasks = TaskSystem::create(TaskHooks{}, kWorkers);
+  state.counters["triad_gbps"] = bench::triadGbps(*tasks);
 }
 
 void BM_FluidSmokeStep(benchmark::State& state) {
@@ -77,8 +87,9 @@ void BM_FluidSmokeStep(benchmark::State& state) {
   e.temperature = 2.0;
   d.emitters.push_back(e);
   FluidHandle h;
+  const double before = bench::allocatedBytes();
   if (!ok(world->createFluid(d, &h))) return state.SkipWithError(lastError());
-  runFluidSteps(state, *world, n <= 64 ? 30 : 10);
+  runFluidSteps(state, *world, n <= 64 ? 30 : 10, double(n) * n * n, before);
 }
 BENCHMARK(BM_FluidSmokeStep)->Arg(64)->Arg(128)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 
@@ -102,8 +113,9 @@ void BM_FluidLiquidStep(benchmark::State& state) {
   column.halfExtents = Vec3(0.2, 0.4, 0.5);
   d.initialLiquid.push_back(column);
   FluidHandle h;
+  const double before = bench::allocatedBytes();
   if (!ok(world->createFluid(d, &h))) return state.SkipWithError(lastError());
-  runFluidSteps(state, *world, n <= 64 ? 20 : 8);
+  runFluidSteps(state, *world, n <= 64 ? 20 : 8, double(n) * n * n, before);
 }
 BENCHMARK(BM_FluidLiquidStep)->Arg(64)->Arg(128)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 

@@ -35,7 +35,6 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
-#include <chrono>
 #include <map>
 #include <memory>
 #include <string>
@@ -45,6 +44,7 @@
 #include "core/parallel_for.h"
 #include "fluid/pressure/multigrid_smoother.h"
 #include "fluid/pressure/poisson_multigrid.h"
+#include "memory_bandwidth.h"
 
 namespace vp::bench {
 namespace {
@@ -55,7 +55,6 @@ using testscene::SceneSolver;
 
 constexpr double kTolerance = 1e-6;
 constexpr int kMaxIterations = 2000;
-constexpr int64_t kTriadElements = int64_t(8) << 20;  // 64 MiB per array
 constexpr double kOperatorBytesPerCell = 48.0;
 constexpr double kResidualBytesPerCell = 28.0;
 constexpr double kSweepBytesPerCell = 28.0;
@@ -75,22 +74,6 @@ TaskSystem& benchTasks() {
   return *tasks;
 }
 
-double seconds() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-template <class Fn>
-double medianSeconds(int repeats, const Fn& fn) {
-  std::vector<double> t;
-  for (int r = 0; r < repeats; ++r) {
-    const double start = seconds();
-    fn();
-    t.push_back(seconds() - start);
-  }
-  std::sort(t.begin(), t.end());
-  return t[t.size() / 2];
-}
-
 // Scenes are built once per (kind, N) and shared by the three solvers: face fractions of the
 // 192^3 scenes take longer than some solves.
 const PressureScene* scene(PressureSceneKind kind, int n) {
@@ -101,18 +84,6 @@ const PressureScene* scene(PressureSceneKind kind, int n) {
     if (testscene::makePressureScene(benchTasks(), kind, n, slot.get()) != Status::Ok) slot.reset();
   }
   return slot.get();
-}
-
-double triadGbps() {
-  static std::vector<double> a(kTriadElements), b(kTriadElements, 1.0), c(kTriadElements, 2.0);
-  TaskSystem& tasks = benchTasks();
-  const double t = medianSeconds(5, [&] {
-    parallelFor(tasks, kTriadElements, int64_t(1) << 16, [&](int64_t begin, int64_t end) {
-      for (int64_t i = begin; i < end; ++i) a[i] = b[i] + 3.0 * c[i];
-    });
-  });
-  benchmark::DoNotOptimize(a.data());
-  return 24.0 * kTriadElements / t / 1e9;
 }
 
 void BM_PressureSolve(benchmark::State& state, PressureSolver which, PoissonSmoother smoother,
@@ -158,7 +129,7 @@ void BM_PressureSolve(benchmark::State& state, PressureSolver which, PoissonSmoo
           medianSeconds(5, [&] { applyPoissonMultigrid(tasks, s.poisson, solver.mg, s.rhs.data(), z.data()); });
       state.counters["vcycle_per_matvec"] = vcycle / apply;
     }
-    state.counters["triad_gbps"] = triadGbps();
+    state.counters["triad_gbps"] = triadGbps(tasks);
   }
 }
 
