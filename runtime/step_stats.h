@@ -35,6 +35,7 @@ struct ActorStats {
   // last completed step spanned interval frames.
   int interval = 1;
   bool completedStep = false;  // a step of this actor completed in this frame
+  int substeps = 0;            // fluid: the CFL sub-steps of the step that completed in this frame
   double progress = 0.0;       // fluid: fraction of its current step done at the frame's end; 1 when it completed
   int slices = 0;              // slices of this actor's work run in this frame
   double residual = 0.0;       // final relative residual of its iterative solve in this frame

@@ -382,6 +382,7 @@ bool FluidActor::advance(const FluidStepInput& input, const SliceBudget& budget,
   stats->progress = progress();
   if (!job_.done()) return false;
   stats->simulatedDt = step_->input.dt;
+  stats->substeps = step_->substeps;
   stats->diverged = stats->diverged || step_->diverged;
   for (SliceSizer& sizer : slabs_) sizer.adapt(budget.targetSliceMs);
   lastStepSlices_ = job_.slicesRun();

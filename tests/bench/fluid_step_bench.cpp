@@ -6,7 +6,13 @@
 // Counters: hz (steps per second of wall time), pressure_ms and pressure_iters per step, and
 // the other phases' ms per step (surface_ms: redistancing, volume correction, extrapolation);
 // bytes_per_cell: the bytes allocated after the warm-up steps less before the fluid was
-// created, over its cells (what the fluid keeps: fields, fractions, workspaces, solver levels); triad_gbps: STREAM triad on as many workers as the world's, in the same run.
+// created, over its cells (what the fluid keeps: fields, fractions, workspaces, solver
+// levels); triad_gbps: STREAM triad on as many workers as the world's, in the same run;
+// substeps: CFL sub-steps per step; advect_gbps: the bytes advection must move at least over
+// advect_ms: per sub-step every advected field read once and written once over the whole grid
+// (3 velocity components and, for smoke, density and temperature, for a liquid its level set:
+// 16 bytes per cell and field). The liquid skips air faces far from its surface, so its
+// figure counts bytes it did not move and reads high; smoke advects everything.
 #include <benchmark/benchmark.h>
 
 #include "memory_bandwidth.h"
@@ -16,6 +22,7 @@ namespace vp {
 namespace {
 
 constexpr int kWorkers = 2;
+constexpr double kBytesPerCellAndField = 16.0;  // one double read, one written
 
 std::unique_ptr<World> makeWorld() {
   WorldConfig config;
@@ -38,11 +45,13 @@ Status addStaticSphere(World& world, const Vec3& centre, double radius) {
 
 // Warm-up steps let the flow develop (an empty domain solves in 0 iterations), then every
 // timed iteration is one world step. allocatedBefore: bench::allocatedBytes() before the fluid
-// was created.
-void runFluidSteps(benchmark::State& state, World& world, int warmup, double cells, double allocatedBefore) {
+// was created; scalarFields: the cell-centred fields it advects.
+void runFluidSteps(benchmark::State& state, World& world, int warmup, double cells, double allocatedBefore,
+                   int scalarFields) {
   for (int s = 0; s < warmup; ++s) world.step(1.0 / 60.0);
   const double fluidBytes = bench::allocatedBytes() - allocatedBefore;
-  double pressureMs = 0.0, iterations = 0.0, advectMs = 0.0, forcesMs = 0.0, fractionsMs = 0.0, surfaceMs = 0.0;
+  double pressureMs = 0.0, iterations = 0.0, advectMs = 0.0, forcesMs = 0.0, fractionsMs = 0.0, surfaceMs = 0.0,
+         substeps = 0.0;
   for (auto _ : state) {
     world.step(1.0 / 60.0);
     for (const ActorStats& a : world.lastStats().actors)
@@ -53,6 +62,7 @@ void runFluidSteps(benchmark::State& state, World& world, int warmup, double cel
         forcesMs += a.phase(Phase::Forces).ms;
         fractionsMs += a.phase(Phase::Fractions).ms;
         surfaceMs += a.phase(Phase::Surface).ms;
+        substeps += a.substeps;
       }
   }
   const double n = static_cast<double>(state.iterations());
@@ -63,6 +73,9 @@ void runFluidSteps(benchmark::State& state, World& world, int warmup, double cel
   state.counters["forces_ms"] = forcesMs / n;
   state.counters["fractions_ms"] = fractionsMs / n;
   state.counters["surface_ms"] = surfaceMs / n;
+  state.counters["substeps"] = substeps / n;
+  const double advectedBytes = substeps * cells * (3 + scalarFields) * kBytesPerCellAndField;
+  state.counters["advect_gbps"] = advectMs > 0.0 ? advectedBytes / (advectMs * 1e-3) / 1e9 : 0.0;
   state.counters["bytes_per_cell"] = fluidBytes / cells;
   auto tasks = TaskSystem::create(TaskHooks{}, kWorkers);
   state.counters["triad_gbps"] = bench::triadGbps(*tasks);
@@ -89,7 +102,7 @@ void BM_FluidSmokeStep(benchmark::State& state) {
   FluidHandle h;
   const double before = bench::allocatedBytes();
   if (!ok(world->createFluid(d, &h))) return state.SkipWithError(lastError());
-  runFluidSteps(state, *world, n <= 64 ? 30 : 10, double(n) * n * n, before);
+  runFluidSteps(state, *world, n <= 64 ? 30 : 10, double(n) * n * n, before, 2);
 }
 BENCHMARK(BM_FluidSmokeStep)->Arg(64)->Arg(128)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 
@@ -115,7 +128,7 @@ void BM_FluidLiquidStep(benchmark::State& state) {
   FluidHandle h;
   const double before = bench::allocatedBytes();
   if (!ok(world->createFluid(d, &h))) return state.SkipWithError(lastError());
-  runFluidSteps(state, *world, n <= 64 ? 20 : 8, double(n) * n * n, before);
+  runFluidSteps(state, *world, n <= 64 ? 20 : 8, double(n) * n * n, before, 1);
 }
 BENCHMARK(BM_FluidLiquidStep)->Arg(64)->Arg(128)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 
