@@ -1,5 +1,6 @@
 // What one world step reports: per actor, per phase timings, solver iterations, residuals
-// and whether the budget cut a phase short. Mirrors vpStepStats/vpActorStats.
+// and whether the budget cut a phase short. Mirrors vpStepStats/vpActorStats, except
+// ActorStats::substeps, which the C ABI does not carry yet.
 #pragma once
 
 #include <array>

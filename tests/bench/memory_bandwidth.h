@@ -47,10 +47,16 @@ inline double triadGbps(TaskSystem& tasks) {
 }
 
 // Bytes the process has allocated and not freed (glibc's mallinfo2: heap chunks in use plus
-// mmapped chunks), 0 without glibc. Unlike the resident size it does not keep what earlier
-// benchmarks in the same process freed.
-inline double allocatedBytes() {
+// mmapped chunks), 0 without glibc 2.33 or later. Unlike the resident size it does not keep
+// what earlier benchmarks in the same process freed.
 #if defined(__GLIBC__)
+#define VP_BENCH_HAVE_MALLINFO2 __GLIBC_PREREQ(2, 33)
+#else
+#define VP_BENCH_HAVE_MALLINFO2 0
+#endif
+
+inline double allocatedBytes() {
+#if VP_BENCH_HAVE_MALLINFO2
   const struct mallinfo2 info = mallinfo2();
   return static_cast<double>(info.uordblks) + static_cast<double>(info.hblkhd);
 #else

@@ -76,7 +76,7 @@ void makeTank(TaskSystem& tasks, const MacGridSpec& spec, const Sdf& liquid, con
   t->phi = testutil::sampleCells(
       t->grid, [&](const Eigen::Vector3d& x) { return liquid(x) * (1.3 + 0.5 * std::sin(7.0 * x.x() + 2.0 * x.z())); });
   for (size_t c = 0; c < t->phi.size(); ++c)
-    if (t->weights[c] < 0.5) t->phi[c] = 0.2;
+    if (t->weights[c] < kMaxCoveredCellWeight) t->phi[c] = 0.2;
   // A velocity that differs on every face, so a face averaged from the wrong neighbours shows.
   testutil::forEachFace(t->grid, [&](int a, int i, int j, int k, size_t f) {
     const Eigen::Vector3d x = t->grid.faceCentre(a, i, j, k);
@@ -123,7 +123,7 @@ TEST(FluidLevelSetSlices, SolidExtensionIsBitwiseTheWholeCall) {
   extendLevelSetIntoSolids(t.grid.spec, t.weights, whole, wholeScratch);
   ASSERT_FALSE(sameBits(whole, t.phi));  // there was something to extend
   int64_t solid = 0;
-  for (double w : t.weights) solid += w < 0.5;
+  for (double w : t.weights) solid += w < kMaxCoveredCellWeight;
   std::vector<int64_t> scratch{1, 2, 3};  // stale: a run must not read what is there
   for (int64_t bound : kSliceBounds) {
     SCOPED_TRACE(bound);

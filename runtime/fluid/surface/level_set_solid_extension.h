@@ -38,7 +38,7 @@ void extendLevelSetIntoSolids(const MacGridSpec& grid, const std::vector<double>
 // extendLevelSetIntoSolids in slices, bitwise the same result however it is sliced. Serial. A
 // slice does at most samplesPerSlice samples of work (one at least) and runs on into the next
 // pass when one ends:
-// - listing the mostly-solid cells: cells in slabs of consecutive cells, appended in order;
+// - listing the covered cells: cells in slabs of consecutive cells, appended in order;
 // - each layer's scan of the unknown cells: entries in slabs. The scan only reads (values are
 //   written after it), so no result depends on the order; the lists of cells found and still
 //   unknown keep the serial order;
