@@ -365,19 +365,18 @@ void ScalarAdvectionSlices::prepare(TaskSystem& tasks, const MacGrid& grid, doub
     work.rangeHi.resize(cells);
   }
   const bool conserve = conservedField >= 0 && conservedField < static_cast<int>(fields_.size());
-  if (conserve) addConservationPasses(conservedField, true);
+  if (conserve) addTargetTotalPasses(conservedField);
   addRowPass(passes_, 0, d, [this](const AdvectionRows& rows) { tracePass(rows); });
   for (int which = 0; which < static_cast<int>(fields_.size()); ++which) {
     addRowPass(passes_, which, d, [this](const AdvectionRows& rows) { forwardPass(rows); });
     if (maccormack_) addRowPass(passes_, which, d, [this](const AdvectionRows& rows) { correctionPass(rows); });
     passes_.addStep([this, which] { fields_[static_cast<size_t>(which)]->swap(work_->advected[0]); });
-    if (conserve && which == conservedField) addConservationPasses(which, false);
+    if (conserve && which == conservedField) addRescalePasses(which);
   }
 }
 
-void ScalarAdvectionSlices::addConservationPasses(int field, bool before) {
-  const MacGrid& grid = *grid_;
-  const Eigen::Vector3i d(grid.spec.nx, grid.spec.ny, grid.spec.nz);
+void ScalarAdvectionSlices::addRowSumPass(int field) {
+  const Eigen::Vector3i d(grid_->spec.nx, grid_->spec.ny, grid_->spec.nz);
   rowSums_.resize(static_cast<size_t>(rowCount(d)));
   addRowPass(passes_, field, d, [this](const AdvectionRows& rows) {
     const double* values = fields_[static_cast<size_t>(rows.target)]->data();
@@ -388,19 +387,28 @@ void ScalarAdvectionSlices::addConservationPasses(int field, bool before) {
       rowSums_[static_cast<size_t>(row)] = sum;
     }
   });
-  if (before) {
-    passes_.addStep([this, field] {
-      double total = 0.0;
-      for (double s : rowSums_) total += s;
-      targetTotal_ = total - openSideOutflow(*grid_, fields_[static_cast<size_t>(field)]->data(), dt_);
-    });
-    return;
-  }
+}
+
+double ScalarAdvectionSlices::rowSumTotal() const {
+  double total = 0.0;
+  for (double s : rowSums_) total += s;
+  return total;
+}
+
+void ScalarAdvectionSlices::addTargetTotalPasses(int field) {
+  addRowSumPass(field);
+  passes_.addStep([this, field] {
+    targetTotal_ = rowSumTotal() - openSideOutflow(*grid_, fields_[static_cast<size_t>(field)]->data(), dt_);
+  });
+}
+
+void ScalarAdvectionSlices::addRescalePasses(int field) {
+  addRowSumPass(field);
   passes_.addStep([this] {
-    double total = 0.0;
-    for (double s : rowSums_) total += s;
+    const double total = rowSumTotal();
     scale_ = total > 0.0 ? std::max(targetTotal_, 0.0) / total : 1.0;
   });
+  const Eigen::Vector3i d(grid_->spec.nx, grid_->spec.ny, grid_->spec.nz);
   addRowPass(passes_, field, d, [this](const AdvectionRows& rows) {
     double* values = fields_[static_cast<size_t>(rows.target)]->data();
     for (int64_t c = rows.rowBegin * rows.dims.x(); c < rows.rowEnd * rows.dims.x(); ++c) values[c] *= scale_;

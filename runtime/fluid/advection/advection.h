@@ -169,8 +169,12 @@ class ScalarAdvectionSlices {
   void forwardPass(const AdvectionRows& rows);
   void correctionPass(const AdvectionRows& rows);
   // The conserved field's total: row sums in parallel, added in row order (the same on any
-  // number of workers), the target, and the scale that meets it.
-  void addConservationPasses(int field, bool before);
+  // number of workers). Before advection: the target (the total less the open sides'
+  // outflow); after: the scale that meets it, applied.
+  void addRowSumPass(int field);
+  double rowSumTotal() const;
+  void addTargetTotalPasses(int field);
+  void addRescalePasses(int field);
 
   const MacGrid* grid_ = nullptr;
   AdvectionWorkspace* work_ = nullptr;
