@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "core/parallel_for.h"
+#include "fluid/advection/advection_rows.h"
 #include "fluid/advection/grid_sampling.h"
 #include "fluid/pressure/cut_cell_poisson.h"
 
@@ -13,93 +14,6 @@ namespace vp {
 namespace {
 
 constexpr int64_t kRowGrain = 8;  // x-lines per parallel chunk
-
-// The grid's velocity as a field that can be sampled anywhere, with the per-axis lattice data
-// computed once instead of per sample (sampling is most of advection's time).
-struct VelocityField {
-  const double* u[3];
-  Eigen::Vector3i dims[3];
-  Eigen::Vector3d origin;
-  double invH;
-
-  explicit VelocityField(const MacGrid& g) : origin(g.spec.origin), invH(1.0 / g.spec.h) {
-    for (int a = 0; a < 3; ++a) u[a] = g.velocity[a].data(), dims[a] = g.faceDims(a);
-  }
-  // The three components at x. Each axis has two lattices (face-centred along the component's
-  // own axis, cell-centred along the others), so the clamp/floor/weight work is done once per
-  // axis and lattice and shared by the components: a third of what three independent
-  // trilinear samples would do.
-  Eigen::Vector3d sample(const Eigen::Vector3d& x) const {
-    const Eigen::Vector3d l = (x - origin) * invH - Eigen::Vector3d::Constant(0.5);
-    int base[2][3];
-    double weight[2][3];
-    for (int d = 0; d < 3; ++d) {
-      const int cells = dims[d][d] - 1;
-      for (int lattice = 0; lattice < 2; ++lattice) {  // 0: cell-centred, 1: face-centred
-        const int samples = cells + lattice;
-        double g = l[d] + 0.5 * lattice;
-        if (!(g >= 0.0)) g = 0.0;  // also NaN
-        g = std::min(g, static_cast<double>(samples - 1));
-        const int b = std::min(static_cast<int>(g), std::max(samples - 2, 0));
-        base[lattice][d] = b;
-        weight[lattice][d] = samples > 1 ? g - b : 0.0;
-      }
-    }
-    Eigen::Vector3d v;
-    for (int a = 0; a < 3; ++a) {
-      const Eigen::Vector3i& n = dims[a];
-      int b[3];
-      double w[3];
-      for (int d = 0; d < 3; ++d) b[d] = base[d == a][d], w[d] = weight[d == a][d];
-      const int64_t sy = n.x(), sz = int64_t(n.x()) * n.y();
-      const int64_t step[3] = {n.x() > 1 ? 1 : 0, n.y() > 1 ? sy : 0, n.z() > 1 ? sz : 0};
-      const double* p = u[a] + b[0] + b[1] * sy + b[2] * sz;
-      const double x00 = p[0] + w[0] * (p[step[0]] - p[0]);
-      const double x10 = p[step[1]] + w[0] * (p[step[0] + step[1]] - p[step[1]]);
-      const double x01 = p[step[2]] + w[0] * (p[step[0] + step[2]] - p[step[2]]);
-      const double x11 = p[step[1] + step[2]] + w[0] * (p[step[0] + step[1] + step[2]] - p[step[1] + step[2]]);
-      const double y0 = x00 + w[1] * (x10 - x00), y1 = x01 + w[1] * (x11 - x01);
-      v[a] = y0 + w[2] * (y1 - y0);
-    }
-    return v;
-  }
-  // Component b (!= a) at the centre of a-face (i, j, k): the mean of the four b-faces
-  // around it (what trilinear sampling gives there, without its cost); at the domain's
-  // a-sides the face has cells on one side only and takes that side's pair.
-  double otherComponentAtFace(int a, int b, int i, int j, int k) const {
-    const Eigen::Vector3i& d = dims[b];
-    const int64_t stride[3] = {1, d.x(), int64_t(d.x()) * d.y()};
-    const Eigen::Vector3i cell(i, j, k);
-    const int cellsA = d[a];  // b-faces have as many entries along a as there are cells
-    const int lo = std::max(cell[a] - 1, 0), hi = std::min(cell[a], cellsA - 1);
-    Eigen::Vector3i c = cell;
-    c[a] = lo;
-    const int64_t base = c.x() * stride[0] + c.y() * stride[1] + c.z() * stride[2];
-    const int64_t shift = (hi - lo) * stride[a];
-    const double* p = u[b] + base;
-    return 0.25 * (p[0] + p[stride[b]] + p[shift] + p[shift + stride[b]]);
-  }
-  Eigen::Vector3d atFace(int a, int i, int j, int k, double own) const {
-    Eigen::Vector3d v;
-    v[a] = own;
-    v[(a + 1) % 3] = otherComponentAtFace(a, (a + 1) % 3, i, j, k);
-    v[(a + 2) % 3] = otherComponentAtFace(a, (a + 2) % 3, i, j, k);
-    return v;
-  }
-};
-
-// Midpoint-rule trace over `dt` (negative dt traces forward in time) from x, where the
-// velocity is u0.
-Eigen::Vector3d trace(const VelocityField& field, const Eigen::Vector3d& x, const Eigen::Vector3d& u0, double dt) {
-  return x - dt * field.sample(x - 0.5 * dt * u0);
-}
-
-// Lattice coordinate of world point x for the samples of a-faces (a = 3: cell centres).
-Eigen::Vector3d latticeCoordinate(const MacGridSpec& s, const Eigen::Vector3d& x, int a) {
-  Eigen::Vector3d l = (x - s.origin) / s.h - Eigen::Vector3d::Constant(0.5);
-  if (a < 3) l[a] += 0.5;
-  return l;
-}
 
 int64_t rowCount(const Eigen::Vector3i& d) { return static_cast<int64_t>(d.y()) * d.z(); }
 
@@ -133,26 +47,35 @@ void addRowPass(SlabPasses& passes, int target, const Eigen::Vector3i& d, const 
                      [run, target, d](int64_t begin, int64_t end) { run(AdvectionRows{target, d, begin, end}); });
 }
 
-// What both velocity passes read for the faces of one axis.
-struct VelocityAxisInputs {
-  const MacGrid& grid;
-  const VelocityField field;
-  const int axis;
-  const std::vector<double>& old;
-  const uint8_t* marks;  // null: no face is skipped
-  const uint8_t skipMark;
-
-  VelocityAxisInputs(const MacGrid& g, const FaceSkipMask& skip, int a)
-      : grid(g), field(g), axis(a), old(g.velocity[a]),
-        marks(skip.marks != nullptr ? skip.marks[a].data() : nullptr), skipMark(skip.skipMark) {}
-  bool skipped(size_t f) const { return marks != nullptr && marks[f] == skipMark; }
-  // Where face f = (i, j, k) traces to over dt (negative: forward in time), as a coordinate of
-  // the axis' face lattice.
-  Eigen::Vector3d tracedFrom(int i, int j, int k, size_t f, double dt) const {
-    const Eigen::Vector3d x = grid.faceCentre(axis, i, j, k);
-    return latticeCoordinate(grid.spec, trace(field, x, field.atFace(axis, i, j, k, old[f]), dt), axis);
+// Runs the samples of rows [rowBegin, rowEnd) of a lattice of a-faces (a = 3: cells): those
+// with traced(index) in batches of one row's samples, their trace starts filled
+// (batch(starts, index of the row's first sample)), the others one by one (untraced(index)).
+template <class Traced, class Untraced, class Batch>
+void forEachTraceBatch(const kernels::MacVelocityView& v, const AdvectionRows& rows, int axis, const Traced& traced,
+                       const Untraced& untraced, const Batch& batch) {
+  const Eigen::Vector3i& d = rows.dims;
+  TraceStarts starts;
+  starts.axis = axis;
+  for (int64_t row = rows.rowBegin; row < rows.rowEnd; ++row) {
+    starts.j = static_cast<int>(row % d.y());
+    starts.k = static_cast<int>(row / d.y());
+    const size_t rowStart = static_cast<size_t>(row) * static_cast<size_t>(d.x());
+    for (int i0 = 0; i0 < d.x(); i0 += kTraceBatch) {
+      starts.count = 0;
+      for (int i = i0, end = std::min(i0 + kTraceBatch, d.x()); i < end; ++i) {
+        if (traced(rowStart + i)) starts.i[starts.count++] = i;
+        else untraced(rowStart + i);
+      }
+      if (starts.count == 0) continue;
+      fillTraceStarts(v, &starts);
+      batch(starts, rowStart);
+    }
   }
-};
+}
+
+void latticeDims(const Eigen::Vector3i& d, int (&out)[3]) {
+  for (int e = 0; e < 3; ++e) out[e] = d[e];
+}
 
 // What a scalar pass asks of a cell besides its trace: is it solid (no open face: it is not
 // advected and holds the solid value), does it keep its value (keepBeyond); and how the old
@@ -240,42 +163,71 @@ void VelocityAdvectionSlices::prepare(TaskSystem& tasks, MacGrid& grid, double d
 
 void VelocityAdvectionSlices::forwardPass(const AdvectionRows& slab) {
   AdvectionWorkspace& work = *work_;
-  const VelocityAxisInputs in(*grid_, skip_, slab.target);
+  const int a = slab.target;
+  const kernels::MacVelocityView v = macVelocityView(*grid_);
+  const double* old = grid_->velocity[a].data();
+  const uint8_t* marks = skip_.marks != nullptr ? skip_.marks[a].data() : nullptr;
+  const uint8_t skipMark = skip_.skipMark;
   const bool maccormack = maccormack_;
   const double dt = dt_;
-  double* fwd = maccormack ? work.forward.data() : work.advected[slab.target].data();
-  forEachSampleIn(slab, [&](int i, int j, int k, size_t f) {
-    if (in.skipped(f)) {
-      fwd[f] = in.old[f];
-      if (maccormack) work.rangeLo[f] = work.rangeHi[f] = in.old[f];
-      return;
-    }
-    SampleRange range;
-    fwd[f] = trilinearSample(in.old.data(), slab.dims, in.tracedFrom(i, j, k, f, dt), maccormack ? &range : nullptr);
-    if (maccormack) work.rangeLo[f] = range.lo, work.rangeHi[f] = range.hi;
-  });
+  double* fwd = maccormack ? work.forward.data() : work.advected[a].data();
+  double* lo = maccormack ? work.rangeLo.data() : nullptr;
+  double* hi = maccormack ? work.rangeHi.data() : nullptr;
+  int dims[3];
+  latticeDims(slab.dims, dims);
+  forEachTraceBatch(
+      v, slab, a, [&](size_t f) { return marks == nullptr || marks[f] != skipMark; },
+      [&](size_t f) {
+        fwd[f] = old[f];
+        if (maccormack) lo[f] = hi[f] = old[f];
+      },
+      [&](const TraceStarts& starts, size_t rowStart) {
+        PointBatch from;
+        traceToLattice(v, starts, dt, a, &from);
+        double value[kTraceBatch], low[kTraceBatch], high[kTraceBatch];
+        sampleAtPoints(old, dims, from, value, maccormack ? low : nullptr, maccormack ? high : nullptr);
+        for (int s = 0; s < starts.count; ++s) {
+          const size_t f = rowStart + static_cast<size_t>(starts.i[s]);
+          fwd[f] = value[s];
+          if (maccormack) lo[f] = low[s], hi[f] = high[s];
+        }
+      });
 }
 
 void VelocityAdvectionSlices::correctionPass(const AdvectionRows& slab) {
   AdvectionWorkspace& work = *work_;
-  const VelocityAxisInputs in(*grid_, skip_, slab.target);
+  const int a = slab.target;
+  const kernels::MacVelocityView v = macVelocityView(*grid_);
+  const double* old = grid_->velocity[a].data();
+  const uint8_t* marks = skip_.marks != nullptr ? skip_.marks[a].data() : nullptr;
+  const uint8_t skipMark = skip_.skipMark;
   const double dt = dt_;
-  const std::vector<double>& fwd = work.forward;
-  std::vector<double>& out = work.advected[slab.target];
-  forEachSampleIn(slab, [&](int i, int j, int k, size_t f) {
-    if (in.skipped(f)) {
-      out[f] = in.old[f];
-      return;
-    }
-    const double backAgain = trilinearSample(fwd.data(), slab.dims, in.tracedFrom(i, j, k, f, -dt));
-    // Where the correction leaves the range of the samples the forward step read, the
-    // semi-Lagrangian value is kept (Selle et al.'s own limiter) rather than the correction
-    // clamped to the range: clamped, every such face took the extreme of its stencil, which
-    // near a free surface (extrapolated air velocities in the stencil) pumped energy in step
-    // after step; a stirred tank then ran away after 5 to 8 s (fluid_paddle_buoy_test.cpp).
-    const double corrected = fwd[f] + 0.5 * (in.old[f] - backAgain);
-    out[f] = corrected >= work.rangeLo[f] && corrected <= work.rangeHi[f] ? corrected : fwd[f];
-  });
+  const double* fwd = work.forward.data();
+  const double* lo = work.rangeLo.data();
+  const double* hi = work.rangeHi.data();
+  double* out = work.advected[a].data();
+  int dims[3];
+  latticeDims(slab.dims, dims);
+  forEachTraceBatch(
+      v, slab, a, [&](size_t f) { return marks == nullptr || marks[f] != skipMark; },
+      [&](size_t f) { out[f] = old[f]; },
+      [&](const TraceStarts& starts, size_t rowStart) {
+        PointBatch ahead;
+        traceToLattice(v, starts, -dt, a, &ahead);
+        double backAgain[kTraceBatch];
+        sampleAtPoints(fwd, dims, ahead, backAgain);
+        for (int s = 0; s < starts.count; ++s) {
+          const size_t f = rowStart + static_cast<size_t>(starts.i[s]);
+          // Where the correction leaves the range of the samples the forward step read, the
+          // semi-Lagrangian value is kept (Selle et al.'s own limiter) rather than the
+          // correction clamped to the range: clamped, every such face took the extreme of its
+          // stencil, which near a free surface (extrapolated air velocities in the stencil)
+          // pumped energy in step after step; a stirred tank then ran away after 5 to 8 s
+          // (fluid_paddle_buoy_test.cpp).
+          const double corrected = fwd[f] + 0.5 * (old[f] - backAgain[s]);
+          out[f] = corrected >= lo[f] && corrected <= hi[f] ? corrected : fwd[f];
+        }
+      });
 }
 
 void VelocityAdvectionSlices::finish() {
@@ -416,23 +368,28 @@ void ScalarAdvectionSlices::addRescalePasses(int field) {
 }
 
 void ScalarAdvectionSlices::tracePass(const AdvectionRows& slab) {
-  const MacGrid& grid = *grid_;
   AdvectionWorkspace& work = *work_;
-  const size_t cells = static_cast<size_t>(grid.cellCount());
-  const VelocityField field(grid);
+  const size_t cells = static_cast<size_t>(grid_->cellCount());
+  const kernels::MacVelocityView v = macVelocityView(*grid_);
   const double* first = fields_[0]->data();
   const double keepBeyond = keepBeyond_, dt = dt_;
   const bool maccormack = maccormack_;
-  forEachSampleIn(slab, [&](int i, int j, int k, size_t c) {
-    if (keepBeyond > 0.0 && std::abs(first[c]) >= keepBeyond) {
-      work.kept[c] = 1;
-      return;
-    }
-    const Eigen::Vector3d x = grid.cellCentre(i, j, k);
-    const Eigen::Vector3d u = grid.cellVelocity(i, j, k);
-    work.cellTrace[c] = latticeCoordinate(grid.spec, trace(field, x, u, dt), 3);
-    if (maccormack) work.cellTrace[cells + c] = latticeCoordinate(grid.spec, trace(field, x, u, -dt), 3);
-  });
+  Eigen::Vector3d* traces = work.cellTrace.data();
+  auto store = [](const PointBatch& at, const TraceStarts& starts, Eigen::Vector3d* into) {
+    for (int s = 0; s < starts.count; ++s)
+      into[starts.i[s]] = Eigen::Vector3d(at.at[0][s], at.at[1][s], at.at[2][s]);
+  };
+  forEachTraceBatch(
+      v, slab, 3, [&](size_t c) { return !(keepBeyond > 0.0 && std::abs(first[c]) >= keepBeyond); },
+      [&](size_t c) { work.kept[c] = 1; },
+      [&](const TraceStarts& starts, size_t rowStart) {
+        PointBatch at;
+        traceToLattice(v, starts, dt, 3, &at);
+        store(at, starts, traces + rowStart);
+        if (!maccormack) return;
+        traceToLattice(v, starts, -dt, 3, &at);
+        store(at, starts, traces + cells + rowStart);
+      });
 }
 
 void ScalarAdvectionSlices::forwardPass(const AdvectionRows& slab) {

@@ -15,6 +15,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "gpu_kernels/advection_kernels.h"
+
 namespace vp {
 
 struct SampleRange {
@@ -25,43 +27,27 @@ struct SampleRange {
 // with a single sample) and the weights of the upper samples.
 struct TrilinearStencil {
   size_t base;
-  size_t step[3];
+  int64_t step[3];
   double weight[3];
 };
 
-inline TrilinearStencil trilinearStencil(const Eigen::Vector3i& dims, Eigen::Vector3d g) {
+inline TrilinearStencil trilinearStencil(const Eigen::Vector3i& dims, const Eigen::Vector3d& g) {
+  const int n[3] = {dims[0], dims[1], dims[2]};
+  const kernels::LatticeSteps steps = kernels::latticeSteps(n);
   TrilinearStencil s;
-  int base[3];
+  s.base = 0;
   for (int d = 0; d < 3; ++d) {
-    if (!(g[d] >= 0.0)) g[d] = 0.0;
-    g[d] = std::min(g[d], static_cast<double>(dims[d] - 1));
-    const int b = std::min(static_cast<int>(g[d]), std::max(dims[d] - 2, 0));
-    base[d] = b;
-    s.weight[d] = dims[d] > 1 ? g[d] - b : 0.0;
+    int b;
+    kernels::latticeSpan(g[d], n[d], &b, &s.weight[d]);
+    s.base += static_cast<size_t>(b) * static_cast<size_t>(steps.stride[d]);
+    s.step[d] = steps.step[d];
   }
-  const size_t sx = 1, sy = static_cast<size_t>(dims[0]), sz = sy * static_cast<size_t>(dims[1]);
-  s.step[0] = dims[0] > 1 ? sx : 0;
-  s.step[1] = dims[1] > 1 ? sy : 0;
-  s.step[2] = dims[2] > 1 ? sz : 0;
-  s.base = base[0] * sx + base[1] * sy + base[2] * sz;
   return s;
 }
 
 inline double trilinearSample(const double* values, const TrilinearStencil& s, SampleRange* range = nullptr) {
-  const size_t* step = s.step;
-  const double* p = values + s.base;
-  const double c000 = p[0], c100 = p[step[0]], c010 = p[step[1]], c110 = p[step[0] + step[1]];
-  const double c001 = p[step[2]], c101 = p[step[0] + step[2]], c011 = p[step[1] + step[2]],
-               c111 = p[step[0] + step[1] + step[2]];
-  if (range != nullptr) {
-    range->lo = std::min({c000, c100, c010, c110, c001, c101, c011, c111});
-    range->hi = std::max({c000, c100, c010, c110, c001, c101, c011, c111});
-  }
-  const double wx = s.weight[0], wy = s.weight[1], wz = s.weight[2];
-  const double x00 = c000 + wx * (c100 - c000), x10 = c010 + wx * (c110 - c010);
-  const double x01 = c001 + wx * (c101 - c001), x11 = c011 + wx * (c111 - c011);
-  const double y0 = x00 + wy * (x10 - x00), y1 = x01 + wy * (x11 - x01);
-  return y0 + wz * (y1 - y0);
+  return kernels::trilinear(values + s.base, s.step, s.weight[0], s.weight[1], s.weight[2],
+                            range != nullptr ? &range->lo : nullptr, range != nullptr ? &range->hi : nullptr);
 }
 
 // `range` (optional) receives the smallest and largest of the 8 samples.

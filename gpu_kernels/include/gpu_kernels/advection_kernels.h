@@ -1,0 +1,174 @@
+// Kernel bodies of semi-Lagrangian advection on a MAC grid: trilinear stencils, the grid's
+// velocity at a point, a face's own velocity, and the midpoint-rule back-trace. Each is a pure
+// function of plain arrays, so the CPU rows (runtime/fluid/advection/advection_rows.h) and a
+// CUDA launcher run the same arithmetic; the CPU calls them element by element in short batches
+// so the compiler vectorizes the arithmetic and the independent loads overlap.
+//
+// Lattices: samples at lattice coordinates 0 .. samples-1 per axis, index i + nx (j + ny k).
+// Coordinates outside are clamped to the lattice (constant extrapolation, what a back-traced
+// point that leaves the domain wants); NaN clamps to 0 rather than reaching an undefined
+// float-to-int conversion.
+#pragma once
+
+#include <cstdint>
+
+#include "gpu_kernels/kernel_support.h"
+
+namespace vp::kernels {
+
+// One axis of a trilinear stencil at lattice coordinate g over `samples` samples: the lower
+// sample and the weight of the upper one (0 on a lattice of one sample). Branch-free.
+VP_HOST_DEVICE inline void latticeSpan(double g, int samples, int* base, double* weight) {
+  g = g >= 0.0 ? g : 0.0;  // also NaN
+  const double last = static_cast<double>(samples - 1);
+  g = last < g ? last : g;
+  const int lower = samples - 2 > 0 ? samples - 2 : 0;
+  const int b = static_cast<int>(g) < lower ? static_cast<int>(g) : lower;
+  *base = b;
+  *weight = samples > 1 ? g - b : 0.0;
+}
+
+// Index steps of a lattice's three axes (0 along an axis with one sample).
+struct LatticeSteps {
+  int64_t step[3];
+  int64_t stride[3];  // index strides (1, nx, nx ny), whatever the sample counts
+};
+
+VP_HOST_DEVICE inline LatticeSteps latticeSteps(const int dims[3]) {
+  LatticeSteps s;
+  s.stride[0] = 1;
+  s.stride[1] = dims[0];
+  s.stride[2] = static_cast<int64_t>(dims[0]) * dims[1];
+  for (int d = 0; d < 3; ++d) s.step[d] = dims[d] > 1 ? s.stride[d] : 0;
+  return s;
+}
+
+// Trilinear interpolation of the 8 samples from p with the upper samples' weights w0, w1, w2
+// (x first, then y, then z). lo/hi (optional) receive the smallest and largest sample.
+VP_HOST_DEVICE inline double trilinear(const double* p, const int64_t step[3], double w0, double w1, double w2,
+                                       double* lo = nullptr, double* hi = nullptr) {
+  const double c000 = p[0], c100 = p[step[0]], c010 = p[step[1]], c110 = p[step[0] + step[1]];
+  const double c001 = p[step[2]], c101 = p[step[0] + step[2]], c011 = p[step[1] + step[2]],
+               c111 = p[step[0] + step[1] + step[2]];
+  if (lo != nullptr) {
+    double l = c000, h = c000;
+    const double rest[7] = {c100, c010, c110, c001, c101, c011, c111};
+    for (int q = 0; q < 7; ++q) {
+      l = rest[q] < l ? rest[q] : l;
+      h = h < rest[q] ? rest[q] : h;
+    }
+    *lo = l;
+    *hi = h;
+  }
+  const double x00 = c000 + w0 * (c100 - c000), x10 = c010 + w0 * (c110 - c010);
+  const double x01 = c001 + w0 * (c101 - c001), x11 = c011 + w0 * (c111 - c011);
+  const double y0 = x00 + w1 * (x10 - x00), y1 = x01 + w1 * (x11 - x01);
+  return y0 + w2 * (y1 - y0);
+}
+
+// A MAC grid's velocity as plain arrays: u[a] holds the a-faces, faceDims[a] their lattice
+// (cells + 1 along a).
+struct MacVelocityView {
+  const double* u[3];
+  int faceDims[3][3];
+  double origin[3];
+  double h, invH;
+};
+
+// The velocity at world point x. Each axis has two lattices (face-centred along the component's
+// own axis, cell-centred along the others): their spans are computed once per axis and shared
+// by the three components. In two stages, so a batch can run each over many points in turn:
+// the coordinate of x[d] on axis d's lattice (0: cell-centred, 1: face-centred), of
+// velocityLatticeSamples(v, d, lattice) samples; then one component from the spans.
+VP_HOST_DEVICE inline double velocityLatticeCoordinate(const MacVelocityView& v, int d, double x, int lattice) {
+  return (x - v.origin[d]) * v.invH - 0.5 + 0.5 * lattice;
+}
+VP_HOST_DEVICE inline int velocityLatticeSamples(const MacVelocityView& v, int d, int lattice) {
+  return v.faceDims[d][d] - 1 + lattice;
+}
+VP_HOST_DEVICE inline double velocityComponent(const MacVelocityView& v, int a, const int base[2][3],
+                                               const double weight[2][3]) {
+  const LatticeSteps s = latticeSteps(v.faceDims[a]);
+  int64_t index = 0;
+  double w[3];
+  for (int d = 0; d < 3; ++d) {
+    index += base[d == a][d] * s.stride[d];
+    w[d] = weight[d == a][d];
+  }
+  return trilinear(v.u[a] + index, s.step, w[0], w[1], w[2]);
+}
+VP_HOST_DEVICE inline void velocityAt(const MacVelocityView& v, const double x[3], double out[3]) {
+  int base[2][3];
+  double weight[2][3];
+  for (int d = 0; d < 3; ++d)
+    for (int lattice = 0; lattice < 2; ++lattice)
+      latticeSpan(velocityLatticeCoordinate(v, d, x[d], lattice), velocityLatticeSamples(v, d, lattice),
+                  &base[lattice][d], &weight[lattice][d]);
+  for (int a = 0; a < 3; ++a) out[a] = velocityComponent(v, a, base, weight);
+}
+
+// Component b (!= a) at the centre of a-face (i, j, k): the mean of the four b-faces around it
+// (what trilinear sampling gives there, without its cost); at the domain's a-sides the face has
+// cells on one side only and takes that side's pair.
+VP_HOST_DEVICE inline double otherComponentAtFace(const MacVelocityView& v, int a, int b, const int face[3]) {
+  const int* d = v.faceDims[b];
+  const int64_t stride[3] = {1, d[0], static_cast<int64_t>(d[0]) * d[1]};
+  const int cellsA = d[a];  // b-faces have as many entries along a as there are cells
+  const int lo = face[a] - 1 > 0 ? face[a] - 1 : 0;
+  const int hi = face[a] < cellsA - 1 ? face[a] : cellsA - 1;
+  int c[3] = {face[0], face[1], face[2]};
+  c[a] = lo;
+  const int64_t shift = (hi - lo) * stride[a];
+  const double* p = v.u[b] + (c[0] * stride[0] + c[1] * stride[1] + c[2] * stride[2]);
+  return 0.25 * (p[0] + p[stride[b]] + p[shift] + p[shift + stride[b]]);
+}
+
+// The velocity at the centre of a-face `at` (a = 3: of cell `at`): a face has its own
+// component and otherComponentAtFace for the other two; a cell the mean of its two faces per
+// axis.
+VP_HOST_DEVICE inline void velocityAtSample(const MacVelocityView& v, int a, const int at[3], double u[3]) {
+  for (int b = 0; b < 3; ++b) {
+    const int* n = v.faceDims[b];
+    const int64_t stride[3] = {1, n[0], static_cast<int64_t>(n[0]) * n[1]};
+    const double* p = v.u[b] + (at[0] + at[1] * stride[1] + at[2] * stride[2]);
+    if (a == 3) u[b] = 0.5 * (p[0] + p[stride[b]]);
+    else if (b == a) u[b] = p[0];
+    else u[b] = otherComponentAtFace(v, a, b, at);
+  }
+}
+
+// World position of a-face (i, j, k) (a = 3: the cell centre).
+VP_HOST_DEVICE inline void sampleCentre(const MacVelocityView& v, int a, const int at[3], double x[3]) {
+  for (int d = 0; d < 3; ++d) x[d] = v.origin[d] + v.h * (at[d] + 0.5);
+  if (a < 3) x[a] -= 0.5 * v.h;
+}
+
+// The lattice coordinate of world point x among a-faces (a = 3: cell centres).
+VP_HOST_DEVICE inline void latticeCoordinate(const MacVelocityView& v, int a, const double x[3], double g[3]) {
+  for (int d = 0; d < 3; ++d) g[d] = (x[d] - v.origin[d]) / v.h - 0.5;
+  if (a < 3) g[a] += 0.5;
+}
+
+// Midpoint-rule back-trace over dt (negative dt traces forward in time) from x, where the
+// velocity is u0: x - dt u(x - dt/2 u0). Split in its two halves so a batch can run each over
+// many points in turn.
+VP_HOST_DEVICE inline void traceMidpoint(const double x[3], const double u0[3], double dt, double mid[3]) {
+  const double half = 0.5 * dt;
+  for (int d = 0; d < 3; ++d) mid[d] = x[d] - half * u0[d];
+}
+VP_HOST_DEVICE inline void traceEnd(const double x[3], const double uMid[3], double dt, double end[3]) {
+  for (int d = 0; d < 3; ++d) end[d] = x[d] - dt * uMid[d];
+}
+
+// The whole trace of one sample at x (velocity u0 there) over dt, as a coordinate g of the
+// lattice of latticeAxis's faces (3: cells).
+VP_HOST_DEVICE inline void traceToLattice(const MacVelocityView& v, const double x[3], const double u0[3], double dt,
+                                          int latticeAxis, double g[3]) {
+  double mid[3], uMid[3], end[3];
+  traceMidpoint(x, u0, dt, mid);
+  velocityAt(v, mid, uMid);
+  traceEnd(x, uMid, dt, end);
+  latticeCoordinate(v, latticeAxis, end, g);
+}
+
+}  // namespace vp::kernels
