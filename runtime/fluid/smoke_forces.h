@@ -22,8 +22,9 @@ void applyBuoyancy(TaskSystem& tasks, MacGrid& grid, const std::vector<double>& 
                    double dt);
 
 struct VorticityWorkspace {
-  std::vector<Eigen::Vector3d> omega;  // per cell
-  std::vector<Eigen::Vector3d> force;  // per cell
+  std::vector<Eigen::Vector3d> omega;      // per cell
+  std::vector<double> omegaNorm;           // per cell
+  std::vector<Eigen::Vector3d> force;      // per cell; the cell-centred velocity until omega is done
 };
 
 void applyVorticityConfinement(TaskSystem& tasks, MacGrid& grid, double epsilon, double dt,

@@ -36,18 +36,25 @@ kernels::MacVelocityView macVelocityView(const MacGrid& grid) {
   return v;
 }
 
-void fillTraceStarts(const kernels::MacVelocityView& v, TraceStarts* t) {
-  t->x.count = t->u0.count = t->count;
-  for (int s = 0; s < t->count; ++s) {
+// The batch functions work on a local copy of the view: the batches' stores are doubles, as are
+// the view's origin and spacing, so through a reference every store would force them (and the
+// loop-invariant strides derived from them) to be reloaded.
+
+void fillTraceStarts(const kernels::MacVelocityView& view, TraceStarts* t) {
+  const kernels::MacVelocityView v = view;
+  const int a = t->axis, count = t->count;
+  t->x.count = t->u0.count = count;
+  for (int s = 0; s < count; ++s) {
     const int at[3] = {t->i[s], t->j, t->k};
     double x[3], u0[3];
-    kernels::sampleCentre(v, t->axis, at, x);
-    kernels::velocityAtSample(v, t->axis, at, u0);
+    kernels::sampleCentre(v, a, at, x);
+    kernels::velocityAtSample(v, a, at, u0);
     for (int d = 0; d < 3; ++d) t->x.at[d][s] = x[d], t->u0.at[d][s] = u0[d];
   }
 }
 
-void velocityAtPoints(const kernels::MacVelocityView& v, const PointBatch& points, PointBatch* out) {
+void velocityAtPoints(const kernels::MacVelocityView& view, const PointBatch& points, PointBatch* out) {
+  const kernels::MacVelocityView v = view;
   const int count = points.count;
   out->count = count;
   SpanBatch spans[2];  // per lattice: 0 cell-centred, 1 face-centred
@@ -60,23 +67,25 @@ void velocityAtPoints(const kernels::MacVelocityView& v, const PointBatch& point
     }
     spansAt(g, count, samples, &spans[lattice]);
   }
+  // kernels::velocityComponent, stage by stage: the stencil's first index, then the samples.
   for (int a = 0; a < 3; ++a) {
+    const kernels::LatticeSteps st = kernels::latticeSteps(v.faceDims[a]);
+    const SpanBatch& x = spans[a == 0];
+    const SpanBatch& y = spans[a == 1];
+    const SpanBatch& z = spans[a == 2];
+    int64_t index[kTraceBatch];
+    for (int s = 0; s < count; ++s)
+      index[s] = x.base[0][s] * st.stride[0] + y.base[1][s] * st.stride[1] + z.base[2][s] * st.stride[2];
+    const double* u = v.u[a];
     double* result = out->at[a];
-    for (int s = 0; s < count; ++s) {
-      int base[2][3];
-      double weight[2][3];
-      for (int lattice = 0; lattice < 2; ++lattice)
-        for (int d = 0; d < 3; ++d) {
-          base[lattice][d] = spans[lattice].base[d][s];
-          weight[lattice][d] = spans[lattice].weight[d][s];
-        }
-      result[s] = kernels::velocityComponent(v, a, base, weight);
-    }
+    for (int s = 0; s < count; ++s)
+      result[s] = kernels::trilinear(u + index[s], st.step, x.weight[0][s], y.weight[1][s], z.weight[2][s]);
   }
 }
 
-void traceToLattice(const kernels::MacVelocityView& v, const TraceStarts& t, double dt, int latticeAxis,
+void traceToLattice(const kernels::MacVelocityView& view, const TraceStarts& t, double dt, int latticeAxis,
                     PointBatch* traced) {
+  const kernels::MacVelocityView v = view;
   const int count = t.count;
   PointBatch mid;
   mid.count = count;
