@@ -12,7 +12,10 @@ namespace vp {
 namespace {
 
 constexpr int64_t kRowGrain = 16;  // face rows (one row = dimX faces) per parallel chunk
-constexpr int kMaxLayers = 250;    // marks are bytes; 254 and 255 are reserved
+constexpr int kMaxLayers = 250;    // marks are bytes; 253 to 255 are reserved
+// A face the running layer has claimed, until its value is set (above every layer, so it is
+// no source, and not kExtrapolationUnreached, so it is claimed once).
+constexpr uint8_t kClaimed = 253;
 
 }  // namespace
 
@@ -47,7 +50,11 @@ Status VelocityExtrapolationRun::prepare(TaskSystem& tasks, MacGrid& grid, const
   state_ = &state;
   samplesPerSlice_ = samplesPerSlice;
   lastSliceSamples_ = 0;
-  for (int a = 0; a < 3; ++a) state.mark[a].resize(grid.velocity[a].size());
+  for (int a = 0; a < 3; ++a) {
+    state.mark[a].resize(grid.velocity[a].size());
+    lastLayer_[a].clear();
+  }
+  claimedAxis_ = false;
   pass_ = Pass::Mark;
   axis_ = 0;
   layer_ = 0;
@@ -60,6 +67,24 @@ Status VelocityExtrapolationRun::prepare(TaskSystem& tasks, MacGrid& grid, const
 bool VelocityExtrapolationRun::advance() {
   lastSliceSamples_ = 0;
   while (pass_ != Pass::Done) {
+    if (pass_ == Pass::Layer && layer_ > 1) {
+      if (!claimedAxis_) claimFrontier();
+      const int64_t length = static_cast<int64_t>(claimed_.size());
+      int64_t take = std::min(length - row_, std::max<int64_t>(samplesPerSlice_ - lastSliceSamples_, 0));
+      if (take == 0 && length > row_) {
+        if (lastSliceSamples_ > 0) break;
+        take = 1;
+      }
+      const int64_t begin = row_;
+      row_ += take;
+      lastSliceSamples_ += take;
+      if (take > 0) extrapolateFrontier(begin, row_);
+      if (row_ == length) {
+        finishFrontier();
+        nextAxis();
+      }
+      continue;
+    }
     const Eigen::Vector3i d = grid_->faceDims(axis_);
     const int64_t rows = static_cast<int64_t>(d.z()) * d.y();
     int64_t take = std::min(rows - row_, std::max<int64_t>(samplesPerSlice_ - lastSliceSamples_, 0) / d.x());
@@ -174,9 +199,73 @@ void VelocityExtrapolationRun::extrapolateRows(int64_t begin, int64_t end) {
     }
   });
   for (int64_t chunk = 0; chunk < chunks; ++chunk) {
-    for (int64_t f : assigned_[static_cast<size_t>(chunk)]) mark[f] = static_cast<uint8_t>(layer);
-    layerFaces_ += static_cast<int64_t>(assigned_[static_cast<size_t>(chunk)].size());
+    const std::vector<int64_t>& set = assigned_[static_cast<size_t>(chunk)];
+    for (int64_t f : set) mark[f] = static_cast<uint8_t>(layer);
+    layerFaces_ += static_cast<int64_t>(set.size());
+    lastLayer_[axis_].insert(lastLayer_[axis_].end(), set.begin(), set.end());
   }
+}
+
+namespace {
+
+// visit(neighbour) for the same-axis neighbours of face f inside its lattice, in the order
+// the layers average them (-x, +x, -y, +y, -z, +z).
+template <class Visit>
+void forFaceNeighbours(const Eigen::Vector3i& d, int64_t f, const Visit& visit) {
+  const int64_t sy = d.x(), sz = static_cast<int64_t>(d.x()) * d.y();
+  const int64_t i = f % sy, j = (f / sy) % d.y(), k = f / sz;
+  if (i > 0) visit(f - 1);
+  if (i + 1 < d.x()) visit(f + 1);
+  if (j > 0) visit(f - sy);
+  if (j + 1 < d.y()) visit(f + sy);
+  if (k > 0) visit(f - sz);
+  if (k + 1 < d.z()) visit(f + sz);
+}
+
+}  // namespace
+
+// Serial, in the last layer's order, so the list never depends on the workers.
+void VelocityExtrapolationRun::claimFrontier() {
+  const Eigen::Vector3i d = grid_->faceDims(axis_);
+  uint8_t* mark = state_->mark[axis_].data();
+  claimed_.clear();
+  for (int64_t f : lastLayer_[axis_])
+    forFaceNeighbours(d, f, [&](int64_t n) {
+      if (mark[n] != kExtrapolationUnreached) return;
+      mark[n] = kClaimed;
+      claimed_.push_back(n);
+    });
+  claimedAxis_ = true;
+}
+
+void VelocityExtrapolationRun::extrapolateFrontier(int64_t begin, int64_t end) {
+  const int layer = layer_;
+  const Eigen::Vector3i d = grid_->faceDims(axis_);
+  const uint8_t* mark = state_->mark[axis_].data();
+  double* u = grid_->velocity[axis_].data();
+  const int64_t* faces = claimed_.data();
+  parallelFor(*tasks_, end - begin, kRowGrain * d.x(), [&](int64_t first, int64_t last) {
+    for (int64_t e = begin + first; e < begin + last; ++e) {
+      const int64_t f = faces[e];
+      double sum = 0.0;
+      int n = 0;
+      forFaceNeighbours(d, f, [&](int64_t nb) {
+        if (mark[nb] < layer) {
+          sum += u[nb];
+          ++n;
+        }
+      });
+      u[f] = sum / n;  // n >= 1: a face of the last layer is next to it
+    }
+  });
+}
+
+void VelocityExtrapolationRun::finishFrontier() {
+  uint8_t* mark = state_->mark[axis_].data();
+  for (int64_t f : claimed_) mark[f] = static_cast<uint8_t>(layer_);
+  layerFaces_ += static_cast<int64_t>(claimed_.size());
+  lastLayer_[axis_].swap(claimed_);
+  claimedAxis_ = false;
 }
 
 void VelocityExtrapolationRun::zeroRows(int64_t begin, int64_t end) {

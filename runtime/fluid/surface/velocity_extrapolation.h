@@ -68,6 +68,10 @@ Status extrapolateVelocity(TaskSystem& tasks, MacGrid& grid, const FaceFractionF
 // on into the next pass when one ends, so slices cost about the same throughout. A layer's
 // marks are set after each slab's scan: a face set by layer L is marked L, which the rest of
 // the layer does not take as a source (it takes marks < L), however the layer is cut.
+// Layer 1 scans the face rows; every later layer only visits the faces next to the layer
+// before it (a face that layer L sets has a neighbour of layer L - 1, else an earlier layer
+// would have set it), in the same neighbour order, so it gives the same values as a scan at
+// a cost that follows the surface instead of the grid.
 // prepare() checks the arguments and sizes the marks but reads no values, so it may run before
 // earlier work on the velocities. Between prepare() and the last slice, grid.velocity and the
 // marks belong to the run, and the fractions and liquidPhi must stay as they are. A run kept
@@ -86,6 +90,11 @@ class VelocityExtrapolationRun {
   enum class Pass : uint8_t { Mark, Layer, Zero, Done };
   void markRows(int64_t begin, int64_t end);
   void extrapolateRows(int64_t begin, int64_t end);
+  // Layers after the first, on the running axis: the faces next to its last layer, then
+  // entries [begin, end) of them.
+  void claimFrontier();
+  void extrapolateFrontier(int64_t begin, int64_t end);
+  void finishFrontier();
   void zeroRows(int64_t begin, int64_t end);
   void nextAxis();
 
@@ -101,6 +110,9 @@ class VelocityExtrapolationRun {
   int64_t row_ = 0;         // next face row of the axis (rows are numbered j + dims.y * k)
   int64_t layerFaces_ = 0;  // faces the running layer has set
   std::vector<std::vector<int64_t>> assigned_;  // per chunk of a slab: the faces it set
+  std::vector<int64_t> lastLayer_[3];            // per axis: the faces its last layer set
+  std::vector<int64_t> claimed_;                 // the running layer's faces (after layer 1)
+  bool claimedAxis_ = false;                     // claimed_ holds the running axis' faces
 };
 
 }  // namespace vp
