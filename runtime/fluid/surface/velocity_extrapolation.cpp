@@ -17,6 +17,38 @@ constexpr int kMaxLayers = 250;    // marks are bytes; 253 to 255 are reserved
 // no source, and not kExtrapolationUnreached, so it is claimed once).
 constexpr uint8_t kClaimed = 253;
 
+// visit(neighbour) for the same-axis neighbours of face f = (i, j, k) inside its lattice, in
+// the order the layers average them (-x, +x, -y, +y, -z, +z).
+template <class Visit>
+void forFaceNeighbours(const Eigen::Vector3i& d, int64_t f, int64_t i, int64_t j, int64_t k, const Visit& visit) {
+  const int64_t sy = d.x(), sz = static_cast<int64_t>(d.x()) * d.y();
+  if (i > 0) visit(f - 1);
+  if (i + 1 < d.x()) visit(f + 1);
+  if (j > 0) visit(f - sy);
+  if (j + 1 < d.y()) visit(f + sy);
+  if (k > 0) visit(f - sz);
+  if (k + 1 < d.z()) visit(f + sz);
+}
+template <class Visit>
+void forFaceNeighbours(const Eigen::Vector3i& d, int64_t f, const Visit& visit) {
+  const int64_t sy = d.x(), sz = static_cast<int64_t>(d.x()) * d.y();
+  forFaceNeighbours(d, f, f % sy, (f / sy) % d.y(), f / sz, visit);
+}
+
+// The mean of f's neighbours with marks below `layer` (n: how many there are).
+template <class Neighbours>
+double meanOfSources(const uint8_t* mark, const double* u, int layer, const Neighbours& neighbours, int* n) {
+  double sum = 0.0;
+  *n = 0;
+  neighbours([&](int64_t nb) {
+    if (mark[nb] < layer) {
+      sum += u[nb];
+      ++*n;
+    }
+  });
+  return *n > 0 ? sum / *n : 0.0;
+}
+
 }  // namespace
 
 Status extrapolateVelocity(TaskSystem& tasks, MacGrid& grid, const FaceFractionField& fractions,
@@ -164,7 +196,7 @@ void VelocityExtrapolationRun::extrapolateRows(int64_t begin, int64_t end) {
   const Eigen::Vector3i d = grid_->faceDims(axis_);
   uint8_t* mark = state_->mark[axis_].data();
   double* u = grid_->velocity[axis_].data();
-  const int64_t sy = d.x(), sz = static_cast<int64_t>(d.x()) * d.y();
+  const int64_t sy = d.x();
   const int64_t chunks = (end - begin + kRowGrain - 1) / kRowGrain;
   if (static_cast<int64_t>(assigned_.size()) < chunks) assigned_.resize(static_cast<size_t>(chunks));
   parallelFor(*tasks_, chunks, 1, [&](int64_t firstChunk, int64_t lastChunk) {
@@ -177,22 +209,12 @@ void VelocityExtrapolationRun::extrapolateRows(int64_t begin, int64_t end) {
         for (int i = 0; i < d.x(); ++i) {
           const int64_t f = first + i;
           if (mark[f] != kExtrapolationUnreached) continue;
-          double sum = 0.0;
-          int n = 0;
-          auto take = [&](int64_t nb) {
-            if (mark[nb] < layer) {
-              sum += u[nb];
-              ++n;
-            }
-          };
-          if (i > 0) take(f - 1);
-          if (i + 1 < d.x()) take(f + 1);
-          if (j > 0) take(f - sy);
-          if (j + 1 < d.y()) take(f + sy);
-          if (k > 0) take(f - sz);
-          if (k + 1 < d.z()) take(f + sz);
+          int n;
+          const double mean = meanOfSources(mark, u, layer, [&](const auto& visit) {
+            forFaceNeighbours(d, f, i, j, k, visit);
+          }, &n);
           if (n == 0) continue;
-          u[f] = sum / n;
+          u[f] = mean;
           out.push_back(f);
         }
       }
@@ -206,23 +228,6 @@ void VelocityExtrapolationRun::extrapolateRows(int64_t begin, int64_t end) {
   }
 }
 
-namespace {
-
-// visit(neighbour) for the same-axis neighbours of face f inside its lattice, in the order
-// the layers average them (-x, +x, -y, +y, -z, +z).
-template <class Visit>
-void forFaceNeighbours(const Eigen::Vector3i& d, int64_t f, const Visit& visit) {
-  const int64_t sy = d.x(), sz = static_cast<int64_t>(d.x()) * d.y();
-  const int64_t i = f % sy, j = (f / sy) % d.y(), k = f / sz;
-  if (i > 0) visit(f - 1);
-  if (i + 1 < d.x()) visit(f + 1);
-  if (j > 0) visit(f - sy);
-  if (j + 1 < d.y()) visit(f + sy);
-  if (k > 0) visit(f - sz);
-  if (k + 1 < d.z()) visit(f + sz);
-}
-
-}  // namespace
 
 // Serial, in the last layer's order, so the list never depends on the workers.
 void VelocityExtrapolationRun::claimFrontier() {
@@ -247,15 +252,8 @@ void VelocityExtrapolationRun::extrapolateFrontier(int64_t begin, int64_t end) {
   parallelFor(*tasks_, end - begin, kRowGrain * d.x(), [&](int64_t first, int64_t last) {
     for (int64_t e = begin + first; e < begin + last; ++e) {
       const int64_t f = faces[e];
-      double sum = 0.0;
-      int n = 0;
-      forFaceNeighbours(d, f, [&](int64_t nb) {
-        if (mark[nb] < layer) {
-          sum += u[nb];
-          ++n;
-        }
-      });
-      u[f] = sum / n;  // n >= 1: a face of the last layer is next to it
+      int n;  // >= 1: a face of the last layer is next to it
+      u[f] = meanOfSources(mark, u, layer, [&](const auto& visit) { forFaceNeighbours(d, f, visit); }, &n);
     }
   });
 }
