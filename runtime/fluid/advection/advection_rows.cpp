@@ -2,6 +2,8 @@
 // advection_rows.h).
 #include "fluid/advection/advection_rows.h"
 
+#include "core/isa_clones.h"
+
 namespace vp {
 namespace {
 
@@ -40,6 +42,7 @@ kernels::MacVelocityView macVelocityView(const MacGrid& grid) {
 // the view's origin and spacing, so through a reference every store would force them (and the
 // loop-invariant strides derived from them) to be reloaded.
 
+VP_ISA_CLONES
 void fillTraceStarts(const kernels::MacVelocityView& view, TraceStarts* t) {
   const kernels::MacVelocityView v = view;
   const int a = t->axis, count = t->count;
@@ -53,6 +56,7 @@ void fillTraceStarts(const kernels::MacVelocityView& view, TraceStarts* t) {
   }
 }
 
+VP_ISA_CLONES
 void velocityAtPoints(const kernels::MacVelocityView& view, const PointBatch& points, PointBatch* out) {
   const kernels::MacVelocityView v = view;
   const int count = points.count;
@@ -83,6 +87,7 @@ void velocityAtPoints(const kernels::MacVelocityView& view, const PointBatch& po
   }
 }
 
+VP_ISA_CLONES
 void traceToLattice(const kernels::MacVelocityView& view, const TraceStarts& t, double dt, int latticeAxis,
                     PointBatch* traced) {
   const kernels::MacVelocityView v = view;
@@ -107,6 +112,7 @@ void traceToLattice(const kernels::MacVelocityView& view, const TraceStarts& t, 
   }
 }
 
+VP_ISA_CLONES
 void sampleAtPoints(const double* values, const int dims[3], const PointBatch& at, double* out, double* lo,
                     double* hi) {
   SpanBatch spans;
