@@ -12,6 +12,7 @@
 
 #include "fluid/advection/advection.h"
 #include "fluid/advection/advection_rows.h"
+#include "fluid/advection/grid_sampling.h"
 
 namespace vp {
 namespace {
@@ -92,6 +93,42 @@ TEST(FluidAdvectionRows, BatchedTracesAndSamplesEqualThePerSampleKernels) {
       }
     }
   }
+}
+
+// Sampling through open faces: a batch gives connectedTrilinearSample's value and range at
+// every point, on masks where some blocks are open (the fast path) and some cut.
+TEST(FluidAdvectionRows, BatchedOpenFaceSamplesEqualThePerSampleOnes) {
+  const int dims[3] = {9, 6, 5};
+  const Eigen::Vector3i lattice(dims[0], dims[1], dims[2]);
+  const size_t cells = static_cast<size_t>(lattice.prod());
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<double> values(cells);
+  std::vector<uint8_t> faces(cells), blockOpen(cells);
+  for (size_t c = 0; c < cells; ++c) {
+    values[c] = unit(rng);
+    faces[c] = rng() % 5 == 0 ? 0 : static_cast<uint8_t>((rng() & 63) | kCellIsFluid);
+    blockOpen[c] = rng() % 2;
+  }
+  PointBatch at;
+  at.count = kTraceBatch;
+  for (int s = 0; s < kTraceBatch; ++s)
+    for (int d = 0; d < 3; ++d) at.at[d][s] = -1.0 + (dims[d] + 1.0) * unit(rng);  // some outside
+  double value[kTraceBatch], lo[kTraceBatch], hi[kTraceBatch], plain[kTraceBatch];
+  sampleConnectedAtPoints(values.data(), dims, at, faces.data(), blockOpen.data(), value, lo, hi);
+  sampleConnectedAtPoints(values.data(), dims, at, faces.data(), blockOpen.data(), plain, nullptr, nullptr);
+  int cut = 0;
+  for (int s = 0; s < kTraceBatch; ++s) {
+    const Eigen::Vector3d g(at.at[0][s], at.at[1][s], at.at[2][s]);
+    SampleRange range;
+    const double expected = connectedTrilinearSample(values.data(), lattice, g, faces.data(), blockOpen.data(), &range);
+    cut += blockOpen[trilinearStencil(lattice, g).base] == 0;
+    ASSERT_TRUE(sameBits(value[s], expected)) << s;
+    ASSERT_TRUE(sameBits(plain[s], expected)) << s;
+    ASSERT_TRUE(sameBits(lo[s], range.lo) && sameBits(hi[s], range.hi)) << s;
+  }
+  EXPECT_GT(cut, 10);
+  EXPECT_LT(cut, kTraceBatch - 10);
 }
 
 // The per-sample reference: the old field (lattice of a-faces, 3: cells) at the back-trace of

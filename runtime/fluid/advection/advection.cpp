@@ -47,30 +47,38 @@ void addRowPass(SlabPasses& passes, int target, const Eigen::Vector3i& d, const 
                      [run, target, d](int64_t begin, int64_t end) { run(AdvectionRows{target, d, begin, end}); });
 }
 
-// Runs the samples of rows [rowBegin, rowEnd) of a lattice of a-faces (a = 3: cells): those
-// with traced(index) in batches of one row's samples, their trace starts filled
-// (batch(starts, index of the row's first sample)), the others one by one (untraced(index)).
+// Runs the samples of rows [rowBegin, rowEnd) of a lattice: those with active(index) in
+// batches of one row's samples (batch(samples, index of the row's first sample); samples has
+// i, j, k and count set), the others one by one (inactive(index)).
+template <class Active, class Inactive, class Batch>
+void forEachSampleBatch(const AdvectionRows& rows, int axis, const Active& active, const Inactive& inactive,
+                        const Batch& batch) {
+  const Eigen::Vector3i& d = rows.dims;
+  TraceStarts samples;
+  samples.axis = axis;
+  for (int64_t row = rows.rowBegin; row < rows.rowEnd; ++row) {
+    samples.j = static_cast<int>(row % d.y());
+    samples.k = static_cast<int>(row / d.y());
+    const size_t rowStart = static_cast<size_t>(row) * static_cast<size_t>(d.x());
+    for (int i0 = 0; i0 < d.x(); i0 += kTraceBatch) {
+      samples.count = 0;
+      for (int i = i0, end = std::min(i0 + kTraceBatch, d.x()); i < end; ++i) {
+        if (active(rowStart + i)) samples.i[samples.count++] = i;
+        else inactive(rowStart + i);
+      }
+      if (samples.count > 0) batch(samples, rowStart);
+    }
+  }
+}
+
+// forEachSampleBatch over the samples of a-faces (a = 3: cells) with their trace starts filled.
 template <class Traced, class Untraced, class Batch>
 void forEachTraceBatch(const kernels::MacVelocityView& v, const AdvectionRows& rows, int axis, const Traced& traced,
                        const Untraced& untraced, const Batch& batch) {
-  const Eigen::Vector3i& d = rows.dims;
-  TraceStarts starts;
-  starts.axis = axis;
-  for (int64_t row = rows.rowBegin; row < rows.rowEnd; ++row) {
-    starts.j = static_cast<int>(row % d.y());
-    starts.k = static_cast<int>(row / d.y());
-    const size_t rowStart = static_cast<size_t>(row) * static_cast<size_t>(d.x());
-    for (int i0 = 0; i0 < d.x(); i0 += kTraceBatch) {
-      starts.count = 0;
-      for (int i = i0, end = std::min(i0 + kTraceBatch, d.x()); i < end; ++i) {
-        if (traced(rowStart + i)) starts.i[starts.count++] = i;
-        else untraced(rowStart + i);
-      }
-      if (starts.count == 0) continue;
-      fillTraceStarts(v, &starts);
-      batch(starts, rowStart);
-    }
-  }
+  forEachSampleBatch(rows, axis, traced, untraced, [&](TraceStarts& starts, size_t rowStart) {
+    fillTraceStarts(v, &starts);
+    batch(starts, rowStart);
+  });
 }
 
 void latticeDims(const Eigen::Vector3i& d, int (&out)[3]) {
@@ -92,9 +100,18 @@ struct ScalarCellRules {
   double solidResult(const std::vector<double>& old, size_t c) const {
     return solidValue != nullptr ? *solidValue : old[c];
   }
-  double sample(const double* values, const Eigen::Vector3d& at, SampleRange* range) const {
-    return faces != nullptr ? connectedTrilinearSample(values, dims, at, faces, blockOpen, range)
-                            : trilinearSample(values, dims, at, range);
+  bool advected(size_t c) const { return !solid(c) && !keeps(c); }
+  // values at the traced points of the batch's cells (traces: the trace array's entries of the
+  // row's cells); lo/hi (optional) the ranges of the samples used.
+  void sample(const double* values, const TraceStarts& cells, const Eigen::Vector3d* traces, double* out,
+              double* lo, double* hi) const {
+    PointBatch at;
+    at.count = cells.count;
+    for (int s = 0; s < cells.count; ++s)
+      for (int d = 0; d < 3; ++d) at.at[d][s] = traces[cells.i[s]][d];
+    const int n[3] = {dims.x(), dims.y(), dims.z()};
+    if (faces != nullptr) sampleConnectedAtPoints(values, n, at, faces, blockOpen, out, lo, hi);
+    else sampleAtPoints(values, n, at, out, lo, hi);
   }
 };
 
@@ -399,16 +416,24 @@ void ScalarAdvectionSlices::forwardPass(const AdvectionRows& slab) {
   const bool maccormack = maccormack_;
   // Semi-Lagrangian: the forward result is the advected field.
   double* fwd = maccormack ? work.forward.data() : work.advected[0].data();
-  forEachSampleIn(slab, [&](int, int, int, size_t c) {
-    if (rules.solid(c) || rules.keeps(c)) {
-      fwd[c] = rules.solid(c) ? rules.solidResult(old, c) : old[c];
-      if (maccormack) work.rangeLo[c] = work.rangeHi[c] = fwd[c];
-      return;
-    }
-    SampleRange range;
-    fwd[c] = rules.sample(old.data(), work.cellTrace[c], maccormack ? &range : nullptr);
-    if (maccormack) work.rangeLo[c] = range.lo, work.rangeHi[c] = range.hi;
-  });
+  double* lo = work.rangeLo.data();
+  double* hi = work.rangeHi.data();
+  forEachSampleBatch(
+      slab, 3, [&](size_t c) { return rules.advected(c); },
+      [&](size_t c) {
+        fwd[c] = rules.solid(c) ? rules.solidResult(old, c) : old[c];
+        if (maccormack) lo[c] = hi[c] = fwd[c];
+      },
+      [&](const TraceStarts& cells, size_t rowStart) {
+        double value[kTraceBatch], low[kTraceBatch], high[kTraceBatch];
+        rules.sample(old.data(), cells, work.cellTrace.data() + rowStart, value, maccormack ? low : nullptr,
+                     maccormack ? high : nullptr);
+        for (int s = 0; s < cells.count; ++s) {
+          const size_t c = rowStart + static_cast<size_t>(cells.i[s]);
+          fwd[c] = value[s];
+          if (maccormack) lo[c] = low[s], hi[c] = high[s];
+        }
+      });
 }
 
 void ScalarAdvectionSlices::correctionPass(const AdvectionRows& slab) {
@@ -416,15 +441,18 @@ void ScalarAdvectionSlices::correctionPass(const AdvectionRows& slab) {
   const ScalarCellRules rules = scalarCellRules(slab, openFaces_, solidValues_, keepBeyond_, work);
   const std::vector<double>& old = *fields_[static_cast<size_t>(slab.target)];
   const size_t cells = static_cast<size_t>(grid_->cellCount());
-  std::vector<double>& out = work.advected[0];
-  forEachSampleIn(slab, [&](int, int, int, size_t c) {
-    if (rules.solid(c) || rules.keeps(c)) {
-      out[c] = work.forward[c];
-      return;
-    }
-    const double backAgain = rules.sample(work.forward.data(), work.cellTrace[cells + c], nullptr);
-    out[c] = std::clamp(work.forward[c] + 0.5 * (old[c] - backAgain), work.rangeLo[c], work.rangeHi[c]);
-  });
+  const double* fwd = work.forward.data();
+  double* out = work.advected[0].data();
+  forEachSampleBatch(
+      slab, 3, [&](size_t c) { return rules.advected(c); }, [&](size_t c) { out[c] = fwd[c]; },
+      [&](const TraceStarts& batch, size_t rowStart) {
+        double backAgain[kTraceBatch];
+        rules.sample(fwd, batch, work.cellTrace.data() + cells + rowStart, backAgain, nullptr, nullptr);
+        for (int s = 0; s < batch.count; ++s) {
+          const size_t c = rowStart + static_cast<size_t>(batch.i[s]);
+          out[c] = std::clamp(fwd[c] + 0.5 * (old[c] - backAgain[s]), work.rangeLo[c], work.rangeHi[c]);
+        }
+      });
 }
 
 void advectCellScalars(TaskSystem& tasks, const MacGrid& grid, double dt, AdvectionScheme scheme,

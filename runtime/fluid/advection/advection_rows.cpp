@@ -3,6 +3,7 @@
 #include "fluid/advection/advection_rows.h"
 
 #include "core/isa_clones.h"
+#include "fluid/advection/grid_sampling.h"
 
 namespace vp {
 namespace {
@@ -128,6 +129,28 @@ void sampleAtPoints(const double* values, const int dims[3], const PointBatch& a
     } else {
       out[s] = kernels::trilinear(p, st.step, spans.weight[0][s], spans.weight[1][s], spans.weight[2][s]);
     }
+  }
+}
+
+VP_ISA_CLONES
+void sampleConnectedAtPoints(const double* values, const int dims[3], const PointBatch& at, const uint8_t* faces,
+                             const uint8_t* blockOpen, double* out, double* lo, double* hi) {
+  SpanBatch spans;
+  spansAt(at.at, at.count, dims, &spans);
+  const kernels::LatticeSteps st = kernels::latticeSteps(dims);
+  const Eigen::Vector3i lattice(dims[0], dims[1], dims[2]);
+  for (int s = 0; s < at.count; ++s) {
+    const int64_t index =
+        spans.base[0][s] * st.stride[0] + spans.base[1][s] * st.stride[1] + spans.base[2][s] * st.stride[2];
+    if (blockOpen[index]) {
+      out[s] = kernels::trilinear(values + index, st.step, spans.weight[0][s], spans.weight[1][s], spans.weight[2][s],
+                                  lo != nullptr ? &lo[s] : nullptr, lo != nullptr ? &hi[s] : nullptr);
+      continue;
+    }
+    SampleRange range;
+    out[s] = connectedTrilinearSample(values, lattice, Eigen::Vector3d(at.at[0][s], at.at[1][s], at.at[2][s]), faces,
+                                      blockOpen, lo != nullptr ? &range : nullptr);
+    if (lo != nullptr) lo[s] = range.lo, hi[s] = range.hi;
   }
 }
 

@@ -54,4 +54,9 @@ void traceToLattice(const kernels::MacVelocityView& v, const TraceStarts& starts
 void sampleAtPoints(const double* values, const int dims[3], const PointBatch& at, double* out, double* lo = nullptr,
                     double* hi = nullptr);
 
+// sampleAtPoints through open faces only (grid_sampling.h: connectedTrilinearSample, with its
+// faces and blockOpen masks): a block with every inner face open interpolates as usual.
+void sampleConnectedAtPoints(const double* values, const int dims[3], const PointBatch& at, const uint8_t* faces,
+                             const uint8_t* blockOpen, double* out, double* lo, double* hi);
+
 }  // namespace vp
