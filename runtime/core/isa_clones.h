@@ -3,13 +3,14 @@
 // as a distributed one must be, still runs its vectorized loops with AVX2 or AVX-512 where
 // the machine has them. Put VP_ISA_CLONES in front of a function's definition.
 //
-// Every clone gives the same bits as the baseline: the runtime is compiled with floating-point
-// contraction off (runtime/CMakeLists.txt), so the clones that have FMA do not fuse a multiply
-// and an add (which rounds once instead of twice), and vector lanes round like scalars.
-// Elsewhere (other compilers, other architectures) the macro is empty.
+// Every clone gives the baseline's bits (NaN payloads aside): floating-point contraction is off
+// wherever the runtime is compiled (runtime/CMakeLists.txt), so clones with FMA do not fuse a
+// multiply and an add, and vector lanes round like scalars. Elsewhere (other compilers, GCC
+// before 12, which lacks arch= clones, other architectures) the macro is empty. The clones'
+// ifunc symbols ignore -fvisibility=hidden; libvolphys.so's version script keeps them local.
 #pragma once
 
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
+#if defined(__GNUC__) && !defined(__clang__) && __GNUC__ >= 12 && defined(__x86_64__) && defined(__linux__)
 #define VP_ISA_CLONES __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 #else
 #define VP_ISA_CLONES

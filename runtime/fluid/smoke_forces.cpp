@@ -52,8 +52,8 @@ void applyBuoyancy(TaskSystem& tasks, MacGrid& grid, const std::vector<double>& 
   });
 }
 
-// Each cell's velocity, vorticity and its norm are read by up to six neighbours' differences:
-// computed once per cell in their own passes rather than in every difference.
+// Each cell's velocity and |omega| are read by up to six neighbours' differences: computed once
+// per cell in their own passes rather than in every difference.
 void applyVorticityConfinement(TaskSystem& tasks, MacGrid& grid, double epsilon, double dt,
                                VorticityWorkspace& work) {
   if (!(epsilon > 0.0)) return;

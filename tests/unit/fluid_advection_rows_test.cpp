@@ -1,6 +1,6 @@
 // The CPU's batched advection (advection_rows.h) runs the per-sample kernel bodies of
-// gpu_kernels/advection_kernels.h, so a per-sample launcher (CUDA) and the CPU agree bit for
-// bit: the batch stages equal the kernels applied one sample at a time, and a whole
+// gpu_kernels/advection_kernels.h stage by stage, with the same bits as the composed
+// per-sample kernels: the batch stages equal the kernels applied one sample at a time, and a whole
 // semi-Lagrangian advection equals, face by face and cell by cell, the old field sampled at
 // the kernel's back-trace. Random velocities (several cells per step, so traces leave the
 // domain and get clamped) on a box that is not a cube and not at the origin.
@@ -57,7 +57,7 @@ TEST(FluidAdvectionRows, BatchedTracesAndSamplesEqualThePerSampleKernels) {
         if (rng() % 4 != 0) starts.i[starts.count++] = i;  // gaps, as skipped samples leave
       fillTraceStarts(v, &starts);
       PointBatch traced;
-      traceToLattice(v, starts, dt, a, &traced);
+      traceBatch(v, starts, dt, a, &traced);
       std::vector<double> field(static_cast<size_t>(d.prod()));
       for (double& x : field) x = std::uniform_real_distribution<double>(-1.0, 1.0)(rng);
       double value[kTraceBatch], lo[kTraceBatch], hi[kTraceBatch], plain[kTraceBatch];

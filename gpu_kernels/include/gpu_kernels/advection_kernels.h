@@ -1,8 +1,9 @@
 // Kernel bodies of semi-Lagrangian advection on a MAC grid: trilinear stencils, the grid's
-// velocity at a point, a face's own velocity, and the midpoint-rule back-trace. Each is a pure
-// function of plain arrays, so the CPU rows (runtime/fluid/advection/advection_rows.h) and a
-// CUDA launcher run the same arithmetic; the CPU calls them element by element in short batches
-// so the compiler vectorizes the arithmetic and the independent loads overlap.
+// velocity at a point or at a sample, and the midpoint-rule back-trace, as pure functions of
+// plain arrays. The CPU runs them stage by stage over batches (runtime/fluid/advection/
+// advection_rows.h); a per-sample launcher can call the composed ones (velocityAt,
+// traceToLattice) and gets the same bits when it compiles without contraction (nvcc
+// --fmad=false). The tests hold the batches to the composed kernels.
 //
 // Lattices: samples at lattice coordinates 0 .. samples-1 per axis, index i + nx (j + ny k).
 // Coordinates outside are clamped to the lattice (constant extrapolation, what a back-traced
@@ -128,12 +129,15 @@ VP_HOST_DEVICE inline double otherComponentAtFace(const MacVelocityView& v, int 
 // axis.
 VP_HOST_DEVICE inline void velocityAtSample(const MacVelocityView& v, int a, const int at[3], double u[3]) {
   for (int b = 0; b < 3; ++b) {
+    if (a != 3 && b != a) {
+      u[b] = otherComponentAtFace(v, a, b, at);
+      continue;
+    }
+    // A cell's b-faces, or the face's own: `at` indexes the b-face lattice.
     const int* n = v.faceDims[b];
     const int64_t stride[3] = {1, n[0], static_cast<int64_t>(n[0]) * n[1]};
     const double* p = v.u[b] + (at[0] + at[1] * stride[1] + at[2] * stride[2]);
-    if (a == 3) u[b] = 0.5 * (p[0] + p[stride[b]]);
-    else if (b == a) u[b] = p[0];
-    else u[b] = otherComponentAtFace(v, a, b, at);
+    u[b] = a == 3 ? 0.5 * (p[0] + p[stride[b]]) : p[0];
   }
 }
 

@@ -200,7 +200,7 @@ void VelocityAdvectionSlices::forwardPass(const AdvectionRows& slab) {
       },
       [&](const TraceStarts& starts, size_t rowStart) {
         PointBatch from;
-        traceToLattice(v, starts, dt, a, &from);
+        traceBatch(v, starts, dt, a, &from);
         double value[kTraceBatch], low[kTraceBatch], high[kTraceBatch];
         sampleAtPoints(old, dims, from, value, maccormack ? low : nullptr, maccormack ? high : nullptr);
         for (int s = 0; s < starts.count; ++s) {
@@ -230,7 +230,7 @@ void VelocityAdvectionSlices::correctionPass(const AdvectionRows& slab) {
       [&](size_t f) { out[f] = old[f]; },
       [&](const TraceStarts& starts, size_t rowStart) {
         PointBatch ahead;
-        traceToLattice(v, starts, -dt, a, &ahead);
+        traceBatch(v, starts, -dt, a, &ahead);
         double backAgain[kTraceBatch];
         sampleAtPoints(fwd, dims, ahead, backAgain);
         for (int s = 0; s < starts.count; ++s) {
@@ -239,7 +239,7 @@ void VelocityAdvectionSlices::correctionPass(const AdvectionRows& slab) {
           // semi-Lagrangian value is kept (Selle et al.'s own limiter) rather than the
           // correction clamped to the range: clamped, every such face took the extreme of its
           // stencil, which near a free surface (extrapolated air velocities in the stencil)
-          // pumped energy in step after step; a stirred tank then ran away after 5 to 8 s
+          // pumped energy in step after step, and a stirred tank ran away
           // (fluid_paddle_buoy_test.cpp).
           const double corrected = fwd[f] + 0.5 * (old[f] - backAgain[s]);
           out[f] = corrected >= lo[f] && corrected <= hi[f] ? corrected : fwd[f];
@@ -401,10 +401,10 @@ void ScalarAdvectionSlices::tracePass(const AdvectionRows& slab) {
       [&](size_t c) { work.kept[c] = 1; },
       [&](const TraceStarts& starts, size_t rowStart) {
         PointBatch at;
-        traceToLattice(v, starts, dt, 3, &at);
+        traceBatch(v, starts, dt, 3, &at);
         store(at, starts, traces + rowStart);
         if (!maccormack) return;
-        traceToLattice(v, starts, -dt, 3, &at);
+        traceBatch(v, starts, -dt, 3, &at);
         store(at, starts, traces + cells + rowStart);
       });
 }

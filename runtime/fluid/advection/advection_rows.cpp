@@ -89,7 +89,7 @@ void velocityAtPoints(const kernels::MacVelocityView& view, const PointBatch& po
 }
 
 VP_ISA_CLONES
-void traceToLattice(const kernels::MacVelocityView& view, const TraceStarts& t, double dt, int latticeAxis,
+void traceBatch(const kernels::MacVelocityView& view, const TraceStarts& t, double dt, int latticeAxis,
                     PointBatch* traced) {
   const kernels::MacVelocityView v = view;
   const int count = t.count;

@@ -4,7 +4,7 @@
 // stages form one long dependent chain of loads and conversions; across a batch they are
 // independent, so the arithmetic loops vectorize and the gathers of many samples overlap.
 // The values are exactly those of the per-sample kernels (the same operations in the same
-// order), so the CPU and a per-sample launcher agree bit for bit.
+// order; fluid_advection_rows_test.cpp holds them to it).
 #pragma once
 
 #include <cstdint>
@@ -46,7 +46,7 @@ void velocityAtPoints(const kernels::MacVelocityView& v, const PointBatch& point
 
 // The midpoint-rule trace of every start over dt (negative: forward in time), as coordinates of
 // the lattice of `latticeAxis`'s faces (3: cells).
-void traceToLattice(const kernels::MacVelocityView& v, const TraceStarts& starts, double dt, int latticeAxis,
+void traceBatch(const kernels::MacVelocityView& v, const TraceStarts& starts, double dt, int latticeAxis,
                     PointBatch* traced);
 
 // Trilinear samples of `values` (a lattice with `dims`) at every lattice coordinate of `at`;

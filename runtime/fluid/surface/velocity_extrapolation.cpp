@@ -16,6 +16,7 @@ constexpr int kMaxLayers = 250;    // marks are bytes; 253 to 255 are reserved
 // A face the running layer has claimed, until its value is set (above every layer, so it is
 // no source, and not kExtrapolationUnreached, so it is claimed once).
 constexpr uint8_t kClaimed = 253;
+static_assert(kMaxLayers < kClaimed && kClaimed < kExtrapolationFixed, "marks: layers, claimed, fixed, unreached");
 
 // visit(neighbour) for the same-axis neighbours of face f = (i, j, k) inside its lattice, in
 // the order the layers average them (-x, +x, -y, +y, -z, +z).
@@ -95,12 +96,27 @@ Status VelocityExtrapolationRun::prepare(TaskSystem& tasks, MacGrid& grid, const
   return Status::Ok;
 }
 
-// Slabs of whole face rows: as many as the slice has room for, one when it has done nothing.
+// Slabs of whole face rows (of claimed faces for layers after the first): as many as the
+// slice has room for, one when it has done nothing.
 bool VelocityExtrapolationRun::advance() {
   lastSliceSamples_ = 0;
   while (pass_ != Pass::Done) {
     if (pass_ == Pass::Layer && layer_ > 1) {
-      if (!claimedAxis_) claimFrontier();
+      if (!claimedAxis_) {  // first the claim, in slabs of the last layer's entries
+        const int64_t length = static_cast<int64_t>(lastLayer_[axis_].size());
+        if (row_ == 0) claimed_.clear();
+        int64_t take = std::min(length - row_, std::max<int64_t>(samplesPerSlice_ - lastSliceSamples_, 0));
+        if (take == 0 && length > row_) {
+          if (lastSliceSamples_ > 0) break;
+          take = 1;
+        }
+        claimFrontier(row_, row_ + take);
+        row_ += take;
+        lastSliceSamples_ += take;
+        if (row_ < length) continue;
+        claimedAxis_ = true;
+        row_ = 0;
+      }
       const int64_t length = static_cast<int64_t>(claimed_.size());
       int64_t take = std::min(length - row_, std::max<int64_t>(samplesPerSlice_ - lastSliceSamples_, 0));
       if (take == 0 && length > row_) {
@@ -229,18 +245,17 @@ void VelocityExtrapolationRun::extrapolateRows(int64_t begin, int64_t end) {
 }
 
 
-// Serial, in the last layer's order, so the list never depends on the workers.
-void VelocityExtrapolationRun::claimFrontier() {
+// Serial, in the last layer's order, so the list never depends on the workers or the slabs.
+void VelocityExtrapolationRun::claimFrontier(int64_t begin, int64_t end) {
   const Eigen::Vector3i d = grid_->faceDims(axis_);
   uint8_t* mark = state_->mark[axis_].data();
-  claimed_.clear();
-  for (int64_t f : lastLayer_[axis_])
-    forFaceNeighbours(d, f, [&](int64_t n) {
+  const std::vector<int64_t>& last = lastLayer_[axis_];
+  for (int64_t e = begin; e < end; ++e)
+    forFaceNeighbours(d, last[static_cast<size_t>(e)], [&](int64_t n) {
       if (mark[n] != kExtrapolationUnreached) return;
       mark[n] = kClaimed;
       claimed_.push_back(n);
     });
-  claimedAxis_ = true;
 }
 
 void VelocityExtrapolationRun::extrapolateFrontier(int64_t begin, int64_t end) {

@@ -20,8 +20,8 @@
 // which linear extrapolation over several layers would amplify.
 //
 // Parallel and deterministic: within a layer every target reads only faces of earlier layers
-// and writes only itself (its mark is set after the scan of its slab of rows, to the layer's
-// own number, which no face of the layer takes as a source).
+// and writes only itself (its mark, set once its part of the layer has its values, is the
+// layer's own number, which no face of the layer takes as a source).
 #pragma once
 
 #include <cstdint>
@@ -48,6 +48,8 @@ struct VelocityExtrapolationSettings {
 // Per face after a call: 0 known, 1 .. layers the layer that set it, kExtrapolationUnreached
 // for targets beyond the layers, kExtrapolationFixed for faces that are neither (Wall faces,
 // closed faces unless intoClosedFaces).
+// 253 is reserved too: within a call, a face claimed by a layer after the first until its value
+// is set.
 constexpr uint8_t kExtrapolationUnreached = 255;
 constexpr uint8_t kExtrapolationFixed = 254;
 
@@ -63,15 +65,16 @@ Status extrapolateVelocity(TaskSystem& tasks, MacGrid& grid, const FaceFractionF
 
 // extrapolateVelocity in slices, bitwise the same result however it is sliced and on any
 // number of workers. Every pass (the marks, each layer of each axis, the zeroing) computes a
-// face from values no other face of the pass writes, so a pass's face rows are cut into slabs
-// of consecutive rows. A slice does at most samplesPerSlice faces (one row at least) and runs
-// on into the next pass when one ends, so slices cost about the same throughout. A layer's
-// marks are set after each slab's scan: a face set by layer L is marked L, which the rest of
-// the layer does not take as a source (it takes marks < L), however the layer is cut.
-// Layer 1 scans the face rows; every later layer only visits the faces next to the layer
-// before it (a face that layer L sets has a neighbour of layer L - 1, else an earlier layer
-// would have set it), in the same neighbour order, so it gives the same values as a scan at
-// a cost that follows the surface instead of the grid.
+// face from values no other face of the pass writes, so a pass is cut into slabs. A slice does
+// at most samplesPerSlice faces (one slab at least) and runs on into the next pass when one
+// ends, so slices cost about the same throughout. A face set by layer L is marked L, which the
+// rest of the layer does not take as a source (it takes marks < L), however the layer is cut.
+// The marks, layer 1 and the zeroing scan the face rows, in slabs of consecutive rows (layer 1
+// marks each slab's faces after its scan). Every later layer only visits the faces next to
+// the layer before it (a face that layer L sets has all its sources in layer L - 1, else an
+// earlier layer would have set it): it claims them in slabs of the last layer's list, fills
+// them in slabs of the claimed list, in the same neighbour order as a scan, and marks them
+// after the axis' last slab. Its cost follows the surface, not the grid.
 // prepare() checks the arguments and sizes the marks but reads no values, so it may run before
 // earlier work on the velocities. Between prepare() and the last slice, grid.velocity and the
 // marks belong to the run, and the fractions and liquidPhi must stay as they are. A run kept
@@ -90,9 +93,9 @@ class VelocityExtrapolationRun {
   enum class Pass : uint8_t { Mark, Layer, Zero, Done };
   void markRows(int64_t begin, int64_t end);
   void extrapolateRows(int64_t begin, int64_t end);
-  // Layers after the first, on the running axis: the faces next to its last layer, then
-  // entries [begin, end) of them.
-  void claimFrontier();
+  // Layers after the first, on the running axis: the faces next to entries [begin, end) of
+  // its last layer, then entries [begin, end) of those, then their marks.
+  void claimFrontier(int64_t begin, int64_t end);
   void extrapolateFrontier(int64_t begin, int64_t end);
   void finishFrontier();
   void zeroRows(int64_t begin, int64_t end);
@@ -107,12 +110,12 @@ class VelocityExtrapolationRun {
   int64_t samplesPerSlice_ = 1, lastSliceSamples_ = 0;
   Pass pass_ = Pass::Done;
   int axis_ = 0, layer_ = 0;
-  int64_t row_ = 0;         // next face row of the axis (rows are numbered j + dims.y * k)
+  int64_t row_ = 0;  // next face row of the axis (j + dims.y * k), or entry of claimed_
   int64_t layerFaces_ = 0;  // faces the running layer has set
   std::vector<std::vector<int64_t>> assigned_;  // per chunk of a slab: the faces it set
   std::vector<int64_t> lastLayer_[3];            // per axis: the faces its last layer set
   std::vector<int64_t> claimed_;                 // the running layer's faces (after layer 1)
-  bool claimedAxis_ = false;                     // claimed_ holds the running axis' faces
+  bool claimedAxis_ = false;                     // claimed_ holds all the running axis' faces
 };
 
 }  // namespace vp
