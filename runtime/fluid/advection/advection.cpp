@@ -34,9 +34,9 @@ void forEachSample(TaskSystem& tasks, const Eigen::Vector3i& d, const Body& body
               [&](int64_t begin, int64_t end) { forEachSampleInRows(d, begin, end, body); });
 }
 
-template <class Body>
-void forEachSampleIn(const AdvectionRows& rows, const Body& body) {
-  forEachSampleInRows(rows.dims, rows.rowBegin, rows.rowEnd, body);
+// Writes a batch's values (one per sample) to their samples' entries of a row's array.
+void scatterBatch(const TraceStarts& batch, const double* values, double* row) {
+  for (int s = 0; s < batch.count; ++s) row[batch.i[s]] = values[s];
 }
 
 // Adds a pass over the rows of a lattice with dims d: run(rows) for chunks of rows.
@@ -203,11 +203,10 @@ void VelocityAdvectionSlices::forwardPass(const AdvectionRows& slab) {
         traceBatch(v, starts, dt, a, &from);
         double value[kTraceBatch], low[kTraceBatch], high[kTraceBatch];
         sampleAtPoints(old, dims, from, value, maccormack ? low : nullptr, maccormack ? high : nullptr);
-        for (int s = 0; s < starts.count; ++s) {
-          const size_t f = rowStart + static_cast<size_t>(starts.i[s]);
-          fwd[f] = value[s];
-          if (maccormack) lo[f] = low[s], hi[f] = high[s];
-        }
+        scatterBatch(starts, value, fwd + rowStart);
+        if (!maccormack) return;
+        scatterBatch(starts, low, lo + rowStart);
+        scatterBatch(starts, high, hi + rowStart);
       });
 }
 
@@ -428,11 +427,10 @@ void ScalarAdvectionSlices::forwardPass(const AdvectionRows& slab) {
         double value[kTraceBatch], low[kTraceBatch], high[kTraceBatch];
         rules.sample(old.data(), cells, work.cellTrace.data() + rowStart, value, maccormack ? low : nullptr,
                      maccormack ? high : nullptr);
-        for (int s = 0; s < cells.count; ++s) {
-          const size_t c = rowStart + static_cast<size_t>(cells.i[s]);
-          fwd[c] = value[s];
-          if (maccormack) lo[c] = low[s], hi[c] = high[s];
-        }
+        scatterBatch(cells, value, fwd + rowStart);
+        if (!maccormack) return;
+        scatterBatch(cells, low, lo + rowStart);
+        scatterBatch(cells, high, hi + rowStart);
       });
 }
 
