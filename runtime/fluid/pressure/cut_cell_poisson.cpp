@@ -312,16 +312,7 @@ void appendComputeRowSpans(CutCellPoisson* op, SlabPasses* passes) {
 
 void applyCutCellPoisson(TaskSystem& tasks, const CutCellPoisson& op, const double* p, double* out) {
   const poisson_rows::Stencil<double> s(op);
-  poisson_rows::forEachRow(tasks, s, [&](int64_t j, int64_t k, int64_t c0) {
-    const int64_t row = j + s.ny * k;
-    double* o = out + c0;
-    poisson_rows::clearOutsideSpan(s, row, o);
-    const poisson_rows::Row<double> r(s, j, k, p);
-    for (int64_t i = s.spanBegin(row), e = s.spanEnd(row); i < e; ++i) {
-      const double d = r.diagonal[i];
-      o[i] = d > 0.0 ? d * r.x[i] - r.neighbourSum(i) : 0.0;
-    }
-  });
+  poisson_rows::forEachRow(tasks, s, [&](int64_t j, int64_t k, int64_t) { poisson_rows::applyRow(s, j, k, p, out); });
 }
 
 template <class T>

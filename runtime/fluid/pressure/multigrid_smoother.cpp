@@ -12,8 +12,11 @@ namespace {
 
 using poisson_rows::clearOutsideSpan;
 using poisson_rows::forEachRow;
+using poisson_rows::gaussSeidelRow;
 using poisson_rows::kCellsPerChunk;
+using poisson_rows::residualRow;
 using poisson_rows::Row;
+using poisson_rows::SweepStart;
 using poisson_rows::Stencil;
 
 // Boundary lists are short (about 1% of the cells at 128^3) and swept 16 times per level and
@@ -24,28 +27,13 @@ constexpr int64_t kBoundaryCellsPerChunk = 16384;
 // on the worker count; the values never depend on it at all).
 constexpr int64_t kSlabsPerSweep = 16;
 
-// Gauss-Seidel update of the cells of one colour in one row. kFromZero: the sweep starts from
-// x = 0 without x having been cleared, so the first colour ignores its neighbours (they are 0)
-// and both colours write every cell, non-fluid ones included (0), which makes a separate
-// clearing pass unnecessary.
-template <bool kFromZero, class T>
-void updateRow(const Stencil<T>& s, int64_t j, int64_t k, const T* b, T* x, int colour, bool firstColour) {
-  const Row<T> r(s, j, k, x);
-  const int64_t row = j + s.ny * k, c0 = s.nx * row;
-  T* xr = x + c0;
-  const T* br = b + c0;
-  if (kFromZero && firstColour) clearOutsideSpan(s, row, xr);
-  const int64_t begin = s.spanBegin(row), end = s.spanEnd(row);
-  for (int64_t i = begin + ((begin + j + k + colour) & 1); i < end; i += 2) {
-    const T d = r.diagonal[i];
-    if (kFromZero) xr[i] = d > T(0) ? (br[i] + (firstColour ? T(0) : r.neighbourSum(i))) / d : T(0);
-    else if (d > T(0)) xr[i] = (br[i] + r.neighbourSum(i)) / d;
-  }
-}
-
+// kFromZero: the sweep starts from x = 0 without x having been cleared (SweepStart).
 template <bool kFromZero, class T>
 void updatePlane(const Stencil<T>& s, int64_t k, const T* b, T* x, int colour, bool firstColour) {
-  for (int64_t j = 0; j < s.ny; ++j) updateRow<kFromZero>(s, j, k, b, x, colour, firstColour);
+  const SweepStart start = !kFromZero     ? SweepStart::Continue
+                           : firstColour ? SweepStart::FromZeroFirstColour
+                                         : SweepStart::FromZeroSecondColour;
+  for (int64_t j = 0; j < s.ny; ++j) gaussSeidelRow(s, j, k, b, x, colour, start);
 }
 
 // Both colours in one pass over memory: plane k gets its first colour, then plane k - 1 its
@@ -215,15 +203,7 @@ void appendFindBoundaryCells(const CutCellPoisson& op, double fullCoupling, Boun
 template <class T>
 void computeResidual(TaskSystem& tasks, const PoissonCoefficients<T>& op, const T* b, const T* x, T* r) {
   const Stencil<T> s(op);
-  forEachRow(tasks, s, [&](int64_t j, int64_t k, int64_t c0) {
-    const Row<T> row(s, j, k, x);
-    const int64_t index = j + s.ny * k;
-    clearOutsideSpan(s, index, r + c0);
-    for (int64_t i = s.spanBegin(index), e = s.spanEnd(index); i < e; ++i) {
-      const T d = row.diagonal[i];
-      r[c0 + i] = d > T(0) ? b[c0 + i] + row.neighbourSum(i) - d * row.x[i] : T(0);
-    }
-  });
+  forEachRow(tasks, s, [&](int64_t j, int64_t k, int64_t) { residualRow(s, j, k, b, x, r); });
 }
 
 #define VP_INSTANTIATE_SMOOTHERS(T)                                                                         \

@@ -1,8 +1,12 @@
 // Renormalized trilinear prolongation and its transpose (see multigrid_transfer.h).
 #include "fluid/pressure/multigrid_transfer.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <utility>
 
+#include "core/isa_clones.h"
 #include "core/parallel_for.h"
 
 namespace vp {
@@ -62,6 +66,122 @@ void gatherRows(const AxisWeights& w, int64_t count, const Line& line, T* out) {
   }
 }
 
+// AxisStencil along x for every fine i of a row, as arrays, so a row's loop has no branches.
+template <class T>
+struct XStencils {
+  std::vector<int32_t> index[2];
+  std::vector<T> weight[2];
+  XStencils(int64_t nx, int64_t cx, const TransferSides& sides) {
+    for (int e = 0; e < 2; ++e) index[e].resize(static_cast<size_t>(nx)), weight[e].resize(static_cast<size_t>(nx));
+    for (int64_t i = 0; i < nx; ++i) {
+      const AxisStencil s(i, cx, sides, 0);
+      for (int e = 0; e < 2; ++e) {
+        index[e][static_cast<size_t>(i)] = static_cast<int32_t>(s.index[e]);
+        weight[e][static_cast<size_t>(i)] = static_cast<T>(s.weight[e]);
+      }
+    }
+  }
+};
+
+// One fine row of fineX += P coarseX: the four coarse lines (y, z neighbours) it reads, with
+// their y-z weights.
+template <class T>
+struct ProlongationRow {
+  const T* lines[4];
+  T wyz[4];
+  const XStencils<T>* x;
+  const T* scale;  // the row's
+  T* fineX;        // the row's
+};
+
+// In blocks: every cell's updated value into a buffer (gathers from the coarse lines, no
+// branch), then stored where the cell's scale is not 0 (a non-fluid cell keeps its value).
+template <class T>
+VP_CLONE_INLINE inline void prolongateRowBody(const ProlongationRow<T>& r) {
+  constexpr int64_t kBlock = 256;
+  T updated[kBlock];
+  const int64_t nx = static_cast<int64_t>(r.x->index[0].size());
+  const int32_t *i0 = r.x->index[0].data(), *i1 = r.x->index[1].data();
+  const T *w0 = r.x->weight[0].data(), *w1 = r.x->weight[1].data();
+  const T *l0 = r.lines[0], *l1 = r.lines[1], *l2 = r.lines[2], *l3 = r.lines[3];
+  const T a0 = r.wyz[0], a1 = r.wyz[1], a2 = r.wyz[2], a3 = r.wyz[3];
+  const T* scale = r.scale;
+  T* fineX = r.fineX;
+  for (int64_t from = 0; from < nx; from += kBlock) {
+    const int64_t to = std::min(nx, from + kBlock);
+    for (int64_t i = from; i < to; ++i) {
+      T sum = T(0);
+      sum += a0 * (w0[i] * l0[i0[i]] + w1[i] * l0[i1[i]]);
+      sum += a1 * (w0[i] * l1[i0[i]] + w1[i] * l1[i1[i]]);
+      sum += a2 * (w0[i] * l2[i0[i]] + w1[i] * l2[i1[i]]);
+      sum += a3 * (w0[i] * l3[i0[i]] + w1[i] * l3[i1[i]]);
+      updated[i - from] = fineX[i] + scale[i] * sum;
+    }
+    for (int64_t i = from; i < to; ++i) fineX[i] = scale[i] != T(0) ? updated[i - from] : fineX[i];
+  }
+}
+
+VP_ISA_CLONES
+void prolongateRow(const ProlongationRow<float>& r) { prolongateRowBody(r); }
+
+VP_ISA_CLONES
+void prolongateRow(const ProlongationRow<double>& r) { prolongateRowBody(r); }
+
+// AxisWeights along x for every coarse I, with their weights also as arrays (weight[t][I]) for
+// the coarse cells whose four fine cells 2I - 1 .. 2I + 2 all lie in the row.
+template <class T>
+struct XWeights {
+  std::vector<AxisWeights> all;
+  std::vector<T> weight[4];
+  int64_t innerBegin, innerEnd;  // those coarse cells
+  XWeights(std::vector<AxisWeights> perCell, int64_t nx) : all(std::move(perCell)) {
+    const int64_t cx = static_cast<int64_t>(all.size());
+    innerBegin = std::min<int64_t>(1, cx);
+    innerEnd = std::max(innerBegin, std::min(cx, nx >= 3 ? (nx - 3) / 2 + 1 : 0));
+    for (int t = 0; t < 4; ++t) {
+      weight[t].resize(all.size());
+      for (size_t I = 0; I < all.size(); ++I) weight[t][I] = static_cast<T>(all[I].weight[t]);
+    }
+  }
+};
+
+// One fine row's x gather of the restriction: out[I] = sum_t w_t(I) scale r at 2I - 1 + t. The
+// cells at the row's ends skip taps outside it; the others take all four without a branch (a
+// tap of weight 0 adds +-0 to a sum that starts at +0: the same bits).
+template <class T>
+VP_CLONE_INLINE inline void restrictRowAlongXBody(const XWeights<T>& xw, const T* scale, const T* r, T* out) {
+  const int64_t cx = static_cast<int64_t>(xw.all.size());
+  auto atEnd = [&](int64_t I) VP_CLONE_INLINE {
+    const AxisWeights& w = xw.all[static_cast<size_t>(I)];
+    T sum = T(0);
+    for (int x = 0; x < 4; ++x)
+      if (w.weight[x] != 0.0) sum += static_cast<T>(w.weight[x]) * scale[w.first + x] * r[w.first + x];
+    out[I] = sum;
+  };
+  for (int64_t I = 0; I < xw.innerBegin; ++I) atEnd(I);
+  const T *w0 = xw.weight[0].data(), *w1 = xw.weight[1].data(), *w2 = xw.weight[2].data(), *w3 = xw.weight[3].data();
+  for (int64_t I = xw.innerBegin; I < xw.innerEnd; ++I) {
+    const int64_t f = 2 * I - 1;
+    T sum = T(0);
+    sum += w0[I] * scale[f] * r[f];
+    sum += w1[I] * scale[f + 1] * r[f + 1];
+    sum += w2[I] * scale[f + 2] * r[f + 2];
+    sum += w3[I] * scale[f + 3] * r[f + 3];
+    out[I] = sum;
+  }
+  for (int64_t I = xw.innerEnd; I < cx; ++I) atEnd(I);
+}
+
+VP_ISA_CLONES
+void restrictRowAlongX(const XWeights<float>& xw, const float* scale, const float* r, float* out) {
+  restrictRowAlongXBody(xw, scale, r, out);
+}
+
+VP_ISA_CLONES
+void restrictRowAlongX(const XWeights<double>& xw, const double* scale, const double* r, double* out) {
+  restrictRowAlongXBody(xw, scale, r, out);
+}
+
 }  // namespace
 
 void computeProlongationScale(TaskSystem& tasks, const CutCellPoisson& fine, const CutCellPoisson& coarse,
@@ -111,27 +231,21 @@ void prolongateAdd(TaskSystem& tasks, const CutCellPoisson& fine, const CutCellP
                    const TransferSides& sides, const T* scale, const T* coarseX, T* fineX) {
   const int64_t nx = fine.grid.nx, ny = fine.grid.ny, nz = fine.grid.nz;
   const int64_t cx = coarse.grid.nx, cy = coarse.grid.ny, cz = coarse.grid.nz;
+  const XStencils<T> xs(nx, cx, sides);
   parallelFor(tasks, ny * nz, kRowGrain, [&](int64_t begin, int64_t end) {
     for (int64_t row = begin; row < end; ++row) {
       const int64_t j = row % ny, k = row / ny;
       const AxisStencil sy(j, cy, sides, 1), sz(k, cz, sides, 2);
-      const T* lines[4];
-      T wyz[4];
+      ProlongationRow<T> r;
       for (int z = 0; z < 2; ++z)
         for (int y = 0; y < 2; ++y) {
-          lines[2 * z + y] = coarseX + cx * (sy.index[y] + cy * sz.index[z]);
-          wyz[2 * z + y] = static_cast<T>(sy.weight[y] * sz.weight[z]);
+          r.lines[2 * z + y] = coarseX + cx * (sy.index[y] + cy * sz.index[z]);
+          r.wyz[2 * z + y] = static_cast<T>(sy.weight[y] * sz.weight[z]);
         }
-      for (int64_t i = 0; i < nx; ++i) {
-        const int64_t c = i + nx * row;
-        const T s = scale[c];
-        if (s == T(0)) continue;
-        const AxisStencil sx(i, cx, sides, 0);
-        const T w0 = static_cast<T>(sx.weight[0]), w1 = static_cast<T>(sx.weight[1]);
-        T sum = T(0);
-        for (int l = 0; l < 4; ++l) sum += wyz[l] * (w0 * lines[l][sx.index[0]] + w1 * lines[l][sx.index[1]]);
-        fineX[c] += s * sum;
-      }
+      r.x = &xs;
+      r.scale = scale + nx * row;
+      r.fineX = fineX + nx * row;
+      prolongateRow(r);
     }
   });
 }
@@ -152,18 +266,10 @@ void restrictResidual(TaskSystem& tasks, const CutCellPoisson& fine, const CutCe
   scratch->resize(static_cast<size_t>(cx * ny * nz + cx * cy * nz));
   T* alongX = scratch->data();           // cx * ny * nz
   T* alongY = alongX + cx * ny * nz;     // cx * cy * nz
+  const XWeights<T> xw(std::move(wx), nx);
   parallelFor(tasks, ny * nz, kRowGrain, [&](int64_t begin, int64_t end) {
-    for (int64_t row = begin; row < end; ++row) {
-      const T* r = fineR + nx * row;
-      const T* sc = scale + nx * row;
-      for (int64_t I = 0; I < cx; ++I) {
-        const AxisWeights& w = wx[static_cast<size_t>(I)];
-        T sum = T(0);
-        for (int x = 0; x < 4; ++x)
-          if (w.weight[x] != 0.0) sum += static_cast<T>(w.weight[x]) * sc[w.first + x] * r[w.first + x];
-        alongX[I + cx * row] = sum;
-      }
-    }
+    for (int64_t row = begin; row < end; ++row)
+      restrictRowAlongX(xw, scale + nx * row, fineR + nx * row, alongX + cx * row);
   });
   parallelFor(tasks, cy * nz, kRowGrain, [&](int64_t begin, int64_t end) {
     for (int64_t row = begin; row < end; ++row) {

@@ -5,80 +5,78 @@
 // solid hold no unknowns, so streaming them would only spend bandwidth.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 
+#include "core/isa_clones.h"
 #include "core/parallel_for.h"
 #include "fluid/pressure/cut_cell_poisson.h"
+#include "gpu_kernels/poisson_kernels.h"
 
 namespace vp::poisson_rows {
 
 constexpr int64_t kCellsPerChunk = 4096;
 
-// Raw arrays and strides of a level (T: double or float).
+// A level's raw arrays (gpu_kernels/poisson_kernels.h), taken from its coefficients.
 template <class T>
-struct Stencil {
-  const T* cu;
-  const T* cv;
-  const T* cw;
-  const T* diagonal;
-  const int32_t* span;  // PoissonCoefficients::rowSpan, or nullptr: every row spans all its cells
-  int64_t nx, ny, nz, sz;
-
+struct Stencil : kernels::PoissonStencil<T> {
   explicit Stencil(const PoissonCoefficients<T>& op)
-      : cu(op.coupling[0].data()), cv(op.coupling[1].data()), cw(op.coupling[2].data()),
-        diagonal(op.diagonal.data()), span(op.rowSpan.empty() ? nullptr : op.rowSpan.data()), nx(op.grid.nx),
-        ny(op.grid.ny), nz(op.grid.nz), sz(static_cast<int64_t>(op.grid.nx) * op.grid.ny) {}
+      : kernels::PoissonStencil<T>{op.coupling[0].data(),
+                                   op.coupling[1].data(),
+                                   op.coupling[2].data(),
+                                   op.diagonal.data(),
+                                   op.rowSpan.empty() ? nullptr : op.rowSpan.data(),
+                                   op.grid.nx,
+                                   op.grid.ny,
+                                   op.grid.nz,
+                                   static_cast<int64_t>(op.grid.nx) * op.grid.ny} {}
 
-  int64_t rows() const { return ny * nz; }
-  int64_t rowGrain() const { return nx >= kCellsPerChunk ? 1 : kCellsPerChunk / nx; }
-  // [begin, end) of the cells of row (j + ny k) that can hold fluid; empty when begin == end.
-  int64_t spanBegin(int64_t row) const { return span ? span[2 * row] : 0; }
-  int64_t spanEnd(int64_t row) const { return span ? span[2 * row + 1] : nx; }
+  int64_t rowGrain() const { return this->nx >= kCellsPerChunk ? 1 : kCellsPerChunk / this->nx; }
 };
 
-// One grid row (j, k) with its neighbour rows, set up once per row. A neighbour row outside the
-// grid is replaced by the row itself: its face coupling is 0, so the product vanishes without a
-// branch.
 template <class T>
-struct Row {
-  const T* cu;      // cu[i], cu[i + 1]: the cell's -x and +x faces
-  const T* cvLow;   // -y faces of the row's cells
-  const T* cvHigh;  // +y faces
-  const T* cwLow;   // -z faces
-  const T* cwHigh;  // +z faces
-  const T* diagonal;
-  const T* x;
-  const T* xDown;   // row j - 1
-  const T* xUp;     // row j + 1
-  const T* xBack;   // row k - 1
-  const T* xFront;  // row k + 1
-  int64_t nx;
+using Row = kernels::PoissonRow<T>;
 
-  Row(const Stencil<T>& s, int64_t j, int64_t k, const T* values) : nx(s.nx) {
-    const int64_t row = j + s.ny * k, c0 = s.nx * row;
-    cu = s.cu + (s.nx + 1) * row;
-    cvLow = s.cv + s.nx * (j + (s.ny + 1) * k);
-    cvHigh = cvLow + s.nx;
-    cwLow = s.cw + c0;
-    cwHigh = cwLow + s.sz;
-    diagonal = s.diagonal + c0;
-    x = xDown = xUp = xBack = xFront = nullptr;  // values == nullptr: coefficients only
-    if (values == nullptr) return;
-    x = values + c0;
-    xDown = j > 0 ? x - s.nx : x;
-    xUp = j + 1 < s.ny ? x + s.nx : x;
-    xBack = k > 0 ? x - s.sz : x;
-    xFront = k + 1 < s.nz ? x + s.sz : x;
-  }
+// Calls body(m, i, row.neighbourSum(i)) for the cells i = first + kStep m, m in [0, count), in
+// order: cells at the row's ends through the bounds-tested sum, the others through the
+// branch-free one, so a body without branches of its own vectorizes.
+template <int64_t kStep, class T, class Body>
+VP_CLONE_INLINE inline void forEachNeighbourSum(const Row<T>& row, int64_t first, int64_t count, const Body& body) {
+  // Interior cells: 1 <= first + kStep m <= nx - 2.
+  const int64_t innerBegin = std::min(count, first >= 1 ? int64_t(0) : (1 - first + kStep - 1) / kStep);
+  const int64_t lastInner = row.nx - 2 - first;
+  const int64_t innerEnd = std::max(innerBegin, std::min(count, lastInner >= 0 ? lastInner / kStep + 1 : 0));
+  for (int64_t m = 0; m < innerBegin; ++m) body(m, first + kStep * m, row.neighbourSum(first + kStep * m));
+  for (int64_t m = innerBegin; m < innerEnd; ++m)
+    body(m, first + kStep * m, row.interiorNeighbourSum(first + kStep * m));
+  for (int64_t m = innerEnd; m < count; ++m) body(m, first + kStep * m, row.neighbourSum(first + kStep * m));
+}
 
-  // sum_f A_f x_nb over the six faces of cell i of the row.
-  T neighbourSum(int64_t i) const {
-    const T left = i > 0 ? x[i - 1] : T(0);
-    const T right = i + 1 < nx ? x[i + 1] : T(0);
-    return cu[i] * left + cu[i + 1] * right + cvLow[i] * xDown[i] + cvHigh[i] * xUp[i] + cwLow[i] * xBack[i] +
-           cwHigh[i] * xFront[i];
-  }
-};
+// Row kernels (poisson_rows.cpp), each over the cells of row (j, k) of a level. Each computes
+// its values over chunks of the row's span (a sweep: its colour's cells only) into a local
+// buffer, in a loop without branches, then stores them: the operator's value on the fluid cells (diagonal > 0), 0 (or, for a sweep, the
+// old value) on the others. Both loops vectorize (the stores' selects need AVX2 or better, which
+// VP_ISA_CLONES provides).
+
+// out = A x: the CG's operator.
+void applyRow(const Stencil<double>& s, int64_t j, int64_t k, const double* x, double* out);
+
+// r = b - A x: the multigrid's residual.
+void residualRow(const Stencil<float>& s, int64_t j, int64_t k, const float* b, const float* x, float* r);
+void residualRow(const Stencil<double>& s, int64_t j, int64_t k, const double* b, const double* x, double* r);
+
+// How a Gauss-Seidel half-sweep of a row treats x. Continue: x is the current iterate, and the
+// non-fluid cells keep their value (0). The two FromZero kinds make a sweep that starts from
+// x = 0 without x having been cleared: the first colour ignores its neighbours (they are 0) and
+// clears the row outside its span; both colours write every cell of theirs, non-fluid ones 0.
+enum class SweepStart { Continue, FromZeroFirstColour, FromZeroSecondColour };
+
+// x_i = (b_i + sum_f A_f x_nb) / A_ii on the fluid cells of one colour, (i + j + k + colour)
+// even; the other colour's cells are not written.
+void gaussSeidelRow(const Stencil<float>& s, int64_t j, int64_t k, const float* b, float* x, int colour,
+                    SweepStart start);
+void gaussSeidelRow(const Stencil<double>& s, int64_t j, int64_t k, const double* b, double* x, int colour,
+                    SweepStart start);
 
 // Calls body(j, k, index of the row's first cell) for every row in parallel.
 template <class T, class Body>

@@ -1,0 +1,115 @@
+// Row kernels of the cut-cell pressure operator (see poisson_rows.h).
+#include "fluid/pressure/poisson_rows.h"
+
+#include "core/isa_clones.h"
+
+namespace vp::poisson_rows {
+namespace {
+
+// Cells per chunk of a row: the chunk's values live in a buffer on the stack.
+constexpr int64_t kRowChunk = 256;
+
+// For the row's span cells first, first + kStep, ... in chunks: compute(first, count, values)
+// fills values[m] for the chunk's cells first + kStep m, then store(i, values[m]) for each.
+template <int64_t kStep, class T, class Compute, class Store>
+VP_CLONE_INLINE inline void forSpanInChunks(int64_t first, int64_t end, const Compute& compute,
+                                                   const Store& store) {
+  T values[kRowChunk];
+  for (int64_t begin = first; begin < end; begin += kStep * kRowChunk) {
+    const int64_t count = std::min(kRowChunk, (end - begin + kStep - 1) / kStep);
+    compute(begin, count, values);
+    for (int64_t m = 0; m < count; ++m) store(begin + kStep * m, values[m]);
+  }
+}
+
+template <class T>
+VP_CLONE_INLINE inline void applyRowBody(const Stencil<T>& s, int64_t j, int64_t k, const T* x, T* out) {
+  const Row<T> r(s, j, k, x);
+  const int64_t row = j + s.ny * k;
+  T* o = out + s.nx * row;
+  clearOutsideSpan(s, row, o);
+  forSpanInChunks<1, T>(
+      s.spanBegin(row), s.spanEnd(row),
+      [&](int64_t first, int64_t count, T* values) VP_CLONE_INLINE {
+        forEachNeighbourSum<1>(r, first, count,
+                               [&](int64_t m, int64_t i, T sum) VP_CLONE_INLINE { values[m] = r.diagonal[i] * r.x[i] - sum; });
+      },
+      [&](int64_t i, T value) VP_CLONE_INLINE { o[i] = r.diagonal[i] > T(0) ? value : T(0); });
+}
+
+template <class T>
+VP_CLONE_INLINE inline void residualRowBody(const Stencil<T>& s, int64_t j, int64_t k, const T* b, const T* x,
+                                                   T* residual) {
+  const Row<T> r(s, j, k, x);
+  const int64_t row = j + s.ny * k, c0 = s.nx * row;
+  const T* br = b + c0;
+  T* o = residual + c0;
+  clearOutsideSpan(s, row, o);
+  forSpanInChunks<1, T>(
+      s.spanBegin(row), s.spanEnd(row),
+      [&](int64_t first, int64_t count, T* values) VP_CLONE_INLINE {
+        forEachNeighbourSum<1>(
+            r, first, count, [&](int64_t m, int64_t i, T sum) VP_CLONE_INLINE { values[m] = br[i] + sum - r.diagonal[i] * r.x[i]; });
+      },
+      [&](int64_t i, T value) VP_CLONE_INLINE { o[i] = r.diagonal[i] > T(0) ? value : T(0); });
+}
+
+// Only the colour's cells are read and written (every second cell): the other colour's cells
+// may be another slab's, being written at the same time (multigrid_smoother.cpp's fused sweep).
+// A non-fluid cell's value is a division by 0, dropped by the store.
+template <class T>
+VP_CLONE_INLINE inline void gaussSeidelRowBody(const Stencil<T>& s, int64_t j, int64_t k, const T* b, T* x,
+                                                      int colour, SweepStart start) {
+  const Row<T> r(s, j, k, x);
+  const int64_t row = j + s.ny * k, c0 = s.nx * row;
+  const T* br = b + c0;
+  T* xr = x + c0;
+  const int64_t begin = s.spanBegin(row), end = s.spanEnd(row);
+  const int64_t first = begin + ((begin + j + k + colour) & 1);
+  if (start == SweepStart::FromZeroFirstColour) clearOutsideSpan(s, row, xr);
+  auto fromNeighbours = [&](int64_t from, int64_t count, T* values) VP_CLONE_INLINE {
+    forEachNeighbourSum<2>(r, from, count,
+                           [&](int64_t m, int64_t i, T sum) VP_CLONE_INLINE { values[m] = (br[i] + sum) / r.diagonal[i]; });
+  };
+  auto alone = [&](int64_t from, int64_t count, T* values) VP_CLONE_INLINE {
+    for (int64_t m = 0; m < count; ++m) values[m] = (br[from + 2 * m] + T(0)) / r.diagonal[from + 2 * m];
+  };
+  auto keepNonFluid = [&](int64_t i, T value) VP_CLONE_INLINE { xr[i] = r.diagonal[i] > T(0) ? value : xr[i]; };
+  auto clearNonFluid = [&](int64_t i, T value) VP_CLONE_INLINE { xr[i] = r.diagonal[i] > T(0) ? value : T(0); };
+  switch (start) {
+    case SweepStart::Continue: forSpanInChunks<2, T>(first, end, fromNeighbours, keepNonFluid); break;
+    case SweepStart::FromZeroFirstColour: forSpanInChunks<2, T>(first, end, alone, clearNonFluid); break;
+    case SweepStart::FromZeroSecondColour: forSpanInChunks<2, T>(first, end, fromNeighbours, clearNonFluid); break;
+  }
+}
+
+}  // namespace
+
+VP_ISA_CLONES
+void applyRow(const Stencil<double>& s, int64_t j, int64_t k, const double* x, double* out) {
+  applyRowBody(s, j, k, x, out);
+}
+
+VP_ISA_CLONES
+void residualRow(const Stencil<float>& s, int64_t j, int64_t k, const float* b, const float* x, float* r) {
+  residualRowBody(s, j, k, b, x, r);
+}
+
+VP_ISA_CLONES
+void residualRow(const Stencil<double>& s, int64_t j, int64_t k, const double* b, const double* x, double* r) {
+  residualRowBody(s, j, k, b, x, r);
+}
+
+VP_ISA_CLONES
+void gaussSeidelRow(const Stencil<float>& s, int64_t j, int64_t k, const float* b, float* x, int colour,
+                    SweepStart start) {
+  gaussSeidelRowBody(s, j, k, b, x, colour, start);
+}
+
+VP_ISA_CLONES
+void gaussSeidelRow(const Stencil<double>& s, int64_t j, int64_t k, const double* b, double* x, int colour,
+                    SweepStart start) {
+  gaussSeidelRowBody(s, j, k, b, x, colour, start);
+}
+
+}  // namespace vp::poisson_rows
