@@ -71,7 +71,8 @@ template <class T>
 struct XStencils {
   std::vector<int32_t> index[2];
   std::vector<T> weight[2];
-  XStencils(int64_t nx, int64_t cx, const TransferSides& sides) {
+  int64_t coarseCount;
+  XStencils(int64_t nx, int64_t cx, const TransferSides& sides) : coarseCount(cx) {
     for (int e = 0; e < 2; ++e) index[e].resize(static_cast<size_t>(nx)), weight[e].resize(static_cast<size_t>(nx));
     for (int64_t i = 0; i < nx; ++i) {
       const AxisStencil s(i, cx, sides, 0);
@@ -94,31 +95,53 @@ struct ProlongationRow {
   T* fineX;        // the row's
 };
 
-// In blocks: every cell's updated value into a buffer (gathers from the coarse lines, no
-// branch), then stored where the cell's scale is not 0 (a non-fluid cell keeps its value).
+// A fine cell 2I or 2I + 1 with both its coarse neighbours inside takes I and I - 1 or I + 1:
+// those cells go in pairs per coarse I, their values into a buffer (contiguous coarse loads, no
+// branch), then stored where the cell's scale is not 0 (a non-fluid cell keeps its value). The
+// few cells at the row's ends go one by one through the stencil arrays.
 template <class T>
 VP_CLONE_INLINE inline void prolongateRowBody(const ProlongationRow<T>& r) {
-  constexpr int64_t kBlock = 256;
-  T updated[kBlock];
-  const int64_t nx = static_cast<int64_t>(r.x->index[0].size());
-  const int32_t *i0 = r.x->index[0].data(), *i1 = r.x->index[1].data();
-  const T *w0 = r.x->weight[0].data(), *w1 = r.x->weight[1].data();
+  constexpr int64_t kPairs = 128;
+  T updated[2 * kPairs];
+  const XStencils<T>& xs = *r.x;
+  const int64_t nx = static_cast<int64_t>(xs.index[0].size()), cx = xs.coarseCount;
+  const T *w0 = xs.weight[0].data(), *w1 = xs.weight[1].data();
   const T *l0 = r.lines[0], *l1 = r.lines[1], *l2 = r.lines[2], *l3 = r.lines[3];
   const T a0 = r.wyz[0], a1 = r.wyz[1], a2 = r.wyz[2], a3 = r.wyz[3];
   const T* scale = r.scale;
   T* fineX = r.fineX;
-  for (int64_t from = 0; from < nx; from += kBlock) {
-    const int64_t to = std::min(nx, from + kBlock);
-    for (int64_t i = from; i < to; ++i) {
-      T sum = T(0);
-      sum += a0 * (w0[i] * l0[i0[i]] + w1[i] * l0[i1[i]]);
-      sum += a1 * (w0[i] * l1[i0[i]] + w1[i] * l1[i1[i]]);
-      sum += a2 * (w0[i] * l2[i0[i]] + w1[i] * l2[i1[i]]);
-      sum += a3 * (w0[i] * l3[i0[i]] + w1[i] * l3[i1[i]]);
-      updated[i - from] = fineX[i] + scale[i] * sum;
+  auto single = [&](int64_t i) VP_CLONE_INLINE {
+    if (scale[i] == T(0)) return;
+    const int32_t p = xs.index[0][static_cast<size_t>(i)], q = xs.index[1][static_cast<size_t>(i)];
+    T sum = T(0);
+    sum += a0 * (w0[i] * l0[p] + w1[i] * l0[q]);
+    sum += a1 * (w0[i] * l1[p] + w1[i] * l1[q]);
+    sum += a2 * (w0[i] * l2[p] + w1[i] * l2[q]);
+    sum += a3 * (w0[i] * l3[p] + w1[i] * l3[q]);
+    fineX[i] += scale[i] * sum;
+  };
+  const int64_t pairBegin = std::min<int64_t>(1, cx);
+  const int64_t pairEnd = std::max(pairBegin, std::min(cx - 1, nx >= 2 ? (nx - 2) / 2 + 1 : 0));
+  for (int64_t i = 0; i < 2 * pairBegin && i < nx; ++i) single(i);
+  for (int64_t from = pairBegin; from < pairEnd; from += kPairs) {
+    const int64_t to = std::min(pairEnd, from + kPairs);
+    for (int64_t I = from; I < to; ++I) {
+      const int64_t e = 2 * I, o = e + 1;
+      T even = T(0), odd = T(0);
+      even += a0 * (w0[e] * l0[I] + w1[e] * l0[I - 1]);
+      even += a1 * (w0[e] * l1[I] + w1[e] * l1[I - 1]);
+      even += a2 * (w0[e] * l2[I] + w1[e] * l2[I - 1]);
+      even += a3 * (w0[e] * l3[I] + w1[e] * l3[I - 1]);
+      odd += a0 * (w0[o] * l0[I] + w1[o] * l0[I + 1]);
+      odd += a1 * (w0[o] * l1[I] + w1[o] * l1[I + 1]);
+      odd += a2 * (w0[o] * l2[I] + w1[o] * l2[I + 1]);
+      odd += a3 * (w0[o] * l3[I] + w1[o] * l3[I + 1]);
+      updated[e - 2 * from] = fineX[e] + scale[e] * even;
+      updated[o - 2 * from] = fineX[o] + scale[o] * odd;
     }
-    for (int64_t i = from; i < to; ++i) fineX[i] = scale[i] != T(0) ? updated[i - from] : fineX[i];
+    for (int64_t i = 2 * from; i < 2 * to; ++i) fineX[i] = scale[i] != T(0) ? updated[i - 2 * from] : fineX[i];
   }
+  for (int64_t i = std::max(2 * pairEnd, 2 * pairBegin); i < nx; ++i) single(i);
 }
 
 VP_ISA_CLONES
