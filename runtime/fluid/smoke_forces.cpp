@@ -5,37 +5,66 @@
 #include <cmath>
 
 #include "core/parallel_for.h"
+#include "gpu_kernels/smoke_force_kernels.h"
 
 namespace vp {
 namespace {
 
 constexpr int64_t kRowGrain = 8;
 
-int cellsAlong(const MacGridSpec& s, int a) { return a == 0 ? s.nx : a == 1 ? s.ny : s.nz; }
+kernels::CellLattice cellLattice(const MacGridSpec& s) {
+  kernels::CellLattice g;
+  g.n[0] = s.nx;
+  g.n[1] = s.ny;
+  g.n[2] = s.nz;
+  g.stride[0] = 1;
+  g.stride[1] = s.nx;
+  g.stride[2] = static_cast<int64_t>(s.nx) * s.ny;
+  g.h = s.h;
+  return g;
+}
 
-// Adds dt * (mean of cellValue over the face's two cells, one at the domain boundary) to
-// every face velocity of every axis; cellValue(cell, axis) gives the force component.
+// body(i, j, k, cell index) for every cell, rows in parallel.
+template <class Body>
+void forEachCell(TaskSystem& tasks, const MacGridSpec& s, const Body& body) {
+  parallelFor(tasks, static_cast<int64_t>(s.ny) * s.nz, kRowGrain, [&](int64_t begin, int64_t end) {
+    for (int64_t row = begin; row < end; ++row) {
+      const int j = static_cast<int>(row % s.ny), k = static_cast<int>(row / s.ny);
+      for (int i = 0; i < s.nx; ++i) body(i, j, k, static_cast<int64_t>(i) + s.nx * row);
+    }
+  });
+}
+
+// Adds dt times the mean of the force over each a-face's two cells (the one cell at the
+// domain's sides) to the face velocities; cellForce(c) is the force's component a at cell c.
 template <class CellForce>
-void addCellForceToFaces(TaskSystem& tasks, MacGrid& grid, double dt, const CellForce& cellForce) {
+void addCellForceToFaces(TaskSystem& tasks, MacGrid& grid, int a, double dt, const CellForce& cellForce) {
   const MacGridSpec& s = grid.spec;
-  for (int a = 0; a < 3; ++a) {
-    const Eigen::Vector3i d = grid.faceDims(a);
-    std::vector<double>& u = grid.velocity[a];
-    parallelFor(tasks, static_cast<int64_t>(d.y()) * d.z(), kRowGrain, [&](int64_t begin, int64_t end) {
-      for (int64_t row = begin; row < end; ++row) {
-        const int j = static_cast<int>(row % d.y()), k = static_cast<int>(row / d.y());
-        for (int i = 0; i < d.x(); ++i) {
-          Eigen::Vector3i hi(i, j, k), lo(i, j, k);
-          lo[a] -= 1;
-          hi[a] = std::min(hi[a], cellsAlong(s, a) - 1);
-          lo[a] = std::max(lo[a], 0);
-          const double f = 0.5 * (cellForce(grid.cellIndex(lo.x(), lo.y(), lo.z()), a) +
-                                  cellForce(grid.cellIndex(hi.x(), hi.y(), hi.z()), a));
-          u[grid.faceIndex(a, i, j, k)] += dt * f;
-        }
+  const Eigen::Vector3i d = grid.faceDims(a);
+  const int64_t nx = s.nx, ny = s.ny, nz = s.nz;
+  double* u = grid.velocity[a].data();
+  parallelFor(tasks, static_cast<int64_t>(d.y()) * d.z(), kRowGrain, [&](int64_t begin, int64_t end) {
+    for (int64_t row = begin; row < end; ++row) {
+      const int64_t j = row % d.y(), k = row / d.y();
+      double* faces = u + d.x() * row;
+      auto add = [&](int64_t f, int64_t low, int64_t high) {
+        faces[f] = kernels::faceVelocityAfterForce(faces[f], dt, cellForce(low), cellForce(high));
+      };
+      if (a == 0) {
+        const int64_t c = nx * (j + ny * k);
+        add(0, c, c);
+        for (int64_t i = 1; i < nx; ++i) add(i, c + i - 1, c + i);
+        add(nx, c + nx - 1, c + nx - 1);
+        continue;
       }
-    });
-  }
+      // The rows of cells below and above the face row along a.
+      const int64_t at = a == 1 ? j : k, cells = a == 1 ? ny : nz;
+      const int64_t below = std::max<int64_t>(at - 1, 0), above = std::min(at, cells - 1);
+      const int64_t low = a == 1 ? nx * (below + ny * k) : nx * (j + ny * below);
+      const int64_t high = a == 1 ? nx * (above + ny * k) : nx * (j + ny * above);
+      for (int64_t i = 0; i < nx; ++i) add(i, low + i, high + i);
+    }
+  });
 }
 
 }  // namespace
@@ -46,10 +75,13 @@ void applyBuoyancy(TaskSystem& tasks, MacGrid& grid, const std::vector<double>& 
   const double g = gravity.norm();
   if (!(g > 0.0)) return;
   const Vec3 up = -gravity / g;
-  addCellForceToFaces(tasks, grid, dt, [&](size_t c, int a) {
-    return up[a] * (-p.densityBuoyancy * smokeDensity[c] +
-                    p.thermalBuoyancy * (temperature[c] - p.ambientTemperature));
-  });
+  const double* density = smokeDensity.data();
+  const double* heat = temperature.data();
+  for (int a = 0; a < 3; ++a)
+    addCellForceToFaces(tasks, grid, a, dt, [&](int64_t c) {
+      return kernels::buoyancy(up[a], p.densityBuoyancy, p.thermalBuoyancy, p.ambientTemperature, density[c],
+                               heat[c]);
+    });
 }
 
 // Each cell's velocity and |omega| are read by up to six neighbours' differences: computed once
@@ -59,54 +91,26 @@ void applyVorticityConfinement(TaskSystem& tasks, MacGrid& grid, double epsilon,
   if (!(epsilon > 0.0)) return;
   const MacGridSpec& s = grid.spec;
   const size_t cells = static_cast<size_t>(grid.cellCount());
-  work.omega.resize(cells);
+  work.omega.resize(3 * cells);
   work.omegaNorm.resize(cells);
-  work.force.resize(cells);
-  const Eigen::Vector3i n(s.nx, s.ny, s.nz);
-  const int64_t stride[3] = {1, s.nx, static_cast<int64_t>(s.nx) * s.ny};
-  // One-sided at the domain boundary: central differences over the clamped neighbours. Gives
-  // the offsets of the two cells and the distance between them (0 with one cell along a).
-  auto neighbours = [&](int i, int j, int k, int a, int64_t* lo, int64_t* hi) {
-    const int at = a == 0 ? i : a == 1 ? j : k;
-    const int below = std::max(at - 1, 0), above = std::min(at + 1, n[a] - 1);
-    *lo = (below - at) * stride[a];
-    *hi = (above - at) * stride[a];
-    return static_cast<double>(above - below) * s.h;
-  };
-  auto forEachCell = [&](const auto& body) {
-    parallelFor(tasks, static_cast<int64_t>(s.ny) * s.nz, kRowGrain, [&](int64_t begin, int64_t end) {
-      for (int64_t row = begin; row < end; ++row) {
-        const int j = static_cast<int>(row % s.ny), k = static_cast<int>(row / s.ny);
-        for (int i = 0; i < s.nx; ++i) body(i, j, k, static_cast<int64_t>(i) + s.nx * row);
-      }
-    });
-  };
-  std::vector<Eigen::Vector3d>& velocity = work.force;
-  forEachCell([&](int i, int j, int k, int64_t c) { velocity[c] = grid.cellVelocity(i, j, k); });
-  forEachCell([&](int i, int j, int k, int64_t c) {
-    Eigen::Matrix3d gradient;  // gradient(c, a) = d u_c / d x_a
-    for (int a = 0; a < 3; ++a) {
-      int64_t lo, hi;
-      const double span = neighbours(i, j, k, a, &lo, &hi);
-      gradient.col(a) =
-          span > 0.0 ? Eigen::Vector3d((velocity[c + hi] - velocity[c + lo]) / span) : Eigen::Vector3d::Zero();
-    }
-    work.omega[c] = Eigen::Vector3d(gradient(2, 1) - gradient(1, 2), gradient(0, 2) - gradient(2, 0),
-                                    gradient(1, 0) - gradient(0, 1));
-    work.omegaNorm[c] = work.omega[c].norm();
+  work.force.resize(3 * cells);
+  const kernels::CellLattice lattice = cellLattice(s);
+  const double* faces[3] = {grid.velocity[0].data(), grid.velocity[1].data(), grid.velocity[2].data()};
+  double* velocity = work.force.data();
+  double* omega = work.omega.data();
+  double* omegaNorm = work.omegaNorm.data();
+  forEachCell(tasks, s, [&](int i, int j, int k, int64_t c) {
+    kernels::cellVelocityAt(faces, s.nx, s.ny, i, j, k, velocity + 3 * c);
   });
-  forEachCell([&](int i, int j, int k, int64_t c) {
-    Eigen::Vector3d eta;
-    for (int a = 0; a < 3; ++a) {
-      int64_t lo, hi;
-      const double span = neighbours(i, j, k, a, &lo, &hi);
-      eta[a] = span > 0.0 ? (work.omegaNorm[c + hi] - work.omegaNorm[c + lo]) / span : 0.0;
-    }
-    // The small constant keeps N finite where |omega| is flat; such places get no force.
-    const Eigen::Vector3d normal = eta / (eta.norm() + 1e-12 / s.h);
-    work.force[c] = epsilon * s.h * normal.cross(work.omega[c]);
+  forEachCell(tasks, s, [&](int i, int j, int k, int64_t c) {
+    kernels::vorticityAt(lattice, velocity, i, j, k, omega + 3 * c);
+    omegaNorm[c] = kernels::norm3(omega + 3 * c);
   });
-  addCellForceToFaces(tasks, grid, dt, [&](size_t c, int a) { return work.force[c][a]; });
+  forEachCell(tasks, s, [&](int i, int j, int k, int64_t c) {
+    kernels::confinementAt(lattice, omega, omegaNorm, epsilon, i, j, k, work.force.data() + 3 * c);
+  });
+  const double* force = work.force.data();
+  for (int a = 0; a < 3; ++a) addCellForceToFaces(tasks, grid, a, dt, [&](int64_t c) { return force[3 * c + a]; });
 }
 
 void dissipate(std::vector<double>& values, double rate, double dt) {

@@ -21,10 +21,11 @@ void applyBuoyancy(TaskSystem& tasks, MacGrid& grid, const std::vector<double>& 
                    const std::vector<double>& temperature, const SmokeParameters& params, const Vec3& gravity,
                    double dt);
 
+// Per cell, vectors as 3 doubles (gpu_kernels/smoke_force_kernels.h).
 struct VorticityWorkspace {
-  std::vector<Eigen::Vector3d> omega;      // per cell
-  std::vector<double> omegaNorm;           // per cell
-  std::vector<Eigen::Vector3d> force;      // per cell; the cell-centred velocity until omega is done
+  std::vector<double> omega;
+  std::vector<double> omegaNorm;
+  std::vector<double> force;  // the cell-centred velocity until omega is done
 };
 
 void applyVorticityConfinement(TaskSystem& tasks, MacGrid& grid, double epsilon, double dt,
