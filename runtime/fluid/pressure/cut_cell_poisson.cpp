@@ -30,13 +30,6 @@ bool inside(const MacGridSpec& g, int i, int j, int k) {
 
 }  // namespace
 
-double effectiveOpenFraction(const MacGrid& grid, const FaceFractionField& fractions, int axis, int i,
-                             int j, int k) {
-  if (grid.isWallFace(axis, i, j, k)) return 0.0;
-  const double open = fractions.open[axis][grid.faceIndex(axis, i, j, k)];
-  return open < kMinOpenFraction ? 0.0 : open;
-}
-
 Status checkCutCellPoissonInputs(const MacGrid& grid, const FaceFractionField& fractions) {
   if (!sameGrid(grid.spec, fractions.grid))
     return fail(Status::InvalidArgument,

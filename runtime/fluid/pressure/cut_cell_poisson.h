@@ -87,8 +87,14 @@ constexpr double kMinOpenFraction = 1e-6;
 
 // The fraction the operator, the right-hand side and the velocity update use for a face: the
 // collider open fraction, forced to 0 on domain Wall faces and below kMinOpenFraction.
-double effectiveOpenFraction(const MacGrid& grid, const FaceFractionField& fractions, int axis, int i,
-                             int j, int k);
+// Inline: it is called per face by the operator's build, the net outflow and the velocity
+// extrapolation's marks.
+inline double effectiveOpenFraction(const MacGrid& grid, const FaceFractionField& fractions, int axis, int i, int j,
+                                    int k) {
+  if (grid.isWallFace(axis, i, j, k)) return 0.0;
+  const double open = fractions.open[axis][grid.faceIndex(axis, i, j, k)];
+  return open < kMinOpenFraction ? 0.0 : open;
+}
 
 // Builds the couplings, diagonal and fluid regions. The fractions must belong to grid.spec.
 // liquidPhi: nullptr for smoke (every cell with an open face is fluid), else the liquid level

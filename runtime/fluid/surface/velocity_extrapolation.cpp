@@ -172,31 +172,40 @@ void VelocityExtrapolationRun::nextAxis() {
   }
 }
 
+// Per face row: the wall test and the two cells' indices follow from the row (and i), so they
+// are set up once per row instead of per face.
 void VelocityExtrapolationRun::markRows(int64_t begin, int64_t end) {
   const MacGrid& grid = *grid_;
   const MacGridSpec& g = grid.spec;
   const int a = axis_;
   const Eigen::Vector3i d = grid.faceDims(a);
   const int cellsAlong = g.nx * (a == 0) + g.ny * (a == 1) + g.nz * (a == 2);
+  const int64_t cellStride = a == 0 ? 1 : a == 1 ? g.nx : static_cast<int64_t>(g.nx) * g.ny;
+  const bool wallLow = grid.side(a, false) == DomainSide::Wall, wallHigh = grid.side(a, true) == DomainSide::Wall;
+  const double* openFraction = fractions_->open[a].data();
+  const double* phi = liquidPhi_;
+  const double minSource = settings_.minSourceOpenFraction;
+  const bool intoClosed = settings_.intoClosedFaces;
   uint8_t* mark = state_->mark[a].data();
   parallelFor(*tasks_, end - begin, kRowGrain, [&](int64_t first, int64_t last) {
     for (int64_t row = begin + first; row < begin + last; ++row) {
       const int j = static_cast<int>(row % d.y()), k = static_cast<int>(row / d.y());
+      const int64_t f0 = d.x() * row;
+      // The index of cell (i, j, k), the face's high side (read only when it is inside the grid).
+      const int64_t cellRow = static_cast<int64_t>(g.nx) * (j + static_cast<int64_t>(g.ny) * k);
       for (int i = 0; i < d.x(); ++i) {
-        const size_t f = grid.faceIndex(a, i, j, k);
-        if (grid.isWallFace(a, i, j, k)) {
+        const int along = a == 0 ? i : a == 1 ? j : k;
+        const int64_t f = f0 + i;
+        if ((along == 0 && wallLow) || (along == cellsAlong && wallHigh)) {
           mark[f] = kExtrapolationFixed;
           continue;
         }
-        const double openFraction = effectiveOpenFraction(grid, *fractions_, a, i, j, k);
-        const bool open = openFraction > 0.0;
-        Eigen::Vector3i low(i, j, k);
-        low[a] -= 1;
-        const int along = low[a] + 1;
-        const bool liquid = (along > 0 && isLiquid(liquidPhi_[grid.cellIndex(low.x(), low.y(), low.z())])) ||
-                            (along < cellsAlong && isLiquid(liquidPhi_[grid.cellIndex(i, j, k)]));
-        if (open && liquid && openFraction >= settings_.minSourceOpenFraction) mark[f] = 0;
-        else if (open || settings_.intoClosedFaces) mark[f] = kExtrapolationUnreached;
+        const double fraction = openFraction[f] < kMinOpenFraction ? 0.0 : openFraction[f];
+        const bool open = fraction > 0.0;
+        const int64_t high = cellRow + i;
+        const bool liquid = (along > 0 && isLiquid(phi[high - cellStride])) || (along < cellsAlong && isLiquid(phi[high]));
+        if (open && liquid && fraction >= minSource) mark[f] = 0;
+        else if (open || intoClosed) mark[f] = kExtrapolationUnreached;
         else mark[f] = kExtrapolationFixed;
       }
     }
