@@ -13,6 +13,7 @@ namespace {
 using poisson_rows::clearOutsideSpan;
 using poisson_rows::forEachRow;
 using poisson_rows::gaussSeidelRow;
+using poisson_rows::jacobiRow;
 using poisson_rows::kCellsPerChunk;
 using poisson_rows::residualRow;
 using poisson_rows::Row;
@@ -93,17 +94,7 @@ void smoothJacobi(TaskSystem& tasks, const PoissonCoefficients<T>& op, const T* 
   T* out = fromZero ? x : scratch;  // the sweep from zero reads nothing: it may write x
   for (int sweep = 0; sweep < sweeps; ++sweep) {
     const bool first = fromZero && sweep == 0;
-    forEachRow(tasks, s, [&](int64_t j, int64_t k, int64_t c0) {
-      const Row<T> r(s, j, k, first ? nullptr : in);
-      const int64_t row = j + s.ny * k;
-      clearOutsideSpan(s, row, out + c0);
-      for (int64_t i = s.spanBegin(row), e = s.spanEnd(row); i < e; ++i) {
-        const T d = r.diagonal[i];
-        if (!(d > T(0))) out[c0 + i] = T(0);
-        else if (first) out[c0 + i] = w * b[c0 + i] / d;
-        else out[c0 + i] = r.x[i] + w * (b[c0 + i] + r.neighbourSum(i) - d * r.x[i]) / d;
-      }
-    });
+    forEachRow(tasks, s, [&](int64_t j, int64_t k, int64_t) { jacobiRow(s, j, k, b, first ? nullptr : in, out, w); });
     in = out;
     out = out == x ? scratch : x;
   }

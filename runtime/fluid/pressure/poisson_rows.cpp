@@ -54,6 +54,34 @@ VP_CLONE_INLINE inline void residualRowBody(const Stencil<T>& s, int64_t j, int6
       [&](int64_t i, T value) VP_CLONE_INLINE { o[i] = r.diagonal[i] > T(0) ? value : T(0); });
 }
 
+template <class T>
+VP_CLONE_INLINE inline void jacobiRowBody(const Stencil<T>& s, int64_t j, int64_t k, const T* b, const T* in, T* out,
+                                          T weight) {
+  const Row<T> r(s, j, k, in);
+  const int64_t row = j + s.ny * k, c0 = s.nx * row;
+  const T* br = b + c0;
+  T* o = out + c0;
+  clearOutsideSpan(s, row, o);
+  auto store = [&](int64_t i, T value) VP_CLONE_INLINE { o[i] = r.diagonal[i] > T(0) ? value : T(0); };
+  if (in == nullptr) {
+    forSpanInChunks<1, T>(
+        s.spanBegin(row), s.spanEnd(row),
+        [&](int64_t first, int64_t count, T* values) VP_CLONE_INLINE {
+          for (int64_t m = 0; m < count; ++m) values[m] = weight * br[first + m] / r.diagonal[first + m];
+        },
+        store);
+    return;
+  }
+  forSpanInChunks<1, T>(
+      s.spanBegin(row), s.spanEnd(row),
+      [&](int64_t first, int64_t count, T* values) VP_CLONE_INLINE {
+        forEachNeighbourSum<1>(r, first, count, [&](int64_t m, int64_t i, T sum) VP_CLONE_INLINE {
+          values[m] = r.x[i] + weight * (br[i] + sum - r.diagonal[i] * r.x[i]) / r.diagonal[i];
+        });
+      },
+      store);
+}
+
 // Only the colour's cells are read and written (every second cell): the other colour's cells
 // may be another slab's, being written at the same time (multigrid_smoother.cpp's fused sweep).
 // A non-fluid cell's value is a division by 0, dropped by the store.
@@ -98,6 +126,18 @@ void residualRow(const Stencil<float>& s, int64_t j, int64_t k, const float* b, 
 VP_ISA_CLONES
 void residualRow(const Stencil<double>& s, int64_t j, int64_t k, const double* b, const double* x, double* r) {
   residualRowBody(s, j, k, b, x, r);
+}
+
+VP_ISA_CLONES
+void jacobiRow(const Stencil<float>& s, int64_t j, int64_t k, const float* b, const float* in, float* out,
+               float weight) {
+  jacobiRowBody(s, j, k, b, in, out, weight);
+}
+
+VP_ISA_CLONES
+void jacobiRow(const Stencil<double>& s, int64_t j, int64_t k, const double* b, const double* in, double* out,
+               double weight) {
+  jacobiRowBody(s, j, k, b, in, out, weight);
 }
 
 VP_ISA_CLONES

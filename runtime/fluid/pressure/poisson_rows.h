@@ -65,6 +65,13 @@ void applyRow(const Stencil<double>& s, int64_t j, int64_t k, const double* x, d
 void residualRow(const Stencil<float>& s, int64_t j, int64_t k, const float* b, const float* x, float* r);
 void residualRow(const Stencil<double>& s, int64_t j, int64_t k, const double* b, const double* x, double* r);
 
+// out = in + w D^-1 (b - A in): a damped Jacobi sweep's row (in == nullptr: from in = 0, so
+// out = w D^-1 b); out must not alias in.
+void jacobiRow(const Stencil<float>& s, int64_t j, int64_t k, const float* b, const float* in, float* out,
+               float weight);
+void jacobiRow(const Stencil<double>& s, int64_t j, int64_t k, const double* b, const double* in, double* out,
+               double weight);
+
 // How a Gauss-Seidel half-sweep of a row treats x. Continue: x is the current iterate, and the
 // non-fluid cells keep their value (0). The two FromZero kinds make a sweep that starts from
 // x = 0 without x having been cleared: the first colour ignores its neighbours (they are 0) and
