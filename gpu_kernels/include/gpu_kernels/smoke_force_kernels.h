@@ -51,8 +51,8 @@ VP_HOST_DEVICE inline double buoyancy(double up, double alpha, double beta, doub
   return up * (-alpha * density + beta * (temperature - ambient));
 }
 
-// |v| of a 3-vector, summed in the order Eigen's norm() of a Vector3d sums (checked bit for
-// bit against it when these kernels replaced it).
+// |v| of a 3-vector, summed as (x^2 + y^2) + z^2: the order of Eigen's vectorized norm() of a
+// Vector3d on x86-64 (SSE2 pairs, then the third), which these kernels replaced bit for bit.
 VP_HOST_DEVICE inline double norm3(const double v[3]) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
 
 // omega = curl u at cell (i, j, k) from the cell-centred velocities.

@@ -97,7 +97,8 @@ struct ProlongationRow {
 
 // A fine cell 2I or 2I + 1 with both its coarse neighbours inside takes I and I - 1 or I + 1:
 // those cells go in pairs per coarse I, their values into a buffer (contiguous coarse loads, no
-// branch), then stored where the cell's scale is not 0 (a non-fluid cell keeps its value). The
+// branch), then stored where the cell's scale is not 0 (a cell of scale 0, non-fluid or without a fluid
+// coarse neighbour, keeps its value). The
 // few cells at the row's ends go one by one through the stencil arrays.
 template <class T>
 VP_CLONE_INLINE inline void prolongateRowBody(const ProlongationRow<T>& r) {
@@ -169,8 +170,8 @@ struct XWeights {
 };
 
 // One fine row's x gather of the restriction: out[I] = sum_t w_t(I) scale r at 2I - 1 + t. The
-// cells at the row's ends skip taps outside it; the others take all four without a branch (a
-// tap of weight 0 adds +-0 to a sum that starts at +0: the same bits).
+// cells at the row's ends skip taps outside it (and taps of weight 0); the others take all four
+// without a branch (their weights are the interior ones, none 0).
 template <class T>
 VP_CLONE_INLINE inline void restrictRowAlongXBody(const XWeights<T>& xw, const T* scale, const T* r, T* out) {
   const int64_t cx = static_cast<int64_t>(xw.all.size());

@@ -1,6 +1,8 @@
 // Row kernels of the cut-cell pressure operator (see poisson_rows.h).
 #include "fluid/pressure/poisson_rows.h"
 
+#include <limits>
+
 #include "core/isa_clones.h"
 
 namespace vp::poisson_rows {
@@ -8,6 +10,12 @@ namespace {
 
 // Cells per chunk of a row: the chunk's values live in a buffer on the stack.
 constexpr int64_t kRowChunk = 256;
+
+// The kernels divide by the diagonal in cells where it is 0 (non-fluid cells inside a span) and
+// drop the inf or NaN in the store's select: IEEE 754 arithmetic (no trapping floating-point
+// exceptions enabled), which the runtime assumes throughout.
+static_assert(std::numeric_limits<double>::is_iec559 && std::numeric_limits<float>::is_iec559,
+              "IEEE 754 floating point");
 
 // For the row's span cells first, first + kStep, ... in chunks: compute(first, count, values)
 // fills values[m] for the chunk's cells first + kStep m, then store(i, values[m]) for each.
@@ -82,9 +90,10 @@ VP_CLONE_INLINE inline void jacobiRowBody(const Stencil<T>& s, int64_t j, int64_
       store);
 }
 
-// Only the colour's cells are read and written (every second cell): the other colour's cells
-// may be another slab's, being written at the same time (multigrid_smoother.cpp's fused sweep).
-// A non-fluid cell's value is a division by 0, dropped by the store.
+// Only the colour's cells are computed and stored (every second cell); what they read is the
+// other colour, which the fused sweep's schedule (multigrid_smoother.cpp) never writes while
+// this half-sweep runs. Computing every cell and dropping half would read cells that another
+// slab may be writing at that moment.
 template <class T>
 VP_CLONE_INLINE inline void gaussSeidelRowBody(const Stencil<T>& s, int64_t j, int64_t k, const T* b, T* x,
                                                       int colour, SweepStart start) {

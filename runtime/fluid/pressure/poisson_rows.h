@@ -54,9 +54,10 @@ VP_CLONE_INLINE inline void forEachNeighbourSum(const Row<T>& row, int64_t first
 
 // Row kernels (poisson_rows.cpp), each over the cells of row (j, k) of a level. Each computes
 // its values over chunks of the row's span (a sweep: its colour's cells only) into a local
-// buffer, in a loop without branches, then stores them: the operator's value on the fluid cells (diagonal > 0), 0 (or, for a sweep, the
-// old value) on the others. Both loops vectorize (the stores' selects need AVX2 or better, which
-// VP_ISA_CLONES provides).
+// buffer, in a loop without branches, then stores them: the operator's value on the fluid cells
+// (diagonal > 0), 0 on the others (a Continue sweep stores their old value back). Written so
+// that both loops vectorize; GCC 12 does so in the VP_ISA_CLONES builds (the stores' selects
+// need AVX2 or better; the baseline clone vectorizes the first loop only).
 
 // out = A x: the CG's operator.
 void applyRow(const Stencil<double>& s, int64_t j, int64_t k, const double* x, double* out);
@@ -73,7 +74,7 @@ void jacobiRow(const Stencil<double>& s, int64_t j, int64_t k, const double* b, 
                double weight);
 
 // How a Gauss-Seidel half-sweep of a row treats x. Continue: x is the current iterate, and the
-// non-fluid cells keep their value (0). The two FromZero kinds make a sweep that starts from
+// non-fluid cells keep their value (0; it is stored back). The two FromZero kinds make a sweep that starts from
 // x = 0 without x having been cleared: the first colour ignores its neighbours (they are 0) and
 // clears the row outside its span; both colours write every cell of theirs, non-fluid ones 0.
 enum class SweepStart { Continue, FromZeroFirstColour, FromZeroSecondColour };

@@ -200,7 +200,8 @@ void VelocityExtrapolationRun::markRows(int64_t begin, int64_t end) {
           mark[f] = kExtrapolationFixed;
           continue;
         }
-        const double fraction = openFraction[f] < kMinOpenFraction ? 0.0 : openFraction[f];
+        // effectiveOpenFraction, with the wall test above done per row.
+        const double fraction = openAboveSliver(openFraction[f]);
         const bool open = fraction > 0.0;
         const int64_t high = cellRow + i;
         const bool liquid = (along > 0 && isLiquid(phi[high - cellStride])) || (along < cellsAlong && isLiquid(phi[high]));
