@@ -118,7 +118,8 @@ TEST(FluidPoissonRows, OperatorAndResidualRowsEqualTheCellFormulas) {
     const Level<double> ld = randomLevel<double>(nx, ny, nz, spans, seed);
     const Level<float> lf = randomLevel<float>(nx, ny, nz, spans, seed);
     const std::vector<double> xd = randomValues<double>(ld.cells(), seed + 100);
-    const std::vector<float> xf = randomValues<float>(lf.cells(), seed + 200), bf = randomValues<float>(lf.cells(), seed + 300);
+    const std::vector<float> xf = randomValues<float>(lf.cells(), seed + 200);
+    const std::vector<float> bf = randomValues<float>(lf.cells(), seed + 300);
     std::vector<double> apply(static_cast<size_t>(ld.cells()), 7.0), applyExpected(apply.size());
     std::vector<float> residual(static_cast<size_t>(lf.cells()), 7.0f), residualExpected(residual.size());
     const Stencil<double> sd(ld.op);
@@ -144,14 +145,16 @@ TEST(FluidPoissonRows, GaussSeidelAndJacobiRowsEqualTheCellFormulas) {
   forEachCase([](int nx, int ny, int nz, bool spans, uint32_t seed) {
     const Level<float> l = randomLevel<float>(nx, ny, nz, spans, seed);
     const Stencil<float> s(l.op);
-    const std::vector<float> b = randomValues<float>(l.cells(), seed + 400), x0 = randomValues<float>(l.cells(), seed + 500);
+    const std::vector<float> b = randomValues<float>(l.cells(), seed + 400);
+    const std::vector<float> x0 = randomValues<float>(l.cells(), seed + 500);
     auto spanOf = [&](int j, int k, int* first, int* last) {
       const int64_t row = j + static_cast<int64_t>(ny) * k;
       *first = static_cast<int>(s.spanBegin(row));
       *last = static_cast<int>(s.spanEnd(row));
     };
     for (int colour = 0; colour < 2; ++colour)
-      for (SweepStart start : {SweepStart::Continue, SweepStart::FromZeroFirstColour, SweepStart::FromZeroSecondColour}) {
+      for (SweepStart start :
+           {SweepStart::Continue, SweepStart::FromZeroFirstColour, SweepStart::FromZeroSecondColour}) {
         SCOPED_TRACE(::testing::Message() << "colour " << colour << " start " << static_cast<int>(start));
         // One half-sweep row by row: each colour cell reads only the other colour, so the
         // reference may read the old values throughout.

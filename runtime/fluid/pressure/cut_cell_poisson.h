@@ -85,16 +85,15 @@ struct CutCellPoisson : PoissonCoefficients<double> {
 // any opening that carries a meaningful flux.
 constexpr double kMinOpenFraction = 1e-6;
 
-// A collider open fraction with slivers (below kMinOpenFraction) closed.
-inline double openAboveSliver(double open) { return open < kMinOpenFraction ? 0.0 : open; }
-
 // The fraction the operator, the right-hand side and the velocity update use for a face: the
 // collider open fraction, forced to 0 on domain Wall faces and below kMinOpenFraction.
-// Inline: the operator's build and the net outflow call it per face.
+// Inline: the operator's build, the net outflow and the velocity extrapolation's marks call it
+// per face.
 inline double effectiveOpenFraction(const MacGrid& grid, const FaceFractionField& fractions, int axis, int i, int j,
                                     int k) {
   if (grid.isWallFace(axis, i, j, k)) return 0.0;
-  return openAboveSliver(fractions.open[axis][grid.faceIndex(axis, i, j, k)]);
+  const double open = fractions.open[axis][grid.faceIndex(axis, i, j, k)];
+  return open < kMinOpenFraction ? 0.0 : open;
 }
 
 // Builds the couplings, diagonal and fluid regions. The fractions must belong to grid.spec.

@@ -10,7 +10,6 @@
 namespace vp {
 namespace {
 
-using poisson_rows::clearOutsideSpan;
 using poisson_rows::forEachRow;
 using poisson_rows::gaussSeidelRow;
 using poisson_rows::jacobiRow;

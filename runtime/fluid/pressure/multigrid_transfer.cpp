@@ -97,9 +97,9 @@ struct ProlongationRow {
 
 // A fine cell 2I or 2I + 1 with both its coarse neighbours inside takes I and I - 1 or I + 1:
 // those cells go in pairs per coarse I, their values into a buffer (contiguous coarse loads, no
-// branch), then stored where the cell's scale is not 0 (a cell of scale 0, non-fluid or without a fluid
-// coarse neighbour, keeps its value). The
-// few cells at the row's ends go one by one through the stencil arrays.
+// branch), then stored where the cell's scale is not 0 (a cell of scale 0, non-fluid or without
+// a fluid coarse neighbour, keeps its value). The few cells at the row's ends go one by one
+// through the stencil arrays.
 template <class T>
 VP_CLONE_INLINE inline void prolongateRowBody(const ProlongationRow<T>& r) {
   constexpr int64_t kPairs = 128;

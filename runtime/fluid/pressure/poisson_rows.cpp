@@ -20,8 +20,7 @@ static_assert(std::numeric_limits<double>::is_iec559 && std::numeric_limits<floa
 // For the row's span cells first, first + kStep, ... in chunks: compute(first, count, values)
 // fills values[m] for the chunk's cells first + kStep m, then store(i, values[m]) for each.
 template <int64_t kStep, class T, class Compute, class Store>
-VP_CLONE_INLINE inline void forSpanInChunks(int64_t first, int64_t end, const Compute& compute,
-                                                   const Store& store) {
+VP_CLONE_INLINE inline void forSpanInChunks(int64_t first, int64_t end, const Compute& compute, const Store& store) {
   T values[kRowChunk];
   for (int64_t begin = first; begin < end; begin += kStep * kRowChunk) {
     const int64_t count = std::min(kRowChunk, (end - begin + kStep - 1) / kStep);
@@ -30,64 +29,61 @@ VP_CLONE_INLINE inline void forSpanInChunks(int64_t first, int64_t end, const Co
   }
 }
 
+// A chunk's computation for forSpanInChunks: values[m] = value(i, the neighbour sum of cell i)
+// for its cells i = first + kStep m.
+template <int64_t kStep, class T, class Value>
+VP_CLONE_INLINE inline auto fromNeighbourSums(const Row<T>& r, const Value& value) {
+  return [&r, value](int64_t first, int64_t count, T* values) VP_CLONE_INLINE {
+    forEachNeighbourSum<kStep>(r, first, count,
+                               [&](int64_t m, int64_t i, T sum) VP_CLONE_INLINE { values[m] = value(i, sum); });
+  };
+}
+
+// Row `row` of `out`: compute's values on its fluid cells, 0 on its other cells (outside its
+// span too).
+template <class T, class Compute>
+VP_CLONE_INLINE inline void storeFluidRow(const Stencil<T>& s, const Row<T>& r, int64_t row, T* out,
+                                          const Compute& compute) {
+  T* o = out + s.nx * row;
+  clearOutsideSpan(s, row, o);
+  forSpanInChunks<1, T>(s.spanBegin(row), s.spanEnd(row), compute,
+                        [&](int64_t i, T value) VP_CLONE_INLINE { o[i] = r.diagonal[i] > T(0) ? value : T(0); });
+}
+
 template <class T>
 VP_CLONE_INLINE inline void applyRowBody(const Stencil<T>& s, int64_t j, int64_t k, const T* x, T* out) {
   const Row<T> r(s, j, k, x);
-  const int64_t row = j + s.ny * k;
-  T* o = out + s.nx * row;
-  clearOutsideSpan(s, row, o);
-  forSpanInChunks<1, T>(
-      s.spanBegin(row), s.spanEnd(row),
-      [&](int64_t first, int64_t count, T* values) VP_CLONE_INLINE {
-        forEachNeighbourSum<1>(r, first, count,
-                               [&](int64_t m, int64_t i, T sum) VP_CLONE_INLINE { values[m] = r.diagonal[i] * r.x[i] - sum; });
-      },
-      [&](int64_t i, T value) VP_CLONE_INLINE { o[i] = r.diagonal[i] > T(0) ? value : T(0); });
+  storeFluidRow(s, r, j + s.ny * k, out, fromNeighbourSums<1>(r, [&r](int64_t i, T sum) VP_CLONE_INLINE {
+                  return r.diagonal[i] * r.x[i] - sum;
+                }));
 }
 
 template <class T>
 VP_CLONE_INLINE inline void residualRowBody(const Stencil<T>& s, int64_t j, int64_t k, const T* b, const T* x,
-                                                   T* residual) {
+                                            T* residual) {
   const Row<T> r(s, j, k, x);
-  const int64_t row = j + s.ny * k, c0 = s.nx * row;
-  const T* br = b + c0;
-  T* o = residual + c0;
-  clearOutsideSpan(s, row, o);
-  forSpanInChunks<1, T>(
-      s.spanBegin(row), s.spanEnd(row),
-      [&](int64_t first, int64_t count, T* values) VP_CLONE_INLINE {
-        forEachNeighbourSum<1>(
-            r, first, count, [&](int64_t m, int64_t i, T sum) VP_CLONE_INLINE { values[m] = br[i] + sum - r.diagonal[i] * r.x[i]; });
-      },
-      [&](int64_t i, T value) VP_CLONE_INLINE { o[i] = r.diagonal[i] > T(0) ? value : T(0); });
+  const int64_t row = j + s.ny * k;
+  const T* br = b + s.nx * row;
+  storeFluidRow(s, r, row, residual, fromNeighbourSums<1>(r, [&r, br](int64_t i, T sum) VP_CLONE_INLINE {
+                  return br[i] + sum - r.diagonal[i] * r.x[i];
+                }));
 }
 
 template <class T>
 VP_CLONE_INLINE inline void jacobiRowBody(const Stencil<T>& s, int64_t j, int64_t k, const T* b, const T* in, T* out,
                                           T weight) {
   const Row<T> r(s, j, k, in);
-  const int64_t row = j + s.ny * k, c0 = s.nx * row;
-  const T* br = b + c0;
-  T* o = out + c0;
-  clearOutsideSpan(s, row, o);
-  auto store = [&](int64_t i, T value) VP_CLONE_INLINE { o[i] = r.diagonal[i] > T(0) ? value : T(0); };
+  const int64_t row = j + s.ny * k;
+  const T* br = b + s.nx * row;
   if (in == nullptr) {
-    forSpanInChunks<1, T>(
-        s.spanBegin(row), s.spanEnd(row),
-        [&](int64_t first, int64_t count, T* values) VP_CLONE_INLINE {
-          for (int64_t m = 0; m < count; ++m) values[m] = weight * br[first + m] / r.diagonal[first + m];
-        },
-        store);
+    storeFluidRow(s, r, row, out, [&](int64_t first, int64_t count, T* values) VP_CLONE_INLINE {
+      for (int64_t m = 0; m < count; ++m) values[m] = weight * br[first + m] / r.diagonal[first + m];
+    });
     return;
   }
-  forSpanInChunks<1, T>(
-      s.spanBegin(row), s.spanEnd(row),
-      [&](int64_t first, int64_t count, T* values) VP_CLONE_INLINE {
-        forEachNeighbourSum<1>(r, first, count, [&](int64_t m, int64_t i, T sum) VP_CLONE_INLINE {
-          values[m] = r.x[i] + weight * (br[i] + sum - r.diagonal[i] * r.x[i]) / r.diagonal[i];
-        });
-      },
-      store);
+  storeFluidRow(s, r, row, out, fromNeighbourSums<1>(r, [&r, br, weight](int64_t i, T sum) VP_CLONE_INLINE {
+                  return r.x[i] + weight * (br[i] + sum - r.diagonal[i] * r.x[i]) / r.diagonal[i];
+                }));
 }
 
 // Only the colour's cells are computed and stored (every second cell); what they read is the
@@ -96,7 +92,7 @@ VP_CLONE_INLINE inline void jacobiRowBody(const Stencil<T>& s, int64_t j, int64_
 // slab may be writing at that moment.
 template <class T>
 VP_CLONE_INLINE inline void gaussSeidelRowBody(const Stencil<T>& s, int64_t j, int64_t k, const T* b, T* x,
-                                                      int colour, SweepStart start) {
+                                               int colour, SweepStart start) {
   const Row<T> r(s, j, k, x);
   const int64_t row = j + s.ny * k, c0 = s.nx * row;
   const T* br = b + c0;
@@ -104,10 +100,8 @@ VP_CLONE_INLINE inline void gaussSeidelRowBody(const Stencil<T>& s, int64_t j, i
   const int64_t begin = s.spanBegin(row), end = s.spanEnd(row);
   const int64_t first = begin + ((begin + j + k + colour) & 1);
   if (start == SweepStart::FromZeroFirstColour) clearOutsideSpan(s, row, xr);
-  auto fromNeighbours = [&](int64_t from, int64_t count, T* values) VP_CLONE_INLINE {
-    forEachNeighbourSum<2>(r, from, count,
-                           [&](int64_t m, int64_t i, T sum) VP_CLONE_INLINE { values[m] = (br[i] + sum) / r.diagonal[i]; });
-  };
+  const auto fromNeighbours = fromNeighbourSums<2>(
+      r, [&r, br](int64_t i, T sum) VP_CLONE_INLINE { return (br[i] + sum) / r.diagonal[i]; });
   auto alone = [&](int64_t from, int64_t count, T* values) VP_CLONE_INLINE {
     for (int64_t m = 0; m < count; ++m) values[m] = (br[from + 2 * m] + T(0)) / r.diagonal[from + 2 * m];
   };

@@ -74,9 +74,10 @@ void jacobiRow(const Stencil<double>& s, int64_t j, int64_t k, const double* b, 
                double weight);
 
 // How a Gauss-Seidel half-sweep of a row treats x. Continue: x is the current iterate, and the
-// non-fluid cells keep their value (0; it is stored back). The two FromZero kinds make a sweep that starts from
-// x = 0 without x having been cleared: the first colour ignores its neighbours (they are 0) and
-// clears the row outside its span; both colours write every cell of theirs, non-fluid ones 0.
+// non-fluid cells keep their value (0; it is stored back). The two FromZero kinds make a sweep
+// that starts from x = 0 without x having been cleared: the first colour ignores its neighbours
+// (they are 0) and clears the row outside its span; both colours write every cell of theirs,
+// non-fluid ones 0.
 enum class SweepStart { Continue, FromZeroFirstColour, FromZeroSecondColour };
 
 // x_i = (b_i + sum_f A_f x_nb) / A_ii on the fluid cells of one colour, (i + j + k + colour)

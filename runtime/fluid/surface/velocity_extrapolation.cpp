@@ -172,8 +172,7 @@ void VelocityExtrapolationRun::nextAxis() {
   }
 }
 
-// Per face row: the wall test and the two cells' indices follow from the row (and i), so they
-// are set up once per row instead of per face.
+// The two cells' indices follow from the row and i, so they are set up once per row.
 void VelocityExtrapolationRun::markRows(int64_t begin, int64_t end) {
   const MacGrid& grid = *grid_;
   const MacGridSpec& g = grid.spec;
@@ -181,8 +180,6 @@ void VelocityExtrapolationRun::markRows(int64_t begin, int64_t end) {
   const Eigen::Vector3i d = grid.faceDims(a);
   const int cellsAlong = g.nx * (a == 0) + g.ny * (a == 1) + g.nz * (a == 2);
   const int64_t cellStride = a == 0 ? 1 : a == 1 ? g.nx : static_cast<int64_t>(g.nx) * g.ny;
-  const bool wallLow = grid.side(a, false) == DomainSide::Wall, wallHigh = grid.side(a, true) == DomainSide::Wall;
-  const double* openFraction = fractions_->open[a].data();
   const double* phi = liquidPhi_;
   const double minSource = settings_.minSourceOpenFraction;
   const bool intoClosed = settings_.intoClosedFaces;
@@ -196,15 +193,15 @@ void VelocityExtrapolationRun::markRows(int64_t begin, int64_t end) {
       for (int i = 0; i < d.x(); ++i) {
         const int along = a == 0 ? i : a == 1 ? j : k;
         const int64_t f = f0 + i;
-        if ((along == 0 && wallLow) || (along == cellsAlong && wallHigh)) {
+        if (grid.isWallFace(a, i, j, k)) {
           mark[f] = kExtrapolationFixed;
           continue;
         }
-        // effectiveOpenFraction, with the wall test above done per row.
-        const double fraction = openAboveSliver(openFraction[f]);
+        const double fraction = effectiveOpenFraction(grid, *fractions_, a, i, j, k);
         const bool open = fraction > 0.0;
         const int64_t high = cellRow + i;
-        const bool liquid = (along > 0 && isLiquid(phi[high - cellStride])) || (along < cellsAlong && isLiquid(phi[high]));
+        const bool liquid =
+            (along > 0 && isLiquid(phi[high - cellStride])) || (along < cellsAlong && isLiquid(phi[high]));
         if (open && liquid && fraction >= minSource) mark[f] = 0;
         else if (open || intoClosed) mark[f] = kExtrapolationUnreached;
         else mark[f] = kExtrapolationFixed;
