@@ -57,9 +57,11 @@ struct FluidSolverSettings {
   double pressureTolerance = 1e-4;  // relative residual of the pressure solve
   int pressureMaxIterations = 200;
   // Samples one slice of a grid pass covers at most (fluid_actor.h; under a budget the slabs
-  // shrink from it on a slower machine, core/slice_sizer.h): large enough that the per-slice
-  // dispatch is negligible. Not in the C ABI; tests lower it to split small grids.
-  int64_t samplesPerSlice = int64_t(1) << 14;
+  // grow toward it only while slices stay well under the target slice length,
+  // core/slice_sizer.h): large enough that the per-slice dispatch and the workers' wait at
+  // each slab's end are negligible in an unbudgeted step of a large grid (README: fluid steps).
+  // Not in the C ABI; tests lower it to split small grids.
+  int64_t samplesPerSlice = int64_t(1) << 17;
 };
 
 struct FluidDesc {
