@@ -191,12 +191,32 @@ void forEachCellFace(const MacGridSpec& g, int64_t c, const Visit& visit) {
 
 }  // namespace
 
+namespace {
+
+// The diagonal less the couplings of the cell's faces in the order -x, +x, -y, +y, -z, +z, where
+// that is more than round-off of a fluid cell's diagonal.
+inline double dirichletRemainder(double diag, const double couplings[6]) {
+  const double rest = diag - couplings[0] - couplings[1] - couplings[2] - couplings[3] - couplings[4] - couplings[5];
+  return (diag > 0.0) & (rest > 1e-12 * diag) ? rest : 0.0;
+}
+
+}  // namespace
+
 double dirichletPart(const CutCellPoisson& op, int64_t cell) {
-  const double diag = op.diagonal[static_cast<size_t>(cell)];
-  if (!(diag > 0.0)) return 0.0;
-  double rest = diag;
-  forEachCellFace(op.grid, cell, [&](int a, int64_t face, int64_t) { rest -= op.coupling[a][static_cast<size_t>(face)]; });
-  return rest > 1e-12 * diag ? rest : 0.0;
+  double couplings[6];
+  int f = 0;
+  forEachCellFace(op.grid, cell,
+                  [&](int a, int64_t face, int64_t) { couplings[f++] = op.coupling[a][static_cast<size_t>(face)]; });
+  return dirichletRemainder(op.diagonal[static_cast<size_t>(cell)], couplings);
+}
+
+void dirichletPartsOfRow(const CutCellPoisson& op, int64_t row, double* parts) {
+  const poisson_rows::Stencil<double> s(op);
+  const poisson_rows::Row<double> r(s, row % s.ny, row / s.ny, nullptr);
+  for (int64_t i = 0; i < s.nx; ++i) {
+    const double couplings[6] = {r.cu[i], r.cu[i + 1], r.cvLow[i], r.cvHigh[i], r.cwLow[i], r.cwHigh[i]};
+    parts[i] = dirichletRemainder(r.diagonal[i], couplings);
+  }
 }
 
 namespace {

@@ -120,6 +120,8 @@ void appendBuildCutCellPoisson(const MacGrid& grid, const FaceFractionField& fra
 // faces); 0 on non-fluid cells and where the difference is round-off (below 1e-12 of the
 // diagonal).
 double dirichletPart(const CutCellPoisson& op, int64_t cell);
+// The same for every cell of grid row `row` (j + ny k): parts[i], i = 0 .. nx - 1.
+void dirichletPartsOfRow(const CutCellPoisson& op, int64_t row, double* parts);
 
 // Fills op->region, regionFloating, regionCellCount and fluidCellCount from the couplings and
 // diagonal: a region is a set of fluid cells (diagonal > 0) connected through positive

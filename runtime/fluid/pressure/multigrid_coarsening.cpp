@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "core/isa_clones.h"
 #include "core/parallel_for.h"
 #include "fluid/surface/free_surface.h"
 
@@ -80,39 +81,81 @@ void addCellPass(SlabPasses* passes, const Dims& d, int64_t samplesPerCell, Visi
 // faces (the slanted plate, 1-3 fine cells thick) leak on the coarse levels, which then couple
 // both of its sides: iterations to 1e-6 on the plate tank at 64/128/192^3 fell from 11/12/13 to
 // 8/8/11 with the series rule (liquid tank 10/11/11 -> 7/7/11).
+// Coarse faces per chunk of a row in addColumnConductances (its terms live on the stack).
+constexpr int64_t kFaceChunk = 128;
+
+// Adds one fine column's conductance to sum[I] for the coarse faces I in [I0, I1) of a row:
+// coarse face I's shared fine face is in[first + 2 I], the faces behind it inner[... - along]
+// and, when behindHigh, inner[... + along] (otherwise the coarse cell on the high side has one
+// child along the axis, so the column ends at the shared face). A column with a closed face
+// adds nothing. The terms are computed for every face and then added where the column is
+// open, so both loops vectorize; a sum gains the same terms in the same order as face by face.
+VP_ISA_CLONES
+void addColumnConductances(const double* in, const double* inner, int64_t first, int64_t along, bool behindHigh,
+                           int64_t I0, int64_t I1, double* sum) {
+  double term[kFaceChunk];
+  for (int64_t c0 = I0; c0 < I1; c0 += kFaceChunk) {
+    const int64_t n = std::min(kFaceChunk, I1 - c0);
+    const double* shared = in + first + 2 * c0;
+    const double* low = inner + first + 2 * c0 - along;
+    double* out = sum + c0;
+    if (behindHigh) {
+      const double* high = low + 2 * along;
+      for (int64_t m = 0; m < n; ++m)
+        term[m] = 2.0 / (0.5 / low[2 * m] + 1.0 / shared[2 * m] + 0.5 / high[2 * m]);
+      for (int64_t m = 0; m < n; ++m)
+        out[m] += (shared[2 * m] > 0.0) & (low[2 * m] > 0.0) & (high[2 * m] > 0.0) ? term[m] : 0.0;
+    } else {
+      for (int64_t m = 0; m < n; ++m) term[m] = 1.5 / (0.5 / low[2 * m] + 1.0 / shared[2 * m]);
+      for (int64_t m = 0; m < n; ++m) out[m] += (shared[2 * m] > 0.0) & (low[2 * m] > 0.0) ? term[m] : 0.0;
+    }
+  }
+}
+
+// One row of coarse faces of axis a (the lattice row of faces I = 0 .. count - 1 at (C1, C2),
+// output out[I]): the fine columns in the order e2 outer, b2 inner of the axes after a.
+void coarseFaceRow(const Dims& f, const Dims& c, int a, int64_t C1, int64_t C2, int64_t count, const double* in,
+                   const double* inner, double* out) {
+  for (int64_t I = 0; I < count; ++I) out[I] = 0.0;
+  const int64_t nxFaces = f.nx + (a == 0);
+  if (a == 0) {
+    // Interior faces 1 .. c.nx - 1; the last has no face behind on its high side when the fine
+    // count is odd.
+    const int64_t last = c.nx - 1;
+    const bool lastBehindHigh = 2 * last + 1 < f.nx;
+    for (int64_t z = 2 * C2; z < 2 * C2 + 2 && z < f.nz; ++z)
+      for (int64_t y = 2 * C1; y < 2 * C1 + 2 && y < f.ny; ++y) {
+        const int64_t first = nxFaces * (y + f.ny * z);
+        addColumnConductances(in, inner, first, 1, true, 1, lastBehindHigh ? last + 1 : last, out);
+        if (!lastBehindHigh && last >= 1) addColumnConductances(in, inner, first, 1, false, last, last + 1, out);
+      }
+  } else {
+    const int64_t along = a == 1 ? f.nx : f.nx * f.ny;
+    const int64_t C = a == 1 ? C1 : C2;  // the coarse face's index along a
+    if (C == 0 || C == c.along(a)) return;
+    const bool behindHigh = 2 * C + 1 < f.along(a);
+    // a = 1: columns over x (outer) then z; a = 2: over y (outer) then x.
+    for (int outer = 0; outer < 2; ++outer)
+      for (int inner2 = 0; inner2 < 2; ++inner2) {
+        const int64_t dx = a == 1 ? outer : inner2;
+        const int64_t other = (a == 1 ? 2 * C2 : 2 * C1) + (a == 1 ? inner2 : outer);  // z (a = 1) or y (a = 2)
+        if (other >= (a == 1 ? f.nz : f.ny)) continue;
+        const int64_t first = a == 1 ? dx + f.nx * (2 * C + (f.ny + 1) * other) : dx + f.nx * (other + f.ny * 2 * C);
+        // Coarse faces whose fine column 2 I + dx exists.
+        addColumnConductances(in, inner, first, along, behindHigh, 0, std::min(count, (f.nx - dx + 1) / 2), out);
+      }
+  }
+  for (int64_t I = 0; I < count; ++I) out[I] *= 0.5;
+}
+
 void addCoarseFacePass(SlabPasses* passes, const Dims& f, const Dims& c, int a, const std::vector<double>* in,
                        const std::vector<double>* inner, std::vector<double>* out) {
-  const int b = (a + 1) % 3, e = (a + 2) % 3;
-  // Neighbouring faces along a are `stride` apart in every face layout.
-  const int64_t stride = a == 0 ? 1 : a == 1 ? f.nx : f.nx * f.ny;
   // The pass runs over the coarse face lattice, so it writes every face (0 on the domain's).
   const int64_t faces[3] = {c.nx + (a == 0), c.ny + (a == 1), c.nz + (a == 2)};
   passes->addParallel(faces[1] * faces[2], faces[0] * kChildren, kRowGrain, [=](int64_t begin, int64_t end) {
-    const int64_t fineB = f.along(b), fineE = f.along(e);
     for (int64_t row = begin; row < end; ++row)
-      for (int64_t I = 0; I < faces[0]; ++I) {
-        const int64_t C[3] = {I, row % faces[1], row / faces[1]};
-        double& value = (*out)[static_cast<size_t>(c.face(a, C[0], C[1], C[2]))];
-        value = 0.0;
-        if (C[a] == 0 || C[a] == c.along(a)) continue;
-        // 2I + 1 is the domain face when the coarse cell has one child along a.
-        const bool behindHigh = 2 * C[a] + 1 < f.along(a);
-        double sum = 0.0;
-        for (int64_t e2 = 2 * C[e]; e2 < 2 * C[e] + 2 && e2 < fineE; ++e2)
-          for (int64_t b2 = 2 * C[b]; b2 < 2 * C[b] + 2 && b2 < fineB; ++b2) {
-            int64_t x[3];
-            x[a] = 2 * C[a];
-            x[b] = b2;
-            x[e] = e2;
-            const int64_t face = f.face(a, x[0], x[1], x[2]);
-            const double shared = (*in)[static_cast<size_t>(face)];
-            const double low = (*inner)[static_cast<size_t>(face - stride)];
-            const double high = behindHigh ? (*inner)[static_cast<size_t>(face + stride)] : 1.0;
-            if (!(shared > 0.0 && low > 0.0 && high > 0.0)) continue;
-            sum += behindHigh ? 2.0 / (0.5 / low + 1.0 / shared + 0.5 / high) : 1.5 / (0.5 / low + 1.0 / shared);
-          }
-        value = 0.5 * sum;
-      }
+      coarseFaceRow(f, c, a, row % faces[1], row / faces[1], faces[0], in->data(), inner->data(),
+                    out->data() + faces[0] * row);
   });
 }
 
@@ -176,6 +219,37 @@ void addCoarseFreeSurfacePasses(SlabPasses* passes, const CutCellPoisson* fine, 
   });
 }
 
+// The Dirichlet parts of coarse rows [begin, end): the halved sum of the children's, less their
+// free-surface parts (placed again at this level's spacing by the free-surface passes, whose
+// result is added), summed in forEachChild's order.
+void coarseDirichletRows(const CutCellPoisson& fine, const Dims& f, const Dims& c, bool freeSurface,
+                         const CutCellPoisson& coarse, int64_t begin, int64_t end, double* dirichlet) {
+  std::vector<double> parts(static_cast<size_t>(4 * f.nx));
+  for (int64_t row = begin; row < end; ++row) {
+    const int64_t J = row % c.ny, K = row / c.ny;
+    int childRows = 0;
+    for (int64_t k = 2 * K; k < 2 * K + 2 && k < f.nz; ++k)
+      for (int64_t j = 2 * J; j < 2 * J + 2 && j < f.ny; ++j, ++childRows) {
+        const int64_t fineRow = j + f.ny * k;
+        double* p = parts.data() + f.nx * childRows;
+        dirichletPartsOfRow(fine, fineRow, p);
+        if (!freeSurface) continue;
+        const double* surface = fine.surfaceDirichlet.data() + f.nx * fineRow;
+        for (int64_t i = 0; i < f.nx; ++i) p[i] = std::max(0.0, p[i] - surface[i]);
+      }
+    for (int64_t I = 0; I < c.nx; ++I) {
+      double sum = 0.0;
+      for (int r = 0; r < childRows; ++r) {
+        const double* p = parts.data() + f.nx * r;
+        sum += p[2 * I];
+        if (2 * I + 1 < f.nx) sum += p[2 * I + 1];
+      }
+      const int64_t cell = c.cell(I, J, K);
+      dirichlet[cell] = 0.5 * sum + (freeSurface ? coarse.surfaceDirichlet[static_cast<size_t>(cell)] : 0.0);
+    }
+  }
+}
+
 // The last passes of either coarsening: the diagonal from the couplings and scratch->dirichlet,
 // then the regions and row spans.
 void addCoarseDiagonalPasses(SlabPasses* passes, const Dims& c, CutCellPoisson* coarse, CoarseningScratch* scratch) {
@@ -234,17 +308,8 @@ void appendCoarsenCutCell(const CutCellPoisson& fine, CutCellPoisson* coarse, Co
       if (freeSurface) addCoarseFacePass(passes, f, c, a, open, open, &coarse->openFraction[a]);
     }
     if (freeSurface) addCoarseFreeSurfacePasses(passes, fp, f, c, coarse, &scratch->fluid);
-    addCellPass(passes, c, kChildren, [=](int64_t I, int64_t J, int64_t K) {
-      double sum = 0.0;
-      // The free-surface part is placed again at this level's spacing (its passes above).
-      forEachChild(f, I, J, K, [&](int64_t child) {
-        const double part = dirichletPart(*fp, child);
-        sum += freeSurface ? std::max(0.0, part - fp->surfaceDirichlet[static_cast<size_t>(child)]) : part;
-      });
-      const size_t cell = static_cast<size_t>(c.cell(I, J, K));
-      double dirichlet = 0.5 * sum;
-      if (freeSurface) dirichlet += coarse->surfaceDirichlet[cell];
-      scratch->dirichlet[cell] = dirichlet;
+    passes->addParallel(c.ny * c.nz, c.nx * kChildren, kRowGrain, [=](int64_t begin, int64_t end) {
+      coarseDirichletRows(*fp, f, c, freeSurface, *coarse, begin, end, scratch->dirichlet.data());
     });
     addCoarseDiagonalPasses(passes, c, coarse, scratch);
   });
