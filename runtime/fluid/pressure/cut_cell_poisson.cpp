@@ -24,6 +24,15 @@ void forEachFace(int i, int j, int k, const Visit& visit) {
   visit(2, true, i, j, k + 1, i, j, k + 1);
 }
 
+// (i, j, k) of the cell after (i, j, k) in cell order.
+void nextCell(const MacGridSpec& g, int* i, int* j, int* k) {
+  if (++*i < g.nx) return;
+  *i = 0;
+  if (++*j < g.ny) return;
+  *j = 0;
+  ++*k;
+}
+
 bool inside(const MacGridSpec& g, int i, int j, int k) {
   return i >= 0 && j >= 0 && k >= 0 && i < g.nx && j < g.ny && k < g.nz;
 }
@@ -66,26 +75,32 @@ namespace {
 void buildCouplingRows(const MacGrid& grid, const FaceFractionField& fractions, const double* liquidPhi, int a,
                        int64_t begin, int64_t end, CutCellPoisson* op) {
   const Eigen::Vector3i d = grid.faceDims(a);
-  std::vector<double>& c = op->coupling[a];
+  const int64_t nx = grid.spec.nx, ny = grid.spec.ny;
+  // Cell index step along a: the face's high cell is (i, j, k), its low cell that less the step.
+  const int64_t step = a == 0 ? 1 : a == 1 ? nx : nx * ny;
+  double* coupling = op->coupling[a].data();
+  double* openFraction = liquidPhi != nullptr ? op->openFraction[a].data() : nullptr;
+  const double* fraction = fractions.open[a].data();
   for (int64_t row = begin; row < end; ++row) {
-    const int j = static_cast<int>(row % d.y()), k = static_cast<int>(row / d.y());
-    for (int i = 0; i < d.x(); ++i) {
-      const int along = a == 0 ? i : a == 1 ? j : k;
-      const size_t face = grid.faceIndex(a, i, j, k);
-      c[face] = 0.0;
-      if (liquidPhi != nullptr) op->openFraction[a][face] = 0.0;
-      if (along == 0 || along == d[a] - 1) continue;
-      const double open = effectiveOpenFraction(grid, fractions, a, i, j, k);
+    const int64_t j = row % d.y(), k = row / d.y(), f0 = d.x() * row;
+    // Interior faces along a: i in [i0, i1) of the row (a = 0), or the whole row or none.
+    const int64_t along = a == 1 ? j : k;
+    const bool interiorRow = a == 0 || (along > 0 && along < d[a] - 1);
+    const int64_t i0 = !interiorRow ? d.x() : a == 0 ? 1 : 0, i1 = !interiorRow ? d.x() : a == 0 ? d.x() - 1 : d.x();
+    for (int64_t i = 0; i < d.x(); ++i) {
+      coupling[f0 + i] = 0.0;
+      if (openFraction != nullptr) openFraction[f0 + i] = 0.0;
+    }
+    const int64_t cell0 = nx * (j + ny * k);  // the high cell of face i is cell0 + i
+    for (int64_t i = i0; i < i1; ++i) {
+      // effectiveOpenFraction of an interior face (never a Wall face).
+      const double open = fraction[f0 + i] < kMinOpenFraction ? 0.0 : fraction[f0 + i];
       if (liquidPhi != nullptr) {
-        op->openFraction[a][face] = open;
+        openFraction[f0 + i] = open;
         // Only liquid-liquid faces couple; a liquid-air face is a diagonal term below.
-        Eigen::Vector3i low(i, j, k);
-        low[a] -= 1;
-        if (!isLiquid(liquidPhi[grid.cellIndex(i, j, k)]) ||
-            !isLiquid(liquidPhi[grid.cellIndex(low.x(), low.y(), low.z())]))
-          continue;
+        if (!isLiquid(liquidPhi[cell0 + i]) || !isLiquid(liquidPhi[cell0 + i - step])) continue;
       }
-      c[face] = open;
+      coupling[f0 + i] = open;
     }
   }
 }
@@ -94,9 +109,9 @@ void buildCouplingRows(const MacGrid& grid, const FaceFractionField& fractions, 
 void buildDiagonalCells(const MacGrid& grid, const FaceFractionField& fractions, const double* liquidPhi,
                         int64_t begin, int64_t end, CutCellPoisson* op) {
   const MacGridSpec& g = grid.spec;
-  for (int64_t c = begin; c < end; ++c) {
-    const int i = static_cast<int>(c % g.nx), j = static_cast<int>((c / g.nx) % g.ny),
-              k = static_cast<int>(c / (static_cast<int64_t>(g.nx) * g.ny));
+  int i = static_cast<int>(begin % g.nx), j = static_cast<int>((begin / g.nx) % g.ny),
+      k = static_cast<int>(begin / (static_cast<int64_t>(g.nx) * g.ny));
+  for (int64_t c = begin; c < end; ++c, nextCell(g, &i, &j, &k)) {
     if (liquidPhi != nullptr) {
       op->liquidPhi[static_cast<size_t>(c)] = liquidPhi[c];
       op->air[static_cast<size_t>(c)] = 0;
@@ -241,17 +256,31 @@ int32_t findRoot(int32_t* parent, int32_t c) {
 // every link pointing down, so each region's root ends as its first cell.
 void linkFluidRegions(CutCellPoisson* op, int64_t begin, int64_t end) {
   int32_t* parent = op->region.data();
+  const double* diagonal = op->diagonal.data();
+  const double *cu = op->coupling[0].data(), *cv = op->coupling[1].data(), *cw = op->coupling[2].data();
+  const int64_t nx = op->grid.nx, ny = op->grid.ny, sz = nx * ny;
+  auto link = [&](int64_t c, int64_t nb, double coupling) {
+    if (parent[nb] < 0 || !(coupling > 0.0)) return;
+    const int32_t r = findRoot(parent, static_cast<int32_t>(nb)), s = findRoot(parent, static_cast<int32_t>(c));
+    if (r != s) parent[std::max(r, s)] = std::min(r, s);
+  };
+  int64_t i = begin % nx, j = (begin / nx) % ny, k = begin / sz;
   for (int64_t c = begin; c < end; ++c) {
-    if (!(op->diagonal[static_cast<size_t>(c)] > 0.0)) {
+    if (diagonal[c] > 0.0) {
+      parent[c] = static_cast<int32_t>(c);
+      // Only the faces toward smaller cells (-x, -y, -z): the others link when their cell comes.
+      // Face indices (cut_cell_poisson.h): -x face i + (nx + 1)(j + ny k) = c + j + ny k, -y
+      // face i + nx (j + (ny + 1) k) = c + nx k, -z face c.
+      if (i > 0) link(c, c - 1, cu[c + j + ny * k]);
+      if (j > 0) link(c, c - nx, cv[c + nx * k]);
+      if (k > 0) link(c, c - sz, cw[c]);
+    } else {
       parent[c] = -1;
-      continue;
     }
-    parent[c] = static_cast<int32_t>(c);
-    forEachCellFace(op->grid, c, [&](int a, int64_t face, int64_t nb) {
-      if (nb < 0 || nb > c || parent[nb] < 0 || !(op->coupling[a][static_cast<size_t>(face)] > 0.0)) return;
-      const int32_t r = findRoot(parent, static_cast<int32_t>(nb)), s = findRoot(parent, static_cast<int32_t>(c));
-      if (r != s) parent[std::max(r, s)] = std::min(r, s);
-    });
+    if (++i == nx) {
+      i = 0;
+      if (++j == ny) j = 0, ++k;
+    }
   }
 }
 
@@ -271,7 +300,9 @@ void numberFluidRegions(CutCellPoisson* op, int64_t begin, int64_t end) {
       id = region[link];
     }
     region[c] = id;
-    if (dirichletPart(*op, c) > 0.0) op->regionFloating[static_cast<size_t>(id)] = 0;
+    // A region stops floating at its first cell with a Dirichlet part; later ones need no test.
+    uint8_t& floating = op->regionFloating[static_cast<size_t>(id)];
+    if (floating && dirichletPart(*op, c) > 0.0) floating = 0;
     ++op->regionCellCount[static_cast<size_t>(id)];
     ++op->fluidCellCount;
   }
