@@ -33,10 +33,6 @@ void nextCell(const MacGridSpec& g, int* i, int* j, int* k) {
   ++*k;
 }
 
-bool inside(const MacGridSpec& g, int i, int j, int k) {
-  return i >= 0 && j >= 0 && k >= 0 && i < g.nx && j < g.ny && k < g.nz;
-}
-
 }  // namespace
 
 Status checkCutCellPoissonInputs(const MacGrid& grid, const FaceFractionField& fractions) {
@@ -105,6 +101,34 @@ void buildCouplingRows(const MacGrid& grid, const FaceFractionField& fractions, 
   }
 }
 
+// The six faces of cell c = (i, j, k), in the order -x, +x, -y, +y, -z, +z: their
+// effectiveOpenFraction and the cell across each (-1 outside the grid).
+struct CellFaces {
+  double open[6];
+  int64_t neighbour[6];
+
+  CellFaces(const MacGrid& grid, const FaceFractionField& fractions, int i, int j, int k, int64_t c) {
+    const MacGridSpec& g = grid.spec;
+    const int64_t nx = g.nx, ny = g.ny, sz = nx * static_cast<int64_t>(ny);
+    // Face indices (cut_cell_poisson.h): -x face i + (nx + 1)(j + ny k) = c + j + ny k, -y face
+    // i + nx (j + (ny + 1) k) = c + nx k, -z face c; the + faces one step further along each axis.
+    const int64_t fu = c + j + ny * static_cast<int64_t>(k), fv = c + nx * k;
+    const int64_t face[6] = {fu, fu + 1, fv, fv + nx, c, c + sz};
+    const int index[3] = {i, j, k}, cells[3] = {g.nx, g.ny, g.nz};
+    const int64_t step[3] = {1, nx, sz};
+    for (int f = 0; f < 6; ++f) {
+      const int a = f / 2;
+      const bool high = (f & 1) != 0;
+      // isWallFace: the face on the domain side of a Wall.
+      const bool atSide = high ? index[a] + 1 == cells[a] : index[a] == 0;
+      const bool wall = atSide && grid.side(a, high) == DomainSide::Wall;
+      const double fraction = fractions.open[a][static_cast<size_t>(face[f])];
+      open[f] = wall || fraction < kMinOpenFraction ? 0.0 : fraction;
+      neighbour[f] = atSide ? -1 : high ? c + step[a] : c - step[a];
+    }
+  }
+};
+
 // Diagonal (and, with a free surface, air flags, level set and surface terms) of cells [begin, end).
 void buildDiagonalCells(const MacGrid& grid, const FaceFractionField& fractions, const double* liquidPhi,
                         int64_t begin, int64_t end, CutCellPoisson* op) {
@@ -117,29 +141,28 @@ void buildDiagonalCells(const MacGrid& grid, const FaceFractionField& fractions,
       op->air[static_cast<size_t>(c)] = 0;
       op->surfaceDirichlet[static_cast<size_t>(c)] = 0.0;
     }
+    const CellFaces faces(grid, fractions, i, j, k, c);
     if (liquidPhi != nullptr && !isLiquid(liquidPhi[c])) {
       op->diagonal[static_cast<size_t>(c)] = 0.0;  // air: p = 0, no row
       bool open = false;
-      forEachFace(i, j, k, [&](int a, bool, int fi, int fj, int fk, int, int, int) {
-        open = open || effectiveOpenFraction(grid, fractions, a, fi, fj, fk) > 0.0;
-      });
+      for (int f = 0; f < 6; ++f) open = open || faces.open[f] > 0.0;
       op->air[static_cast<size_t>(c)] = open ? 1 : 0;
       continue;
     }
     double sum = 0.0, surface = 0.0;
-    forEachFace(i, j, k, [&](int a, bool, int fi, int fj, int fk, int ni, int nj, int nk) {
-      const double open = effectiveOpenFraction(grid, fractions, a, fi, fj, fk);
-      if (liquidPhi != nullptr && open > 0.0 && inside(g, ni, nj, nk)) {
-        const double phiNb = liquidPhi[grid.cellIndex(ni, nj, nk)];
+    for (int f = 0; f < 6; ++f) {
+      const double open = faces.open[f];
+      if (liquidPhi != nullptr && open > 0.0 && faces.neighbour[f] >= 0) {
+        const double phiNb = liquidPhi[faces.neighbour[f]];
         if (!isLiquid(phiNb)) {
           const double term = open / freeSurfaceTheta(liquidPhi[c], phiNb);
           sum += term;  // summed in face order as ever, so the fine operator is bitwise unchanged
           surface += term;
-          return;
+          continue;
         }
       }
       sum += open;
-    });
+    }
     op->diagonal[static_cast<size_t>(c)] = sum;
     if (liquidPhi != nullptr) op->surfaceDirichlet[static_cast<size_t>(c)] = surface;
   }
