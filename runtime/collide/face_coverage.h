@@ -12,8 +12,9 @@
 //                            guaranteed bound from the concavity of the chord function
 //                            (error < kCoverageTolerance of the face area);
 //   triangle mesh            exact: Green's theorem over the mesh's cross-section segments;
-//   several colliders        union path: rigorous quadtree on min of the signed distances
-//                            (error < kCoverageTolerance), see coveredFractionUnion().
+//   several colliders        exact by inclusion-exclusion for convex polyhedra and at most
+//                            one sphere; otherwise a rigorous quadtree on min of the signed
+//                            distances (error < kCoverageTolerance), see coveredFractionUnion().
 //
 // Hot path: coveredFraction(const PreparedCollider&, ...) allocates nothing. Shape data that
 // needs precomputation (hull planes, mesh BVH, world-space parameters) lives in
@@ -98,8 +99,9 @@ double coveredFraction(const ColliderShape& shape, const AxisFace& face);
 
 // Covered fraction of the union of several colliders on one face. One collider touching the
 // face (after conservative rejects) -> its exact path; any collider covering the whole face
-// -> 1; otherwise a quadtree over the face on the union's signed distance (min over
-// colliders), refined until its rigorous error bound is below kCoverageTolerance.
+// -> 1; up to four convex polyhedra and at most one sphere -> exact (inclusion-exclusion of
+// clipped polygons); otherwise a quadtree over the face on the union's signed distance (min
+// over colliders), refined until its rigorous error bound is below kCoverageTolerance.
 double coveredFractionUnion(const PreparedCollider* const* colliders, int count,
                             const AxisFace& face);
 

@@ -12,16 +12,7 @@ namespace detail {
 double coveredAreaHalfSpaces(const Eigen::Vector4d* planes, int count, const FaceFrame& fr) {
   FixedPolygon<kMaxConvexPlanes + 4> poly;
   poly.setRect(fr.u0, fr.v0, fr.u1, fr.v1);
-  for (int i = 0; i < count; ++i) {
-    const Eigen::Vector4d& p = planes[i];
-    const double a = p[fr.a1], b = p[fr.a2], c = p.w() - p[fr.a] * fr.c0;
-    if (a == 0.0 && b == 0.0) {
-      if (c < 0.0) return 0.0;
-      continue;
-    }
-    if (!poly.clip(a, b, c)) return 0.0;
-  }
-  return poly.area();
+  return clipByHalfSpaces(poly, planes, count, fr) ? poly.area() : 0.0;
 }
 
 }  // namespace detail

@@ -83,6 +83,31 @@ struct FixedPolygon {
 double discRectangleArea(double cx, double cy, double r, double x0, double y0, double x1,
                          double y1);
 
+// Area of the disc (centre (cx,cy), radius r) inside the convex polygon (x[i], y[i]), i < n,
+// either orientation. Exact: the sum over edges of the disc's part of the triangle (centre,
+// edge), each a triangle or a circular sector piece by piece between the edge's crossings.
+double discPolygonArea(double cx, double cy, double r, const double* x, const double* y, int n);
+
+// Clips `poly` by a solid's half-spaces in the face plane (plane, box, convex hull);
+// false when nothing is left. Each clip adds at most one vertex, so Capacity must exceed 4
+// plus the number of half-spaces clipped by since setRect.
+template <int Capacity>
+bool clipByHalfSpaces(FixedPolygon<Capacity>& poly, const Eigen::Vector4d* planes, int count, const FaceFrame& fr) {
+  for (int i = 0; i < count; ++i) {
+    const Eigen::Vector4d& p = planes[i];
+    const double a = p[fr.a1], b = p[fr.a2], c = p.w() - p[fr.a] * fr.c0;
+    if (a == 0.0 && b == 0.0) {  // parallel to the face: all or nothing
+      if (c < 0.0) return false;
+      continue;
+    }
+    if (!poly.clip(a, b, c)) return false;
+  }
+  return true;
+}
+
+// The disc a sphere cuts from the face plane; false when the plane misses the sphere.
+bool sphereCrossSection(const PreparedCollider& c, const FaceFrame& fr, double* cu, double* cv, double* radius);
+
 // Per-family kernels: covered AREA (not fraction) of the face square.
 double coveredAreaHalfSpaces(const Eigen::Vector4d* planes, int count, const FaceFrame& fr);
 double coveredAreaSphere(const PreparedCollider& c, const FaceFrame& fr);

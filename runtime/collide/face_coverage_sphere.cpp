@@ -55,12 +55,62 @@ double discRectangleArea(double cx, double cy, double r, double x0, double y0, d
   return std::max(0.0, area);
 }
 
-double coveredAreaSphere(const PreparedCollider& c, const FaceFrame& fr) {
+bool sphereCrossSection(const PreparedCollider& c, const FaceFrame& fr, double* cu, double* cv, double* radius) {
   const Eigen::Vector3d& ctr = c.translation;
   const double dz = fr.c0 - ctr[fr.a];
   const double rho2 = c.shape.radius * c.shape.radius - dz * dz;
-  if (rho2 <= 0.0) return 0.0;
-  return discRectangleArea(ctr[fr.a1], ctr[fr.a2], std::sqrt(rho2), fr.u0, fr.v0, fr.u1, fr.v1);
+  if (!(rho2 > 0.0)) return false;
+  *cu = ctr[fr.a1];
+  *cv = ctr[fr.a2];
+  *radius = std::sqrt(rho2);
+  return true;
+}
+
+double coveredAreaSphere(const PreparedCollider& c, const FaceFrame& fr) {
+  double cu, cv, r;
+  if (!sphereCrossSection(c, fr, &cu, &cv, &r)) return 0.0;
+  return discRectangleArea(cu, cv, r, fr.u0, fr.v0, fr.u1, fr.v1);
+}
+
+namespace {
+
+// Signed area of the disc of radius r about the origin inside the triangle (origin, p, q):
+// the segment pq is cut where it crosses the circle, and each piece contributes its triangle
+// with the origin when inside the disc, else the circular sector it subtends.
+double discTriangleArea(double px, double py, double qx, double qy, double r) {
+  const double dx = qx - px, dy = qy - py;
+  const double a = dx * dx + dy * dy, b = px * dx + py * dy, c = px * px + py * py - r * r;
+  double cuts[4] = {0.0, 0.0, 0.0, 1.0};
+  int n = 1;
+  const double disc = b * b - a * c;
+  if (a > 0.0 && disc > 0.0) {
+    const double root = std::sqrt(disc);
+    for (double t : {(-b - root) / a, (-b + root) / a})
+      if (t > 0.0 && t < 1.0) cuts[n++] = t;
+  }
+  cuts[n++] = 1.0;
+  double area = 0.0;
+  for (int i = 0; i + 1 < n; ++i) {
+    const double t0 = cuts[i], t1 = cuts[i + 1], tm = 0.5 * (t0 + t1);
+    const double x0 = px + t0 * dx, y0 = py + t0 * dy, x1 = px + t1 * dx, y1 = py + t1 * dy;
+    const double mx = px + tm * dx, my = py + tm * dy;
+    const double cross = x0 * y1 - x1 * y0;
+    if (mx * mx + my * my <= r * r) area += 0.5 * cross;
+    else area += 0.5 * r * r * std::atan2(cross, x0 * x1 + y0 * y1);
+  }
+  return area;
+}
+
+}  // namespace
+
+double discPolygonArea(double cx, double cy, double r, const double* x, const double* y, int n) {
+  if (!(r > 0.0) || n < 3) return 0.0;
+  double area = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const int j = i + 1 < n ? i + 1 : 0;
+    area += discTriangleArea(x[i] - cx, y[i] - cy, x[j] - cx, y[j] - cy, r);
+  }
+  return std::fabs(area);
 }
 
 }  // namespace detail

@@ -4,7 +4,10 @@
 //  - colliders the conservative test proves outside are dropped; one proven to cover the
 //    whole face gives 1;
 //  - one collider left: its exact (or bounded) per-shape path;
-//  - several left: their individual fractions a_i bound the union in [max a_i, min(1, Σ a_i)];
+//  - at most four left, all convex polyhedra (plane, box, hull) but at most one sphere: exact
+//    by inclusion-exclusion, each intersection being the face square clipped by the
+//    polyhedra's half-planes (and, with the sphere, its area inside the sphere's disc);
+//  - otherwise their individual fractions a_i bound the union in [max a_i, min(1, Σ a_i)];
 //    when that interval is narrower than the tolerance (e.g. all but one are 0, the common
 //    case of overlapping bounding boxes but disjoint solids) its midpoint is exact enough;
 //  - otherwise a quadtree over the face on phi = min_i phi_i (1-Lipschitz, negative inside
@@ -61,6 +64,55 @@ struct UnionQuadtree {
   }
 };
 
+constexpr int kMaxExactUnion = 4;
+// All the polyhedra's half-planes clip one polygon, so their total is bounded like a hull's.
+using ClipPolygon = detail::FixedPolygon<kMaxConvexPlanes + 4>;
+
+bool isHalfSpaceSolid(const PreparedCollider& c) {
+  return c.shape.kind == ShapeKind::Box || c.shape.kind == ShapeKind::Plane || c.shape.kind == ShapeKind::ConvexHull;
+}
+
+// Whether exactUnionArea can take these colliders.
+bool exactUnionApplies(const PreparedCollider* const* colliders, const int* active, int count) {
+  if (count > kMaxExactUnion) return false;
+  int spheres = 0;
+  size_t planes = 0;
+  for (int i = 0; i < count; ++i) {
+    const PreparedCollider& c = *colliders[active[i]];
+    if (c.shape.kind == ShapeKind::Sphere) ++spheres;
+    else if (isHalfSpaceSolid(c)) planes += c.worldPlanes.size();
+    else return false;
+  }
+  return spheres <= 1 && planes <= static_cast<size_t>(kMaxConvexPlanes);
+}
+
+// Area of the union by inclusion-exclusion over the subsets of the colliders.
+double exactUnionArea(const PreparedCollider* const* colliders, const int* active, int count,
+                      const detail::FaceFrame& fr) {
+  double area = 0.0;
+  ClipPolygon poly;
+  for (int subset = 1; subset < (1 << count); ++subset) {
+    poly.setRect(fr.u0, fr.v0, fr.u1, fr.v1);
+    const PreparedCollider* sphere = nullptr;
+    bool empty = false;
+    for (int i = 0; i < count && !empty; ++i) {
+      if (!((subset >> i) & 1)) continue;
+      const PreparedCollider& c = *colliders[active[i]];
+      if (c.shape.kind == ShapeKind::Sphere) sphere = &c;
+      else empty = !detail::clipByHalfSpaces(poly, c.worldPlanes.data(), static_cast<int>(c.worldPlanes.size()), fr);
+    }
+    if (empty) continue;
+    double part = poly.area();
+    if (sphere != nullptr) {
+      double cu, cv, r;
+      part = detail::sphereCrossSection(*sphere, fr, &cu, &cv, &r) ? detail::discPolygonArea(cu, cv, r, poly.x, poly.y, poly.n)
+                                                                   : 0.0;
+    }
+    area += (__builtin_popcount(static_cast<unsigned>(subset)) & 1) ? part : -part;
+  }
+  return area;
+}
+
 }  // namespace
 
 double coveredFractionUnion(const PreparedCollider* const* colliders, int count,
@@ -75,6 +127,9 @@ double coveredFractionUnion(const PreparedCollider* const* colliders, int count,
   }
   if (n == 0) return 0.0;
   if (n == 1) return coveredFraction(*colliders[active[0]], face);
+  const detail::FaceFrame frame = detail::makeFrame(face);
+  if (exactUnionApplies(colliders, active, n))
+    return std::min(1.0, std::max(0.0, exactUnionArea(colliders, active, n, frame) / frame.area()));
   double maxA = 0.0, sumA = 0.0;
   for (int i = 0; i < n; ++i) {
     const double a = coveredFraction(*colliders[active[i]], face);
@@ -85,7 +140,7 @@ double coveredFractionUnion(const PreparedCollider* const* colliders, int count,
   if (upper - maxA <= kCoverageTolerance) return 0.5 * (upper + maxA);
   if (maxA >= 1.0) return 1.0;
 
-  UnionQuadtree qt{colliders, active, n, detail::makeFrame(face), 0};
+  UnionQuadtree qt{colliders, active, n, frame, 0};
   const double tol = kCoverageTolerance * face.h * face.h;
   const double uc = face.centre[qt.fr.a1], vc = face.centre[qt.fr.a2];
   for (int depth = 4; depth <= 11; ++depth) {
