@@ -15,12 +15,6 @@ namespace {
 
 constexpr double kCellSize = 1.0 / 12.0;  // the default scene's fluid cell size
 
-PreparedCollider prepare(const ColliderShape& shape) {
-  PreparedCollider p;
-  prepareCollider(shape, &p);
-  return p;
-}
-
 void BM_FaceCoverageUnion(benchmark::State& state) {
   ColliderShape round;
   round.kind = state.range(0) == 0 ? ShapeKind::Sphere : ShapeKind::Cylinder;
@@ -31,7 +25,8 @@ void BM_FaceCoverageUnion(benchmark::State& state) {
   paddle.kind = ShapeKind::Box;
   paddle.halfExtents = Eigen::Vector3d(0.6, 0.12, 0.05);
   paddle.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitY()));
-  const PreparedCollider a = prepare(round), b = prepare(paddle);
+  PreparedCollider a, b;
+  if (!ok(prepareCollider(round, &a)) || !ok(prepareCollider(paddle, &b))) return state.SkipWithError(lastError());
   const PreparedCollider* pair[] = {&a, &b};
   std::vector<AxisFace> faces;
   for (int axis = 0; axis < 3; ++axis)
