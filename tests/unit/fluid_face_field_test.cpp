@@ -282,12 +282,12 @@ TEST(FluidFaceUnion, PolyhedraAndOneSphereAreExact) {
   const PreparedCollider* mixed[] = {&half, &ball};
   EXPECT_NEAR(coveredFractionUnion(mixed, 2, f), 0.5 + 0.5 * kPi * r * r, 1e-14);
 
-  // A ground plane under both: everything below y = -0.5 changes nothing on this face...
-  ColliderShape ground;
-  ground.kind = ShapeKind::Plane;
-  ground.planeNormal = Eigen::Vector3d(1, 0, 0);
-  ground.planeOffset = -0.4;  // ...and x <= -0.4 adds the strip outside the disc.
-  PreparedCollider g = prepared(ground);
+  // A half-space x <= -0.4 besides: it adds the strip x < -0.4 less its part inside the disc.
+  ColliderShape wall;
+  wall.kind = ShapeKind::Plane;
+  wall.planeNormal = Eigen::Vector3d(1, 0, 0);
+  wall.planeOffset = -0.4;
+  PreparedCollider g = prepared(wall);
   const PreparedCollider* three[] = {&half, &ball, &g};
   const double strip = 0.1 - detail::discRectangleArea(0, 0, r, -0.5, -0.5, -0.4, 0.5);  // x < -0.4, |z| <= 0.5
   EXPECT_NEAR(coveredFractionUnion(three, 3, f), 0.5 + 0.5 * kPi * r * r + strip, 1e-14);
