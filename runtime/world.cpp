@@ -36,7 +36,11 @@ Status validateWorldConfig(const WorldConfig& c) {
 }
 
 World::World(const WorldConfig& config)
-    : config_(config), tasks_(TaskSystem::create(config.tasks, config.workerCount)), collision_(config.gravity) {}
+    : config_(config), tasks_(TaskSystem::create(config.tasks, config.workerCount)), collision_(config.gravity) {
+  colliders_.setGenerationLimit(kHandleGenerationLimit);
+  deformables_.setGenerationLimit(kHandleGenerationLimit);
+  fluids_.setGenerationLimit(kHandleGenerationLimit);
+}
 
 Status World::create(const WorldConfig& config, std::unique_ptr<World>* out) {
   VP_TRY(validateWorldConfig(config));
@@ -142,7 +146,6 @@ Status World::setFrameBudget(double frameBudgetMs) {
 
 Status World::step(double dt) {
   if (!(dt > 0.0 && dt <= 1.0)) return fail(Status::InvalidArgument, "dt = %g: must be in (0, 1] seconds", dt);
-  stepping_.store(true, std::memory_order_release);
   const Deadline frame(config_.clock, config_.frameBudgetMs);
   StepStats stats;
   stats.stepIndex = stats_.stepIndex + 1;
@@ -156,7 +159,6 @@ Status World::step(double dt) {
   finishStats(frame, &stats);
   balanceWorkers(frame, runDelayAtStart);
   stats_ = std::move(stats);
-  stepping_.store(false, std::memory_order_release);
   return Status::Ok;
 }
 

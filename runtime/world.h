@@ -2,7 +2,6 @@
 // together under one per-frame budget. Owned by the C ABI's world registry.
 #pragma once
 
-#include <atomic>
 #include <memory>
 #include <string>
 #include <vector>
@@ -41,6 +40,9 @@ using FluidHandle = SlotMap<FluidActor>::Handle;
 
 class World {
  public:
+  // Handle generations stay below this: the C ABI keeps the two bits above for the id's kind.
+  static constexpr uint32_t kHandleGenerationLimit = 1u << 30;
+
   static Status create(const WorldConfig& config, std::unique_ptr<World>* out);
   ~World();
   World(const World&) = delete;
@@ -77,9 +79,6 @@ class World {
   const WorldConfig& config() const { return config_; }
   TaskSystem& tasks() { return *tasks_; }
 
-  // True while step() runs; lets the C ABI answer Busy to overlapping calls from other threads.
-  bool stepping() const { return stepping_.load(std::memory_order_acquire); }
-
  private:
   explicit World(const WorldConfig& config);
   // The stages of a step (frame_plan.h has the policy).
@@ -109,7 +108,6 @@ class World {
   SlotMap<DeformableBody> deformables_;
   SlotMap<FluidActor> fluids_;
   StepStats stats_;
-  std::atomic<bool> stepping_{false};
 };
 
 }  // namespace vp

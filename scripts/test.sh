@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
 # The whole test suite: set up, build a preset (default release; also debug, asan), run ctest.
+# The tsan preset builds and runs only the threading tests (label threads).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 preset="${1:-release}"

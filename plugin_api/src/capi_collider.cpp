@@ -4,25 +4,13 @@
 
 #include "capi_convert.h"
 #include "capi_copy_out.h"
+#include "core/physical_limits.h"
 #include "world_registry.h"
 
 using namespace vp;
 using namespace vp::capi;
 
 namespace {
-
-Status checkTransform(const char* field, const vpTransform& t) {
-  const float v[7] = {t.position.x, t.position.y, t.position.z, t.rotation.x, t.rotation.y, t.rotation.z, t.rotation.w};
-  for (float x : v)
-    if (!std::isfinite(x))
-      return fail(Status::InvalidArgument, "%s = ((%g, %g, %g), (%g, %g, %g, %g)): must be finite", field, v[0], v[1],
-                  v[2], v[3], v[4], v[5], v[6]);
-  const double n = std::sqrt(double(v[3]) * v[3] + double(v[4]) * v[4] + double(v[5]) * v[5] + double(v[6]) * v[6]);
-  if (std::abs(n - 1.0) > 1e-2)
-    return fail(Status::InvalidArgument, "%s.rotation = (%g, %g, %g, %g): must be a unit quaternion (norm %g)", field,
-                v[3], v[4], v[5], v[6], n);
-  return Status::Ok;
-}
 
 Status translateShape(const vpShapeDef& in, ShapeDesc* out) {
   VP_TRY(checkStructSize("vpShapeDef", in.structSize, sizeof(vpShapeDef)));
@@ -89,7 +77,7 @@ vpStatus vpColliderCreate(vpWorldId worldId, const vpColliderDef* def, vpCollide
   return guarded(__func__, [&] {
     VP_REQUIRE_POINTER(def);
     VP_REQUIRE_POINTER(outCollider);
-    World* world;
+    WorldLease world;
     VP_TRY(resolveWorld(worldId, &world));
     VP_TRY(checkStructSize("vpColliderDef", def->structSize, sizeof(vpColliderDef)));
     ColliderDesc desc;
@@ -113,7 +101,7 @@ vpStatus vpColliderCreate(vpWorldId worldId, const vpColliderDef* def, vpCollide
 
 vpStatus vpColliderDestroy(vpColliderId id) {
   return guarded(__func__, [&] {
-    World* w;
+    WorldLease w;
     Collider* c;
     VP_TRY(resolveCollider(id, &w, &c));
     return w->destroyCollider(handleOf(id));
@@ -122,7 +110,7 @@ vpStatus vpColliderDestroy(vpColliderId id) {
 
 vpStatus vpColliderIsValid(vpColliderId id) {
   return guarded(__func__, [&] {
-    World* w;
+    WorldLease w;
     Collider* c;
     return resolveCollider(id, &w, &c);
   });
@@ -131,7 +119,7 @@ vpStatus vpColliderIsValid(vpColliderId id) {
 vpStatus vpColliderGetPose(vpColliderId id, vpTransform* outPose) {
   return guarded(__func__, [&] {
     VP_REQUIRE_POINTER(outPose);
-    World* w;
+    WorldLease w;
     Collider* c;
     VP_TRY(resolveCollider(id, &w, &c));
     *outPose = toC(c->pose());
@@ -142,12 +130,11 @@ vpStatus vpColliderGetPose(vpColliderId id, vpTransform* outPose) {
 vpStatus vpColliderSetPose(vpColliderId id, const vpTransform* pose) {
   return guarded(__func__, [&] {
     VP_REQUIRE_POINTER(pose);
-    World* w;
+    WorldLease w;
     Collider* c;
     VP_TRY(resolveCollider(id, &w, &c));
-    VP_TRY(checkTransform("pose", *pose));
     Pose p = toPose(*pose);
-    p.rotation.normalize();
+    VP_TRY(checkPose("pose", &p));
     c->setPose(p);
     return Status::Ok;
   });
@@ -155,7 +142,7 @@ vpStatus vpColliderSetPose(vpColliderId id, const vpTransform* pose) {
 
 vpStatus vpColliderGetVelocity(vpColliderId id, vpVec3* outLinear, vpVec3* outAngular) {
   return guarded(__func__, [&] {
-    World* w;
+    WorldLease w;
     Collider* c;
     VP_TRY(resolveCollider(id, &w, &c));
     if (outLinear) *outLinear = toC(c->linearVelocity());
@@ -166,11 +153,11 @@ vpStatus vpColliderGetVelocity(vpColliderId id, vpVec3* outLinear, vpVec3* outAn
 
 vpStatus vpColliderSetVelocity(vpColliderId id, vpVec3 linear, vpVec3 angular) {
   return guarded(__func__, [&] {
-    World* w;
+    WorldLease w;
     Collider* c;
     VP_TRY(resolveCollider(id, &w, &c));
-    VP_TRY(checkVec3("linear", linear));
-    VP_TRY(checkVec3("angular", angular));
+    VP_TRY(checkLinearVelocity("linear", toVec3(linear)));
+    VP_TRY(checkAngularVelocity("angular", toVec3(angular)));
     if (c->bodyType() == BodyType::Static)
       return fail(Status::InvalidArgument, "collider (%u, %u) is static: it has no velocity", id.index1, id.generation);
     c->setVelocity(toVec3(linear), toVec3(angular));
@@ -181,15 +168,14 @@ vpStatus vpColliderSetVelocity(vpColliderId id, vpVec3 linear, vpVec3 angular) {
 vpStatus vpColliderSetKinematicTarget(vpColliderId id, const vpTransform* target) {
   return guarded(__func__, [&] {
     VP_REQUIRE_POINTER(target);
-    World* w;
+    WorldLease w;
     Collider* c;
     VP_TRY(resolveCollider(id, &w, &c));
     if (c->bodyType() != BodyType::Kinematic)
       return fail(Status::InvalidArgument, "collider (%u, %u) is %s: only kinematic bodies take targets", id.index1,
                   id.generation, bodyTypeName(c->bodyType()));
-    VP_TRY(checkTransform("target", *target));
     Pose p = toPose(*target);
-    p.rotation.normalize();
+    VP_TRY(checkPose("target", &p));
     c->setKinematicTarget(p);
     return Status::Ok;
   });
@@ -198,7 +184,7 @@ vpStatus vpColliderSetKinematicTarget(vpColliderId id, const vpTransform* target
 vpStatus vpColliderGetBodyType(vpColliderId id, vpBodyType* outType) {
   return guarded(__func__, [&] {
     VP_REQUIRE_POINTER(outType);
-    World* w;
+    WorldLease w;
     Collider* c;
     VP_TRY(resolveCollider(id, &w, &c));
     *outType = static_cast<vpBodyType>(c->bodyType());
@@ -209,7 +195,7 @@ vpStatus vpColliderGetBodyType(vpColliderId id, vpBodyType* outType) {
 vpStatus vpColliderGetUserData(vpColliderId id, void** outUserData) {
   return guarded(__func__, [&] {
     VP_REQUIRE_POINTER(outUserData);
-    World* w;
+    WorldLease w;
     Collider* c;
     VP_TRY(resolveCollider(id, &w, &c));
     *outUserData = c->desc().userData;
@@ -220,7 +206,7 @@ vpStatus vpColliderGetUserData(vpColliderId id, void** outUserData) {
 vpStatus vpWorldGetColliderCount(vpWorldId id, int32_t* outCount) {
   return guarded(__func__, [&] {
     VP_REQUIRE_POINTER(outCount);
-    World* w;
+    WorldLease w;
     VP_TRY(resolveWorld(id, &w));
     *outCount = static_cast<int32_t>(w->colliderCount());
     return Status::Ok;
@@ -230,7 +216,7 @@ vpStatus vpWorldGetColliderCount(vpWorldId id, int32_t* outCount) {
 vpStatus vpWorldGetColliders(vpWorldId id, vpColliderId* outIds, int32_t capacity, int32_t* outCount) {
   return guarded(__func__, [&] {
     VP_REQUIRE_POINTER(outCount);
-    World* w;
+    WorldLease w;
     VP_TRY(resolveWorld(id, &w));
     return copyIdsOut(w->colliderHandles(), [&](ColliderHandle h) { return makeColliderId(id, h); }, outIds, capacity,
                       outCount);
@@ -241,7 +227,7 @@ vpStatus vpWorldFindCollider(vpWorldId id, const char* name, vpColliderId* outCo
   return guarded(__func__, [&] {
     VP_REQUIRE_POINTER(name);
     VP_REQUIRE_POINTER(outCollider);
-    World* w;
+    WorldLease w;
     VP_TRY(resolveWorld(id, &w));
     ColliderHandle h;
     if (!w->findCollider(name, &h)) return fail(Status::InvalidArgument, "name = \"%s\": no collider has this name", name);

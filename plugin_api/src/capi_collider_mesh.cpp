@@ -9,7 +9,7 @@ using namespace vp::capi;
 
 vpStatus vpColliderGetShapeMeshSize(vpColliderId id, int32_t* outVertexCount, int32_t* outTriangleCount) {
   return guarded(__func__, [&] {
-    World* w;
+    WorldLease w;
     Collider* c;
     VP_TRY(resolveCollider(id, &w, &c));
     const ShapeDisplayMesh m = buildShapeDisplayMesh(c->desc().shape);
@@ -22,7 +22,7 @@ vpStatus vpColliderGetShapeMeshSize(vpColliderId id, int32_t* outVertexCount, in
 vpStatus vpColliderGetShapeMesh(vpColliderId id, float* outPositions, float* outNormals, int32_t vertexCapacity,
                                 int32_t* outTriangles, int32_t triangleCapacity) {
   return guarded(__func__, [&] {
-    World* w;
+    WorldLease w;
     Collider* c;
     VP_TRY(resolveCollider(id, &w, &c));
     const ShapeDisplayMesh m = buildShapeDisplayMesh(c->desc().shape);

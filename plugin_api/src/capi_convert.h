@@ -33,9 +33,19 @@ int rawEnum(const Enum& field) {
   return value;
 }
 
+// The C ABI function running on this thread (nullptr outside one); a Busy error names the
+// call that holds the world.
+inline thread_local const char* t_currentCall = nullptr;
+inline const char* currentCall() { return t_currentCall; }
+
 // Runs `body` (returning vp::Status); no exception crosses the C boundary.
 template <class Body>
 vpStatus guarded(const char* function, Body&& body) {
+  struct CallScope {
+    const char* outer = t_currentCall;
+    explicit CallScope(const char* f) { t_currentCall = f; }
+    ~CallScope() { t_currentCall = outer; }
+  } scope(function);
   try {
     return toC(body());
   } catch (const std::bad_alloc&) {

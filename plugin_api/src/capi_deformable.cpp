@@ -85,7 +85,7 @@ vpStatus vpDeformableCreate(vpWorldId worldId, const vpDeformableDef* def, vpDef
   return guarded(__func__, [&] {
     VP_REQUIRE_POINTER(def);
     VP_REQUIRE_POINTER(out);
-    World* world;
+    WorldLease world;
     VP_TRY(resolveWorld(worldId, &world));
     VP_TRY(checkStructSize("vpDeformableDef", def->structSize, sizeof(vpDeformableDef)));
     DeformableMeshSource source;
@@ -115,7 +115,7 @@ vpStatus vpDeformableCreate(vpWorldId worldId, const vpDeformableDef* def, vpDef
 
 vpStatus vpDeformableDestroy(vpDeformableId id) {
   return guarded(__func__, [&] {
-    World* w;
+    WorldLease w;
     DeformableBody* d;
     VP_TRY(resolveDeformable(id, &w, &d));
     return w->destroyDeformable(handleOf(id));
@@ -124,7 +124,7 @@ vpStatus vpDeformableDestroy(vpDeformableId id) {
 
 vpStatus vpDeformableIsValid(vpDeformableId id) {
   return guarded(__func__, [&] {
-    World* w;
+    WorldLease w;
     DeformableBody* d;
     return resolveDeformable(id, &w, &d);
   });
@@ -133,7 +133,7 @@ vpStatus vpDeformableIsValid(vpDeformableId id) {
 vpStatus vpDeformableGetNodeCount(vpDeformableId id, int32_t* outCount) {
   return guarded(__func__, [&] {
     VP_REQUIRE_POINTER(outCount);
-    World* w;
+    WorldLease w;
     DeformableBody* d;
     VP_TRY(resolveDeformable(id, &w, &d));
     *outCount = d->nodeCount();
@@ -151,7 +151,7 @@ static Status copyOut(const Array<double>& values, int32_t nodes, float* out, in
 
 vpStatus vpDeformableGetPositions(vpDeformableId id, float* outXyz, int32_t capacity) {
   return guarded(__func__, [&] {
-    World* w;
+    WorldLease w;
     DeformableBody* d;
     VP_TRY(resolveDeformable(id, &w, &d));
     return copyOut(d->positions(), d->nodeCount(), outXyz, capacity);
@@ -160,7 +160,7 @@ vpStatus vpDeformableGetPositions(vpDeformableId id, float* outXyz, int32_t capa
 
 vpStatus vpDeformableGetVelocities(vpDeformableId id, float* outXyz, int32_t capacity) {
   return guarded(__func__, [&] {
-    World* w;
+    WorldLease w;
     DeformableBody* d;
     VP_TRY(resolveDeformable(id, &w, &d));
     return copyOut(d->velocities(), d->nodeCount(), outXyz, capacity);
@@ -170,7 +170,7 @@ vpStatus vpDeformableGetVelocities(vpDeformableId id, float* outXyz, int32_t cap
 vpStatus vpDeformableSetVelocities(vpDeformableId id, const float* xyz, int32_t nodeCount) {
   return guarded(__func__, [&] {
     VP_REQUIRE_POINTER(xyz);
-    World* w;
+    WorldLease w;
     DeformableBody* d;
     VP_TRY(resolveDeformable(id, &w, &d));
     if (nodeCount != d->nodeCount())
@@ -183,7 +183,7 @@ vpStatus vpDeformableSetVelocities(vpDeformableId id, const float* xyz, int32_t 
 
 vpStatus vpDeformableApplyForce(vpDeformableId id, int32_t node, vpVec3 force) {
   return guarded(__func__, [&] {
-    World* w;
+    WorldLease w;
     DeformableBody* d;
     VP_TRY(resolveDeformable(id, &w, &d));
     return d->applyForce(node, toVec3(force));
@@ -192,7 +192,7 @@ vpStatus vpDeformableApplyForce(vpDeformableId id, int32_t node, vpVec3 force) {
 
 vpStatus vpDeformableApplyImpulse(vpDeformableId id, int32_t node, vpVec3 impulse) {
   return guarded(__func__, [&] {
-    World* w;
+    WorldLease w;
     DeformableBody* d;
     VP_TRY(resolveDeformable(id, &w, &d));
     return d->applyImpulse(node, toVec3(impulse));
@@ -201,7 +201,7 @@ vpStatus vpDeformableApplyImpulse(vpDeformableId id, int32_t node, vpVec3 impuls
 
 vpStatus vpDeformablePin(vpDeformableId id, const int32_t* nodes, int32_t count) {
   return guarded(__func__, [&] {
-    World* w;
+    WorldLease w;
     DeformableBody* d;
     VP_TRY(resolveDeformable(id, &w, &d));
     VP_TRY(checkNodeArray(nodes, count));
@@ -211,7 +211,7 @@ vpStatus vpDeformablePin(vpDeformableId id, const int32_t* nodes, int32_t count)
 
 vpStatus vpDeformableUnpin(vpDeformableId id, const int32_t* nodes, int32_t count) {
   return guarded(__func__, [&] {
-    World* w;
+    WorldLease w;
     DeformableBody* d;
     VP_TRY(resolveDeformable(id, &w, &d));
     VP_TRY(checkNodeArray(nodes, count));
@@ -221,24 +221,20 @@ vpStatus vpDeformableUnpin(vpDeformableId id, const int32_t* nodes, int32_t coun
 
 vpStatus vpDeformableAttach(vpDeformableId id, const int32_t* nodes, int32_t count, vpColliderId colliderId) {
   return guarded(__func__, [&] {
-    World* w;
+    WorldLease w;
     DeformableBody* d;
     VP_TRY(resolveDeformable(id, &w, &d));
     VP_TRY(checkNodeArray(nodes, count));
-    if (colliderId.world.index1 != id.world.index1 || colliderId.world.generation != id.world.generation)
-      return fail(Status::InvalidId, "collider (%u, %u) belongs to world (%u, %u), the deformable to world (%u, %u)",
-                  colliderId.index1, colliderId.generation, colliderId.world.index1, colliderId.world.generation,
-                  id.world.index1, id.world.generation);
-    World* cw;
     Collider* c;
-    VP_TRY(resolveCollider(colliderId, &cw, &c));
-    return d->attach(nodes, count, colliderId.index1, colliderId.generation, *c);
+    VP_TRY(resolveColliderIn(id.world, *w, colliderId, &c));
+    const ColliderHandle ch = handleOf(colliderId);
+    return d->attach(nodes, count, ch.index1, ch.generation, *c);
   });
 }
 
 vpStatus vpDeformableGetRenderMeshSize(vpDeformableId id, int32_t* outVertexCount, int32_t* outTriangleCount) {
   return guarded(__func__, [&] {
-    World* w;
+    WorldLease w;
     DeformableBody* d;
     VP_TRY(resolveDeformable(id, &w, &d));
     if (outVertexCount) *outVertexCount = static_cast<int32_t>(d->renderPositions().size());
@@ -250,7 +246,7 @@ vpStatus vpDeformableGetRenderMeshSize(vpDeformableId id, int32_t* outVertexCoun
 vpStatus vpDeformableGetRenderMesh(vpDeformableId id, float* outPositions, float* outNormals, int32_t vertexCapacity,
                                    int32_t* outTriangles, int32_t triangleCapacity) {
   return guarded(__func__, [&] {
-    World* w;
+    WorldLease w;
     DeformableBody* d;
     VP_TRY(resolveDeformable(id, &w, &d));
     return copyMeshOut("render mesh", d->renderPositions(), d->renderNormals(), d->renderMeshRest().triangles,
@@ -261,14 +257,14 @@ vpStatus vpDeformableGetRenderMesh(vpDeformableId id, float* outPositions, float
 vpStatus vpDeformableGetStats(vpDeformableId id, vpActorStats* outStats) {
   return guarded(__func__, [&] {
     VP_REQUIRE_POINTER(outStats);
-    World* w;
+    WorldLease w;
     DeformableBody* d;
     VP_TRY(resolveDeformable(id, &w, &d));
     *outStats = vpActorStats{};
     outStats->kind = vpActorKind_Deformable;
     outStats->index1 = id.index1;
     for (const ActorStats& a : w->lastStats().actors)
-      if (a.kind == ActorKind::Deformable && a.index1 == id.index1 && a.generation == id.generation)
+      if (a.kind == ActorKind::Deformable && a.index1 == id.index1 && a.generation == handleOf(id).generation)
         fillActorStats(a, outStats);
     return Status::Ok;
   });
@@ -278,7 +274,7 @@ vpStatus vpWorldFindDeformable(vpWorldId id, const char* name, vpDeformableId* o
   return guarded(__func__, [&] {
     VP_REQUIRE_POINTER(name);
     VP_REQUIRE_POINTER(out);
-    World* w;
+    WorldLease w;
     VP_TRY(resolveWorld(id, &w));
     DeformableHandle h;
     if (!w->findDeformable(name, &h))
@@ -293,7 +289,7 @@ vpStatus vpWorldFindDeformable(vpWorldId id, const char* name, vpDeformableId* o
 vpStatus vpWorldGetDeformableCount(vpWorldId id, int32_t* outCount) {
   return guarded(__func__, [&] {
     VP_REQUIRE_POINTER(outCount);
-    World* w;
+    WorldLease w;
     VP_TRY(resolveWorld(id, &w));
     *outCount = static_cast<int32_t>(w->deformableCount());
     return Status::Ok;
@@ -303,7 +299,7 @@ vpStatus vpWorldGetDeformableCount(vpWorldId id, int32_t* outCount) {
 vpStatus vpWorldGetDeformables(vpWorldId id, vpDeformableId* outIds, int32_t capacity, int32_t* outCount) {
   return guarded(__func__, [&] {
     VP_REQUIRE_POINTER(outCount);
-    World* w;
+    WorldLease w;
     VP_TRY(resolveWorld(id, &w));
     return copyIdsOut(w->deformableHandles(), [&](DeformableHandle h) { return makeDeformableId(id, h); }, outIds,
                       capacity, outCount);

@@ -117,7 +117,7 @@ vpStatus vpFluidCreate(vpWorldId worldId, const vpFluidDef* def, vpFluidId* out)
   return guarded(__func__, [&] {
     VP_REQUIRE_POINTER(def);
     VP_REQUIRE_POINTER(out);
-    World* world;
+    WorldLease world;
     VP_TRY(resolveWorld(worldId, &world));
     VP_TRY(checkStructSize("vpFluidDef", def->structSize, sizeof(vpFluidDef)));
     FluidDesc desc;
@@ -131,7 +131,7 @@ vpStatus vpFluidCreate(vpWorldId worldId, const vpFluidDef* def, vpFluidId* out)
 
 vpStatus vpFluidDestroy(vpFluidId id) {
   return guarded(__func__, [&] {
-    World* w;
+    WorldLease w;
     FluidActor* f;
     VP_TRY(resolveFluid(id, &w, &f));
     return w->destroyFluid(handleOf(id));
@@ -140,7 +140,7 @@ vpStatus vpFluidDestroy(vpFluidId id) {
 
 vpStatus vpFluidIsValid(vpFluidId id) {
   return guarded(__func__, [&] {
-    World* w;
+    WorldLease w;
     FluidActor* f;
     return resolveFluid(id, &w, &f);
   });
@@ -148,7 +148,7 @@ vpStatus vpFluidIsValid(vpFluidId id) {
 
 vpStatus vpFluidGetResolution(vpFluidId id, int32_t* outNx, int32_t* outNy, int32_t* outNz) {
   return guarded(__func__, [&] {
-    World* w;
+    WorldLease w;
     FluidActor* f;
     VP_TRY(resolveFluid(id, &w, &f));
     const MacGridSpec& s = f->grid().spec;
@@ -161,7 +161,7 @@ vpStatus vpFluidGetResolution(vpFluidId id, int32_t* outNx, int32_t* outNy, int3
 
 vpStatus vpFluidGetKind(vpFluidId id, vpFluidKind* outKind) {
   return guarded(__func__, [&] {
-    World* w;
+    WorldLease w;
     FluidActor* f;
     VP_TRY(resolveFluid(id, &w, &f));
     if (outKind) *outKind = f->desc().kind == FluidKind::Liquid ? vpFluidKind_Liquid : vpFluidKind_Smoke;
@@ -171,7 +171,7 @@ vpStatus vpFluidGetKind(vpFluidId id, vpFluidKind* outKind) {
 
 vpStatus vpFluidGetDomain(vpFluidId id, vpVec3* outOrigin, float* outCellSize) {
   return guarded(__func__, [&] {
-    World* w;
+    WorldLease w;
     FluidActor* f;
     VP_TRY(resolveFluid(id, &w, &f));
     const MacGridSpec& s = f->grid().spec;
@@ -184,7 +184,7 @@ vpStatus vpFluidGetDomain(vpFluidId id, vpVec3* outOrigin, float* outCellSize) {
 vpStatus vpFluidGetField(vpFluidId id, vpFluidField field, float* outValues, int64_t capacity) {
   return guarded(__func__, [&] {
     VP_REQUIRE_POINTER(outValues);
-    World* w;
+    WorldLease w;
     FluidActor* f;
     VP_TRY(resolveFluid(id, &w, &f));
     const int which = rawEnum(field);
@@ -208,7 +208,7 @@ vpStatus vpFluidGetField(vpFluidId id, vpFluidField field, float* outValues, int
 vpStatus vpFluidGetVelocityGrid(vpFluidId id, float* outXyz, int64_t capacity) {
   return guarded(__func__, [&] {
     VP_REQUIRE_POINTER(outXyz);
-    World* w;
+    WorldLease w;
     FluidActor* f;
     VP_TRY(resolveFluid(id, &w, &f));
     const MacGrid& g = f->grid();
@@ -228,7 +228,7 @@ vpStatus vpFluidGetVelocityGrid(vpFluidId id, float* outXyz, int64_t capacity) {
 
 vpStatus vpFluidSampleVelocity(vpFluidId id, const vpVec3* points, int32_t count, vpVec3* outVelocities) {
   return guarded(__func__, [&] {
-    World* w;
+    WorldLease w;
     FluidActor* f;
     VP_TRY(resolveFluid(id, &w, &f));
     if (count < 0) return fail(Status::InvalidArgument, "count = %d: must be >= 0", count);
@@ -246,7 +246,7 @@ vpStatus vpFluidSampleVelocity(vpFluidId id, const vpVec3* points, int32_t count
 
 vpStatus vpFluidGetSurfaceMeshSize(vpFluidId id, int32_t* outVertexCount, int32_t* outTriangleCount) {
   return guarded(__func__, [&] {
-    World* w;
+    WorldLease w;
     FluidActor* f;
     VP_TRY(resolveFluid(id, &w, &f));
     const FluidSurface& s = f->surface();
@@ -259,7 +259,7 @@ vpStatus vpFluidGetSurfaceMeshSize(vpFluidId id, int32_t* outVertexCount, int32_
 vpStatus vpFluidGetSurfaceMesh(vpFluidId id, float* outPositions, float* outNormals, int32_t vertexCapacity,
                                int32_t* outTriangles, int32_t triangleCapacity) {
   return guarded(__func__, [&] {
-    World* w;
+    WorldLease w;
     FluidActor* f;
     VP_TRY(resolveFluid(id, &w, &f));
     const FluidSurface& s = f->surface();
@@ -283,7 +283,7 @@ vpStatus vpFluidGetSurfaceMesh(vpFluidId id, float* outPositions, float* outNorm
 vpStatus vpFluidGetAmount(vpFluidId id, float* outAmount) {
   return guarded(__func__, [&] {
     VP_REQUIRE_POINTER(outAmount);
-    World* w;
+    WorldLease w;
     FluidActor* f;
     VP_TRY(resolveFluid(id, &w, &f));
     *outAmount = static_cast<float>(f->desc().kind == FluidKind::Liquid ? f->liquidVolume() : f->totalSmoke());
@@ -294,14 +294,14 @@ vpStatus vpFluidGetAmount(vpFluidId id, float* outAmount) {
 vpStatus vpFluidGetStats(vpFluidId id, vpActorStats* outStats) {
   return guarded(__func__, [&] {
     VP_REQUIRE_POINTER(outStats);
-    World* w;
+    WorldLease w;
     FluidActor* f;
     VP_TRY(resolveFluid(id, &w, &f));
     *outStats = vpActorStats{};
     outStats->kind = vpActorKind_Fluid;
     outStats->index1 = id.index1;
     for (const ActorStats& a : w->lastStats().actors)
-      if (a.kind == ActorKind::Fluid && a.index1 == id.index1 && a.generation == id.generation) fillActorStats(a, outStats);
+      if (a.kind == ActorKind::Fluid && a.index1 == id.index1 && a.generation == handleOf(id).generation) fillActorStats(a, outStats);
     return Status::Ok;
   });
 }
@@ -309,7 +309,7 @@ vpStatus vpFluidGetStats(vpFluidId id, vpActorStats* outStats) {
 vpStatus vpWorldGetFluidCount(vpWorldId id, int32_t* outCount) {
   return guarded(__func__, [&] {
     VP_REQUIRE_POINTER(outCount);
-    World* w;
+    WorldLease w;
     VP_TRY(resolveWorld(id, &w));
     *outCount = static_cast<int32_t>(w->fluidCount());
     return Status::Ok;
@@ -319,7 +319,7 @@ vpStatus vpWorldGetFluidCount(vpWorldId id, int32_t* outCount) {
 vpStatus vpWorldGetFluids(vpWorldId id, vpFluidId* outIds, int32_t capacity, int32_t* outCount) {
   return guarded(__func__, [&] {
     VP_REQUIRE_POINTER(outCount);
-    World* w;
+    WorldLease w;
     VP_TRY(resolveWorld(id, &w));
     return copyIdsOut(w->fluidHandles(), [&](FluidHandle h) { return makeFluidId(id, h); }, outIds, capacity,
                       outCount);
@@ -330,7 +330,7 @@ vpStatus vpWorldFindFluid(vpWorldId id, const char* name, vpFluidId* out) {
   return guarded(__func__, [&] {
     VP_REQUIRE_POINTER(name);
     VP_REQUIRE_POINTER(out);
-    World* w;
+    WorldLease w;
     VP_TRY(resolveWorld(id, &w));
     FluidHandle h;
     if (!w->findFluid(name, &h)) return fail(Status::InvalidArgument, "name = \"%s\": no fluid has this name", name);

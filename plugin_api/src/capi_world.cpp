@@ -51,14 +51,14 @@ vpStatus vpWorldDestroy(vpWorldId world) {
 
 vpStatus vpWorldIsValid(vpWorldId id) {
   return guarded(__func__, [&] {
-    World* w;
+    WorldLease w;
     return resolveWorld(id, &w);
   });
 }
 
 vpStatus vpWorldSetGravity(vpWorldId id, vpVec3 gravity) {
   return guarded(__func__, [&] {
-    World* w;
+    WorldLease w;
     VP_TRY(resolveWorld(id, &w));
     VP_TRY(checkVec3("gravity", gravity));
     return w->setGravity(toVec3(gravity));
@@ -68,7 +68,7 @@ vpStatus vpWorldSetGravity(vpWorldId id, vpVec3 gravity) {
 vpStatus vpWorldGetGravity(vpWorldId id, vpVec3* outGravity) {
   return guarded(__func__, [&] {
     VP_REQUIRE_POINTER(outGravity);
-    World* w;
+    WorldLease w;
     VP_TRY(resolveWorld(id, &w));
     *outGravity = toC(w->gravity());
     return Status::Ok;
@@ -77,7 +77,7 @@ vpStatus vpWorldGetGravity(vpWorldId id, vpVec3* outGravity) {
 
 vpStatus vpWorldSetFrameBudget(vpWorldId id, float frameBudgetMs) {
   return guarded(__func__, [&] {
-    World* w;
+    WorldLease w;
     VP_TRY(resolveWorld(id, &w));
     return w->setFrameBudget(frameBudgetMs);
   });
@@ -85,7 +85,7 @@ vpStatus vpWorldSetFrameBudget(vpWorldId id, float frameBudgetMs) {
 
 vpStatus vpWorldStep(vpWorldId id, float dt) {
   return guarded(__func__, [&] {
-    World* w;
+    WorldLease w;
     VP_TRY(resolveWorld(id, &w));
     return w->step(dt);
   });
@@ -94,7 +94,7 @@ vpStatus vpWorldStep(vpWorldId id, float dt) {
 vpStatus vpWorldLoadScene(vpWorldId id, const char* path) {
   return guarded(__func__, [&] {
     VP_REQUIRE_POINTER(path);
-    World* w;
+    WorldLease w;
     VP_TRY(resolveWorld(id, &w));
     return loadScene(*w, path);
   });
@@ -110,7 +110,7 @@ vpStatus vpWorldGetStepStats(vpWorldId id, vpStepStats* out) {
   return guarded(__func__, [&] {
     VP_REQUIRE_POINTER(out);
     VP_TRY(checkStructSize("vpStepStats", out->structSize, sizeof(vpStepStats)));
-    World* w;
+    WorldLease w;
     VP_TRY(resolveWorld(id, &w));
     const StepStats& s = w->lastStats();
     out->stepIndex = s.stepIndex;
@@ -132,7 +132,7 @@ vpStatus vpWorldGetStepStats(vpWorldId id, vpStepStats* out) {
 vpStatus vpWorldGetActorStats(vpWorldId id, int32_t actorIndex, vpActorStats* out) {
   return guarded(__func__, [&] {
     VP_REQUIRE_POINTER(out);
-    World* w;
+    WorldLease w;
     VP_TRY(resolveWorld(id, &w));
     const StepStats& s = w->lastStats();
     if (actorIndex < 0 || actorIndex >= static_cast<int32_t>(s.actors.size()))

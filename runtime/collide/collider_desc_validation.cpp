@@ -1,20 +1,11 @@
 #include <cmath>
 
 #include "collide/collider_desc.h"
+#include "core/physical_limits.h"
 #include "geometry/surface_mesh.h"
 
 namespace vp {
 namespace {
-
-// Sizes beyond this are almost certainly unit mistakes (millimetres as metres) and would
-// wreck Bullet's float precision anyway.
-constexpr double kMaxExtent = 1e5;
-
-Status checkLength(const char* field, double value) {
-  if (!std::isfinite(value) || value <= 0.0 || value > kMaxExtent)
-    return fail(Status::InvalidArgument, "%s = %g: must be finite and in (0, %g]", field, value, kMaxExtent);
-  return Status::Ok;
-}
 
 Status checkVec(const char* field, const Vec3& v) {
   if (!v.allFinite())
@@ -144,20 +135,12 @@ Status validateColliderDesc(ColliderDesc& in) {
   if (bodyType < 0 || bodyType > 2) return fail(Status::InvalidArgument, "bodyType = %d: unknown body type", bodyType);
   int shapeType = static_cast<int>(desc.shape.type);
   if (shapeType < 0 || shapeType > 6) return fail(Status::InvalidArgument, "shape.type = %d: unknown shape type", shapeType);
-  VP_TRY(checkVec("pose.position", desc.pose.position));
-  const Quat& q = desc.pose.rotation;
-  const double qn = q.norm();
-  // Accept float round-off from the host; anything further off is a host bug, not noise.
-  if (!std::isfinite(qn) || std::abs(qn - 1.0) > 1e-2)
-    return fail(Status::InvalidArgument, "pose.rotation = (%g, %g, %g, %g): must be a unit quaternion (norm %g)",
-                q.x(), q.y(), q.z(), q.w(), qn);
-  desc.pose.rotation.normalize();
-  VP_TRY(checkVec("linearVelocity", desc.linearVelocity));
-  VP_TRY(checkVec("angularVelocity", desc.angularVelocity));
+  VP_TRY(checkPose("pose", &desc.pose));
+  VP_TRY(checkLinearVelocity("linearVelocity", desc.linearVelocity));
+  VP_TRY(checkAngularVelocity("angularVelocity", desc.angularVelocity));
   if (desc.bodyType == BodyType::Static && (desc.linearVelocity.squaredNorm() > 0 || desc.angularVelocity.squaredNorm() > 0))
     return fail(Status::InvalidArgument, "linearVelocity/angularVelocity: a static body cannot move");
-  if (desc.bodyType == BodyType::Dynamic && (!std::isfinite(desc.mass) || desc.mass <= 0.0 || desc.mass > 1e9))
-    return fail(Status::InvalidArgument, "mass = %g: a dynamic body needs a finite mass in (0, 1e9]", desc.mass);
+  if (desc.bodyType == BodyType::Dynamic) VP_TRY(checkMass("mass", desc.mass));
   VP_TRY(checkRange("friction", desc.friction, 0.0, 1e3));
   VP_TRY(checkRange("restitution", desc.restitution, 0.0, 1.0));
   VP_TRY(checkRange("linearDamping", desc.linearDamping, 0.0, 1.0));

@@ -1,8 +1,10 @@
 // Generational slot map: the storage behind every id the C ABI hands out.
 //
 // An id is (index + 1, generation). Destroying an object bumps its slot's generation, so an
-// old id stops resolving instead of aliasing whatever reuses the slot. Generation 0 is never
-// issued, so an all-zero id is always null. Free slots are reused LIFO.
+// old id stops resolving instead of aliasing whatever reuses the slot. No (slot, generation)
+// pair is ever issued twice: a slot whose generation would pass the limit is retired rather
+// than wrapped. Generation 0 is never issued, so an all-zero id is always null. Free slots are
+// reused LIFO.
 #pragma once
 
 #include <cstdint>
@@ -46,15 +48,17 @@ class SlotMap {
     if (!get(index1, generation)) return nullptr;
     Slot& s = slots_[index1 - 1];
     std::unique_ptr<T> out = std::move(s.value);
-    // Skip 0 on wrap-around so a recycled slot never hands out the null generation.
-    s.generation = s.generation + 1 == generationLimit_ ? 1 : s.generation + 1;
-    freeSlots_.push_back(index1 - 1);
+    ++s.generation;
+    const bool exhausted = s.generation == generationLimit_ || s.generation == 0;
+    if (!exhausted) freeSlots_.push_back(index1 - 1);
     --liveCount_;
     return out;
   }
 
   std::size_t size() const { return liveCount_; }
   std::size_t capacity() const { return slots_.size(); }
+  // Whether insert() can hand out a handle whose index fits in maxSlots slots.
+  bool canInsert(std::size_t maxSlots) const { return !freeSlots_.empty() || slots_.size() < maxSlots; }
 
   // Visits live objects in slot order (deterministic for a given history of inserts/removes).
   template <class F>
@@ -63,7 +67,8 @@ class SlotMap {
       if (slots_[i].value) visit(Handle{static_cast<uint32_t>(i + 1), slots_[i].generation}, *slots_[i].value);
   }
 
-  // Ids narrower than 32 bits (vpWorldId uses 16) set this so generations fit.
+  // Ids whose generation field is narrower than 32 bits (vpWorldId uses 16; child ids keep
+  // their top bits for their kind) set this so generations fit: they stay below it.
   void setGenerationLimit(uint32_t limit) { generationLimit_ = limit; }
 
  private:
@@ -74,7 +79,7 @@ class SlotMap {
   std::vector<Slot> slots_;
   std::vector<uint32_t> freeSlots_;
   std::size_t liveCount_ = 0;
-  uint32_t generationLimit_ = 0;  // 0: wraps at 2^32 naturally
+  uint32_t generationLimit_ = 0;  // 0: up to 2^32 - 1
 };
 
 }  // namespace vp

@@ -1,6 +1,7 @@
 #include <cmath>
 
 #include "actor_priority.h"
+#include "core/physical_limits.h"
 #include "deform/deformable_desc.h"
 #include "geometry/tet_mesh_validation.h"
 
@@ -29,7 +30,7 @@ Status validateDeformableDesc(DeformableDesc& in) {
   // ν = 0.5 makes λ infinite; stop just short of it (near-incompressible needs degree > 1).
   if (!(m.poissonRatio > -0.999 && m.poissonRatio < 0.4999))
     return fail(Status::InvalidArgument, "poissonRatio = %g: must be in (-0.999, 0.4999)", m.poissonRatio);
-  VP_TRY(checkPositive("density", m.density, 1e6));
+  VP_TRY(checkDensity("density", m.density));
   VP_TRY(checkNonNegative("massDamping", m.massDamping, 1e3));
   VP_TRY(checkNonNegative("stiffnessDamping", m.stiffnessDamping, 10.0));
   VP_TRY(checkNonNegative("friction", m.friction, 1e3));
@@ -45,15 +46,8 @@ Status validateDeformableDesc(DeformableDesc& in) {
   if (in.solver.maxIterations < 1 || in.solver.maxIterations > 100000)
     return fail(Status::InvalidArgument, "solverMaxIterations = %d: must be in [1, 100000]", in.solver.maxIterations);
   VP_TRY(validateActorPriority(in.priority));
-  if (!in.pose.position.allFinite())
-    return fail(Status::InvalidArgument, "pose.position = (%g, %g, %g): must be finite", in.pose.position.x(),
-                in.pose.position.y(), in.pose.position.z());
-  const double qn = in.pose.rotation.norm();
-  if (!std::isfinite(qn) || std::abs(qn - 1.0) > 1e-2)
-    return fail(Status::InvalidArgument, "pose.rotation: must be a unit quaternion (norm %g)", qn);
-  if (!in.linearVelocity.allFinite())
-    return fail(Status::InvalidArgument, "linearVelocity = (%g, %g, %g): must be finite", in.linearVelocity.x(),
-                in.linearVelocity.y(), in.linearVelocity.z());
+  VP_TRY(checkPose("pose", &in.pose));
+  VP_TRY(checkLinearVelocity("linearVelocity", in.linearVelocity));
   if (in.renderMesh) {
     const SurfaceMesh& r = *in.renderMesh;
     const int32_t n = static_cast<int32_t>(r.vertices.size());

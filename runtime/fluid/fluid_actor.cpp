@@ -8,6 +8,7 @@
 #include "core/log.h"
 #include "core/parallel_for.h"
 #include "fluid/fluid_sources.h"
+#include "fluid/grid_index.h"
 #include "fluid/solids/cut_cell_components.h"
 #include "fluid/surface/level_set_solid_extension.h"
 #include "fluid/surface/liquid_volume.h"
@@ -443,8 +444,7 @@ void FluidActor::planSubsteps() {
     if (c.geometry != nullptr && c.geometry->bounds.overlaps(domainBounds()))
       st.speed = std::max(st.speed, c.geometry->shape.linearVelocity.norm() +
                                         c.geometry->shape.angularVelocity.norm() * c.geometry->boundRadius);
-  st.substeps = std::clamp(static_cast<int>(std::ceil(st.speed * st.input.dt / (solver.cflNumber * grid_.spec.h))), 1,
-                           solver.maxSubsteps);
+  st.substeps = clampIndex(std::ceil(st.speed * st.input.dt / (solver.cflNumber * grid_.spec.h)), 1, solver.maxSubsteps);
   st.h = st.input.dt / st.substeps;
   st.loadSum.assign(st.input.colliders.size(), PressureLoad{});
   for (int sub = 0; sub < st.substeps; ++sub) queueSubstep(sub);

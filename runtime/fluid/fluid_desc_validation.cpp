@@ -2,6 +2,7 @@
 #include <cmath>
 
 #include "actor_priority.h"
+#include "core/physical_limits.h"
 #include "fluid/fluid_desc.h"
 
 namespace vp {
@@ -36,11 +37,8 @@ Status validateFluidDesc(const FluidDesc& d) {
   if (d.kind != FluidKind::Smoke && d.kind != FluidKind::Liquid)
     return fail(Status::InvalidArgument, "kind = %d: must be 0 (smoke) or 1 (liquid)", static_cast<int>(d.kind));
   const MacGridSpec& g = d.grid;
-  if (!g.origin.allFinite())
-    return fail(Status::InvalidArgument, "origin = (%g, %g, %g): must be finite", g.origin.x(), g.origin.y(),
-                g.origin.z());
-  if (!(g.h > 0.0 && std::isfinite(g.h) && g.h < 1e6))
-    return fail(Status::InvalidArgument, "cellSize = %g: must be positive, finite and < 1e6", g.h);
+  VP_TRY(checkPosition("origin", g.origin));
+  VP_TRY(checkLength("cellSize", g.h));
   const int counts[3] = {g.nx, g.ny, g.nz};
   const char* names[3] = {"resolution.x", "resolution.y", "resolution.z"};
   for (int a = 0; a < 3; ++a)
@@ -54,7 +52,7 @@ Status validateFluidDesc(const FluidDesc& d) {
     if (d.sides[s] != DomainSide::Wall && d.sides[s] != DomainSide::Open)
       return fail(Status::InvalidArgument, "sides[%d] = %d: must be 0 (wall) or 1 (open)", s,
                   static_cast<int>(d.sides[s]));
-  VP_TRY(checkRange("density", d.density, 1e-6, 1e6));
+  VP_TRY(checkDensity("density", d.density));
   VP_TRY(checkRange("kinematicViscosity", d.kinematicViscosity, 0.0, kMaxKinematicViscosity));
   const SmokeParameters& sp = d.smoke;
   VP_TRY(checkRange("ambientTemperature", sp.ambientTemperature, -1e6, 1e6));

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "fluid/grid_index.h"
+
 namespace vp {
 
 double FluidShape::signedDistance(const Vec3& x) const {
@@ -22,8 +24,8 @@ void forCellsNear(const MacGrid& grid, const FluidShape& shape, const Visit& vis
   const int n[3] = {s.nx, s.ny, s.nz};
   int lo[3], hi[3];
   for (int a = 0; a < 3; ++a) {
-    lo[a] = std::max(0, static_cast<int>(std::floor((shape.centre[a] - extent[a] - s.origin[a]) / s.h - 0.5)));
-    hi[a] = std::min(n[a] - 1, static_cast<int>(std::ceil((shape.centre[a] + extent[a] - s.origin[a]) / s.h - 0.5)));
+    lo[a] = clampIndex(std::floor((shape.centre[a] - extent[a] - s.origin[a]) / s.h - 0.5), 0, n[a]);
+    hi[a] = clampIndex(std::ceil((shape.centre[a] + extent[a] - s.origin[a]) / s.h - 0.5), -1, n[a] - 1);
   }
   for (int k = lo[2]; k <= hi[2]; ++k)
     for (int j = lo[1]; j <= hi[1]; ++j)

@@ -35,6 +35,18 @@ TEST(CApiCollider, DefRejectsBadValuesAndAddsNothing) {
       {"pose.position", vpStatus_InvalidArgument, [](vpColliderDef& d) { d.pose.position.z = NAN; }},
       {"pose.rotation", vpStatus_InvalidArgument, [](vpColliderDef& d) { d.pose.rotation = vpQuat{0, 0, 0, 0}; }},
       {"mass = -1", vpStatus_InvalidArgument, [](vpColliderDef& d) { d.bodyType = vpBodyType_Dynamic; d.mass = -1; }},
+      // Below the physical minimum (core/physical_limits.h): a denormal mass turned a dynamic
+      // sphere's pose into NaN within a few steps; a micro-size shape; a position or speed a
+      // float cannot hold usefully (a JSON 1e308 would become +inf).
+      {"mass = 9.99995e-41", vpStatus_InvalidArgument,  // 1e-40f, a denormal float
+       [](vpColliderDef& d) { d.bodyType = vpBodyType_Dynamic; d.mass = 1e-40f; }},
+      {"shape.radius = 1e-09", vpStatus_InvalidArgument, [](vpColliderDef& d) { d.shape.radius = 1e-9f; }},
+      {"pose.position = (1e+30", vpStatus_InvalidArgument, [](vpColliderDef& d) { d.pose.position.x = 1e30f; }},
+      {"pose.position = (0, -2e+06", vpStatus_InvalidArgument, [](vpColliderDef& d) { d.pose.position.y = -2e6f; }},
+      {"linearVelocity = (0, 0, 1e+30)", vpStatus_InvalidArgument,
+       [](vpColliderDef& d) { d.bodyType = vpBodyType_Dynamic; d.linearVelocity.z = 1e30f; }},
+      {"angularVelocity = (1e+06", vpStatus_InvalidArgument,
+       [](vpColliderDef& d) { d.bodyType = vpBodyType_Dynamic; d.angularVelocity.x = 1e6f; }},
       {"friction = nan", vpStatus_InvalidArgument, [](vpColliderDef& d) { d.friction = NAN; }},
       {"restitution = 2", vpStatus_InvalidArgument, [](vpColliderDef& d) { d.restitution = 2; }},
       {"linearDamping = -0.5", vpStatus_InvalidArgument, [](vpColliderDef& d) { d.linearDamping = -0.5f; }},
@@ -175,8 +187,14 @@ TEST(CApiCollider, PoseVelocityAndKinematicTarget) {
   EXPECT_FLOAT_EQ(pose.position.y, 2.0f);
   vpTransform nanPose = {{NAN, 0, 0}, {0, 0, 0, 1}};
   EXPECT_EQ(vpColliderSetPose(sid, &nanPose), vpStatus_InvalidArgument);
+  vpTransform farPose = {{0, 0, 3e6f}, {0, 0, 0, 1}};
+  EXPECT_EQ(vpColliderSetPose(sid, &farPose), vpStatus_InvalidArgument);
+  EXPECT_TRUE(lastErrorContains("pose.position = (0, 0, 3e+06): coordinates must be finite and within"));
+  EXPECT_EQ(vpColliderSetKinematicTarget(id, &farPose), vpStatus_InvalidArgument);
+  EXPECT_TRUE(lastErrorContains("target.position"));
   ASSERT_VP_OK(vpColliderGetPose(sid, &pose));
   EXPECT_FLOAT_EQ(pose.position.x, 1.0f);
+  EXPECT_FLOAT_EQ(pose.position.z, 3.0f);
 }
 
 TEST(CApiCollider, DynamicVelocityAndUserData) {
@@ -197,6 +215,12 @@ TEST(CApiCollider, DynamicVelocityAndUserData) {
   EXPECT_NEAR(pose.position.x, 1.5f, 1e-4f);
   EXPECT_EQ(vpColliderSetVelocity(id, vpVec3{INFINITY, 0, 0}, vpVec3{0, 0, 0}), vpStatus_InvalidArgument);
   EXPECT_TRUE(lastErrorContains("linear"));
+  EXPECT_EQ(vpColliderSetVelocity(id, vpVec3{0, 0, 0}, vpVec3{0, 2e5f, 0}), vpStatus_InvalidArgument);
+  EXPECT_TRUE(lastErrorContains("angular = (0, 200000, 0): must be finite with magnitude <= 100000 rad/s"));
+  vpVec3 lin, ang;
+  ASSERT_VP_OK(vpColliderGetVelocity(id, &lin, &ang));
+  EXPECT_FLOAT_EQ(lin.x, 3.0f);
+  EXPECT_FLOAT_EQ(ang.y, 0.0f);
 }
 
 }  // namespace

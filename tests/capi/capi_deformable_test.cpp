@@ -165,6 +165,8 @@ TEST(CApiDeformable, DefRejectsBadValuesAndAddsNothing) {
       {"youngsModulus = 0", vpStatus_InvalidArgument, [](vpDeformableDef& d) { d.youngsModulus = 0; }},
       {"poissonRatio = 0.6", vpStatus_InvalidArgument, [](vpDeformableDef& d) { d.poissonRatio = 0.6f; }},
       {"density = -1", vpStatus_InvalidArgument, [](vpDeformableDef& d) { d.density = -1; }},
+      {"density = 9.99995e-41", vpStatus_InvalidArgument, [](vpDeformableDef& d) { d.density = 1e-40f; }},
+      {"pose.position = (5e+07", vpStatus_InvalidArgument, [](vpDeformableDef& d) { d.pose.position.x = 5e7f; }},
       {"solverTolerance = nan", vpStatus_InvalidArgument, [](vpDeformableDef& d) { d.solverTolerance = NAN; }},
       {"solverMaxIterations = -3", vpStatus_InvalidArgument, [](vpDeformableDef& d) { d.solverMaxIterations = -3; }},
       {"targetResidual = nan: must be finite", vpStatus_InvalidArgument,

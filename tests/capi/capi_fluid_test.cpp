@@ -89,6 +89,9 @@ TEST(CApiFluid, BadDefinitionsNameTheFieldAndCreateNothing) {
       {"sides[5] = 3", [](vpFluidDef& d, vpFluidEmitter*) { setRawEnum(d.sides[5], 3); }},
       {"advection = 4", [](vpFluidDef& d, vpFluidEmitter*) { setRawEnum(d.advection, 4); }},
       {"origin = (nan", [](vpFluidDef& d, vpFluidEmitter*) { d.origin.x = NAN; }},
+      {"origin = (1e+30", [](vpFluidDef& d, vpFluidEmitter*) { d.origin.x = 1e30f; }},
+      {"cellSize = 1e-30", [](vpFluidDef& d, vpFluidEmitter*) { d.cellSize = 1e-30f; }},
+      {"density = 9.99995e-41", [](vpFluidDef& d, vpFluidEmitter*) { d.density = 1e-40f; }},
       {"emitters is NULL", [](vpFluidDef& d, vpFluidEmitter*) { d.emitterCount = 2; }},
       {"emitterCount = -1", [](vpFluidDef& d, vpFluidEmitter*) { d.emitterCount = -1; }},
       {"emitters[0].region.type = 5", [](vpFluidDef& d, vpFluidEmitter* e) {

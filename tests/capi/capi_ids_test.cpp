@@ -1,4 +1,9 @@
-// Ids: null, stale, destroyed, and from a world whose slot was reused.
+// Ids: null, stale, destroyed, from a world whose slot was reused, of the wrong kind, and never
+// issued twice.
+#include <cstring>
+#include <set>
+#include <utility>
+
 #include "capi_test_support.h"
 
 namespace {
@@ -77,6 +82,60 @@ TEST(CApiIds, ColliderFromAnotherWorldIsNotFoundByName) {
   ASSERT_VP_OK(vpWorldFindCollider(a.id, "ramp", &found));
   EXPECT_EQ(found.world.index1, a.id.index1);
   EXPECT_EQ(vpWorldFindCollider(b.id, "ramp", &found), vpStatus_InvalidArgument);
+}
+
+// A C host can reinterpret one id struct as another (they share a layout): the id's kind is in
+// its generation, so the wrong kind is InvalidId and touches nothing.
+TEST(CApiIds, IdOfOneKindUsedAsAnotherIsInvalid) {
+  ScopedWorld w;
+  ASSERT_VP_OK(vpWorldLoadScene(w.id, VP_TEST_DATA_DIR "/scenes/jelly_bridge.json"));
+  ASSERT_VP_OK(vpWorldLoadScene(w.id, VP_TEST_DATA_DIR "/scenes/fluid_pair.json"));
+  vpColliderId post;
+  vpDeformableId bridge;
+  vpFluidId tank;
+  ASSERT_VP_OK(vpWorldFindCollider(w.id, "post", &post));
+  ASSERT_VP_OK(vpWorldFindDeformable(w.id, "bridge", &bridge));
+  ASSERT_VP_OK(vpWorldFindFluid(w.id, "tank", &tank));
+  ASSERT_EQ(post.index1, 1u);  // all three in slot 1: only the kind tells them apart
+  ASSERT_EQ(bridge.index1, 1u);
+  ASSERT_EQ(tank.index1, 1u);
+
+  vpFluidId postAsFluid;
+  vpDeformableId tankAsDeformable;
+  vpColliderId bridgeAsCollider;
+  std::memcpy(&postAsFluid, &post, sizeof post);
+  std::memcpy(&tankAsDeformable, &tank, sizeof tank);
+  std::memcpy(&bridgeAsCollider, &bridge, sizeof bridge);
+  EXPECT_EQ(vpFluidDestroy(postAsFluid), vpStatus_InvalidId);
+  EXPECT_TRUE(lastErrorContains("is a collider id")) << vpGetLastError();
+  EXPECT_EQ(vpDeformableDestroy(tankAsDeformable), vpStatus_InvalidId);
+  EXPECT_TRUE(lastErrorContains("is a fluid id")) << vpGetLastError();
+  EXPECT_EQ(vpColliderDestroy(bridgeAsCollider), vpStatus_InvalidId);
+  EXPECT_TRUE(lastErrorContains("is a deformable id")) << vpGetLastError();
+  const int32_t nodes[1] = {0};
+  EXPECT_EQ(vpDeformableAttach(bridge, nodes, 1, bridgeAsCollider), vpStatus_InvalidId);
+  EXPECT_TRUE(lastErrorContains("is a deformable id")) << vpGetLastError();
+  EXPECT_VP_OK(vpColliderIsValid(post));
+  EXPECT_VP_OK(vpDeformableIsValid(bridge));
+  EXPECT_VP_OK(vpFluidIsValid(tank));
+}
+
+// vpWorldId has 16-bit generations: a slot that has issued all of them is retired, so a
+// stale world id never comes back, however many worlds come and go.
+TEST(CApiIds, AWorldIdIsNeverIssuedTwice) {
+  vpWorldDef def = vpDefaultWorldDef();
+  vpWorldId first;
+  ASSERT_VP_OK(vpWorldCreate(&def, &first));
+  ASSERT_VP_OK(vpWorldDestroy(first));
+  std::set<std::pair<uint16_t, uint16_t>> issued{{first.index1, first.generation}};
+  for (int i = 0; i < 0x10000; ++i) {
+    vpWorldId w;
+    ASSERT_VP_OK(vpWorldCreate(&def, &w));
+    ASSERT_TRUE(issued.insert({w.index1, w.generation}).second)
+        << "world id (" << w.index1 << ", " << w.generation << ") issued again after " << i << " worlds";
+    ASSERT_VP_OK(vpWorldDestroy(w));
+  }
+  EXPECT_EQ(vpWorldStep(first, 0.01f), vpStatus_InvalidId);
 }
 
 }  // namespace

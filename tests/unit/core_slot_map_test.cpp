@@ -1,5 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <memory>
+#include <set>
+#include <utility>
+
 #include "core/slot_map.h"
 
 namespace vp {
@@ -39,18 +43,26 @@ TEST(SlotMap, NullAndOutOfRangeHandles) {
   EXPECT_EQ(map.get(1, 0), nullptr);
 }
 
-TEST(SlotMap, GenerationWrapSkipsZero) {
+// A slot whose generations are used up is retired: no (slot, generation) pair comes back.
+TEST(SlotMap, ExhaustedSlotIsRetiredNotWrapped) {
   SlotMap<int> map;
   map.setGenerationLimit(4);
-  uint32_t index = 0;
+  std::set<std::pair<uint32_t, uint32_t>> issued;
   for (int i = 0; i < 10; ++i) {
     auto h = map.insert(std::make_unique<int>(i));
-    index = h.index1;
     EXPECT_NE(h.generation, 0u);
     EXPECT_LT(h.generation, 4u);
+    EXPECT_TRUE(issued.insert({h.index1, h.generation}).second) << "(" << h.index1 << ", " << h.generation << ") again";
     map.remove(h.index1, h.generation);
   }
-  EXPECT_EQ(index, 1u);
+  // Generations 1..3 per slot: ten objects one at a time used slots 1..4.
+  EXPECT_EQ(map.capacity(), 4u);
+  EXPECT_TRUE(map.canInsert(4));
+  while (map.capacity() < 4 || map.canInsert(4)) {
+    auto h = map.insert(std::make_unique<int>(0));
+    map.remove(h.index1, h.generation);
+  }
+  EXPECT_FALSE(map.canInsert(4));  // every slot retired
 }
 
 }  // namespace

@@ -6,7 +6,10 @@
  *   the library, valid until the next VolPhys call on the same thread) that names the bad
  *   argument or field and its value. A failing call changes nothing.
  * - Objects are referred to by small value ids (index + generation). An all-zero id is null.
- *   Using a null, destroyed or foreign id returns vpStatus_InvalidId, never crashes.
+ *   Using a null, destroyed or foreign id returns vpStatus_InvalidId, never crashes. No id is
+ *   issued twice in a process (a slot whose generations run out is retired), and a collider,
+ *   deformable or fluid id carries its kind in the top two bits of its generation, so one
+ *   kind's id reinterpreted as another's is InvalidId too.
  * - Creation takes an XxxDef struct. Always start from vpDefaultXxxDef() and then change
  *   fields: the structSize field lets the library detect a header/library mismatch.
  * - Units are SI (metres, seconds, kilograms, pascals). Y is up only by the default gravity.
@@ -15,8 +18,11 @@
  * - Different worlds are independent: any calls on different worlds may run concurrently
  *   from any threads.
  * - Calls on one world (and on its colliders and actors) must not overlap: the host
- *   serializes them. A call that finds the world inside vpWorldStep on another thread
- *   returns vpStatus_Busy and changes nothing (this is detected, but it is a host bug).
+ *   serializes them. Overlap is a host bug, but it is detected, not raced: every call holds
+ *   its world for its whole length (taken in one atomic step with the id check), and a call
+ *   that finds the world held by another call (any thread, or a callback inside a step)
+ *   returns vpStatus_Busy naming that call, and changes nothing. vpWorldDestroy is such a
+ *   call: it never frees a world another call is using.
  * - The task callbacks in vpWorldDef are invoked only from inside vpWorldStep (and the
  *   creation calls that precompute data), on the thread that called it; tasks may then run
  *   on any host threads. Log callbacks may be invoked from any thread that is running a

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/parallel_for.h"
+#include "fluid/grid_index.h"
 
 namespace vp {
 namespace {
@@ -58,12 +59,6 @@ double minWidthLowerBound(const PreparedCollider& c) {
     case ShapeKind::TriangleMesh: return 0.0;
   }
   return 0.0;
-}
-
-int clampIndex(double x, int lo, int hi) {
-  if (!(x > lo)) return lo;  // also NaN
-  if (x > hi) return hi;
-  return static_cast<int>(x);
 }
 
 // Every cell that has a face recomputeBox (face_fraction_field.cpp) recomputes for `box`,

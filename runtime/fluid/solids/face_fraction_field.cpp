@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "fluid/grid_index.h"
+
 namespace vp {
 namespace {
 
@@ -80,13 +82,6 @@ void recomputeFace(const PreparedCollider* const* colliders, int count, int axis
   const size_t f = field->faceIndex(axis, i, j, k);
   field->open[axis][f] = 1.0 - covered;
   field->solidVelocity[axis][f] = velocity;
-}
-
-// Clamps a real index bound into [lo, hi].
-int clampIndex(double x, int lo, int hi) {
-  if (!(x > lo)) return lo;  // also NaN
-  if (x > hi) return hi;
-  return static_cast<int>(x);
 }
 
 // The faces of one axis touching a box, numbered along i first, then j, then k.

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <vector>
 
+#include "fluid/grid_index.h"
+
 namespace vp {
 namespace {
 
@@ -116,8 +118,8 @@ PressureLoad pressureLoadOnCollider(const MacGrid& grid, const FaceFractionField
     // Two cells of margin: the extrapolation reads two known cells outside the body.
     const double l = (std::max(collider.bounds.lo[a], s.origin[a] - s.h) - s.origin[a]) / s.h;
     const double u = (std::min(collider.bounds.hi[a], s.origin[a] + (n[a] + 1) * s.h) - s.origin[a]) / s.h;
-    local.lo[a] = std::max(0, static_cast<int>(std::floor(l)) - 2);
-    hi[a] = std::min(n[a] - 1, static_cast<int>(std::ceil(u)) + 2);
+    local.lo[a] = clampIndex(std::floor(l) - 2.0, 0, n[a]);
+    hi[a] = clampIndex(std::ceil(u) + 2.0, -1, n[a] - 1);
     if (local.lo[a] > hi[a]) return load;
   }
   local.dims = hi - local.lo + Eigen::Vector3i::Ones();

@@ -1,63 +1,12 @@
-// Many worlds on many threads; host task, clock, allocator and log hooks.
+// Host task, clock, allocator and log hooks.
 #include <atomic>
 #include <cmath>
 #include <cstdlib>
-#include <cstring>
-#include <thread>
-#include <vector>
+#include <string>
 
 #include "capi_test_support.h"
 
 namespace {
-
-// Every thread builds and steps its own world; results must match a serial run exactly.
-TEST(CApiThreads, ManyWorldsFromDifferentThreads) {
-  auto simulate = [](float x, vpTransform* out) {
-    vpWorldDef def = vpDefaultWorldDef();
-    def.workerCount = 2;
-    vpWorldId w;
-    if (vpWorldCreate(&def, &w) != vpStatus_Ok) return false;
-    vpColliderDef ground = vpDefaultColliderDef();
-    ground.shape.type = vpShapeType_Plane;
-    vpColliderId g, b;
-    vpColliderDef ball = dynamicBall(2.0f);
-    ball.pose.position.x = x;
-    ball.linearVelocity = vpVec3{1, 0, 0};
-    bool ok = vpColliderCreate(w, &ground, &g) == vpStatus_Ok && vpColliderCreate(w, &ball, &b) == vpStatus_Ok;
-    for (int i = 0; ok && i < 90; ++i) ok = vpWorldStep(w, 1.0f / 60.0f) == vpStatus_Ok;
-    ok = ok && vpColliderGetPose(b, out) == vpStatus_Ok;
-    return vpWorldDestroy(w) == vpStatus_Ok && ok;
-  };
-  const int kThreads = 8;
-  std::vector<vpTransform> parallel(kThreads), serial(kThreads);
-  std::atomic<int> failures{0};
-  std::vector<std::thread> threads;
-  for (int t = 0; t < kThreads; ++t)
-    threads.emplace_back([&, t] {
-      for (int round = 0; round < 3; ++round)
-        if (!simulate(float(t), &parallel[t])) failures++;
-    });
-  for (auto& th : threads) th.join();
-  EXPECT_EQ(failures.load(), 0);
-  for (int t = 0; t < kThreads; ++t) {
-    ASSERT_TRUE(simulate(float(t), &serial[t]));
-    EXPECT_EQ(std::memcmp(&serial[t], &parallel[t], sizeof(vpTransform)), 0) << "thread " << t;
-  }
-}
-
-// The thread-local last error of one thread is not overwritten by another thread's failure.
-TEST(CApiThreads, LastErrorIsPerThread) {
-  vpWorldId bogus{500, 1};
-  ASSERT_EQ(vpWorldStep(bogus, 0.01f), vpStatus_InvalidId);
-  std::thread other([] {
-    vpWorldDef def = vpDefaultWorldDef();
-    def.workerCount = -3;
-    vpWorldId w;
-    vpWorldCreate(&def, &w);
-  });
-  other.join();
-  EXPECT_TRUE(lastErrorContains("world id (500, 1)"));
-}
 
 struct TaskLog {
   std::atomic<int> enqueued{0};
