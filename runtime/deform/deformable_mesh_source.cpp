@@ -1,6 +1,7 @@
 #include "deform/deformable_mesh_source.h"
 
 #include "geometry/box_tet_mesh.h"
+#include "geometry/closed_surface.h"
 #include "geometry/tet_mesh_boundary.h"
 #include "geometry/tet_mesh_file.h"
 #include "geometry/voxel_tetrahedralizer.h"
@@ -26,6 +27,8 @@ Status resolveDeformableMesh(const DeformableMeshSource& source, DeformableDesc*
     SurfaceMesh surface;
     Status s = loadSurfaceMesh(source.surfaceFile, &surface);
     if (!ok(s)) return addErrorContext(s, "surfaceFile");
+    s = checkClosedSurface(surface.vertices, surface.triangles, "surface");
+    if (!ok(s)) return addErrorContext(s, "surfaceFile '" + source.surfaceFile + "'");
     s = tetrahedralizeVoxels(surface, source.voxelResolution, &mesh);
     if (!ok(s)) return addErrorContext(s, "surfaceFile");
     if (!render) render = std::move(surface);

@@ -10,6 +10,9 @@
 #include <limits>
 #include <new>
 
+#include "core/regular_file.h"
+#include "geometry/isolated_import.h"
+
 namespace vp {
 namespace {
 
@@ -37,9 +40,14 @@ void appendNode(const aiScene& scene, const aiNode& node, const aiMatrix4x4& par
 
 Status loadSurfaceMesh(const std::string& path, SurfaceMesh* out) {
   if (out == nullptr) return fail(Status::InvalidArgument, "loadSurfaceMesh: out is null");
+  // Checked here because assimp's message for a missing file does not say IoError.
+  VP_TRY(checkRegularFile(path));
+  if (!std::ifstream(path).good()) return fail(Status::IoError, "file '%s': cannot be opened", path.c_str());
+  return importIsolated(path, &importSurfaceMeshWithAssimp, ImportLimits{}, out);
+}
+
+Status importSurfaceMeshWithAssimp(const std::string& path, SurfaceMesh* out) {
   try {
-    // Checked here because assimp's message for a missing file does not say IoError.
-    if (!std::ifstream(path).good()) return fail(Status::IoError, "file '%s': cannot be opened", path.c_str());
     Assimp::Importer importer;
     const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices);
     if (scene == nullptr || scene->mRootNode == nullptr)

@@ -7,6 +7,8 @@
 #include <limits>
 #include <new>
 
+#include "core/regular_file.h"
+
 namespace vp {
 
 namespace {
@@ -39,6 +41,7 @@ Status TextScanner::open(const std::string& path, char commentChar) {
   comment_ = commentChar;
   pos_ = 0;
   line_ = tokenLine_ = 1;
+  VP_TRY(checkRegularFile(path));
   try {
     std::ifstream in(path, std::ios::binary);
     if (!in) return fail(Status::IoError, "file '%s': cannot be opened", path.c_str());

@@ -6,6 +6,7 @@
 #include <optional>
 #include <sstream>
 
+#include "core/regular_file.h"
 #include "deform/deformable_mesh_source.h"
 #include "scene/json_fields.h"
 #include "scene/scene_fluid.h"
@@ -407,6 +408,10 @@ Status loadSceneFromString(World& world, const std::string& text, const std::str
 }
 
 Status loadScene(World& world, const std::string& path) {
+  if (!ok(checkRegularFile(path))) {
+    const std::string why = lastError();
+    return fail(Status::IoError, "cannot open scene file '%s': %s", path.c_str(), why.c_str());
+  }
   std::ifstream file(path);
   if (!file) return fail(Status::IoError, "cannot open scene file '%s'", path.c_str());
   std::stringstream text;

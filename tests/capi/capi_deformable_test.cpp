@@ -276,4 +276,24 @@ TEST(CApiDeformable, FromATetFileAndFromASurfaceFile) {
   EXPECT_EQ(rt, 12);
 }
 
+// A surfaceFile must bound a solid: one quad (a sheet, parallel to the voxelizer's rays, so no
+// ray parity caught it) is refused naming an open edge, and nothing is created.
+TEST(CApiDeformable, AnOpenSurfaceFileIsRefusedNamingAnEdge) {
+  ScopedWorld w;
+  const std::string obj = ::testing::TempDir() + "/vp_open_quad.obj";
+  {
+    std::ofstream f(obj);
+    f << "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nf 1 2 3\nf 1 3 4\n";
+  }
+  vpDeformableDef def = vpDefaultDeformableDef();
+  def.surfaceFile = obj.c_str();
+  def.voxelResolution = 4;
+  vpDeformableId id;
+  EXPECT_EQ(vpDeformableCreate(w.id, &def, &id), vpStatus_InvalidArgument);
+  EXPECT_TRUE(lastErrorContains("surfaceFile '" + obj + "': surface: is not closed: edge (")) << vpGetLastError();
+  int32_t count = -1;
+  ASSERT_VP_OK(vpWorldGetDeformableCount(w.id, &count));
+  EXPECT_EQ(count, 0);
+}
+
 }  // namespace

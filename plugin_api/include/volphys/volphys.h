@@ -13,6 +13,14 @@
  * - Creation takes an XxxDef struct. Always start from vpDefaultXxxDef() and then change
  *   fields: the structSize field lets the library detect a header/library mismatch.
  * - Units are SI (metres, seconds, kilograms, pascals). Y is up only by the default gravity.
+ *   Values are range-checked where they enter (defs, setters, scene files): positions within
+ *   +-1e6 m, lengths (radii, half extents, cell sizes) in [1e-6, 1e5] m, masses in [1e-6, 1e9]
+ *   kg, densities in [1e-6, 1e6] kg/m^3, speeds up to 1e5 m/s and rad/s.
+ * - Files (tetFile, surfaceFile, meshFile, renderFile, scenes): only regular files are read
+ *   (a FIFO or a directory is IoError). Surface files are imported by assimp in a short-lived
+ *   child process (POSIX; in-process elsewhere) with a time limit (20 s) and an address-space
+ *   cap (4 GiB above the host's): a file that crashes, hangs or exhausts the importer is
+ *   ParseError or OutOfMemory, never a crash of the host.
  *
  * Threading contract
  * - Different worlds are independent: any calls on different worlds may run concurrently
@@ -340,7 +348,7 @@ typedef struct vpShapeDef {
   int32_t pointCount;
   const int32_t* indices;  /* triangle vertex indices, 3 * triangleCount (copied) */
   int32_t triangleCount;
-  const char* meshFile;    /* any format assimp reads; used when points == NULL */
+  const char* meshFile;    /* any format assimp reads; used when points == NULL (see below) */
   vpVec3 meshScale;        /* applied to points or file vertices; default (1,1,1) */
 } vpShapeDef;
 
@@ -409,7 +417,9 @@ typedef struct vpDeformableDef {
   const int32_t* tets;          /* 4 node indices per tet, tetCount of them (copied) */
   int32_t tetCount;
   const char* tetFile;          /* Gmsh .msh (2.2 / 4.1 ASCII), TetGen .node/.ele, legacy VTK */
-  const char* surfaceFile;      /* closed surface, any format assimp reads: voxel-tetrahedralized */
+  const char* surfaceFile;      /* closed surface, any format assimp reads: voxel-tetrahedralized;
+                                   one that is not closed (after welding equal positions) is
+                                   InvalidArgument naming an open edge */
   int32_t voxelResolution;      /* for surfaceFile: cells along the longest axis; default 12 */
   const float* renderVertices;  /* optional explicit render mesh (copied) */
   int32_t renderVertexCount;
