@@ -1,24 +1,28 @@
 // The same scene stepped with different worker counts must give bitwise-equal results.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <cstring>
 #include <vector>
 
+#include "../budget/tick_clock.h"
 #include "scene/scene_loader.h"
 #include "world.h"
 
 namespace vp {
 namespace {
 
-std::vector<double> runScene(int workers, int steps, const char* scene = VP_TEST_DATA_DIR "/scenes/stack.json") {
+// budgetMs > 0 needs a clock: a budget cut depends on wall-clock time, so determinism is
+// promised for steps the budget does not cut or for a host-injected clock.
+std::vector<double> runScene(int workers, int steps, const char* scene = VP_TEST_DATA_DIR "/scenes/stack.json",
+                             double budgetMs = 0.0, Clock clock = Clock{}) {
   WorldConfig config;
   config.workerCount = workers;
+  config.clock = clock;
   std::unique_ptr<World> world;
   EXPECT_EQ(World::create(config, &world), Status::Ok);
   EXPECT_EQ(loadScene(*world, scene), Status::Ok) << lastError();
-  // A budget cut depends on wall-clock time, so determinism is promised for steps the budget
-  // does not cut (or for a host-injected clock); the comparison runs unbudgeted.
-  EXPECT_EQ(world->setFrameBudget(0.0), Status::Ok);
+  EXPECT_EQ(world->setFrameBudget(budgetMs), Status::Ok);  // after the scene's own budget
   for (int i = 0; i < steps; ++i) EXPECT_EQ(world->step(1.0 / 60.0), Status::Ok);
   std::vector<double> state;
   for (ColliderHandle h : world->colliderHandles()) {
@@ -76,6 +80,42 @@ TEST(Determinism, FluidSceneIsBitwiseEqualForAnyWorkerCount) {
   }
   // Before any step the pressure has no values yet, so the sizes differ too.
   EXPECT_NE(runScene(1, 0, scene), one);
+}
+
+// FNV-1a over the state's bytes: one number to pin.
+uint64_t stateHash(const std::vector<double>& state) {
+  uint64_t h = 1469598103934665603ull;
+  const auto* bytes = reinterpret_cast<const unsigned char*>(state.data());
+  for (size_t i = 0; i < state.size() * sizeof(double); ++i) h = (h ^ bytes[i]) * 1099511628211ull;
+  return h;
+}
+
+// The default scene (sample_host/scenes/default.json: rigid stack, two deformables, a liquid
+// tank with a paddle and a buoy, a smoke plume) after 120 frames, as one pinned hash (as Box2D
+// pins its). Any change to the results of any stage changes it: such a commit re-pins it and
+// says why. The pinned values hold for this toolchain (Debian 12's GCC, Bullet, Eigen, libm).
+constexpr const char* kDefaultScene = VP_TEST_DATA_DIR "/../../sample_host/scenes/default.json";
+constexpr uint64_t kDefaultSceneHash = 0x7adb0a676c8898fbull;
+constexpr uint64_t kDefaultSceneTickBudgetHash = 0x2541da9812ff07b5ull;
+
+TEST(Determinism, DefaultSceneHashIsPinnedForAnyWorkerCount) {
+  for (int workers : {1, 2, 3, 8}) {
+    const uint64_t h = stateHash(runScene(workers, 120, kDefaultScene));
+    EXPECT_EQ(h, kDefaultSceneHash) << workers << " workers: " << std::hex << h;
+  }
+}
+
+// Under a frame budget counted by the tick clock, on one worker: what the budget cuts and
+// paces depends only on clock readings, so the run repeats to the bit. With more workers the
+// plan lets independent actors run side by side, each with the rest of the frame, which is a
+// different (and machine-dependent: the workers go off while the cores are busy) division of
+// the frame, so budgeted runs are not compared across worker counts.
+TEST(Determinism, DefaultSceneHashUnderATickClockBudgetIsPinned) {
+  for (int run = 0; run < 2; ++run) {
+    testutil::TickClock clock;
+    const uint64_t h = stateHash(runScene(1, 120, kDefaultScene, 16.0, clock.clock()));
+    EXPECT_EQ(h, kDefaultSceneTickBudgetHash) << "run " << run << ": " << std::hex << h;
+  }
 }
 
 }  // namespace
