@@ -427,8 +427,11 @@ bool FluidActor::updateFractionsSlice() {
 
 void FluidActor::finishFractionUpdate() {
   // The first step's start: the liquid's volume to keep, and a velocity field to advect by.
+  // The volume is all the liquid the definition asked for, solids or not (no cell weights):
+  // a solid standing in it displaces the liquid, whose level rises, instead of deleting the
+  // liquid where it stands.
   if (desc_.kind == FluidKind::Liquid && targetVolume_ < 0.0) {
-    targetVolume_ = vp::liquidVolume(*step_->input.tasks, grid_.spec, phi_.data(), cellWeights_.data());
+    targetVolume_ = vp::liquidVolume(*step_->input.tasks, grid_.spec, phi_.data(), nullptr);
     extrapolateLiquidVelocity();
   }
 }
