@@ -247,9 +247,14 @@ void World::stepRigidBodies(double dt, const Deadline& frame, StepStats* stats) 
   forEachFluidLoad([](Collider& c, const PressureLoad& l) { c.addFluidLoad(l.force, l.torque, l.addedMass); });
   colliders_.forEach([](ColliderHandle, Collider& c) { c.trackVelocity(); });
   for (Collider* c : loaded) c->prepareFluidLoad(dt, config_.gravity);
-  stats->rigidSubsteps = collision_.step(dt, config_.rigidMaxSubstep, kinematics.data(),
-                                         static_cast<int>(kinematics.size()), loaded.data(),
-                                         static_cast<int>(loaded.size()));
+  const CollisionWorld::StepResult result = collision_.step(dt, config_.rigidMaxSubstep, kinematics.data(),
+                                                            static_cast<int>(kinematics.size()), loaded.data(),
+                                                            static_cast<int>(loaded.size()));
+  stats->rigidSubsteps = result.substeps;
+  rigid.diverged = result.restoredBodies > 0;
+  if (rigid.diverged)
+    log(LogLevel::Warning, "%d rigid bod%s diverged; restored to their state before the step", result.restoredBodies,
+        result.restoredBodies == 1 ? "y" : "ies");
   for (Collider* c : loaded) c->clearFluidLoad();
   colliders_.forEach([](ColliderHandle, Collider& c) { c.syncGeometry(); });
   rigid.phase(Phase::Rigid).ms = frame.elapsedMs() - start;
@@ -434,7 +439,7 @@ void World::stepFluids(double dt, const Deadline& frame, bool floorsHeld, StepSt
       s.interval = s.stepFrames;
       s.stepFrames = 0;
       s.expectedMs = FramePlan::smoothed(s.expectedMs, s.stepMs);
-      if (a.diverged) log(LogLevel::Warning, "fluid (%u, %u) diverged; its flow was reset to rest", a.index1, a.generation);
+      if (a.diverged) log(LogLevel::Warning, "fluid (%u, %u) diverged; restored its last completed step", a.index1, a.generation);
     } else {
       a.simulatedDt = 0.0;
     }

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "collide/collider.h"
+#include "core/physical_limits.h"
 
 namespace vp {
 
@@ -34,8 +35,64 @@ void CollisionWorld::setGravity(const Vec3& g) {
   world_->setGravity(btVector3(btScalar(g.x()), btScalar(g.y()), btScalar(g.z())));
 }
 
-int CollisionWorld::step(double dt, double maxSubstep, Collider* const* kinematics, int count,
-                         Collider* const* loaded, int loadedCount) {
+struct CollisionWorld::BodyState {
+  btRigidBody* body;
+  btTransform transform;
+  btVector3 linear, angular;
+};
+
+void CollisionWorld::saveDynamicBodies() {
+  before_.clear();
+  const btCollisionObjectArray& objects = world_->getCollisionObjectArray();
+  for (int i = 0; i < objects.size(); ++i) {
+    btRigidBody* body = btRigidBody::upcast(objects[i]);
+    if (body == nullptr || body->isStaticOrKinematicObject()) continue;
+    before_.push_back(BodyState{body, body->getWorldTransform(), body->getLinearVelocity(), body->getAngularVelocity()});
+  }
+}
+
+namespace {
+
+bool finite(const btVector3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
+
+bool diverged(const btRigidBody& body) {
+  const btTransform& t = body.getWorldTransform();
+  const btQuaternion q = t.getRotation();
+  const btVector3& v = body.getLinearVelocity();
+  const btVector3& w = body.getAngularVelocity();
+  return !finite(t.getOrigin()) || !(std::isfinite(q.x()) && std::isfinite(q.y()) && std::isfinite(q.z()) &&
+                                     std::isfinite(q.w())) ||
+         !finite(v) || !finite(w) || !(v.length() <= kMaxSpeed) || !(w.length() <= kMaxAngularSpeed);
+}
+
+}  // namespace
+
+int CollisionWorld::restoreDivergedBodies() {
+  int restored = 0;
+  for (const BodyState& s : before_) {
+    if (!diverged(*s.body)) continue;
+    s.body->setWorldTransform(s.transform);
+    s.body->setInterpolationWorldTransform(s.transform);
+    if (btMotionState* m = s.body->getMotionState()) m->setWorldTransform(s.transform);
+    s.body->setLinearVelocity(s.linear);
+    s.body->setAngularVelocity(s.angular);
+    s.body->clearForces();
+    s.body->updateInertiaTensor();
+    // Bullet takes a body whose bounds overflowed out of the simulation (DISABLE_SIMULATION).
+    s.body->forceActivationState(ACTIVE_TAG);
+    s.body->activate(true);
+    // Its contacts hold the diverged positions; the next step finds them anew.
+    world_->getBroadphase()->getOverlappingPairCache()->cleanProxyFromPairs(s.body->getBroadphaseHandle(),
+                                                                             dispatcher_.get());
+    world_->updateSingleAabb(s.body);
+    ++restored;
+  }
+  return restored;
+}
+
+CollisionWorld::StepResult CollisionWorld::step(double dt, double maxSubstep, Collider* const* kinematics, int count,
+                                                Collider* const* loaded, int loadedCount) {
+  saveDynamicBodies();
   const int substeps = std::max(1, static_cast<int>(std::ceil(dt / maxSubstep - 1e-9)));
   const double h = dt / substeps;
   for (int k = 0; k < count; ++k) kinematics[k]->beginKinematicStep(dt);
@@ -46,7 +103,7 @@ int CollisionWorld::step(double dt, double maxSubstep, Collider* const* kinemati
     world_->stepSimulation(btScalar(h), 0);
   }
   for (int k = 0; k < count; ++k) kinematics[k]->endKinematicStep();
-  return substeps;
+  return StepResult{substeps, restoreDivergedBodies()};
 }
 
 }  // namespace vp

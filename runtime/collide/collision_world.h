@@ -4,6 +4,7 @@
 #pragma once
 
 #include <memory>
+#include <vector>
 
 #include "core/math_types.h"
 
@@ -28,11 +29,18 @@ class CollisionWorld {
   void remove(Collider& collider);
   void setGravity(const Vec3& gravity);
 
-  // Steps by dt in ceil(dt / maxSubstep) equal sub-steps; returns the sub-step count.
-  // `kinematics` lists the kinematic colliders to drive (count entries); `loaded` the
-  // dynamic ones carrying a fluid load (loadedCount entries), applied on every sub-step.
-  int step(double dt, double maxSubstep, Collider* const* kinematics, int count, Collider* const* loaded = nullptr,
-           int loadedCount = 0);
+  struct StepResult {
+    int substeps = 0;
+    int restoredBodies = 0;  // dynamic bodies the divergence guard put back
+  };
+  // Steps by dt in ceil(dt / maxSubstep) equal sub-steps. `kinematics` lists the kinematic
+  // colliders to drive (count entries); `loaded` the dynamic ones carrying a fluid load
+  // (loadedCount entries), applied on every sub-step.
+  // Divergence guard: a dynamic body whose pose or velocity comes out of the step not finite,
+  // or faster than kMaxSpeed (kMaxAngularSpeed turning; core/physical_limits.h, the limits a
+  // host may set), goes back to its pose and velocity before the step, its contacts dropped.
+  StepResult step(double dt, double maxSubstep, Collider* const* kinematics, int count,
+                  Collider* const* loaded = nullptr, int loadedCount = 0);
 
   btDiscreteDynamicsWorld& bullet() { return *world_; }
 
@@ -42,6 +50,10 @@ class CollisionWorld {
   std::unique_ptr<btBroadphaseInterface> broadphase_;
   std::unique_ptr<btSequentialImpulseConstraintSolver> solver_;
   std::unique_ptr<btDiscreteDynamicsWorld> world_;
+  struct BodyState;
+  std::vector<BodyState> before_;  // the dynamic bodies at the start of the step
+  void saveDynamicBodies();
+  int restoreDivergedBodies();
 };
 
 }  // namespace vp

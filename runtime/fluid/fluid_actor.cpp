@@ -534,15 +534,16 @@ void FluidActor::publish() {
   if (step_ != nullptr) {
     StepInProgress& st = *step_;
     // Non-finite or absurd speeds (the deformables' guard uses the same kind of bound) mean
-    // the step blew up; nothing brings such a flow back. Restart it from rest rather than
-    // hand NaNs or absurd loads to the host and the rigid bodies.
+    // the step blew up. Its result is dropped: the fluid goes back to its last completed
+    // step, which is what readers see already, rather than hand NaNs or absurd loads to the
+    // host and the rigid bodies.
     speedAtEnd_ = maxSpeed(*st.input.tasks);
     if (!(std::isfinite(speedAtEnd_) && speedAtEnd_ <= kMaxFluidSpeed)) {
-      for (int a = 0; a < 3; ++a) std::fill(grid_.velocity[a].begin(), grid_.velocity[a].end(), 0.0);
-      std::fill(pressure_.pressure.begin(), pressure_.pressure.end(), 0.0);
-      speedAtEnd_ = 0.0;
+      restorePublished();
       st.diverged = true;
-    } else if (desc_.twoWayCoupling) {
+      return;
+    }
+    if (desc_.twoWayCoupling) {
       // The load is the mean over this step and acts during the next one (a delay of one
       // step: explicit coupling). Extrapolating it one step ahead to cancel the delay was
       // tried and made a floating box unstable (the pressure also carries the added-mass
@@ -563,6 +564,16 @@ bool FluidActor::editFields(const std::function<void(EditableFields&)>& edit) {
   speedAtEnd_ = -1.0;  // the next step measures the edited velocities
   publishFields();
   return true;
+}
+
+void FluidActor::restorePublished() {
+  grid_ = shown_.grid;
+  smokeDensity_ = shown_.smokeDensity;
+  temperature_ = shown_.temperature;
+  phi_ = shown_.levelSet;
+  pressure_.pressure = shown_.pressure;
+  cellWeights_ = shown_.cellWeights;
+  speedAtEnd_ = -1.0;  // the next step measures the restored velocities
 }
 
 void FluidActor::publishFields() {

@@ -30,7 +30,8 @@
 // and follows the slices' measured cost toward the budget's target slice length
 // (core/slice_sizer.h).
 //   Surface    liquid: velocity extrapolation
-//   Publish    divergence guard, then what readers see becomes this step's result
+//   Publish    divergence guard (a diverged step is dropped: the fluid goes back to the last
+//              completed step), then what readers see becomes this step's result
 // The pressure loads on dynamic colliders, averaged over the sub-steps, are those of the last
 // completed step (loads()); the world applies them during the rigid steps that follow.
 #pragma once
@@ -190,6 +191,8 @@ class FluidActor {
   bool extrapolateLiquidVelocitySlice();
   void publish();
   void publishFields();
+  // The working fields back to the last completed step's (after a diverged step).
+  void restorePublished();
   static Phase phaseOf(FluidSlice kind);
   static bool runsSlabs(FluidSlice kind);
 

@@ -277,7 +277,9 @@ typedef struct vpActorStats {
   vpActorKind kind;
   uint32_t index1;    /* the actor id's index1 (0 for the rigid pseudo-actor) */
   float totalMs;
-  int32_t diverged;   /* the step blew up; the actor was restored to its previous state */
+  int32_t diverged;   /* the step blew up (non-finite or absurd speeds) and was undone: a
+                         deformable or rigid body is back to its state before the step, a
+                         fluid to its last completed step (README, "Divergence guard") */
   vpPhaseStats phases[VP_MAX_PHASES]; /* indexed by vpPhase */
   float simulatedDt;  /* seconds this step advanced the actor: 0 unless a step completed in it;
                          the frames' dt since its last step when its step spanned frames or

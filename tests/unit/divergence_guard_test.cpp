@@ -1,0 +1,130 @@
+// Every actor kind guards its step: a NaN or an absurd speed at the end of a step puts the
+// actor back to its last good state (rigid bodies and deformables: the state before the step;
+// fluids: the last completed step, which readers see already), flags `diverged` in the step's
+// stats, and the next step goes on from there. Each case is triggered by what a careless host
+// could do through the runtime (the C ABI refuses the NaN and the absurd speeds themselves).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "geometry/box_tet_mesh.h"
+#include "world.h"
+#include "world_test_util.h"
+
+namespace vp {
+namespace {
+
+bool divergedThisStep(const World& world, ActorKind kind) {
+  for (const ActorStats& a : world.lastStats().actors)
+    if (a.kind == kind && a.diverged) return true;
+  return false;
+}
+
+ColliderDesc dynamicBall(const Vec3& position) {
+  ColliderDesc d;
+  d.bodyType = BodyType::Dynamic;
+  d.shape.type = ShapeType::Sphere;
+  d.shape.radius = 0.25;
+  d.pose.position = position;
+  return d;
+}
+
+TEST(DivergenceGuard, ARigidBodyWithANaNOrAnAbsurdSpeedGoesBackToItsStateBeforeTheStep) {
+  std::unique_ptr<World> world = testutil::unbudgetedWorld();
+  ASSERT_TRUE(world);
+  ColliderHandle bad, good;
+  ASSERT_EQ(world->createCollider(dynamicBall(Vec3(0, 5, 0)), &bad), Status::Ok) << lastError();
+  ASSERT_EQ(world->createCollider(dynamicBall(Vec3(3, 5, 0)), &good), Status::Ok) << lastError();
+  for (int i = 0; i < 5; ++i) ASSERT_EQ(world->step(1.0 / 60.0), Status::Ok);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (const Vec3& v : {Vec3(nan, 0, 0), Vec3(0, 1e7, 0)}) {
+    Collider& c = *world->collider(bad);
+    const Pose pose = c.pose();
+    const Vec3 angular = c.angularVelocity();
+    c.setVelocity(v, angular);
+    const double goodY = world->collider(good)->pose().position.y();
+    ASSERT_EQ(world->step(1.0 / 60.0), Status::Ok);
+    EXPECT_TRUE(divergedThisStep(*world, ActorKind::Rigid));
+    EXPECT_EQ(world->collider(bad)->pose().position, pose.position);
+    EXPECT_TRUE(world->collider(bad)->pose().rotation.coeffs() == pose.rotation.coeffs());
+    // The velocity before the step is the one the host set: the guard restores, the host's
+    // value stays the host's. Put a sane one back and the body falls on.
+    world->collider(bad)->setVelocity(Vec3::Zero(), angular);
+    EXPECT_LT(world->collider(good)->pose().position.y(), goodY);  // the other body stepped
+    ASSERT_EQ(world->step(1.0 / 60.0), Status::Ok);
+    EXPECT_FALSE(divergedThisStep(*world, ActorKind::Rigid));
+    EXPECT_LT(world->collider(bad)->pose().position.y(), pose.position.y());
+  }
+}
+
+TEST(DivergenceGuard, ADeformableDrivenToAnAbsurdSpeedGoesBackToItsStateBeforeTheStep) {
+  std::unique_ptr<World> world = testutil::unbudgetedWorld();
+  ASSERT_TRUE(world);
+  DeformableDesc d;
+  d.mesh = makeBoxTetMesh({3, 2, 2}, Vec3(0.6, 0.4, 0.4), Vec3::Zero());
+  d.pose.position = Vec3(0, 2, 0);
+  DeformableHandle h;
+  ASSERT_EQ(world->createDeformable(std::move(d), &h), Status::Ok) << lastError();
+  for (int i = 0; i < 3; ++i) ASSERT_EQ(world->step(1.0 / 60.0), Status::Ok);
+  DeformableBody& body = *world->deformable(h);
+  const std::vector<double> x(body.positions().begin(), body.positions().end());
+  const std::vector<double> v(body.velocities().begin(), body.velocities().end());
+  ASSERT_EQ(body.applyForce(0, Vec3(0, 1e30, 0)), Status::Ok);  // finite, absurd
+  ASSERT_EQ(world->step(1.0 / 60.0), Status::Ok);
+  EXPECT_TRUE(divergedThisStep(*world, ActorKind::Deformable));
+  EXPECT_TRUE(std::equal(x.begin(), x.end(), body.positions().begin()));
+  EXPECT_TRUE(std::equal(v.begin(), v.end(), body.velocities().begin()));
+  ASSERT_EQ(world->step(1.0 / 60.0), Status::Ok);  // the force was spent: it falls on
+  EXPECT_FALSE(divergedThisStep(*world, ActorKind::Deformable));
+  EXPECT_LT(body.positions()[1], x[1]);
+}
+
+// A kinematic paddle turned at an absurd rate stirs the liquid beyond any plausible speed in
+// one step; the step is dropped and the fluid is its last completed step again, bit for bit.
+TEST(DivergenceGuard, ADivergedFluidStepIsDroppedNotResetToRest) {
+  std::unique_ptr<World> world = testutil::unbudgetedWorld();
+  ASSERT_TRUE(world);
+  ColliderDesc paddle;
+  paddle.bodyType = BodyType::Kinematic;
+  paddle.shape.type = ShapeType::Box;
+  paddle.shape.halfExtents = Vec3(0.3, 0.1, 0.05);
+  paddle.pose.position = Vec3(0.5, 0.2, 0.5);
+  paddle.angularVelocity = Vec3(0, 2, 0);
+  ColliderHandle p;
+  ASSERT_EQ(world->createCollider(paddle, &p), Status::Ok) << lastError();
+  FluidDesc tank;
+  tank.kind = FluidKind::Liquid;
+  tank.grid.h = 1.0 / 12.0;
+  tank.grid.nx = tank.grid.ny = tank.grid.nz = 12;
+  tank.sides[3] = DomainSide::Open;
+  FluidShape water;
+  water.type = FluidShape::Type::Box;
+  water.centre = Vec3(0.5, 0.25, 0.5);
+  water.halfExtents = Vec3(0.5, 0.25, 0.5);
+  tank.initialLiquid.push_back(water);
+  FluidHandle f;
+  ASSERT_EQ(world->createFluid(tank, &f), Status::Ok) << lastError();
+  for (int i = 0; i < 5; ++i) ASSERT_EQ(world->step(1.0 / 60.0), Status::Ok);
+  const FluidActor& fluid = *world->fluid(f);
+  const MacGrid grid = fluid.grid();
+  const std::vector<double> phi = fluid.levelSet(), pressure = fluid.pressure();
+  world->collider(p)->setVelocity(Vec3::Zero(), Vec3(0, 1e7, 0));
+  ASSERT_EQ(world->step(1.0 / 60.0), Status::Ok);
+  EXPECT_TRUE(divergedThisStep(*world, ActorKind::Fluid));
+  for (int a = 0; a < 3; ++a) EXPECT_EQ(fluid.grid().velocity[a], grid.velocity[a]) << "axis " << a;
+  EXPECT_EQ(fluid.levelSet(), phi);
+  EXPECT_EQ(fluid.pressure(), pressure);
+  // The flow was not thrown away: it still moves as the paddle stirred it.
+  double fastest = 0.0;
+  for (int a = 0; a < 3; ++a)
+    for (double u : fluid.grid().velocity[a]) fastest = std::max(fastest, std::abs(u));
+  EXPECT_GT(fastest, 1e-3);
+  world->collider(p)->setVelocity(Vec3::Zero(), Vec3(0, 2, 0));
+  ASSERT_EQ(world->step(1.0 / 60.0), Status::Ok);
+  EXPECT_FALSE(divergedThisStep(*world, ActorKind::Fluid));
+}
+
+}  // namespace
+}  // namespace vp
