@@ -10,8 +10,23 @@
 
 namespace vp {
 
+namespace {
+
+// Bullet preallocates pools of contact manifolds and collision algorithms (4096 of each by
+// default, about 4 MB per world, touched at creation) and falls back to the heap when one runs
+// out. A world of a game scene uses tens to hundreds; smaller pools make a world cheap to
+// create, which a host that makes one per level, or a test that makes thousands, notices.
+btDefaultCollisionConstructionInfo poolSizes() {
+  btDefaultCollisionConstructionInfo info;
+  info.m_defaultMaxPersistentManifoldPoolSize = 256;
+  info.m_defaultMaxCollisionAlgorithmPoolSize = 256;
+  return info;
+}
+
+}  // namespace
+
 CollisionWorld::CollisionWorld(const Vec3& gravity)
-    : configuration_(std::make_unique<btDefaultCollisionConfiguration>()),
+    : configuration_(std::make_unique<btDefaultCollisionConfiguration>(poolSizes())),
       dispatcher_(std::make_unique<btCollisionDispatcher>(configuration_.get())),
       broadphase_(std::make_unique<btDbvtBroadphase>()),
       solver_(std::make_unique<btSequentialImpulseConstraintSolver>()),

@@ -17,18 +17,12 @@
 #include <algorithm>
 #include <vector>
 
-#include "scene/scene_loader.h"
-#include "world.h"
+#include "default_scene.h"
 
 namespace vp {
 namespace {
 
-double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const size_t rank = std::min(v.size() - 1, static_cast<size_t>(q * static_cast<double>(v.size())));
-  return v[rank];
-}
+using bench::percentile;
 
 // A child process that spins until killed, or until the benchmark dies (a benchmark killed
 // part way, e.g. by a closed pipe, would otherwise leave it spinning and load every later
@@ -62,11 +56,8 @@ void runDefaultScene(benchmark::State& state, double budgetMs) {
   const int frames = 300;
   const double dt = 1.0 / 60.0;
   for (auto _ : state) {
-    WorldConfig config;
-    config.workerCount = 2;
-    std::unique_ptr<World> world;
-    World::create(config, &world);
-    if (!ok(loadScene(*world, VP_SAMPLE_SCENE))) return state.SkipWithError(lastError());
+    std::unique_ptr<World> world = bench::defaultSceneWorld();
+    if (!world) return state.SkipWithError(lastError());
     world->setFrameBudget(budgetMs);
     std::vector<double> ms, residuals;
     double maxSlice = 0.0, fluidSimulated = 0.0;

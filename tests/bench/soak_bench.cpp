@@ -19,11 +19,12 @@
 #include <cstdio>
 #include <vector>
 
-#include "scene/scene_loader.h"
-#include "world.h"
+#include "default_scene.h"
 
 namespace vp {
 namespace {
+
+using bench::percentile;
 
 double residentMb() {
   long pages = 0, resident = 0;
@@ -32,12 +33,6 @@ double residentMb() {
     std::fclose(f);
   }
   return double(resident) * double(sysconf(_SC_PAGESIZE)) / (1024.0 * 1024.0);
-}
-
-double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<size_t>(q * static_cast<double>(v.size())))];
 }
 
 template <class Range>
@@ -64,11 +59,8 @@ bool worldIsFinite(const World& world) {
 void BM_Soak(benchmark::State& state) {
   const int frames = static_cast<int>(state.range(0));
   for (auto _ : state) {
-    WorldConfig config;
-    config.workerCount = 2;
-    std::unique_ptr<World> world;
-    World::create(config, &world);
-    if (!ok(loadScene(*world, VP_SAMPLE_SCENE))) return state.SkipWithError(lastError());
+    std::unique_ptr<World> world = bench::defaultSceneWorld();
+    if (!world) return state.SkipWithError(lastError());
     const double rssStart = residentMb();
     double rss500 = rssStart;
     std::vector<double> ms;
