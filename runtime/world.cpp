@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <new>
+#include <system_error>
 
+#include "core/allocator.h"
 #include "core/log.h"
 #include "core/parallel_for.h"
 #include "core/run_delay.h"
@@ -44,7 +47,17 @@ World::World(const WorldConfig& config)
 
 Status World::create(const WorldConfig& config, std::unique_ptr<World>* out) {
   VP_TRY(validateWorldConfig(config));
-  out->reset(new World(config));
+  const uint64_t refusals = hostAllocationRefusals();
+  std::unique_ptr<World> world;
+  try {
+    world.reset(new World(config));
+  } catch (const std::system_error& e) {
+    return fail(Status::OutOfMemory, "workerCount = %d: cannot start the worker threads (%s)", config.workerCount,
+                e.what());
+  }
+  if (hostAllocationRefusals() != refusals)
+    return fail(Status::OutOfMemory, "the host allocator refused memory the rigid-body world needs");
+  *out = std::move(world);
   log(LogLevel::Info, "world created: %d worker(s)%s, frame budget %g ms", config.workerCount,
       config.tasks.enqueue ? " (host task system)" : "", config.frameBudgetMs);
   return Status::Ok;
@@ -56,9 +69,21 @@ World::~World() {
 
 Status World::createCollider(ColliderDesc desc, ColliderHandle* out) {
   VP_TRY(validateColliderDesc(desc));
-  auto collider = std::make_unique<Collider>(std::move(desc));
-  collision_.add(*collider);
-  *out = colliders_.insert(std::move(collider));
+  const uint64_t refusals = hostAllocationRefusals();
+  const ColliderHandle h = colliders_.insert(std::make_unique<Collider>(std::move(desc)));
+  Collider& c = *collider(h);
+  try {
+    collision_.add(c);
+  } catch (...) {
+    colliders_.remove(h.index1, h.generation);
+    throw;
+  }
+  if (hostAllocationRefusals() != refusals) {
+    collision_.remove(c);
+    colliders_.remove(h.index1, h.generation);
+    return fail(Status::OutOfMemory, "the host allocator refused memory the collider's rigid body needs");
+  }
+  *out = h;
   return Status::Ok;
 }
 
@@ -153,12 +178,16 @@ Status World::step(double dt) {
   stats.budgetMs = config_.frameBudgetMs;
   stats.colliderCount = static_cast<int>(colliders_.size());
   const double runDelayAtStart = poolRunDelayMs();
+  actorOutOfMemory_ = false;
   stepRigidBodies(dt, frame, &stats);
   const bool floorsHeld = stepDeformables(dt, frame, &stats);
   stepFluids(dt, frame, floorsHeld, &stats);
   finishStats(frame, &stats);
   balanceWorkers(frame, runDelayAtStart);
   stats_ = std::move(stats);
+  if (actorOutOfMemory_)
+    return fail(Status::OutOfMemory, "out of memory: an actor's step was undone (the others stepped); the world "
+                                     "can be stepped again");
   return Status::Ok;
 }
 
@@ -247,10 +276,14 @@ void World::stepRigidBodies(double dt, const Deadline& frame, StepStats* stats) 
   forEachFluidLoad([](Collider& c, const PressureLoad& l) { c.addFluidLoad(l.force, l.torque, l.addedMass); });
   colliders_.forEach([](ColliderHandle, Collider& c) { c.trackVelocity(); });
   for (Collider* c : loaded) c->prepareFluidLoad(dt, config_.gravity);
+  const uint64_t refusals = hostAllocationRefusals();
   const CollisionWorld::StepResult result = collision_.step(dt, config_.rigidMaxSubstep, kinematics.data(),
                                                             static_cast<int>(kinematics.size()), loaded.data(),
                                                             static_cast<int>(loaded.size()));
   stats->rigidSubsteps = result.substeps;
+  if (const uint64_t refused = hostAllocationRefusals() - refusals)
+    log(LogLevel::Warning, "the host allocator refused %llu block(s) Bullet needed in this step; they came from the "
+                           "system heap", static_cast<unsigned long long>(refused));
   rigid.diverged = result.restoredBodies > 0;
   if (rigid.diverged)
     log(LogLevel::Warning, "%d rigid bod%s diverged; restored to their state before the step", result.restoredBodies,
@@ -329,7 +362,12 @@ bool World::stepDeformables(double dt, const Deadline& frame, StepStats* stats) 
     };
     ActorStats& a = actors[i];
     const double start = frame.elapsedMs();
-    body.step(input, &a);
+    try {
+      body.step(input, &a);
+    } catch (const std::bad_alloc&) {
+      body.abandonStep();
+      actorOutOfMemory_ = true;
+    }
     a.totalMs = frame.elapsedMs() - start;
     a.simulatedDt = input.dt;
   });
@@ -424,7 +462,12 @@ void World::stepFluids(double dt, const Deadline& frame, bool floorsHeld, StepSt
     }
     ActorStats& a = actors[i];
     const double start = frame.elapsedMs();
-    f.advance(input, budget, &a);
+    try {
+      f.advance(input, budget, &a);
+    } catch (const std::bad_alloc&) {
+      f.abandonStep();
+      actorOutOfMemory_ = true;
+    }
     a.totalMs = frame.elapsedMs() - start;
   });
   for (int i : served) {

@@ -2,6 +2,7 @@
 // together under one per-frame budget. Owned by the C ABI's world registry.
 #pragma once
 
+#include <atomic>
 #include <memory>
 #include <string>
 #include <vector>
@@ -108,6 +109,8 @@ class World {
   SlotMap<DeformableBody> deformables_;
   SlotMap<FluidActor> fluids_;
   StepStats stats_;
+  // Set when an actor's step ran out of memory and was undone (actors may run side by side).
+  std::atomic<bool> actorOutOfMemory_{false};
 };
 
 }  // namespace vp

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <new>
 #include <vector>
 
@@ -18,6 +19,11 @@ void setAllocator(AllocFn allocFn, FreeFn freeFn, void* userContext);
 
 void* allocateBytes(std::size_t size, std::size_t alignment);
 void freeBytes(void* memory);
+
+// How many of Bullet's allocations the host's allocator has refused on this thread so far
+// (they came from the system heap instead, allocator.cpp says why). A call that creates Bullet
+// objects compares it before and after, and undoes its work when it grew.
+uint64_t hostAllocationRefusals();
 
 // Standard allocator over the hooks, 64-byte aligned so SIMD loads of any width are safe.
 template <class T>

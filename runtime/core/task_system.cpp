@@ -71,19 +71,19 @@ class HostTaskSystem final : public TaskSystem {
 // world.
 class ThreadPool final : public TaskSystem {
  public:
+  // Throws std::system_error when a thread cannot be started, after stopping those that were.
   explicit ThreadPool(int workers) : workers_(workers), delays_(static_cast<size_t>(workers)) {
-    for (int w = 1; w < workers; ++w) threads_.emplace_back([this, w] { workerLoop(static_cast<uint32_t>(w)); });
+    try {
+      threads_.reserve(static_cast<size_t>(workers - 1));
+      for (int w = 1; w < workers; ++w) threads_.emplace_back([this, w] { workerLoop(static_cast<uint32_t>(w)); });
+    } catch (...) {
+      stop();
+      throw;
+    }
     // Each worker opens its own statistics first thing; wait for them so reads never race.
     while (started_.load(std::memory_order_acquire) < workers - 1) std::this_thread::yield();
   }
-  ~ThreadPool() override {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      stopping_.store(true);
-    }
-    wake_.notify_all();
-    for (auto& t : threads_) t.join();
-  }
+  ~ThreadPool() override { stop(); }
 
   void run(TaskFn task, int32_t itemCount, int32_t minRange, void* context) override {
     if (itemCount <= 0) return;
@@ -165,6 +165,16 @@ class ThreadPool final : public TaskSystem {
   bool enabled_ = true;  // set by the calling thread between runs
   std::vector<RunDelayReader> delays_;  // per worker; [0] (the caller) unused
   std::atomic<int> started_{0};
+  void stop() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stopping_.store(true);
+    }
+    wake_.notify_all();
+    for (auto& t : threads_) t.join();
+    threads_.clear();
+  }
+
   std::vector<std::thread> threads_;
   std::mutex mutex_;
   std::condition_variable wake_;

@@ -462,6 +462,22 @@ void DeformableBody::corotateAndAssembleBB(TaskSystem& tasks, double stiffnessSc
   });
 }
 
+void DeformableBody::restoreStepStart() {
+  x_.assign(backupX_.begin(), backupX_.end());
+  v_.assign(backupV_.begin(), backupV_.end());
+  // Rotations warm starts may be garbage now; restart them from identity.
+  for (int64_t e = 0; e < elementCount(); ++e) {
+    double* r = &rotations_[4 * e];
+    r[0] = 1, r[1] = r[2] = r[3] = 0;
+  }
+}
+
+void DeformableBody::abandonStep() {
+  // The backups are whole once the step has begun (assigning them is its first allocation).
+  if (backupX_.size() == x_.size() && backupV_.size() == v_.size()) restoreStepStart();
+  std::fill(externalForce_.begin(), externalForce_.end(), 0.0);
+}
+
 void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
   TaskSystem& tasks = *in.tasks;
   const double h = in.dt;
@@ -684,15 +700,7 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
     v_[i] = v;
     x_[i] += h * v;
   }
-  if (diverged) {
-    x_.assign(backupX_.begin(), backupX_.end());
-    v_.assign(backupV_.begin(), backupV_.end());
-    // Rotations warm starts may be garbage now; restart them from identity.
-    for (int64_t e = 0; e < elementCount(); ++e) {
-      double* r = &rotations_[4 * e];
-      r[0] = 1, r[1] = r[2] = r[3] = 0;
-    }
-  }
+  if (diverged) restoreStepStart();
   stats->diverged = diverged;
   std::fill(externalForce_.begin(), externalForce_.end(), 0.0);
   updateRenderMesh(tasks);

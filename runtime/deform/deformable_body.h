@@ -53,6 +53,8 @@ class DeformableBody {
   // Advances one step; fills stats (phases, iterations, residual, budget cut) and sets
   // stats->diverged if the step blew up (the state is then restored to before the step).
   void step(const DeformableStepInput& input, ActorStats* stats);
+  // After an exception out of step() (out of memory): back to the state before the step.
+  void abandonStep();
 
   const DeformableDesc& desc() const { return desc_; }
   ActorSchedule& schedule() { return schedule_; }
@@ -102,6 +104,8 @@ class DeformableBody {
   const Array<double>& elementGradientPairs() const { return gradientPairs_; }
 
  private:
+  // x and v back to the step's start; rotations to identity.
+  void restoreStepStart();
   DeformableBody() = default;
   void corotateAndAssemble(TaskSystem& tasks, double stiffnessScale);
   void corotateAndAssembleBB(TaskSystem& tasks, double stiffnessScale);  // degree 2, 3

@@ -392,6 +392,16 @@ bool FluidActor::advance(const FluidStepInput& input, const SliceBudget& budget,
   return true;
 }
 
+void FluidActor::abandonStep() {
+  job_.reset();
+  step_.reset();
+  work_.finish();
+  restorePublished();
+  fractionsValid_ = false;
+  fractionsChanged_ = true;
+  pressureOperatorStale_ = true;
+}
+
 double FluidActor::progress() const {
   if (job_.done()) return step_ ? 1.0 : 0.0;
   return work_.fraction();

@@ -120,6 +120,9 @@ class FluidActor {
   // as `budget` allows. Adds what ran to `stats` (phases, slices, iterations, progress).
   // Returns true when a step completed (its results are then published).
   bool advance(const FluidStepInput& input, const SliceBudget& budget, ActorStats* stats);
+  // After an exception out of advance() (out of memory): the step in progress is dropped, the
+  // fluid is its last completed step again, and what the step derives is rebuilt next time.
+  void abandonStep();
   bool stepInProgress() const { return !job_.done(); }
 
   // The fields as a step works on them, for edits outside a step (initial conditions).

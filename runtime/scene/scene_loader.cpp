@@ -350,6 +350,42 @@ Status checkAttachmentTargets(const Scene& scene, const World& world) {
   return Status::Ok;
 }
 
+struct SceneActors {
+  std::vector<ColliderHandle> colliders;
+  std::vector<DeformableHandle> deformables;
+  std::vector<FluidHandle> fluids;
+};
+
+// Adds the validated scene's actors to the world, recording each in `added` (whose vectors
+// have room reserved) as soon as it exists.
+Status addSceneActors(World& world, Scene& scene, SceneActors* added) {
+  for (ColliderDesc& desc : scene.colliders) {
+    ColliderHandle h;
+    VP_TRY(world.createCollider(std::move(desc), &h));
+    added->colliders.push_back(h);
+  }
+  for (SceneDeformable& d : scene.deformables) {
+    DeformableHandle h;
+    VP_TRY(world.createDeformable(std::move(d.desc), &h));
+    added->deformables.push_back(h);
+    DeformableBody* body = world.deformable(h);
+    VP_TRY(body->setPinned(d.pinnedNodes.data(), static_cast<int64_t>(d.pinnedNodes.size()), true));
+    for (const SceneAttachment& a : d.attachments) {
+      ColliderHandle c{};
+      world.findCollider(a.collider, &c);
+      VP_TRY(body->attach(a.nodes.data(), static_cast<int64_t>(a.nodes.size()), c.index1, c.generation,
+                          *world.collider(c)));
+    }
+  }
+  for (size_t i = 0; i < scene.fluids.size(); ++i) {
+    FluidHandle h;
+    Status s = world.createFluid(std::move(scene.fluids[i]), &h);
+    if (!ok(s)) return addErrorContext(s, "$.fluids[" + std::to_string(i) + "]");
+    added->fluids.push_back(h);
+  }
+  return Status::Ok;
+}
+
 }  // namespace
 
 Status loadSceneFromString(World& world, const std::string& text, const std::string& baseDirectory) {
@@ -364,43 +400,22 @@ Status loadSceneFromString(World& world, const std::string& text, const std::str
   VP_TRY(parseScene(root, baseDirectory, &scene));
   VP_TRY(checkAttachmentTargets(scene, world));
 
-  // Apply. Everything was validated; only allocation can fail from here, and then what was
-  // added so far is removed again.
-  std::vector<ColliderHandle> addedColliders;
-  std::vector<DeformableHandle> addedDeformables;
-  std::vector<FluidHandle> addedFluids;
+  // Apply. Everything was validated; only allocation can fail from here (a status or a thrown
+  // bad_alloc), and then what was added so far is removed again.
+  SceneActors added;
   auto rollBack = [&](Status s) {
-    for (FluidHandle f : addedFluids) world.destroyFluid(f);
-    for (DeformableHandle d : addedDeformables) world.destroyDeformable(d);
-    for (ColliderHandle c : addedColliders) world.destroyCollider(c);
+    for (FluidHandle f : added.fluids) world.destroyFluid(f);
+    for (DeformableHandle d : added.deformables) world.destroyDeformable(d);
+    for (ColliderHandle c : added.colliders) world.destroyCollider(c);
     return s;
   };
-  for (ColliderDesc& desc : scene.colliders) {
-    ColliderHandle h;
-    Status s = world.createCollider(std::move(desc), &h);
-    if (!ok(s)) return rollBack(s);
-    addedColliders.push_back(h);
-  }
-  for (SceneDeformable& d : scene.deformables) {
-    DeformableHandle h;
-    Status s = world.createDeformable(std::move(d.desc), &h);
-    if (!ok(s)) return rollBack(s);
-    addedDeformables.push_back(h);
-    DeformableBody* body = world.deformable(h);
-    s = body->setPinned(d.pinnedNodes.data(), static_cast<int64_t>(d.pinnedNodes.size()), true);
-    for (const SceneAttachment& a : d.attachments) {
-      ColliderHandle c{};
-      world.findCollider(a.collider, &c);
-      if (ok(s)) s = body->attach(a.nodes.data(), static_cast<int64_t>(a.nodes.size()), c.index1, c.generation,
-                                  *world.collider(c));
-    }
-    if (!ok(s)) return rollBack(s);
-  }
-  for (size_t i = 0; i < scene.fluids.size(); ++i) {
-    FluidHandle h;
-    Status s = world.createFluid(std::move(scene.fluids[i]), &h);
-    if (!ok(s)) return rollBack(addErrorContext(s, "$.fluids[" + std::to_string(i) + "]"));
-    addedFluids.push_back(h);
+  try {
+    added.colliders.reserve(scene.colliders.size());
+    added.deformables.reserve(scene.deformables.size());
+    added.fluids.reserve(scene.fluids.size());
+    if (Status s = addSceneActors(world, scene, &added); !ok(s)) return rollBack(s);
+  } catch (const std::bad_alloc&) {
+    return rollBack(fail(Status::OutOfMemory, "out of memory while adding the scene's actors; none was added"));
   }
   if (scene.world.gravity) world.setGravity(*scene.world.gravity);
   if (scene.world.frameBudgetMs) world.setFrameBudget(*scene.world.frameBudgetMs);

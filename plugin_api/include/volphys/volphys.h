@@ -119,7 +119,11 @@ typedef struct vpTransform {
 /* ---------------------------------------------------------------- hooks */
 
 /* Allocator: alignment is a power of two <= 64. Must be thread-safe. Routes VolPhys' bulk
- * simulation arrays and Bullet's allocations; small bookkeeping may use the C++ heap. */
+ * simulation arrays and Bullet's allocations; small bookkeeping may use the C++ heap. It may
+ * return NULL: the call that needed the memory returns vpStatus_OutOfMemory and changes
+ * nothing (creation) or undoes the actor's step (vpWorldStep). Bullet cannot take a refusal
+ * part way, so a block it needed comes from the system heap for the moment: a creation call is
+ * then undone (OutOfMemory); inside a step the step goes on and the world logs a warning. */
 typedef void* vpAllocFn(size_t size, size_t alignment, void* userContext);
 typedef void vpFreeFn(void* memory, void* userContext);
 /* NULL functions restore the default (aligned malloc/free). Busy while any world exists. */
@@ -232,7 +236,10 @@ VP_API vpStatus vpWorldSetGravity(vpWorldId world, vpVec3 gravity);
 VP_API vpStatus vpWorldGetGravity(vpWorldId world, vpVec3* outGravity);
 VP_API vpStatus vpWorldSetFrameBudget(vpWorldId world, float frameBudgetMs);
 
-/* Advances everything by dt seconds (0 < dt <= 1) under the world's frame budget. */
+/* Advances everything by dt seconds (0 < dt <= 1) under the world's frame budget.
+ * OutOfMemory: an actor's step ran out of memory and was undone (that actor is as before the
+ * step, a fluid at its last completed step); the other actors stepped, and the world can be
+ * stepped and destroyed as usual. */
 VP_API vpStatus vpWorldStep(vpWorldId world, float dt);
 
 /* Adds the colliders (and, later, actors) of a JSON scene file to the world; the scene's
