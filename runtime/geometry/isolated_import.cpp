@@ -60,7 +60,14 @@ void capAddressSpace(size_t allowance) {
 #endif
 }
 
+// A crash in the child must end it by its signal: not run the host's crash handler (a game's
+// crash reporter) or a sanitizer's, which would report it as the host's and exit normally.
+void restoreDefaultCrashSignals() {
+  for (int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT, SIGTRAP}) ::signal(sig, SIG_DFL);
+}
+
 [[noreturn]] void runChild(int fd, const std::string& path, SurfaceImporter importer, const ImportLimits& limits) {
+  restoreDefaultCrashSignals();
   capAddressSpace(limits.memoryBytes);
   SurfaceMesh mesh;
   Status s;
