@@ -45,7 +45,7 @@ bool writeAll(int fd, const void* data, size_t bytes) {
 // The child inherits the host's mappings (libraries, thread stacks, maybe a GPU driver's
 // reservations), so the cap is what it has now plus the import's allowance.
 void capAddressSpace(size_t allowance) {
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#if defined(__SANITIZE_THREAD__)
   (void)allowance;
 #else
   long pages = 0;

@@ -5,9 +5,9 @@
 // a wall-time limit and an address-space cap: a crash, a hang or running out of memory there
 // becomes a ParseError (or OutOfMemory) here, naming the file and what happened.
 //
-// Limits of the isolation: the memory cap is not set under AddressSanitizer or ThreadSanitizer
-// (their shadow mappings count against it); where fork is unavailable (Windows) the importer
-// runs in-process. A host that reaps every child itself (SIGCHLD ignored) gets the result all
+// Limits of the isolation: the memory cap is not set under ThreadSanitizer (it maps its shadow
+// as it goes; AddressSanitizer reserves its shadow up front, which the cap, relative to what the
+// child inherits, leaves out); where fork is unavailable (Windows) the importer runs in-process. A host that reaps every child itself (SIGCHLD ignored) gets the result all
 // the same: the reply on the pipe is complete or the import failed.
 #pragma once
 
