@@ -17,7 +17,7 @@ enum class Status : int {
   Unsupported = 4,      // valid request the build or the current version cannot do
   IoError = 5,          // a file could not be opened or read
   ParseError = 6,       // a file was read but its content is malformed
-  Busy = 7,             // the world is inside a step on another thread
+  Busy = 7,             // another call holds the world (calls on one world must not overlap)
   Diverged = 8,         // the simulation blew up; the actor was restored
   VersionMismatch = 9,  // header and library disagree
   Internal = 10,        // a bug: an invariant of VolPhys itself was broken

@@ -80,16 +80,19 @@ VP_API vpVersion vpGetVersion(void);
 
 typedef enum vpStatus {
   vpStatus_Ok = 0,
-  vpStatus_InvalidArgument = 1,
-  vpStatus_InvalidId = 2,
-  vpStatus_OutOfMemory = 3,
-  vpStatus_Unsupported = 4,
-  vpStatus_IoError = 5,
-  vpStatus_ParseError = 6,
-  vpStatus_Busy = 7,
-  vpStatus_Diverged = 8,
-  vpStatus_VersionMismatch = 9,
-  vpStatus_Internal = 10
+  vpStatus_InvalidArgument = 1, /* a value out of range, NaN, malformed; the message names it */
+  vpStatus_InvalidId = 2,       /* null, stale, foreign, or of another kind */
+  vpStatus_OutOfMemory = 3,     /* the host allocator or the system refused memory or threads;
+                                   nothing changed (a step: that actor's step was undone) */
+  vpStatus_Unsupported = 4,     /* valid, but not something this build or version does */
+  vpStatus_IoError = 5,         /* a file is missing, unreadable or not a regular file */
+  vpStatus_ParseError = 6,      /* a file's content is malformed, or crashed or hung its
+                                   importer */
+  vpStatus_Busy = 7,            /* another call holds the world (see the threading contract),
+                                   or vpSetAllocator while worlds exist */
+  vpStatus_Diverged = 8,        /* reserved: divergence is reported in vpActorStats.diverged */
+  vpStatus_VersionMismatch = 9, /* header and library, or a struct's structSize, disagree */
+  vpStatus_Internal = 10        /* a bug in VolPhys: please report the message */
 } vpStatus;
 
 /* Message of the last failing call on this thread ("" if none). */
