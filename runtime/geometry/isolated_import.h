@@ -7,8 +7,11 @@
 //
 // Limits of the isolation: the memory cap is not set under ThreadSanitizer (it maps its shadow
 // as it goes; AddressSanitizer reserves its shadow up front, which the cap, relative to what the
-// child inherits, leaves out); where fork is unavailable (Windows) the importer runs in-process. A host that reaps every child itself (SIGCHLD ignored) gets the result all
-// the same: the reply on the pipe is complete or the import failed.
+// child inherits, leaves out); where fork is unavailable (Windows) the importer runs
+// in-process. A host that reaps every child itself (SIGCHLD ignored) gets the result all the
+// same: the reply on the pipe is complete or the import failed. The child of a multithreaded
+// host runs only the importer, but a lock another host thread held at the fork (beyond glibc's
+// malloc, which fork handles) could stall it: the time limit then ends it.
 #pragma once
 
 #include <cstddef>
