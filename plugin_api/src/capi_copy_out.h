@@ -6,6 +6,7 @@
 #include <cstring>
 #include <vector>
 
+#include "core/allocator.h"
 #include "core/math_types.h"
 #include "core/status.h"
 
@@ -13,8 +14,8 @@ namespace vp::capi {
 
 // Triangle mesh into optional host arrays (any may be NULL); capacities are in vertices and
 // triangles. `what` names the mesh in messages ("render mesh", "shape mesh").
-inline Status copyMeshOut(const char* what, const std::vector<Vec3>& positions, const std::vector<Vec3>& normals,
-                          const std::vector<std::array<int32_t, 3>>& triangles, float* outPositions,
+inline Status copyMeshOut(const char* what, const Array<Vec3>& positions, const Array<Vec3>& normals,
+                          const Array<std::array<int32_t, 3>>& triangles, float* outPositions,
                           float* outNormals, int32_t vertexCapacity, int32_t* outTriangles, int32_t triangleCapacity) {
   const int32_t nv = static_cast<int32_t>(positions.size()), nt = static_cast<int32_t>(triangles.size());
   if ((outPositions || outNormals) && vertexCapacity < nv)

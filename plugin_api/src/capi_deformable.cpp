@@ -11,7 +11,7 @@ using namespace vp::capi;
 
 namespace {
 
-Status copyPoints(const char* field, const float* xyz, int32_t count, std::vector<Vec3>* out) {
+Status copyPoints(const char* field, const float* xyz, int32_t count, Array<Vec3>* out) {
   if (count <= 0 || count > (1 << 26))
     return fail(Status::InvalidArgument, "%sCount = %d: must be in [1, 2^26]", field, count);
   out->resize(static_cast<size_t>(count));

@@ -188,7 +188,7 @@ vpStatus vpFluidGetField(vpFluidId id, vpFluidField field, float* outValues, int
     FluidActor* f;
     VP_TRY(resolveFluid(id, &w, &f));
     const int which = rawEnum(field);
-    const std::vector<double>* values = which == vpFluidField_SmokeDensity ? &f->smokeDensity()
+    const Array<double>* values = which == vpFluidField_SmokeDensity ? &f->smokeDensity()
                                       : which == vpFluidField_Temperature  ? &f->temperature()
                                       : which == vpFluidField_LevelSet     ? &f->levelSet()
                                       : which == vpFluidField_Pressure     ? &f->pressure()

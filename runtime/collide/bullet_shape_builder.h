@@ -5,6 +5,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/allocator.h"
 #include "collide/collider_desc.h"
 
 class btCollisionShape;
@@ -15,7 +16,7 @@ namespace vp {
 struct BulletShape {
   std::unique_ptr<btCollisionShape> shape;
   std::unique_ptr<btTriangleIndexVertexArray> meshInterface;
-  std::vector<float> meshVertices;
+  Array<float> meshVertices;
   std::vector<int> meshIndices;
 
   BulletShape();

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/allocator.h"
 #include "core/math_types.h"
 #include "core/status.h"
 
@@ -27,8 +28,8 @@ struct ShapeDesc {
   Vec3 halfExtents{0.5, 0.5, 0.5};    // box
   Vec3 normal{0.0, 1.0, 0.0};         // plane: dot(normal, x) <= offset is solid
   double offset = 0.0;
-  std::vector<Vec3> points;           // convex hull points or mesh vertices (scaled)
-  std::vector<std::array<int32_t, 3>> triangles;
+  Array<Vec3> points;           // convex hull points or mesh vertices (scaled)
+  Array<std::array<int32_t, 3>> triangles;
   std::string meshFile;               // resolved into points/triangles by validation
   Vec3 meshScale{1.0, 1.0, 1.0};
 };

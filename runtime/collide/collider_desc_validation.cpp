@@ -19,7 +19,7 @@ Status checkRange(const char* field, double value, double lo, double hi) {
   return Status::Ok;
 }
 
-Status checkPoints(const std::vector<Vec3>& points) {
+Status checkPoints(const Array<Vec3>& points) {
   for (size_t i = 0; i < points.size(); ++i)
     if (!points[i].allFinite())
       return fail(Status::InvalidArgument, "shape.points[%zu] = (%g, %g, %g): must be finite", i, points[i].x(),
@@ -29,7 +29,7 @@ Status checkPoints(const std::vector<Vec3>& points) {
 
 // A hull needs points spanning 3D; a flat one has no volume for the fluid or for Bullet's
 // inertia.
-Status checkSpans3D(const std::vector<Vec3>& points) {
+Status checkSpans3D(const Array<Vec3>& points) {
   if (points.size() < 4)
     return fail(Status::InvalidArgument, "shape.pointCount = %zu: a convex hull needs at least 4 points",
                 points.size());

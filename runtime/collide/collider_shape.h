@@ -17,6 +17,8 @@
 //     an inward-oriented mesh is flipped when prepared), `meshVertices` local.
 #pragma once
 
+#include "core/allocator.h"
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <vector>
@@ -44,9 +46,9 @@ struct ColliderShape {
   double halfHeight = 0.5;                                 // capsule, cylinder (local Y)
   Eigen::Vector3d planeNormal = Eigen::Vector3d(0, 1, 0);  // plane
   double planeOffset = 0.0;                                // plane
-  std::vector<Eigen::Vector3d> hullPoints;                 // convex hull
-  std::vector<Eigen::Vector3d> meshVertices;               // triangle mesh
-  std::vector<Eigen::Vector3i> meshTriangles;              // triangle mesh, indices
+  Array<Eigen::Vector3d> hullPoints;                 // convex hull
+  Array<Eigen::Vector3d> meshVertices;               // triangle mesh
+  Array<Eigen::Vector3i> meshTriangles;              // triangle mesh, indices
 
   // Rigid pose and velocity.
   Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();

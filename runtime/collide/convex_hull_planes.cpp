@@ -27,7 +27,7 @@ struct HullFace {
   bool alive;
 };
 
-bool makeFace(const std::vector<Eigen::Vector3d>& p, int a, int b, int c, HullFace* f) {
+bool makeFace(const Array<Eigen::Vector3d>& p, int a, int b, int c, HullFace* f) {
   Eigen::Vector3d n = (p[b] - p[a]).cross(p[c] - p[a]);
   const double len = n.norm();
   if (!(len > 0.0)) return false;
@@ -41,8 +41,8 @@ bool makeFace(const std::vector<Eigen::Vector3d>& p, int a, int b, int c, HullFa
 
 }  // namespace
 
-Status convexHullPlanes(const std::vector<Eigen::Vector3d>& p,
-                        std::vector<Eigen::Vector4d>* planes) {
+Status convexHullPlanes(const Array<Eigen::Vector3d>& p,
+                        Array<Eigen::Vector4d>* planes) {
   const int n = static_cast<int>(p.size());
   if (n < 4) return fail(Status::InvalidArgument, "hullPoints: need at least 4 points, got %d", n);
   Eigen::Vector3d lo = p[0], hi = p[0];
@@ -112,7 +112,7 @@ Status convexHullPlanes(const std::vector<Eigen::Vector3d>& p,
     }
   }
 
-  std::vector<Eigen::Vector4d> out;
+  Array<Eigen::Vector4d> out;
   for (const auto& f : faces) {
     if (!f.alive) continue;
     bool dup = false;

@@ -21,6 +21,7 @@
 // PreparedCollider, built once per shape and refreshed with setPose() when the body moves.
 #pragma once
 
+#include "core/allocator.h"
 #include "core/status.h"
 #include "collide/collider_shape.h"
 
@@ -59,7 +60,7 @@ struct TriangleBvh {
     int first = 0, count = 0;  // leaf: triangles order[first, first+count)
     int left = -1, right = -1; // inner node children (count == 0)
   };
-  std::vector<Node> nodes;
+  Array<Node> nodes;
   std::vector<int> order;      // triangle ids in leaf order
 };
 
@@ -73,12 +74,12 @@ struct PreparedCollider {
   double boundRadius = 0.0;
 
   // Plane, box, hull: world half-spaces n.x <= d with unit n (n in xyz, d in w).
-  std::vector<Eigen::Vector4d> localPlanes;
-  std::vector<Eigen::Vector4d> worldPlanes;
+  Array<Eigen::Vector4d> localPlanes;
+  Array<Eigen::Vector4d> worldPlanes;
 
   // Triangle mesh: world vertices, outward-oriented triangles, BVH.
-  std::vector<Eigen::Vector3d> worldVertices;
-  std::vector<Eigen::Vector3i> triangles;
+  Array<Eigen::Vector3d> worldVertices;
+  Array<Eigen::Vector3i> triangles;
   TriangleBvh bvh;
 };
 

@@ -1,6 +1,7 @@
 // Internal helpers shared by the face_coverage_*.cpp files (not part of the fluid API).
 #pragma once
 
+#include "core/allocator.h"
 #include "collide/face_coverage.h"
 
 #include <algorithm>
@@ -115,12 +116,12 @@ double coveredAreaCapsuleOrCylinder(const PreparedCollider& c, const FaceFrame& 
 double coveredAreaMesh(const PreparedCollider& c, const FaceFrame& fr);
 
 // Convex-hull half-spaces of a point set (local frame): unit n, d in w; n.x <= d inside.
-Status convexHullPlanes(const std::vector<Eigen::Vector3d>& points,
-                        std::vector<Eigen::Vector4d>* planes);
+Status convexHullPlanes(const Array<Eigen::Vector3d>& points,
+                        Array<Eigen::Vector4d>* planes);
 
 // BVH over triangles of `vertices`.
-void buildTriangleBvh(const std::vector<Eigen::Vector3d>& vertices,
-                      const std::vector<Eigen::Vector3i>& triangles, TriangleBvh* bvh);
+void buildTriangleBvh(const Array<Eigen::Vector3d>& vertices,
+                      const Array<Eigen::Vector3i>& triangles, TriangleBvh* bvh);
 
 // Calls visit(triangleId) for every triangle whose box overlaps [lo, hi]. No allocation.
 template <class Visit>

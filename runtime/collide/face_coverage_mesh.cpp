@@ -58,7 +58,7 @@ double coveredAreaMesh(const PreparedCollider& c, const FaceFrame& fr) {
   lo[fr.a2] = fr.v0;
   hi[fr.a2] = c.bounds.hi[fr.a2];
   if (hi[fr.a2] < lo[fr.a2]) return 0.0;
-  const std::vector<Eigen::Vector3d>& V = c.worldVertices;
+  const Array<Eigen::Vector3d>& V = c.worldVertices;
   double area = 0.0;
   bvhQueryBox(c.bvh, lo, hi, [&](int t) {
     const Eigen::Vector3i& tri = c.triangles[t];

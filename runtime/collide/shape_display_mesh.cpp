@@ -19,8 +19,8 @@ struct Builder {
   }
   void tri(int32_t a, int32_t b, int32_t c) { mesh.triangles.push_back({a, b, c}); }
   // Flat polygon (convex, in order either way round) with one normal: a fan.
-  void polygon(const std::vector<Vec3>& corners, const Vec3& normal) {
-    std::vector<int32_t> ids;
+  void polygon(const Array<Vec3>& corners, const Vec3& normal) {
+    Array<int32_t> ids;
     for (const Vec3& c : corners) ids.push_back(add(c, normal));
     for (size_t i = 1; i + 1 < ids.size(); ++i) tri(ids[0], ids[i], ids[i + 1]);
   }
@@ -33,7 +33,7 @@ void addRoundedBody(Builder& b, double radius, double lift) {
   std::vector<std::pair<double, double>> rings;  // (polar angle, y offset)
   for (int i = 0; i <= kRings / 2; ++i) rings.emplace_back(pi * i / kRings, lift);
   for (int i = kRings / 2 + (lift == 0.0 ? 1 : 0); i <= kRings; ++i) rings.emplace_back(pi * i / kRings, -lift);
-  std::vector<int32_t> first;
+  Array<int32_t> first;
   for (const auto& [theta, y] : rings) {
     first.push_back(static_cast<int32_t>(b.mesh.positions.size()));
     for (int j = 0; j < kSegments; ++j) {
@@ -55,7 +55,7 @@ void addRoundedBody(Builder& b, double radius, double lift) {
 void addCylinder(Builder& b, double radius, double halfHeight) {
   const double pi = 3.14159265358979323846;
   const int32_t base = static_cast<int32_t>(b.mesh.positions.size());
-  std::vector<Vec3> top, bottom;
+  Array<Vec3> top, bottom;
   for (int j = 0; j < kSegments; ++j) {
     const double phi = 2.0 * pi * j / kSegments;
     const Vec3 radial(std::cos(phi), 0, std::sin(phi));
@@ -79,7 +79,7 @@ void addBox(Builder& b, const Vec3& he) {
       const int u = (axis + 1) % 3, v = (axis + 2) % 3;
       Vec3 n = Vec3::Zero();
       n[axis] = s;
-      std::vector<Vec3> corners;
+      Array<Vec3> corners;
       for (auto [cu, cv] : {std::pair{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}) {
         Vec3 p = Vec3::Zero();
         p[axis] = s * he[axis];
@@ -100,15 +100,15 @@ void addPlane(Builder& b, const Vec3& normal, double offset) {
   b.polygon({c - h * t - h * u, c + h * t - h * u, c + h * t + h * u, c - h * t + h * u}, n);
 }
 
-void addConvexHull(Builder& b, const std::vector<Vec3>& points) {
-  std::vector<double> xyz;
+void addConvexHull(Builder& b, const Array<Vec3>& points) {
+  Array<double> xyz;
   for (const Vec3& p : points) xyz.insert(xyz.end(), {p.x(), p.y(), p.z()});
   btConvexHullComputer hull;
   hull.compute(xyz.data(), 3 * static_cast<int>(sizeof(double)), static_cast<int>(points.size()), 0, 0);
   for (int f = 0; f < hull.faces.size(); ++f) {
     const btConvexHullComputer::Edge* first = &hull.edges[hull.faces[f]];
     const btConvexHullComputer::Edge* e = first;
-    std::vector<Vec3> corners;
+    Array<Vec3> corners;
     do {
       const btVector3& v = hull.vertices[e->getSourceVertex()];
       corners.emplace_back(v.x(), v.y(), v.z());

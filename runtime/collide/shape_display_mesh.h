@@ -7,14 +7,15 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/allocator.h"
 #include "collide/collider_desc.h"
 
 namespace vp {
 
 struct ShapeDisplayMesh {
-  std::vector<Vec3> positions;
-  std::vector<Vec3> normals;  // per vertex, unit, pointing out of the solid
-  std::vector<std::array<int32_t, 3>> triangles;  // counter-clockwise seen from outside
+  Array<Vec3> positions;
+  Array<Vec3> normals;  // per vertex, unit, pointing out of the solid
+  Array<std::array<int32_t, 3>> triangles;  // counter-clockwise seen from outside
 };
 
 // Half the side of the square drawn for a plane, in metres.

@@ -11,8 +11,8 @@ namespace vp {
 namespace detail {
 namespace {
 
-int buildNode(const std::vector<Eigen::Vector3d>& v, const std::vector<Eigen::Vector3i>& t,
-              const std::vector<Eigen::Vector3d>& centroid, TriangleBvh* bvh, int first,
+int buildNode(const Array<Eigen::Vector3d>& v, const Array<Eigen::Vector3i>& t,
+              const Array<Eigen::Vector3d>& centroid, TriangleBvh* bvh, int first,
               int count, int depth) {
   const int id = static_cast<int>(bvh->nodes.size());
   bvh->nodes.emplace_back();
@@ -52,11 +52,11 @@ double boxDistance2(const Eigen::Vector3d& p, const Eigen::Vector3d& lo, const E
 
 }  // namespace
 
-void buildTriangleBvh(const std::vector<Eigen::Vector3d>& v,
-                      const std::vector<Eigen::Vector3i>& t, TriangleBvh* bvh) {
+void buildTriangleBvh(const Array<Eigen::Vector3d>& v,
+                      const Array<Eigen::Vector3i>& t, TriangleBvh* bvh) {
   bvh->nodes.clear();
   bvh->order.resize(t.size());
-  std::vector<Eigen::Vector3d> centroid(t.size());
+  Array<Eigen::Vector3d> centroid(t.size());
   for (size_t i = 0; i < t.size(); ++i) {
     bvh->order[i] = static_cast<int>(i);
     centroid[i] = (v[t[i][0]] + v[t[i][1]] + v[t[i][2]]) / 3.0;

@@ -12,6 +12,8 @@
 // row-major 3x3), block 3x3 row-major.
 #pragma once
 
+#include "core/allocator.h"
+
 #include <cstdint>
 #include <vector>
 
@@ -21,9 +23,9 @@ namespace vp {
 // [start[a·N+b], start[a·N+b+1]), each a gradient pair (c·4+d) and its weight.
 struct BBStiffnessTerms {
   int degree = 0;
-  std::vector<int32_t> start;
-  std::vector<uint8_t> pair;
-  std::vector<double> weight;
+  Array<int32_t> start;
+  Array<uint8_t> pair;
+  Array<double> weight;
 };
 
 // degree must be 1..3.

@@ -68,7 +68,7 @@ Status DeformableBody::create(DeformableDesc desc, std::unique_ptr<DeformableBod
 
   // Nodes: the mesh vertices keep their indices; for degree > 1 the edge and face control
   // points follow, one per BB node key (shared between the tets around an edge or face).
-  std::vector<Vec3> restNodes(mesh.vertices.begin(), mesh.vertices.end());
+  Array<Vec3> restNodes(mesh.vertices.begin(), mesh.vertices.end());
   b.nodeSupport_.assign(restNodes.size(), {-1, -1, -1});
   b.elementNodes_.resize(static_cast<size_t>(N * elements));
   std::map<std::array<int32_t, 10>, int32_t> nodeOfKey;
@@ -178,7 +178,7 @@ Status DeformableBody::create(DeformableDesc desc, std::unique_ptr<DeformableBod
   if (degree > 1) {
     // Control points of boundary edges and faces collide too (an approximation: BB control
     // points off the vertices lie near, not on, the curved surface).
-    std::vector<uint8_t> onBoundary(static_cast<size_t>(b.nodeCount_), 0);
+    Array<uint8_t> onBoundary(static_cast<size_t>(b.nodeCount_), 0);
     for (int32_t v : b.surfaceNodes_) onBoundary[v] = 1;
     for (int32_t i = static_cast<int32_t>(mesh.vertices.size()); i < b.nodeCount_; ++i) {
       const auto& sup = b.nodeSupport_[i];
@@ -382,7 +382,7 @@ void DeformableBody::updateMultigridFilters(TaskSystem& tasks, double massScale)
   pMultigrid_.update(tasks, matrix_, x_.data(), nodeFilters_.data());
 }
 
-void DeformableBody::contactImpulses(TaskSystem& tasks, std::vector<Vec3>* impulses) {
+void DeformableBody::contactImpulses(TaskSystem& tasks, Array<Vec3>* impulses) {
   // (A v' − b) at a constrained node is the impulse the constraint applied there.
   cg_.q.resize(vNext_.size());
   matrix_.multiply(tasks, vNext_.data(), cg_.q.data());
@@ -608,7 +608,7 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
   // - a sliding contact whose slip the friction reversed sticks again (the friction
   //   impulse would have been more than static friction needed).
   for (int pass = 0; pass < kContactPasses && !contacts_.empty(); ++pass) {
-    std::vector<Vec3> impulses;
+    Array<Vec3> impulses;
     contactImpulses(tasks, &impulses);
     bool changed = false;
     size_t kept = 0;

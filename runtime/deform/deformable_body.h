@@ -14,6 +14,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/allocator.h"
 #include "collide/collider.h"
 #include "core/budget_clock.h"
 #include "core/slot_map.h"
@@ -80,13 +81,13 @@ class DeformableBody {
   void detachAll(uint32_t colliderIndex1, uint32_t colliderGeneration);
   int64_t attachmentCount() const { return static_cast<int64_t>(attachments_.size()); }
   // Contacts active at the end of the last step (after lift-off releases).
-  const std::vector<NodeContact>& contacts() const { return contacts_; }
+  const Array<NodeContact>& contacts() const { return contacts_; }
 
   // The render mesh: the desc's, else the tet mesh's boundary; embedded in the tets and
   // moved with them each step. Positions and normals are in the world frame.
   const SurfaceMesh& renderMeshRest() const { return renderRest_; }
-  const std::vector<Vec3>& renderPositions() const { return renderPositions_; }
-  const std::vector<Vec3>& renderNormals() const { return renderNormals_; }
+  const Array<Vec3>& renderPositions() const { return renderPositions_; }
+  const Array<Vec3>& renderNormals() const { return renderNormals_; }
 
   double kineticEnergy() const;
   // Corotated strain energy Σ V (μ ε:ε + λ/2 tr(ε)²) at the current positions.
@@ -117,7 +118,7 @@ class DeformableBody {
   // scales the re-discretized p-multigrid levels' mass as the fine system's.
   void updateMultigridFilters(TaskSystem& tasks, double massScale);
   // Constraint impulse of each contact from the solved velocities: A v' − b at its node.
-  void contactImpulses(TaskSystem& tasks, std::vector<Vec3>* impulses);
+  void contactImpulses(TaskSystem& tasks, Array<Vec3>* impulses);
   Status checkNode(const char* what, int32_t node) const;
 
   struct Attachment {
@@ -136,7 +137,7 @@ class DeformableBody {
   Array<int32_t> elementNodes_;     // nodesPerElement_ per element, BB local order
   // Per node: the global vertices an edge/face control point lies on (-1: unused; all -1 for
   // vertex nodes).
-  std::vector<std::array<int32_t, 3>> nodeSupport_;
+  Array<std::array<int32_t, 3>> nodeSupport_;
   Array<double> elementStiffness_;  // degree > 1: rest K_e, 3N x 3N row-major per element
   Array<double> gradientPairs_;     // degree > 1: 16 rotated 3x3 gradient pairs per element, this step
   BBStiffnessTerms stiffnessTerms_;
@@ -151,21 +152,21 @@ class DeformableBody {
   BlockSparseMatrix<double> matrix_;
   Array<int32_t> scatter_;          // 16 block indices per element
   SurfaceMesh renderRest_;
-  std::vector<EmbeddedPoint> embedding_;
-  std::vector<Vec3> renderPositions_, renderNormals_;
+  Array<EmbeddedPoint> embedding_;
+  Array<Vec3> renderPositions_, renderNormals_;
   // Per-step scratch kept to avoid allocation in the hot path.
   Array<double> force_, rhs_, vNext_, diagInverse_, backupX_, backupV_;
   enum : uint8_t { kFree = 0, kFixed = 1, kContact = 2 };
   Array<uint8_t> constrained_;
   Array<double> contactNormal_;     // 3 per node, valid where constrained_ == kContact
-  std::vector<int32_t> surfaceNodes_;
-  std::vector<NodeContact> contacts_;
+  Array<int32_t> surfaceNodes_;
+  Array<NodeContact> contacts_;
   // Contact state carried between steps: a node that slid keeps sliding (kinetic friction
   // from its last normal impulse) until its slip stops; otherwise contacts start sticking.
   Array<uint8_t> sliding_;
   Array<double> lastNormalImpulse_;
   double contactMargin_ = 0.0;
-  std::vector<Vec3> slideFriction_;  // kinetic friction impulse of each contact this step
+  Array<Vec3> slideFriction_;  // kinetic friction impulse of each contact this step
   CgWorkspace cg_;
   bool useMultigrid_ = false;
   AggregationMultigrid multigrid_;

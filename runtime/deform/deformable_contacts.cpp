@@ -23,9 +23,9 @@ Vec3 distanceGradient(const PreparedCollider& c, const Vec3& x) {
 
 }  // namespace
 
-void findNodeContacts(const Array<double>& x, const Array<double>& v, const std::vector<int32_t>& surfaceNodes,
+void findNodeContacts(const Array<double>& x, const Array<double>& v, const Array<int32_t>& surfaceNodes,
                       const std::vector<ContactCollider>& colliders, double h, double bodyFriction, double margin,
-                      std::vector<NodeContact>* out) {
+                      Array<NodeContact>* out) {
   out->clear();
   if (colliders.empty()) return;
   for (int32_t node : surfaceNodes) {

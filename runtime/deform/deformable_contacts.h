@@ -45,8 +45,8 @@ struct NodeContact {
 // over several steps instead of launching the body.
 constexpr double kMaxPushOutSpeed = 2.0;
 
-void findNodeContacts(const Array<double>& x, const Array<double>& v, const std::vector<int32_t>& surfaceNodes,
+void findNodeContacts(const Array<double>& x, const Array<double>& v, const Array<int32_t>& surfaceNodes,
                       const std::vector<ContactCollider>& colliders, double h, double bodyFriction, double margin,
-                      std::vector<NodeContact>* out);
+                      Array<NodeContact>* out);
 
 }  // namespace vp

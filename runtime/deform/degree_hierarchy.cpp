@@ -12,16 +12,16 @@ namespace {
 
 // Dense local elevation matrix from degree `from` to degree `to` (to > from), row-major
 // bbNodeCount(to) x bbNodeCount(from): composed single-step elevations.
-void localElevation(int from, int to, std::vector<double>* matrix) {
+void localElevation(int from, int to, Array<double>* matrix) {
   int rows = bbNodeCount(from);
-  std::vector<double> current(static_cast<size_t>(rows * rows), 0.0);
+  Array<double> current(static_cast<size_t>(rows * rows), 0.0);
   for (int k = 0; k < rows; ++k) current[k * rows + k] = 1.0;
   const int cols = bbNodeCount(from);
   for (int d = from; d < to; ++d) {
     BBElevationRow step[kBBMaxNodes];
     bbElevationRows(d, step);
     const int next = bbNodeCount(d + 1);
-    std::vector<double> elevated(static_cast<size_t>(next * cols), 0.0);
+    Array<double> elevated(static_cast<size_t>(next * cols), 0.0);
     for (int r = 0; r < next; ++r)
       for (int m = 0; m < step[r].count; ++m)
         for (int c = 0; c < cols; ++c) elevated[r * cols + c] += step[r].weight[m] * current[step[r].node[m] * cols + c];
@@ -81,13 +81,13 @@ Status buildDegreeHierarchy(const std::vector<int>& degrees, const int32_t* fine
     // Prolongation levels[l] -> levels[l - 1].
     const DegreeLevel& fine = h.levels[l - 1];
     const int Nf = bbNodeCount(fine.degree);
-    std::vector<double> E;
+    Array<double> E;
     localElevation(level.degree, fine.degree, &E);
     NodeProlongation P;
     P.fineNodes = fine.nodeCount;
     P.coarseNodes = level.nodeCount;
     std::vector<std::vector<std::pair<int32_t, double>>> rows(static_cast<size_t>(fine.nodeCount));
-    std::vector<uint8_t> done(static_cast<size_t>(fine.nodeCount), 0);
+    Array<uint8_t> done(static_cast<size_t>(fine.nodeCount), 0);
     for (int64_t e = 0; e < elementCount; ++e)
       for (int r = 0; r < Nf; ++r) {
         const int32_t i = fine.elementNodes[Nf * e + r];

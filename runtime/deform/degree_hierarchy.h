@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/allocator.h"
 #include "core/status.h"
 #include "linalg/node_prolongation.h"
 
@@ -24,7 +25,7 @@ namespace vp {
 struct DegreeLevel {
   int degree = 1;
   int32_t nodeCount = 0;
-  std::vector<int32_t> elementNodes;  // bbNodeCount(degree) per element, BB local order
+  Array<int32_t> elementNodes;  // bbNodeCount(degree) per element, BB local order
 };
 
 struct DegreeHierarchy {

@@ -12,7 +12,7 @@ void ElementIncidence::build(int32_t nodeCount, const int32_t* elementNodes, int
   for (int32_t i = 0; i < nodeCount; ++i) start[i + 1] += start[i];
   element.resize(static_cast<size_t>(entries));
   corner.resize(static_cast<size_t>(entries));
-  std::vector<int32_t> fill(start.begin(), start.end() - 1);
+  Array<int32_t> fill(start.begin(), start.end() - 1);
   for (int64_t k = 0; k < entries; ++k) {
     const int32_t slot = fill[elementNodes[k]]++;
     element[slot] = static_cast<int32_t>(k / nodesPerElement);

@@ -64,7 +64,7 @@ double FluidActor::totalSmoke() const {
 
 double FluidActor::liquidVolume() const {
   if (desc_.kind != FluidKind::Liquid) return 0.0;
-  const std::vector<double>& weights = shown_.cellWeights;
+  const Array<double>& weights = shown_.cellWeights;
   return vp::liquidVolume(*tasks_, grid_.spec, shown_.levelSet.data(), weights.empty() ? nullptr : weights.data());
 }
 
@@ -74,12 +74,12 @@ const FluidSurface& FluidActor::surface() {
   surfaceStep_ = stepCount_;
   if (desc_.kind != FluidKind::Liquid) return surface_;
   SurfaceMesh mesh;
-  std::vector<Eigen::Vector3d> normals;
+  Array<Eigen::Vector3d> normals;
   if (Status s = extractLiquidSurface(*tasks_, grid_.spec, shown_.levelSet.data(), &mesh, &normals, marchingCubes_); !ok(s)) {
     log(LogLevel::Error, "fluid '%s': surface extraction failed: %s", desc_.name.c_str(), lastError());
     return surface_;
   }
-  surface_.positions = std::move(mesh.vertices);
+  surface_.positions.assign(mesh.vertices.begin(), mesh.vertices.end());
   surface_.normals = std::move(normals);
   surface_.triangles.reserve(mesh.triangles.size());
   for (const auto& t : mesh.triangles) surface_.triangles.emplace_back(t[0], t[1], t[2]);
@@ -214,7 +214,7 @@ bool FluidActor::advectScalarsSlab() {
         buildCellOpenFaces(tasks, grid_, fractions_, &openFaces_);
         fractionsChanged_ = false;
       }
-      std::vector<double>* scalars[2] = {&smokeDensity_, &temperature_};
+      Array<double>* scalars[2] = {&smokeDensity_, &temperature_};
       const double solidValues[2] = {0.0, desc_.smoke.ambientTemperature};
       st.scalarAdvection.prepare(tasks, grid_, st.h, scheme, scalars, 2, advection_, &openFaces_, solidValues, 0.0,
                                  /*conservedField=*/0);
@@ -222,7 +222,7 @@ bool FluidActor::advectScalarsSlab() {
       // The level set is extended into solids on purpose (level_set_solid_extension.h) and
       // sampled as it is. Cells farther from the surface than the sub-step moves it, plus the
       // forward and backward traces' stencils, keep their sign, and redistancing rewrites them.
-      std::vector<double>* scalars[1] = {&phi_};
+      Array<double>* scalars[1] = {&phi_};
       st.scalarAdvection.prepare(tasks, grid_, st.h, scheme, scalars, 1, advection_, nullptr, nullptr,
                                  st.speed * st.h + 3.0 * grid_.spec.h);
     }
@@ -327,7 +327,7 @@ Aabb FluidActor::domainBounds() const {
 double FluidActor::maxSpeed(TaskSystem& tasks) const {
   double speed = 0.0;
   for (int a = 0; a < 3; ++a) {
-    const std::vector<double>& u = grid_.velocity[a];
+    const Array<double>& u = grid_.velocity[a];
     struct Max {
       double v = 0.0;
       Max& operator+=(const Max& o) { v = std::max(v, o.v); return *this; }

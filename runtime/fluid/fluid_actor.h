@@ -41,6 +41,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/allocator.h"
 #include "collide/face_coverage.h"
 #include "core/budget_clock.h"
 #include "core/slice_sizer.h"
@@ -89,8 +90,8 @@ struct FluidColliderLoad {
 
 // The liquid's free surface, oriented out of the liquid.
 struct FluidSurface {
-  std::vector<Vec3> positions, normals;
-  std::vector<Eigen::Vector3i> triangles;
+  Array<Vec3> positions, normals;
+  Array<Eigen::Vector3i> triangles;
 };
 
 // Which slices may run now: while the share leaves room for the next slice's expected cost,
@@ -128,9 +129,9 @@ class FluidActor {
   // The fields as a step works on them, for edits outside a step (initial conditions).
   struct EditableFields {
     MacGrid& grid;
-    std::vector<double>& smokeDensity;
-    std::vector<double>& temperature;
-    std::vector<double>& levelSet;
+    Array<double>& smokeDensity;
+    Array<double>& temperature;
+    Array<double>& levelSet;
   };
   // Runs `edit` on the working fields; readers see the edit at once. Refused (false) while a
   // step is in progress: the step would overwrite it.
@@ -150,10 +151,10 @@ class FluidActor {
   // The longest slice run by the last advance().
   double maxSliceMs() const { return maxSliceMs_; }
   const MacGrid& grid() const { return shown_.grid; }
-  const std::vector<double>& smokeDensity() const { return shown_.smokeDensity; }
-  const std::vector<double>& temperature() const { return shown_.temperature; }
-  const std::vector<double>& levelSet() const { return shown_.levelSet; }
-  const std::vector<double>& pressure() const { return shown_.pressure; }
+  const Array<double>& smokeDensity() const { return shown_.smokeDensity; }
+  const Array<double>& temperature() const { return shown_.temperature; }
+  const Array<double>& levelSet() const { return shown_.levelSet; }
+  const Array<double>& pressure() const { return shown_.pressure; }
   Vec3 sampleVelocity(const Vec3& x) const { return shown_.grid.sampleVelocity(x); }
   // The pressure loads of the last completed step on dynamic colliders.
   const std::vector<FluidColliderLoad>& loads() const { return shown_.loads; }
@@ -241,7 +242,7 @@ class FluidActor {
   // What readers see (the last completed step).
   struct ShownState {
     MacGrid grid;
-    std::vector<double> smokeDensity, temperature, levelSet, pressure, cellWeights;
+    Array<double> smokeDensity, temperature, levelSet, pressure, cellWeights;
     std::vector<FluidColliderLoad> loads;
   };
 
@@ -253,7 +254,7 @@ class FluidActor {
   bool fractionsChanged_ = true;  // since the advection's open-face masks were built
   bool pressureOperatorStale_ = true;  // the fractions changed since the last projection
   double speedAtEnd_ = -1.0;  // largest face speed after the last step; < 0 before the first
-  std::vector<double> smokeDensity_, temperature_, phi_;
+  Array<double> smokeDensity_, temperature_, phi_;
   PressureState pressure_;
   AdvectionWorkspace advection_;
   CellOpenFaces openFaces_;  // smoke: which faces advection may interpolate through
@@ -269,8 +270,8 @@ class FluidActor {
   // Liquid: the volume the level set must keep (initial + emitted - drained), the cells'
   // open fractions that weight it, and the level-set workspaces.
   double targetVolume_ = 0.0;
-  std::vector<double> cellWeights_;
-  std::vector<int64_t> solidCells_;
+  Array<double> cellWeights_;
+  Array<int64_t> solidCells_;
   RedistanceWorkspace redistance_;
   VelocityExtrapolationState extrapolation_;
   SlicedJob job_{static_cast<int>(FluidSlice::Count)};

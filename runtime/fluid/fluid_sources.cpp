@@ -49,7 +49,7 @@ void setFaceVelocitiesInside(MacGrid& grid, const FluidEmitter& e) {
 }  // namespace
 
 void applySmokeEmitters(MacGrid& grid, const std::vector<FluidEmitter>& emitters, double dt,
-                        std::vector<double>& smokeDensity, std::vector<double>& temperature) {
+                        Array<double>& smokeDensity, Array<double>& temperature) {
   for (const FluidEmitter& e : emitters) {
     forCellsNear(grid, e.shape, [&](int i, int j, int k) {
       if (e.shape.signedDistance(grid.cellCentre(i, j, k)) >= 0.0) return;
@@ -61,7 +61,7 @@ void applySmokeEmitters(MacGrid& grid, const std::vector<FluidEmitter>& emitters
   }
 }
 
-void applyLiquidEmitters(MacGrid& grid, const std::vector<FluidEmitter>& emitters, std::vector<double>& phi) {
+void applyLiquidEmitters(MacGrid& grid, const std::vector<FluidEmitter>& emitters, Array<double>& phi) {
   for (const FluidEmitter& e : emitters) {
     forCellsNear(grid, e.shape, [&](int i, int j, int k) {
       const size_t c = grid.cellIndex(i, j, k);
@@ -71,7 +71,7 @@ void applyLiquidEmitters(MacGrid& grid, const std::vector<FluidEmitter>& emitter
   }
 }
 
-void applyDrains(const MacGrid& grid, const std::vector<FluidShape>& drains, std::vector<double>& phi) {
+void applyDrains(const MacGrid& grid, const std::vector<FluidShape>& drains, Array<double>& phi) {
   for (const FluidShape& d : drains)
     forCellsNear(grid, d, [&](int i, int j, int k) {
       const size_t c = grid.cellIndex(i, j, k);
@@ -79,7 +79,7 @@ void applyDrains(const MacGrid& grid, const std::vector<FluidShape>& drains, std
     });
 }
 
-void initialLiquidLevelSet(const MacGrid& grid, const std::vector<FluidShape>& regions, std::vector<double>& phi) {
+void initialLiquidLevelSet(const MacGrid& grid, const std::vector<FluidShape>& regions, Array<double>& phi) {
   const MacGridSpec& s = grid.spec;
   const double far = s.h * (s.nx + s.ny + s.nz);
   phi.assign(static_cast<size_t>(grid.cellCount()), far);

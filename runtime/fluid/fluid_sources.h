@@ -8,6 +8,7 @@
 
 #include <vector>
 
+#include "core/allocator.h"
 #include "fluid/fluid_desc.h"
 #include "fluid/mac_grid.h"
 
@@ -16,16 +17,16 @@ namespace vp {
 // Smoke: density += rate dt and temperature = emitter temperature inside; faces inside take
 // the emitter's velocity.
 void applySmokeEmitters(MacGrid& grid, const std::vector<FluidEmitter>& emitters, double dt,
-                        std::vector<double>& smokeDensity, std::vector<double>& temperature);
+                        Array<double>& smokeDensity, Array<double>& temperature);
 
 // Liquid: phi = min(phi, shape distance) (the union with the shape); faces inside take the
 // emitter's velocity.
-void applyLiquidEmitters(MacGrid& grid, const std::vector<FluidEmitter>& emitters, std::vector<double>& phi);
+void applyLiquidEmitters(MacGrid& grid, const std::vector<FluidEmitter>& emitters, Array<double>& phi);
 
 // Liquid: phi = max(phi, -shape distance) (the shape is cut out of the liquid).
-void applyDrains(const MacGrid& grid, const std::vector<FluidShape>& drains, std::vector<double>& phi);
+void applyDrains(const MacGrid& grid, const std::vector<FluidShape>& drains, Array<double>& phi);
 
 // phi of the union of `regions` (+ a large positive value where there is none).
-void initialLiquidLevelSet(const MacGrid& grid, const std::vector<FluidShape>& regions, std::vector<double>& phi);
+void initialLiquidLevelSet(const MacGrid& grid, const std::vector<FluidShape>& regions, Array<double>& phi);
 
 }  // namespace vp

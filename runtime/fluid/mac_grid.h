@@ -18,6 +18,7 @@
 #include <array>
 #include <vector>
 
+#include "core/allocator.h"
 #include "core/status.h"
 #include "fluid/solids/face_fraction_field.h"
 
@@ -29,7 +30,7 @@ struct MacGrid {
   MacGridSpec spec;
   std::array<DomainSide, 6> sides{DomainSide::Wall, DomainSide::Wall, DomainSide::Wall,
                                   DomainSide::Wall, DomainSide::Wall, DomainSide::Wall};
-  std::vector<double> velocity[3];
+  Array<double> velocity[3];
 
   int64_t cellCount() const {
     return static_cast<int64_t>(spec.nx) * spec.ny * spec.nz;

@@ -69,8 +69,8 @@ void addCellForceToFaces(TaskSystem& tasks, MacGrid& grid, int a, double dt, con
 
 }  // namespace
 
-void applyBuoyancy(TaskSystem& tasks, MacGrid& grid, const std::vector<double>& smokeDensity,
-                   const std::vector<double>& temperature, const SmokeParameters& p, const Vec3& gravity,
+void applyBuoyancy(TaskSystem& tasks, MacGrid& grid, const Array<double>& smokeDensity,
+                   const Array<double>& temperature, const SmokeParameters& p, const Vec3& gravity,
                    double dt) {
   const double g = gravity.norm();
   if (!(g > 0.0)) return;
@@ -113,7 +113,7 @@ void applyVorticityConfinement(TaskSystem& tasks, MacGrid& grid, double epsilon,
   for (int a = 0; a < 3; ++a) addCellForceToFaces(tasks, grid, a, dt, [&](int64_t c) { return force[3 * c + a]; });
 }
 
-void dissipate(std::vector<double>& values, double rate, double dt) {
+void dissipate(Array<double>& values, double rate, double dt) {
   if (!(rate > 0.0)) return;
   const double factor = std::exp(-rate * dt);
   for (double& v : values) v *= factor;

@@ -11,27 +11,28 @@
 
 #include <vector>
 
+#include "core/allocator.h"
 #include "core/task_system.h"
 #include "fluid/fluid_desc.h"
 #include "fluid/mac_grid.h"
 
 namespace vp {
 
-void applyBuoyancy(TaskSystem& tasks, MacGrid& grid, const std::vector<double>& smokeDensity,
-                   const std::vector<double>& temperature, const SmokeParameters& params, const Vec3& gravity,
+void applyBuoyancy(TaskSystem& tasks, MacGrid& grid, const Array<double>& smokeDensity,
+                   const Array<double>& temperature, const SmokeParameters& params, const Vec3& gravity,
                    double dt);
 
 // Per cell, vectors as 3 doubles (gpu_kernels/smoke_force_kernels.h).
 struct VorticityWorkspace {
-  std::vector<double> omega;
-  std::vector<double> omegaNorm;
-  std::vector<double> force;  // the cell-centred velocity until omega is done
+  Array<double> omega;
+  Array<double> omegaNorm;
+  Array<double> force;  // the cell-centred velocity until omega is done
 };
 
 void applyVorticityConfinement(TaskSystem& tasks, MacGrid& grid, double epsilon, double dt,
                                VorticityWorkspace& work);
 
 // values *= exp(-rate dt): exact decay for any dt.
-void dissipate(std::vector<double>& values, double rate, double dt);
+void dissipate(Array<double>& values, double rate, double dt);
 
 }  // namespace vp

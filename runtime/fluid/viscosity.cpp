@@ -47,7 +47,7 @@ void numberUnknowns(TaskSystem& tasks, const MacGrid& grid, const FaceFractionFi
     w.axisBegin[a] = total;
     const Eigen::Vector3i d = grid.faceDims(a);
     const int64_t rows = static_cast<int64_t>(d.y()) * d.z();
-    std::vector<int32_t>& unknownOf = w.unknownOfFace[a];
+    Array<int32_t>& unknownOf = w.unknownOfFace[a];
     unknownOf.resize(static_cast<size_t>(rows) * d.x());
     w.rowStart.assign(static_cast<size_t>(rows) + 1, 0);
     parallelFor(tasks, rows, 16, [&](int64_t begin, int64_t end) {
@@ -95,7 +95,7 @@ void stencil(const MacGrid& grid, const FaceFractionField& fractions, const doub
   const int64_t face = w.face[static_cast<size_t>(unknown)];
   const Eigen::Vector3i f = faceCoords(dims, face);
   const double openHere = w.open[static_cast<size_t>(unknown)];
-  const std::vector<double>& solid = fractions.solidVelocity[a];
+  const Array<double>& solid = fractions.solidVelocity[a];
   double diag = 0.0, boundary = 0.0;
   for (int b = 0; b < 3; ++b)
     for (int high = 0; high < 2; ++high) {
@@ -149,7 +149,7 @@ Status applyViscosity(TaskSystem& tasks, MacGrid& grid, const FaceFractionField&
   if (stats != nullptr) stats->unknowns = n;
   if (n == 0) return Status::Ok;
   const double c = kinematicViscosity * dt / (grid.spec.h * grid.spec.h);
-  for (std::vector<double>* v : {&w.open, &w.diagonal, &w.rhs, &w.velocity}) v->resize(static_cast<size_t>(n));
+  for (Array<double>* v : {&w.open, &w.diagonal, &w.rhs, &w.velocity}) v->resize(static_cast<size_t>(n));
 
   parallelFor(tasks, n, kUnknownGrain, [&](int64_t begin, int64_t end) {
     for (int64_t u = begin; u < end; ++u) {

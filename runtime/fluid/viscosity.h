@@ -41,6 +41,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/allocator.h"
 #include "core/budget_clock.h"
 #include "core/status.h"
 #include "core/task_system.h"
@@ -65,11 +66,11 @@ struct ViscosityStats {
 
 // Per-step buffers kept between steps so a viscous fluid does not reallocate every frame.
 struct ViscosityWorkspace {
-  std::array<std::vector<int32_t>, 3> unknownOfFace;  // per face of each axis; -1: keeps its velocity
+  std::array<Array<int32_t>, 3> unknownOfFace;  // per face of each axis; -1: keeps its velocity
   std::array<int64_t, 4> axisBegin{};                  // unknowns of axis a: [axisBegin[a], axisBegin[a+1])
-  std::vector<int64_t> face;                           // per unknown: its face index on its axis
-  std::vector<double> open, diagonal, rhs, velocity;   // per unknown
-  std::vector<int64_t> rowStart;                       // per face row (j, k) of an axis: first unknown
+  Array<int64_t> face;                           // per unknown: its face index on its axis
+  Array<double> open, diagonal, rhs, velocity;   // per unknown
+  Array<int64_t> rowStart;                       // per face row (j, k) of an axis: first unknown
   CgWorkspace cg;
 };
 

@@ -7,11 +7,11 @@
 
 namespace vp {
 
-Status checkClosedSurface(const std::vector<Eigen::Vector3d>& vertices,
-                          const std::vector<std::array<int32_t, 3>>& triangles, const char* what) {
+Status checkClosedSurface(const Array<Eigen::Vector3d>& vertices,
+                          const Array<std::array<int32_t, 3>>& triangles, const char* what) {
   // Weld: each vertex maps to the first vertex at exactly its position.
   std::map<std::tuple<double, double, double>, int32_t> first;
-  std::vector<int32_t> weld(vertices.size());
+  Array<int32_t> weld(vertices.size());
   for (size_t v = 0; v < vertices.size(); ++v)
     weld[v] = first.emplace(std::make_tuple(vertices[v].x(), vertices[v].y(), vertices[v].z()), int32_t(v))
                   .first->second;

@@ -11,13 +11,14 @@
 
 #include <Eigen/Core>
 
+#include "core/allocator.h"
 #include "core/status.h"
 
 namespace vp {
 
 // InvalidArgument naming the first open or doubled edge by its (unwelded) vertex indices and
 // position; `what` prefixes the message (e.g. "surface").
-Status checkClosedSurface(const std::vector<Eigen::Vector3d>& vertices,
-                          const std::vector<std::array<int32_t, 3>>& triangles, const char* what);
+Status checkClosedSurface(const Array<Eigen::Vector3d>& vertices,
+                          const Array<std::array<int32_t, 3>>& triangles, const char* what);
 
 }  // namespace vp

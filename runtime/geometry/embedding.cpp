@@ -73,7 +73,7 @@ Status checkMesh(const TetMesh& mesh) {
   return Status::Ok;
 }
 
-Status embed(const TetMesh& mesh, const std::vector<Eigen::Vector3d>& points, std::vector<EmbeddedPoint>* out,
+Status embed(const TetMesh& mesh, const Array<Eigen::Vector3d>& points, Array<EmbeddedPoint>* out,
              EmbeddingReport* report) {
   VP_TRY(checkMesh(mesh));
   for (size_t i = 0; i < points.size(); ++i)
@@ -100,7 +100,7 @@ Status embed(const TetMesh& mesh, const std::vector<Eigen::Vector3d>& points, st
   grid.build(mesh);
   // Bounding boxes give a cheap lower bound that skips most exact distance computations
   // in the nearest-tet search.
-  std::vector<Eigen::Vector3d> boxLo(mesh.tets.size()), boxHi(mesh.tets.size());
+  Array<Eigen::Vector3d> boxLo(mesh.tets.size()), boxHi(mesh.tets.size());
   for (size_t t = 0; t < mesh.tets.size(); ++t) {
     const auto& tet = mesh.tets[t];
     boxLo[t] = boxHi[t] = mesh.vertices[tet[0]];
@@ -110,8 +110,8 @@ Status embed(const TetMesh& mesh, const std::vector<Eigen::Vector3d>& points, st
     }
   }
 
-  std::vector<EmbeddedPoint> result(points.size());
-  std::vector<int64_t> seenBy(mesh.tets.size(), -1);  // last point that tested a tet
+  Array<EmbeddedPoint> result(points.size());
+  Array<int64_t> seenBy(mesh.tets.size(), -1);  // last point that tested a tet
   EmbeddingReport summary;
   for (size_t i = 0; i < points.size(); ++i) {
     const Eigen::Vector3d& p = points[i];
@@ -174,7 +174,7 @@ std::array<double, 4> tetBarycentric(const Eigen::Vector3d& a, const Eigen::Vect
   return {{1.0 - (l[0] + l[1] + l[2]), l[0], l[1], l[2]}};
 }
 
-Status embedPoints(const TetMesh& mesh, const std::vector<Eigen::Vector3d>& points, std::vector<EmbeddedPoint>* out,
+Status embedPoints(const TetMesh& mesh, const Array<Eigen::Vector3d>& points, Array<EmbeddedPoint>* out,
                    EmbeddingReport* report) {
   if (out == nullptr) return fail(Status::InvalidArgument, "embedPoints: out is null");
   try {
@@ -185,8 +185,8 @@ Status embedPoints(const TetMesh& mesh, const std::vector<Eigen::Vector3d>& poin
   }
 }
 
-Status evaluateEmbedded(const std::vector<std::array<int32_t, 4>>& tets, const std::vector<Eigen::Vector3d>& deformed,
-                        const std::vector<EmbeddedPoint>& embedding, std::vector<Eigen::Vector3d>* positions) {
+Status evaluateEmbedded(const Array<std::array<int32_t, 4>>& tets, const Array<Eigen::Vector3d>& deformed,
+                        const Array<EmbeddedPoint>& embedding, Array<Eigen::Vector3d>* positions) {
   if (positions == nullptr) return fail(Status::InvalidArgument, "evaluateEmbedded: positions is null");
   const int64_t numTets = static_cast<int64_t>(tets.size());
   const int64_t numVertices = static_cast<int64_t>(deformed.size());
@@ -216,8 +216,8 @@ Status evaluateEmbedded(const std::vector<std::array<int32_t, 4>>& tets, const s
   return Status::Ok;
 }
 
-Status computeVertexNormals(const std::vector<Eigen::Vector3d>& positions,
-                            const std::vector<std::array<int32_t, 3>>& triangles, std::vector<Eigen::Vector3d>* normals) {
+Status computeVertexNormals(const Array<Eigen::Vector3d>& positions,
+                            const Array<std::array<int32_t, 3>>& triangles, Array<Eigen::Vector3d>* normals) {
   if (normals == nullptr) return fail(Status::InvalidArgument, "computeVertexNormals: normals is null");
   const int64_t n = static_cast<int64_t>(positions.size());
   for (size_t t = 0; t < triangles.size(); ++t)

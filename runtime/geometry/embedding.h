@@ -6,6 +6,7 @@
 // arguments of every BB basis function), so the same records serve degree 1, 2 and 3.
 #pragma once
 
+#include "core/allocator.h"
 #include "core/status.h"
 #include "geometry/tet_mesh.h"
 
@@ -37,20 +38,20 @@ struct EmbeddingReport {
 // `mesh` must be valid (see validateAndRepairTetMesh). Errors: InvalidArgument for an empty
 // or invalid mesh or a non-finite point (named by index). `*out` is unchanged on error;
 // `report` may be null.
-Status embedPoints(const TetMesh& mesh, const std::vector<Eigen::Vector3d>& points,
-                   std::vector<EmbeddedPoint>* out, EmbeddingReport* report = nullptr);
+Status embedPoints(const TetMesh& mesh, const Array<Eigen::Vector3d>& points,
+                   Array<EmbeddedPoint>* out, EmbeddingReport* report = nullptr);
 
 // Degree-1 evaluation: position of each embedded point for the deformed tet vertex
 // positions `deformed` (same numbering as the mesh the embedding was made on).
 // InvalidArgument, naming the point, if a record's tet or its vertices are out of range.
-Status evaluateEmbedded(const std::vector<std::array<int32_t, 4>>& tets, const std::vector<Eigen::Vector3d>& deformed,
-                        const std::vector<EmbeddedPoint>& embedding, std::vector<Eigen::Vector3d>* positions);
+Status evaluateEmbedded(const Array<std::array<int32_t, 4>>& tets, const Array<Eigen::Vector3d>& deformed,
+                        const Array<EmbeddedPoint>& embedding, Array<Eigen::Vector3d>* positions);
 
 // Per-vertex normals of a triangle mesh: the sum of the incident faces' normals weighted
 // by their areas (the raw cross products), normalized. A vertex with no incident area
 // gets the zero vector. InvalidArgument, naming the triangle, for an out-of-range index.
-Status computeVertexNormals(const std::vector<Eigen::Vector3d>& positions,
-                            const std::vector<std::array<int32_t, 3>>& triangles, std::vector<Eigen::Vector3d>* normals);
+Status computeVertexNormals(const Array<Eigen::Vector3d>& positions,
+                            const Array<std::array<int32_t, 3>>& triangles, Array<Eigen::Vector3d>* normals);
 
 // Euclidean distance from `p` to tet `t` (0 inside); indices must be valid.
 double pointTetDistance(const TetMesh& mesh, int32_t t, const Eigen::Vector3d& p);

@@ -24,7 +24,7 @@ struct PendingTet {
 };
 
 struct GmshContent {
-  std::vector<Eigen::Vector3d> vertices;
+  Array<Eigen::Vector3d> vertices;
   std::unordered_map<int64_t, int32_t> indexOfTag;
   std::vector<PendingTet> tets;
   bool sawNodes = false;
@@ -120,7 +120,7 @@ Status readNodesV4(TextScanner& s, GmshContent& c) {
   VP_TRY(s.checkCount(numNodes, 8, "number of nodes"));
   c.vertices.reserve(static_cast<size_t>(numNodes));
   c.indexOfTag.reserve(static_cast<size_t>(numNodes));
-  std::vector<int64_t> tags;
+  Array<int64_t> tags;
   for (int64_t b = 0; b < numBlocks; ++b) {
     int64_t entityDim = 0, entityTag = 0, parametric = 0, inBlock = 0;
     VP_TRY(s.readInt("node block entity dimension", &entityDim));

@@ -1,6 +1,7 @@
 // A triangle surface mesh: render meshes and the input of the voxel tetrahedralizer.
 #pragma once
 
+#include "core/allocator.h"
 #include "core/status.h"
 
 #include <Eigen/Core>
@@ -13,8 +14,8 @@
 namespace vp {
 
 struct SurfaceMesh {
-  std::vector<Eigen::Vector3d> vertices;
-  std::vector<std::array<int32_t, 3>> triangles;  // counter-clockwise seen from outside
+  Array<Eigen::Vector3d> vertices;
+  Array<std::array<int32_t, 3>> triangles;  // counter-clockwise seen from outside
 };
 
 // Loads any format assimp reads (OBJ, PLY, STL, glTF, FBX ...). Polygons are triangulated,

@@ -5,6 +5,8 @@
 // oriented when (b - a) . ((c - a) x (d - a)) > 0. validateAndRepairTetMesh() enforces it.
 #pragma once
 
+#include "core/allocator.h"
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>  // cross()
 
@@ -16,10 +18,10 @@
 namespace vp {
 
 struct TetMesh {
-  std::vector<Eigen::Vector3d> vertices;
+  Array<Eigen::Vector3d> vertices;
   // int32 because the simulation kernels index plain arrays with 32-bit ints (and the same
   // bodies run in CUDA); the validator rejects meshes that do not fit.
-  std::vector<std::array<int32_t, 4>> tets;
+  Array<std::array<int32_t, 4>> tets;
 };
 
 // Signed volume of the tet (a, b, c, d); positive for the orientation convention above.

@@ -5,7 +5,7 @@
 
 namespace vp {
 
-SurfaceMesh tetMeshBoundary(const TetMesh& mesh, std::vector<int32_t>* surfaceToMeshVertex) {
+SurfaceMesh tetMeshBoundary(const TetMesh& mesh, Array<int32_t>* surfaceToMeshVertex) {
   // Count each face by its sorted vertex triple; keep the oriented copy of single ones.
   struct FaceUse {
     int count = 0;
@@ -22,14 +22,14 @@ SurfaceMesh tetMeshBoundary(const TetMesh& mesh, std::vector<int32_t>* surfaceTo
       use.oriented = tri;
     }
   SurfaceMesh surface;
-  std::vector<int32_t> meshToSurface(mesh.vertices.size(), -1);
-  std::vector<std::array<int32_t, 3>> triangles;
+  Array<int32_t> meshToSurface(mesh.vertices.size(), -1);
+  Array<std::array<int32_t, 3>> triangles;
   for (const auto& [key, use] : faces)
     if (use.count == 1) triangles.push_back(use.oriented);
   // Deterministic vertex numbering: mesh order.
   for (const auto& t : triangles)
     for (int32_t v : t) meshToSurface[v] = 0;
-  std::vector<int32_t> back;
+  Array<int32_t> back;
   for (size_t v = 0; v < mesh.vertices.size(); ++v)
     if (meshToSurface[v] == 0) {
       meshToSurface[v] = static_cast<int32_t>(surface.vertices.size());

@@ -2,6 +2,7 @@
 // outwards. It is the default render mesh of a deformable built from tets alone.
 #pragma once
 
+#include "core/allocator.h"
 #include "geometry/surface_mesh.h"
 #include "geometry/tet_mesh.h"
 
@@ -9,6 +10,6 @@ namespace vp {
 
 // The surface's vertices are the mesh vertices that lie on the boundary (renumbered
 // compactly, in mesh order); surfaceToMeshVertex maps them back.
-SurfaceMesh tetMeshBoundary(const TetMesh& mesh, std::vector<int32_t>* surfaceToMeshVertex = nullptr);
+SurfaceMesh tetMeshBoundary(const TetMesh& mesh, Array<int32_t>* surfaceToMeshVertex = nullptr);
 
 }  // namespace vp

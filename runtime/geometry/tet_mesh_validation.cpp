@@ -59,7 +59,7 @@ Status validateAndRepairTetMesh(TetMesh& mesh, TetMeshRepairReport* report) {
 
     // Compute the repairs into new arrays and commit with a swap, so an allocation failure
     // half way through also leaves the mesh unchanged.
-    std::vector<std::array<int32_t, 4>> tets = mesh.tets;
+    Array<std::array<int32_t, 4>> tets = mesh.tets;
     int64_t inverted = 0;
     for (size_t t = 0; t < tets.size(); ++t) {
       if (signedTetVolume(mesh, t) < 0.0) {
@@ -68,7 +68,7 @@ Status validateAndRepairTetMesh(TetMesh& mesh, TetMeshRepairReport* report) {
       }
     }
 
-    std::vector<int32_t> newIndex(mesh.vertices.size(), -1);
+    Array<int32_t> newIndex(mesh.vertices.size(), -1);
     for (const auto& tet : tets)
       for (int32_t v : tet) newIndex[v] = 0;
     int32_t used = 0;
@@ -76,7 +76,7 @@ Status validateAndRepairTetMesh(TetMesh& mesh, TetMeshRepairReport* report) {
       if (index == 0) index = used++;
     const int64_t removed = static_cast<int64_t>(mesh.vertices.size()) - used;
 
-    std::vector<Eigen::Vector3d> vertices;
+    Array<Eigen::Vector3d> vertices;
     if (removed > 0) {
       vertices.resize(static_cast<size_t>(used));
       for (size_t v = 0; v < mesh.vertices.size(); ++v)

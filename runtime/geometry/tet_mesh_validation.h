@@ -1,6 +1,7 @@
 // The gate every TetMesh passes before it becomes a simulation mesh.
 #pragma once
 
+#include "core/allocator.h"
 #include "core/status.h"
 #include "geometry/tet_mesh.h"
 
@@ -14,7 +15,7 @@ struct TetMeshRepairReport {
   int64_t unusedVerticesRemoved = 0;  // vertices no tet referenced
   // newIndexOfOldVertex[old] = index after repair, or -1 for a removed vertex; lets a
   // caller carry per-vertex data (attributes, an embedding) through the renumbering.
-  std::vector<int32_t> newIndexOfOldVertex;
+  Array<int32_t> newIndexOfOldVertex;
 };
 
 // Rejects, with InvalidArgument and a message naming the tet/vertex index and the value:

@@ -56,7 +56,7 @@ void TetSpatialGrid::build(const TetMesh& mesh) {
   for (const auto& tet : mesh.tets) forEachCellOfTet(tet, [&](int64_t c) { ++cellStart_[c + 1]; });
   for (int64_t c = 0; c < numCells; ++c) cellStart_[c + 1] += cellStart_[c];
   tets_.assign(static_cast<size_t>(cellStart_[numCells]), 0);
-  std::vector<int64_t> fill(cellStart_.begin(), cellStart_.end() - 1);
+  Array<int64_t> fill(cellStart_.begin(), cellStart_.end() - 1);
   for (size_t t = 0; t < mesh.tets.size(); ++t)
     forEachCellOfTet(mesh.tets[t], [&](int64_t c) { tets_[fill[c]++] = static_cast<int32_t>(t); });
 }

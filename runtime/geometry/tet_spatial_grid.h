@@ -7,6 +7,7 @@
 // cells and each cell holds a few tets.
 #pragma once
 
+#include "core/allocator.h"
 #include "geometry/tet_mesh.h"
 
 #include <Eigen/Core>
@@ -72,8 +73,8 @@ class TetSpatialGrid {
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
   double cellSize_ = 1.0;
   std::array<int64_t, 3> cells_{{1, 1, 1}};
-  std::vector<int64_t> cellStart_;  // CSR: tets of cell c are tets_[cellStart_[c] .. cellStart_[c+1])
-  std::vector<int32_t> tets_;
+  Array<int64_t> cellStart_;  // CSR: tets of cell c are tets_[cellStart_[c] .. cellStart_[c+1])
+  Array<int32_t> tets_;
 };
 
 }  // namespace vp

@@ -184,7 +184,7 @@ Status build(const SurfaceMesh& surface, int resolution, TetMesh* out, VoxelGrid
   std::sort(crossings.begin(), crossings.end());
 
   // 2. Cells whose centre has an odd number of crossings before it are inside.
-  std::vector<uint8_t> kept(static_cast<size_t>(nx * ny * nz), 0);
+  Array<uint8_t> kept(static_cast<size_t>(nx * ny * nz), 0);
   for (size_t begin = 0; begin < crossings.size();) {
     size_t end = begin;
     while (end < crossings.size() && crossings[end].row == crossings[begin].row) ++end;
@@ -231,7 +231,7 @@ Status build(const SurfaceMesh& surface, int resolution, TetMesh* out, VoxelGrid
   // 4. Shared lattice vertices, numbered in lattice order.
   const int64_t vx = nx + 1, vy = ny + 1, vz = nz + 1;
   auto latticeIndex = [&](int64_t i, int64_t j, int64_t k) { return (k * vy + j) * vx + i; };
-  std::vector<int32_t> vertexOf(static_cast<size_t>(vx * vy * vz), -1);
+  Array<int32_t> vertexOf(static_cast<size_t>(vx * vy * vz), -1);
   int64_t keptCount = 0, surfaceCount = 0;
   for (int64_t k = 0; k < nz; ++k)
     for (int64_t j = 0; j < ny; ++j)

@@ -38,13 +38,13 @@ bool isIntegerType(const std::string& type) {
 }
 
 struct VtkContent {
-  std::vector<Eigen::Vector3d> points;
+  Array<Eigen::Vector3d> points;
   // Cell i uses connectivity[offsets[i] .. offsets[i+1]).
-  std::vector<int64_t> offsets;
-  std::vector<int64_t> connectivity;
+  Array<int64_t> offsets;
+  Array<int64_t> connectivity;
   std::vector<int> cellLines;  // where each cell's list starts (classic layout) for errors
   int cellsLine = 0;
-  std::vector<int64_t> types;
+  Array<int64_t> types;
   int typesLine = 0;
   bool sawPoints = false, sawCells = false, sawTypes = false;
 };
@@ -65,7 +65,7 @@ Status readPoints(TextScanner& s, VtkContent& c) {
   return Status::Ok;
 }
 
-Status readIntArray(TextScanner& s, const char* keyword, int64_t count, std::vector<int64_t>* values) {
+Status readIntArray(TextScanner& s, const char* keyword, int64_t count, Array<int64_t>* values) {
   VP_TRY(s.expect(keyword));
   std::string_view typeToken;
   if (!s.next(&typeToken)) return s.error("expected the %s data type, got end of file", keyword);

@@ -25,10 +25,10 @@ constexpr uint64_t kDampingRefresh = 8;
 
 }  // namespace
 
-void AggregationMultigrid::aggregate(int32_t nodes, const std::vector<int32_t>& rowStart,
-                                     const std::vector<int32_t>& columns, std::vector<int32_t>* aggregateOf,
+void AggregationMultigrid::aggregate(int32_t nodes, const Array<int32_t>& rowStart,
+                                     const Array<int32_t>& columns, Array<int32_t>* aggregateOf,
                                      int32_t* count) {
-  std::vector<int32_t>& agg = *aggregateOf;
+  Array<int32_t>& agg = *aggregateOf;
   agg.assign(static_cast<size_t>(nodes), -1);
   int32_t next = 0;
   // 1. Seeds: a node whose neighbours are all free takes them all.
@@ -40,7 +40,7 @@ void AggregationMultigrid::aggregate(int32_t nodes, const std::vector<int32_t>& 
     ++next;
   }
   // 2. Leftovers join a neighbouring aggregate (the first in column order: deterministic).
-  std::vector<int32_t> joined(agg);
+  Array<int32_t> joined(agg);
   for (int32_t i = 0; i < nodes; ++i) {
     if (agg[i] >= 0) continue;
     for (int32_t k = rowStart[i]; k < rowStart[i + 1]; ++k)
@@ -59,8 +59,8 @@ void AggregationMultigrid::aggregate(int32_t nodes, const std::vector<int32_t>& 
 void AggregationMultigrid::build(const BlockSparseMatrix<double>& fine, int maxCoarsestNodes) {
   levels_.clear();
   updates_ = 0;
-  std::vector<int32_t> rowStart(fine.rowStart.begin(), fine.rowStart.end());
-  std::vector<int32_t> columns(fine.columns.begin(), fine.columns.end());
+  Array<int32_t> rowStart(fine.rowStart.begin(), fine.rowStart.end());
+  Array<int32_t> columns(fine.columns.begin(), fine.columns.end());
   int32_t nodes = fine.blockRows;
   int block = 3;
   while (nodes > maxCoarsestNodes) {
@@ -74,10 +74,10 @@ void AggregationMultigrid::build(const BlockSparseMatrix<double>& fine, int maxC
     for (int32_t i = 0; i < nodes; ++i) L.memberStart[L.aggregateOf[i] + 1]++;
     for (int32_t a = 0; a < L.aggregates; ++a) L.memberStart[a + 1] += L.memberStart[a];
     L.members.resize(static_cast<size_t>(nodes));
-    std::vector<int32_t> fill(L.memberStart.begin(), L.memberStart.end() - 1);
+    Array<int32_t> fill(L.memberStart.begin(), L.memberStart.end() - 1);
     for (int32_t i = 0; i < nodes; ++i) L.members[fill[L.aggregateOf[i]]++] = i;
     // Coarse pattern: aggregate pairs joined by a fine block.
-    std::vector<std::vector<int32_t>> neighbours(static_cast<size_t>(L.aggregates));
+    std::vector<Array<int32_t>> neighbours(static_cast<size_t>(L.aggregates));
     for (int32_t i = 0; i < nodes; ++i)
       for (int32_t k = rowStart[i]; k < rowStart[i + 1]; ++k)
         neighbours[L.aggregateOf[i]].push_back(L.aggregateOf[columns[k]]);
@@ -176,7 +176,7 @@ void AggregationMultigrid::update(TaskSystem& tasks, const BlockSparseMatrix<dou
       }
     });
     // Nodes whose filter is the identity (most of them) take the cheap product below.
-    std::vector<uint8_t> unfiltered(static_cast<size_t>(L.fineNodes), 0);
+    Array<uint8_t> unfiltered(static_cast<size_t>(L.fineNodes), 0);
     if (l == 0)
       for (int32_t i = 0; i < L.fineNodes; ++i)
         unfiltered[i] = !filters || Eigen::Map<const Mat3R>(filters + 9 * static_cast<int64_t>(i)).isIdentity(0.0);
@@ -229,7 +229,7 @@ void AggregationMultigrid::update(TaskSystem& tasks, const BlockSparseMatrix<dou
   const bool refreshDamping = updates_++ % kDampingRefresh == 0;
   for (size_t level = 0; refreshDamping && level < levels_.size(); ++level) {
     const int64_t n = level == 0 ? 3 * static_cast<int64_t>(fine.blockRows) : 6 * levels_[level - 1].aggregates;
-    std::vector<double> v(static_cast<size_t>(n)), w(static_cast<size_t>(n));
+    Array<double> v(static_cast<size_t>(n)), w(static_cast<size_t>(n));
     for (int64_t i = 0; i < n; ++i) v[i] = 1.0 + 0.01 * static_cast<double>(i % 7);
     double lambda = 1.0;
     for (int it = 0; it < kPowerIterations; ++it) {

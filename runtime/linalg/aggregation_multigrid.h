@@ -56,13 +56,13 @@ class AggregationMultigrid {
   struct Level {
     int32_t fineNodes = 0, aggregates = 0;
     int fineBlock = 3;                      // 3 at level 0, 6 above
-    std::vector<int32_t> aggregateOf;       // fine node -> aggregate
+    Array<int32_t> aggregateOf;       // fine node -> aggregate
     Array<double> prolongation;             // fineBlock x 6 per fine node, row-major
     // Coarse operator (6x6 blocks) pattern and, per coarse block row, the fine blocks that
     // contribute: fine block k maps to coarse block coarseOfFine[k].
-    std::vector<int32_t> rowStart, columns, diagonal;
-    std::vector<int32_t> coarseOfFine;
-    std::vector<int32_t> memberStart, members;  // fine nodes of each aggregate (CSR)
+    Array<int32_t> rowStart, columns, diagonal;
+    Array<int32_t> coarseOfFine;
+    Array<int32_t> memberStart, members;  // fine nodes of each aggregate (CSR)
     Array<double> values;                   // 36 per coarse block
     Array<double> diagonalInverse;          // 36 per coarse node (smoother of this coarse level)
     Array<double> centroids;                // 3 per aggregate
@@ -71,8 +71,8 @@ class AggregationMultigrid {
     Array<double> residual, correction, rhs;
   };
 
-  static void aggregate(int32_t nodes, const std::vector<int32_t>& rowStart, const std::vector<int32_t>& columns,
-                        std::vector<int32_t>* aggregateOf, int32_t* count);
+  static void aggregate(int32_t nodes, const Array<int32_t>& rowStart, const Array<int32_t>& columns,
+                        Array<int32_t>* aggregateOf, int32_t* count);
 
   void cycle(TaskSystem& tasks, int level, const double* r, double* z);
   // y = A_l x on coarse level l (l >= 1: 6x6 blocks of levels_[l-1]).

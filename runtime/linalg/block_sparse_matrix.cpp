@@ -43,11 +43,11 @@ void buildElementPattern(int32_t nodeCount, const int32_t* elementNodes, int64_t
                          BlockSparseMatrix<Scalar>* matrix, Array<int32_t>* scatter) {
   const int n = nodesPerElement;
   // Node -> incident elements (CSR), then each row's neighbour set sorted and deduplicated.
-  std::vector<int32_t> incidenceStart(static_cast<size_t>(nodeCount) + 1, 0);
+  Array<int32_t> incidenceStart(static_cast<size_t>(nodeCount) + 1, 0);
   for (int64_t i = 0; i < elementCount * n; ++i) incidenceStart[elementNodes[i] + 1]++;
   for (int32_t v = 0; v < nodeCount; ++v) incidenceStart[v + 1] += incidenceStart[v];
-  std::vector<int32_t> incidence(static_cast<size_t>(incidenceStart[nodeCount]));
-  std::vector<int32_t> fill(incidenceStart.begin(), incidenceStart.end() - 1);
+  Array<int32_t> incidence(static_cast<size_t>(incidenceStart[nodeCount]));
+  Array<int32_t> fill(incidenceStart.begin(), incidenceStart.end() - 1);
   for (int64_t e = 0; e < elementCount; ++e)
     for (int a = 0; a < n; ++a) incidence[fill[elementNodes[e * n + a]]++] = static_cast<int32_t>(e);
 
@@ -55,7 +55,7 @@ void buildElementPattern(int32_t nodeCount, const int32_t* elementNodes, int64_t
   m.blockRows = nodeCount;
   m.rowStart.assign(static_cast<size_t>(nodeCount) + 1, 0);
   m.columns.clear();
-  std::vector<int32_t> neighbours;
+  Array<int32_t> neighbours;
   for (int32_t v = 0; v < nodeCount; ++v) {
     neighbours.clear();
     neighbours.push_back(v);  // every row has its diagonal, even for an isolated node

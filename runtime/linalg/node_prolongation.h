@@ -3,6 +3,8 @@
 // p-multigrid's degree elevation has this form; its transpose is the restriction.
 #pragma once
 
+#include "core/allocator.h"
+
 #include <cstdint>
 #include <vector>
 
@@ -10,9 +12,9 @@ namespace vp {
 
 struct NodeProlongation {
   int32_t fineNodes = 0, coarseNodes = 0;
-  std::vector<int32_t> rowStart;  // fineNodes + 1
-  std::vector<int32_t> columns;
-  std::vector<double> weights;
+  Array<int32_t> rowStart;  // fineNodes + 1
+  Array<int32_t> columns;
+  Array<double> weights;
 };
 
 }  // namespace vp

@@ -55,7 +55,7 @@ void PMultigrid::build(const BlockSparseMatrix<double>& fine, std::vector<NodePr
     for (int32_t a = 0; a < L.nodes; ++a) L.restrictStart[a + 1] += L.restrictStart[a];
     L.restrictFine.resize(L.P.columns.size());
     L.restrictWeight.resize(L.P.columns.size());
-    std::vector<int32_t> fill(L.restrictStart.begin(), L.restrictStart.end() - 1);
+    Array<int32_t> fill(L.restrictStart.begin(), L.restrictStart.end() - 1);
     for (int32_t i = 0; i < L.P.fineNodes; ++i)
       for (int32_t k = L.P.rowStart[i]; k < L.P.rowStart[i + 1]; ++k) {
         const int32_t slot = fill[L.P.columns[k]]++;
@@ -75,7 +75,7 @@ void PMultigrid::build(const BlockSparseMatrix<double>& fine, std::vector<NodePr
     C.blockRows = L.nodes;
     C.rowStart.assign(static_cast<size_t>(L.nodes) + 1, 0);
     C.columns.clear();
-    std::vector<int32_t> mark(static_cast<size_t>(L.nodes), -1), row;
+    Array<int32_t> mark(static_cast<size_t>(L.nodes), -1), row;
     for (int32_t a = 0; a < L.nodes; ++a) {
       row.clear();
       row.push_back(a);
@@ -199,7 +199,7 @@ void PMultigrid::coarseOperator(TaskSystem& tasks, int level) {
   parallelFor(tasks, L.nodes, kGalerkinGrain, [&](int64_t begin, int64_t end) {
     // Coarse column -> block index of the current row; every entry is reset to -1 after its
     // row, so a worker's scratch can be reused across chunks and updates without clearing.
-    thread_local std::vector<int32_t> slot;
+    thread_local Array<int32_t> slot;
     if (slot.size() < static_cast<size_t>(L.nodes)) slot.assign(static_cast<size_t>(L.nodes), -1);
     for (int64_t a = begin; a < end; ++a) {
       for (int32_t k = C.rowStart[a]; k < C.rowStart[a + 1]; ++k) {

@@ -132,8 +132,8 @@ class PMultigrid {
     BlockSparseMatrix<double> galerkin;                 // levels >= 1, Galerkin operators
     // From this level to the finer one (levels >= 1), and its transpose.
     NodeProlongation P;
-    std::vector<int32_t> restrictStart, restrictFine;
-    std::vector<double> restrictWeight;
+    Array<int32_t> restrictStart, restrictFine;
+    Array<double> restrictWeight;
     Array<double> filters;  // 9 per node
     Array<uint8_t> filterKind;
     Array<double> diagonalInverse;  // 9 per node, F D⁺ F

@@ -40,7 +40,7 @@ struct Scene {
   std::vector<FluidDesc> fluids;
 };
 
-Status parsePointArray(const JsonObject& obj, const char* key, std::vector<Vec3>* out) {
+Status parsePointArray(const JsonObject& obj, const char* key, Array<Vec3>* out) {
   if (!obj.has(key)) return Status::Ok;
   const json& arr = obj.at(key);
   if (!arr.is_array()) return fail(Status::ParseError, "%s: expected an array of [x, y, z]", obj.pathOf(key).c_str());
@@ -55,7 +55,7 @@ Status parsePointArray(const JsonObject& obj, const char* key, std::vector<Vec3>
   return Status::Ok;
 }
 
-Status parseTriangles(const JsonObject& obj, const char* key, std::vector<std::array<int32_t, 3>>* out) {
+Status parseTriangles(const JsonObject& obj, const char* key, Array<std::array<int32_t, 3>>* out) {
   if (!obj.has(key)) return Status::Ok;
   const json& arr = obj.at(key);
   if (!arr.is_array()) return fail(Status::ParseError, "%s: expected an array of [a, b, c]", obj.pathOf(key).c_str());

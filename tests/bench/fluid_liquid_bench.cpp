@@ -90,7 +90,7 @@ void BM_LiquidSurfaceMesh(benchmark::State& state) {
   auto tasks = TaskSystem::create(TaskHooks{}, kWorkers);
   MarchingCubesWorkspace ws;
   SurfaceMesh mesh;
-  std::vector<Eigen::Vector3d> normals;
+  Array<Eigen::Vector3d> normals;
   for (auto _ : state) extractLiquidSurface(*tasks, d.grid.spec, d.phi.data(), &mesh, &normals, ws);
   state.counters["triangles"] = double(mesh.triangles.size());
 }

@@ -109,7 +109,7 @@ TEST(DivergenceGuard, ADivergedFluidStepIsDroppedNotResetToRest) {
   for (int i = 0; i < 5; ++i) ASSERT_EQ(world->step(1.0 / 60.0), Status::Ok);
   const FluidActor& fluid = *world->fluid(f);
   const MacGrid grid = fluid.grid();
-  const std::vector<double> phi = fluid.levelSet(), pressure = fluid.pressure();
+  const Array<double> phi = fluid.levelSet(), pressure = fluid.pressure();
   world->collider(p)->setVelocity(Vec3::Zero(), Vec3(0, 1e7, 0));
   ASSERT_EQ(world->step(1.0 / 60.0), Status::Ok);
   EXPECT_TRUE(divergedThisStep(*world, ActorKind::Fluid));

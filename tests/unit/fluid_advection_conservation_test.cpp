@@ -26,16 +26,16 @@ MacGrid risingGrid(double u) {
   return g;
 }
 
-double total(const std::vector<double>& v) { return std::accumulate(v.begin(), v.end(), 0.0); }
+double total(const Array<double>& v) { return std::accumulate(v.begin(), v.end(), 0.0); }
 
 TEST(FluidAdvectionConservation, WhatLeavesThroughAnOpenSideIsTakenFromTheTotal) {
   auto tasks = TaskSystem::create(TaskHooks{}, 2);
   const MacGrid grid = risingGrid(1.0);
   const double dt = 0.5 * grid.spec.h;  // half a cell: half of the top row leaves
   for (AdvectionScheme scheme : {AdvectionScheme::SemiLagrangian, AdvectionScheme::MacCormack}) {
-    std::vector<double> smoke(static_cast<size_t>(grid.cellCount()), 1.0), plain = smoke;
-    std::vector<double>* conserved[1] = {&smoke};
-    std::vector<double>* unconserved[1] = {&plain};
+    Array<double> smoke(static_cast<size_t>(grid.cellCount()), 1.0), plain = smoke;
+    Array<double>* conserved[1] = {&smoke};
+    Array<double>* unconserved[1] = {&plain};
     AdvectionWorkspace work;
     advectCellScalars(*tasks, grid, dt, scheme, unconserved, 1, work);
     // Clamped sampling keeps a uniform field uniform: without the correction nothing leaves.
@@ -48,10 +48,10 @@ TEST(FluidAdvectionConservation, WhatLeavesThroughAnOpenSideIsTakenFromTheTotal)
 TEST(FluidAdvectionConservation, InflowBringsNothingAndWallsLetNothingOut) {
   auto tasks = TaskSystem::create(TaskHooks{}, 1);
   const MacGrid down = risingGrid(-1.0);  // air flows in through the open top
-  std::vector<double> smoke(static_cast<size_t>(down.cellCount()));
+  Array<double> smoke(static_cast<size_t>(down.cellCount()));
   for (size_t c = 0; c < smoke.size(); ++c) smoke[c] = 0.5 + 0.01 * static_cast<double>(c % 7);
   const double before = total(smoke);
-  std::vector<double>* fields[1] = {&smoke};
+  Array<double>* fields[1] = {&smoke};
   AdvectionWorkspace work;
   advectCellScalars(*tasks, down, 0.5 * down.spec.h, AdvectionScheme::MacCormack, fields, 1, work, nullptr, nullptr,
                     0.0, 0);

@@ -58,7 +58,7 @@ TEST(FluidAdvectionRows, BatchedTracesAndSamplesEqualThePerSampleKernels) {
       fillTraceStarts(v, &starts);
       PointBatch traced;
       traceBatch(v, starts, dt, a, &traced);
-      std::vector<double> field(static_cast<size_t>(d.prod()));
+      Array<double> field(static_cast<size_t>(d.prod()));
       for (double& x : field) x = std::uniform_real_distribution<double>(-1.0, 1.0)(rng);
       double value[kTraceBatch], lo[kTraceBatch], hi[kTraceBatch], plain[kTraceBatch];
       sampleAtPoints(field.data(), dims, traced, value, lo, hi);
@@ -103,8 +103,8 @@ TEST(FluidAdvectionRows, BatchedOpenFaceSamplesEqualThePerSampleOnes) {
   const size_t cells = static_cast<size_t>(lattice.prod());
   std::mt19937_64 rng(17);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  std::vector<double> values(cells);
-  std::vector<uint8_t> faces(cells), blockOpen(cells);
+  Array<double> values(cells);
+  Array<uint8_t> faces(cells), blockOpen(cells);
   for (size_t c = 0; c < cells; ++c) {
     values[c] = unit(rng);
     faces[c] = rng() % 5 == 0 ? 0 : static_cast<uint8_t>((rng() & 63) | kCellIsFluid);
@@ -159,11 +159,11 @@ TEST(FluidAdvectionRows, SemiLagrangianAdvectionEqualsTheKernelSampleBySample) {
   MacGrid advected = old;
   AdvectionWorkspace work;
   advectVelocity(*tasks, advected, dt, AdvectionScheme::SemiLagrangian, work);
-  std::vector<double> scalar(static_cast<size_t>(old.cellCount()));
+  Array<double> scalar(static_cast<size_t>(old.cellCount()));
   std::mt19937_64 rng(5);
   for (double& x : scalar) x = std::uniform_real_distribution<double>(0.0, 1.0)(rng);
-  std::vector<double> scalarAdvected = scalar;
-  std::vector<double>* fields[1] = {&scalarAdvected};
+  Array<double> scalarAdvected = scalar;
+  Array<double>* fields[1] = {&scalarAdvected};
   advectCellScalars(*tasks, old, dt, AdvectionScheme::SemiLagrangian, fields, 1, work);
   for (int a = 0; a <= 3; ++a) {
     const Eigen::Vector3i d = latticeOf(old, a);

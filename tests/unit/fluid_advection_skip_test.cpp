@@ -37,7 +37,7 @@ TEST(FluidAdvectionSkip, SkippedFacesKeepTheirValueAndFarFacesMatchAFullAdvectio
     MacGrid full = swirlingGrid(n), skipped = full;
     const MacGrid old = full;
     // Skip every face in the upper half (y above 0.5), as a liquid's far air.
-    std::vector<uint8_t> marks[3];
+    Array<uint8_t> marks[3];
     for (int a = 0; a < 3; ++a) {
       const Eigen::Vector3i d = full.faceDims(a);
       marks[a].assign(full.velocity[a].size(), 0);
@@ -76,14 +76,14 @@ TEST(FluidAdvectionSkip, CellsBeyondTheThresholdKeepTheirValueAndNearCellsMatch)
   for (AdvectionScheme scheme : {AdvectionScheme::SemiLagrangian, AdvectionScheme::MacCormack}) {
     const MacGrid g = swirlingGrid(n);
     // A plane level set, y = 0.5, clamped at 4 cells as redistancing leaves it.
-    std::vector<double> phi(static_cast<size_t>(g.cellCount()));
+    Array<double> phi(static_cast<size_t>(g.cellCount()));
     for (int k = 0; k < n; ++k)
       for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i)
           phi[g.cellIndex(i, j, k)] = std::clamp(g.cellCentre(i, j, k).y() - 0.5, -4.0 / n, 4.0 / n);
-    std::vector<double> full = phi, kept = phi;
-    std::vector<double>* fullFields[1] = {&full};
-    std::vector<double>* keptFields[1] = {&kept};
+    Array<double> full = phi, kept = phi;
+    Array<double>* fullFields[1] = {&full};
+    Array<double>* keptFields[1] = {&kept};
     AdvectionWorkspace w1, w2;
     const double keepBeyond = 3.0 / n;
     advectCellScalars(*tasks, g, dt, scheme, fullFields, 1, w1);

@@ -77,7 +77,7 @@ AdvectionWorkspace staleWorkspace() {
 
 // Faces marked for skipping: those in the upper third, as a liquid's far air.
 struct SkipMarks {
-  std::vector<uint8_t> marks[3];
+  Array<uint8_t> marks[3];
   static constexpr uint8_t kMark = 5;
 };
 SkipMarks upperThirdMarks(const MacGrid& g) {
@@ -119,8 +119,8 @@ CellOpenFaces openFacesAroundSolids(TaskSystem& tasks, const MacGrid& g) {
   return open;
 }
 
-std::vector<double> cellField(const MacGrid& g, double (*value)(const Vec3&)) {
-  std::vector<double> f(static_cast<size_t>(g.cellCount()));
+Array<double> cellField(const MacGrid& g, double (*value)(const Vec3&)) {
+  Array<double> f(static_cast<size_t>(g.cellCount()));
   for (int k = 0; k < kNz; ++k)
     for (int j = 0; j < kNy; ++j)
       for (int i = 0; i < kNx; ++i) f[g.cellIndex(i, j, k)] = value(g.cellCentre(i, j, k));
@@ -185,12 +185,12 @@ TEST(FluidAdvectionSlices, ScalarsMatchTheWholeCallForEverySlicingAndWorkerCount
   for (AdvectionScheme scheme : kSchemes)
     for (const ScalarCase& c : cases) {
       // With keepBeyond the first field is a level set, as a liquid's.
-      const std::vector<double> initial[2] = {cellField(grid, c.keepBeyond > 0.0 ? levelSet : density),
+      const Array<double> initial[2] = {cellField(grid, c.keepBeyond > 0.0 ? levelSet : density),
                                               cellField(grid, temperature)};
       const CellOpenFaces* openFaces = c.openFaces ? &open : nullptr;
       const double* solid = c.solidValues ? solidValues : nullptr;
-      std::vector<double> expected[2] = {initial[0], initial[1]};
-      std::vector<double>* expectedFields[2] = {&expected[0], &expected[1]};
+      Array<double> expected[2] = {initial[0], initial[1]};
+      Array<double>* expectedFields[2] = {&expected[0], &expected[1]};
       AdvectionWorkspace whole;
       advectCellScalars(*reference, grid, subStep(), scheme, expectedFields, 2, whole, openFaces, solid, c.keepBeyond,
                         c.conservedField);
@@ -200,12 +200,12 @@ TEST(FluidAdvectionSlices, ScalarsMatchTheWholeCallForEverySlicingAndWorkerCount
         for (int64_t bound : kBoundsToTry) {
           SCOPED_TRACE(testing::Message() << "scheme " << static_cast<int>(scheme) << " " << c.name << " workers "
                                           << workers << " bound " << bound);
-          std::vector<double> sliced[2] = {initial[0], initial[1]};
+          Array<double> sliced[2] = {initial[0], initial[1]};
           AdvectionWorkspace work = staleWorkspace();
           ScalarAdvectionSlices slices;
           {
             // The object keeps its own copy of the field list: this one is gone before the slices run.
-            std::vector<double>* fields[2] = {&sliced[0], &sliced[1]};
+            Array<double>* fields[2] = {&sliced[0], &sliced[1]};
             slices.prepare(*tasks, grid, subStep(), scheme, fields, 2, work, openFaces, solid, c.keepBeyond,
                            c.conservedField);
           }
@@ -254,8 +254,8 @@ TEST(FluidAdvectionSlices, SlicesGrowInNumberAsTheirBoundShrinksAndStayWithinIt)
   const int64_t faces = static_cast<int64_t>(grid.velocity[0].size() + grid.velocity[1].size() + grid.velocity[2].size());
   const int64_t cells = grid.cellCount();
   const int64_t rows[3] = {kNy * kNz, (kNy + 1) * kNz, kNy * (kNz + 1)};  // per face axis
-  std::vector<double> a = cellField(grid, density), b = cellField(grid, temperature);
-  std::vector<double>* fields[2] = {&a, &b};
+  Array<double> a = cellField(grid, density), b = cellField(grid, temperature);
+  Array<double>* fields[2] = {&a, &b};
   AdvectionWorkspace work;
   auto tasks = TaskSystem::create(TaskHooks{}, 1);
   for (AdvectionScheme scheme : kSchemes) {

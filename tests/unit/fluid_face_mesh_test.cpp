@@ -33,10 +33,10 @@ ColliderShape icosphere(int subdivisions, double r) {
   ColliderShape s;
   s.kind = ShapeKind::TriangleMesh;
   const double p = (1.0 + std::sqrt(5.0)) / 2.0;
-  std::vector<Eigen::Vector3d> v = {{-1, p, 0}, {1, p, 0}, {-1, -p, 0}, {1, -p, 0},
+  Array<Eigen::Vector3d> v = {{-1, p, 0}, {1, p, 0}, {-1, -p, 0}, {1, -p, 0},
                                     {0, -1, p}, {0, 1, p}, {0, -1, -p}, {0, 1, -p},
                                     {p, 0, -1}, {p, 0, 1}, {-p, 0, -1}, {-p, 0, 1}};
-  std::vector<Eigen::Vector3i> t = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+  Array<Eigen::Vector3i> t = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
                                     {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
                                     {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
                                     {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
@@ -50,7 +50,7 @@ ColliderShape icosphere(int subdivisions, double r) {
       v.push_back((v[a] + v[b]).normalized());
       return mid[key] = static_cast<int>(v.size()) - 1;
     };
-    std::vector<Eigen::Vector3i> nt;
+    Array<Eigen::Vector3i> nt;
     for (const auto& tri : t) {
       const int a = midpoint(tri[0], tri[1]), b = midpoint(tri[1], tri[2]), c = midpoint(tri[2], tri[0]);
       nt.emplace_back(tri[0], a, c);

@@ -22,7 +22,7 @@ struct Tank {
   MacGrid grid;
   FaceFractionField fractions;
   PreparedCollider collider;
-  std::vector<double> phi;
+  Array<double> phi;
 };
 
 void makeTank(int n, const ColliderShape* shape, Tank* tank) {
@@ -44,7 +44,7 @@ void fillPhi(Tank& tank, const Sdf& sdf) {
 
 using testutil::tiltedBox;
 
-std::vector<double> netOutflow(const Tank& tank) {
+Array<double> netOutflow(const Tank& tank) {
   return testutil::netOutflowByDefinition(tank.grid, tank.fractions);
 }
 
@@ -141,7 +141,7 @@ TEST(FluidFreeSurface, LiquidCellsDivergenceFreeUnderCurvedSurface) {
   });
   PressureState state;
   ASSERT_EQ(buildCutCellPoisson(*tasks, grid, tank.fractions, &state.poisson, tank.phi.data()), Status::Ok);
-  std::vector<double> initial = netOutflow(tank);
+  Array<double> initial = netOutflow(tank);
   int64_t liquidCells = 0;
   for (size_t c = 0; c < initial.size(); ++c) {
     if (!state.poisson.isFluid(c)) initial[c] = 0.0;
@@ -158,7 +158,7 @@ TEST(FluidFreeSurface, LiquidCellsDivergenceFreeUnderCurvedSurface) {
                             state, &stats, tank.phi.data()),
             Status::Ok);
   EXPECT_TRUE(stats.converged);
-  const std::vector<double> after = netOutflow(tank);
+  const Array<double> after = netOutflow(tank);
   double worst = 0.0;
   for (size_t c = 0; c < after.size(); ++c)
     if (state.poisson.isFluid(c)) worst = std::max(worst, std::fabs(after[c]));

@@ -14,7 +14,7 @@ namespace {
 
 struct Field {
   MacGrid grid;
-  std::vector<double> phi, exact;
+  Array<double> phi, exact;
 };
 
 template <class Sdf, class Distort>

@@ -28,7 +28,7 @@ constexpr int64_t kSliceBounds[] = {1, 29, 300, kWhole};
 constexpr int kWorkerCounts[] = {1, 3};
 
 template <class T>
-bool sameBits(const std::vector<T>& a, const std::vector<T>& b) {
+bool sameBits(const Array<T>& a, const Array<T>& b) {
   return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
 
@@ -57,7 +57,7 @@ struct Tank {
   MacGrid grid;
   FaceFractionField fractions;
   PreparedCollider collider;
-  std::vector<double> phi, weights;
+  Array<double> phi, weights;
 };
 
 template <class Sdf>
@@ -118,16 +118,16 @@ TEST(FluidLevelSetSlices, SolidExtensionIsBitwiseTheWholeCall) {
   auto tasks = TaskSystem::create(TaskHooks{}, 1);
   Tank t;
   makeSmallTank(*tasks, &t);
-  std::vector<double> whole = t.phi;
-  std::vector<int64_t> wholeScratch;
+  Array<double> whole = t.phi;
+  Array<int64_t> wholeScratch;
   extendLevelSetIntoSolids(t.grid.spec, t.weights, whole, wholeScratch);
   ASSERT_FALSE(sameBits(whole, t.phi));  // there was something to extend
   int64_t solid = 0;
   for (double w : t.weights) solid += w < kMaxCoveredCellWeight;
-  std::vector<int64_t> scratch{1, 2, 3};  // stale: a run must not read what is there
+  Array<int64_t> scratch{1, 2, 3};  // stale: a run must not read what is there
   for (int64_t bound : kSliceBounds) {
     SCOPED_TRACE(bound);
-    std::vector<double> phi = t.phi;
+    Array<double> phi = t.phi;
     SolidExtensionRun run;
     ASSERT_EQ(run.prepare(t.grid.spec, t.weights, phi, scratch, bound), Status::Ok) << lastError();
     const int slices = advanceToEnd(run, bound);
@@ -141,7 +141,7 @@ TEST(FluidLevelSetSlices, SolidExtensionIsBitwiseTheWholeCall) {
     }
   }
   SolidExtensionRun bad;
-  std::vector<double> shortPhi(7, 0.0);
+  Array<double> shortPhi(7, 0.0);
   EXPECT_EQ(bad.prepare(t.grid.spec, t.weights, shortPhi, scratch, 100), Status::InvalidArgument);
   EXPECT_TRUE(bad.advance());
   EXPECT_EQ(bad.prepare(t.grid.spec, t.weights, t.phi, scratch, 0), Status::InvalidArgument);
@@ -158,9 +158,9 @@ TEST(FluidLevelSetSlices, RedistanceIsBitwiseTheWholeCall) {
   auto one = TaskSystem::create(TaskHooks{}, 1);
   Tank t;
   makeSmallTank(*one, &t);
-  std::vector<int64_t> scratch;
+  Array<int64_t> scratch;
   extendLevelSetIntoSolids(t.grid.spec, t.weights, t.phi, scratch);
-  std::vector<double> whole = t.phi;
+  Array<double> whole = t.phi;
   RedistanceWorkspace workspace;  // shared by every run below, so each finds the last one's leftovers
   RedistanceStats wholeStats;
   ASSERT_EQ(redistanceLevelSet(*one, t.grid.spec, whole.data(), RedistanceSettings{}, workspace, &wholeStats),
@@ -171,7 +171,7 @@ TEST(FluidLevelSetSlices, RedistanceIsBitwiseTheWholeCall) {
     auto tasks = TaskSystem::create(TaskHooks{}, workers);
     for (int64_t bound : kSliceBounds) {
       SCOPED_TRACE(testing::Message() << workers << " workers, bound " << bound);
-      std::vector<double> phi = t.phi;
+      Array<double> phi = t.phi;
       RedistanceRun run;
       ASSERT_EQ(run.prepare(*tasks, t.grid.spec, phi.data(), RedistanceSettings{}, workspace, bound), Status::Ok);
       const int slices = advanceToEnd(run, bound);
@@ -202,11 +202,11 @@ void expectSameResult(const VolumeCorrectionResult& a, const VolumeCorrectionRes
 
 // Every slice bound on 1 and 3 workers against the whole call on 1; returns the slice counts
 // on 1 worker, per bound.
-std::vector<int> expectCorrectionInSlices(const MacGridSpec& spec, const std::vector<double>& input,
+std::vector<int> expectCorrectionInSlices(const MacGridSpec& spec, const Array<double>& input,
                                           const double* weights, double target, const int64_t* bounds, int boundCount,
                                           VolumeCorrectionResult* wholeResult) {
   auto one = TaskSystem::create(TaskHooks{}, 1);
-  std::vector<double> whole = input;
+  Array<double> whole = input;
   EXPECT_EQ(correctLiquidVolume(*one, spec, whole.data(), weights, target, VolumeCorrectionSettings{}, wholeResult),
             Status::Ok);
   std::vector<int> counts;
@@ -215,7 +215,7 @@ std::vector<int> expectCorrectionInSlices(const MacGridSpec& spec, const std::ve
     auto tasks = TaskSystem::create(TaskHooks{}, workers);
     for (int b = 0; b < boundCount; ++b) {
       SCOPED_TRACE(testing::Message() << workers << " workers, bound " << bounds[b]);
-      std::vector<double> phi = input;
+      Array<double> phi = input;
       EXPECT_EQ(run.prepare(*tasks, spec, phi.data(), weights, target, VolumeCorrectionSettings{}, bounds[b]),
                 Status::Ok);
       const int slices = advanceToEnd(run, bounds[b]);
@@ -262,7 +262,7 @@ TEST(FluidLevelSetSlices, VolumeSumsCutInsideTheirChunksAreBitwiseTheWholeCall) 
   const MacGridSpec spec = gridSpec(1.0 / 64.0, 64, 20, 64);
   MacGrid grid;
   ASSERT_EQ(initMacGrid(spec, testutil::kClosedTank, &grid), Status::Ok);
-  const std::vector<double> phi = testutil::sampleCells(grid, [](const Eigen::Vector3d& x) {
+  const Array<double> phi = testutil::sampleCells(grid, [](const Eigen::Vector3d& x) {
     return x.y() - 0.15 - 0.03 * std::sin(9.0 * x.x()) * std::cos(7.0 * x.z());
   });
   int64_t band = 0;  // cells a shift within the limit can change: |phi| < (1.5 + 1) h
@@ -356,9 +356,9 @@ struct Upkeep {
   int slices[3] = {0, 0, 0};
 };
 
-void runUpkeep(TaskSystem& tasks, const Tank& t, double target, int64_t bound, std::vector<double>& phi,
+void runUpkeep(TaskSystem& tasks, const Tank& t, double target, int64_t bound, Array<double>& phi,
                RedistanceWorkspace& workspace, Upkeep* u) {
-  std::vector<int64_t> scratch;
+  Array<int64_t> scratch;
   ASSERT_EQ(u->extension.prepare(t.grid.spec, t.weights, phi, scratch, bound), Status::Ok);
   ASSERT_EQ(u->redistance.prepare(tasks, t.grid.spec, phi.data(), RedistanceSettings{}, workspace, bound),
             Status::Ok);
@@ -375,15 +375,15 @@ TEST(FluidLevelSetSlices, UpkeepPreparedTogetherIsBitwiseTheWholeCalls) {
   Tank t;
   makeSmallTank(*one, &t);
   const double target = 1.01 * liquidVolume(*one, t.grid.spec, t.phi.data(), t.weights.data());
-  std::vector<double> whole = t.phi;
-  std::vector<int64_t> scratch;
+  Array<double> whole = t.phi;
+  Array<int64_t> scratch;
   RedistanceWorkspace workspace;
   extendLevelSetIntoSolids(t.grid.spec, t.weights, whole, scratch);
   ASSERT_EQ(redistanceLevelSet(*one, t.grid.spec, whole.data(), RedistanceSettings{}, workspace, nullptr), Status::Ok);
   ASSERT_EQ(correctLiquidVolume(*one, t.grid.spec, whole.data(), t.weights.data(), target, VolumeCorrectionSettings{},
                                 nullptr),
             Status::Ok);
-  std::vector<double> phi = t.phi;
+  Array<double> phi = t.phi;
   Upkeep u;
   runUpkeep(*three, t, target, 29, phi, workspace, &u);
   EXPECT_TRUE(sameBits(phi, whole));
@@ -399,7 +399,7 @@ TEST(FluidLevelSetSlices, SliceCountsOfTheDefaultTank) {
   const int64_t bound = FluidSolverSettings{}.samplesPerSlice;
   RedistanceWorkspace workspace;
   for (int64_t b : {bound, bound / 16}) {
-    std::vector<double> phi = t.phi;
+    Array<double> phi = t.phi;
     Upkeep u;
     runUpkeep(*tasks, t, target, b, phi, workspace, &u);
     MacGrid grid = t.grid;

@@ -71,7 +71,7 @@ TEST(FluidLiquid, HydrostaticRestAroundATiltedBoxAndASphere) {
   {
     // Height of the zero level set along a vertical line far from the solids.
     const MacGrid& g = actor->grid();
-    const std::vector<double>& phi = actor->levelSet();
+    const Array<double>& phi = actor->levelSet();
     for (int j = 0; j + 1 < n; ++j) {
       const double a = phi[g.cellIndex(2, j, 2)], b = phi[g.cellIndex(2, j + 1, 2)];
       if (a < 0.0 && b >= 0.0) surfaceHeight = g.cellCentre(2, j, 2).y() + h * a / (a - b);

@@ -48,7 +48,7 @@ void forEachFace(const MacGrid& grid, const Visit& visit) {
 
 // The largest |u| over the faces next to a liquid cell (phi < 0 on either side; a boundary
 // face looks at its one cell).
-inline double maxLiquidFaceSpeed(const MacGrid& grid, const std::vector<double>& phi) {
+inline double maxLiquidFaceSpeed(const MacGrid& grid, const Array<double>& phi) {
   const int cells[3] = {grid.spec.nx, grid.spec.ny, grid.spec.nz};
   double worst = 0.0;
   forEachFace(grid, [&](int a, int i, int j, int k, size_t face) {
@@ -64,8 +64,8 @@ inline double maxLiquidFaceSpeed(const MacGrid& grid, const std::vector<double>&
 
 // sdf(x) at every cell centre, in cell order.
 template <class Sdf>
-std::vector<double> sampleCells(const MacGrid& grid, const Sdf& sdf) {
-  std::vector<double> values(static_cast<size_t>(grid.cellCount()));
+Array<double> sampleCells(const MacGrid& grid, const Sdf& sdf) {
+  Array<double> values(static_cast<size_t>(grid.cellCount()));
   for (int k = 0; k < grid.spec.nz; ++k)
     for (int j = 0; j < grid.spec.ny; ++j)
       for (int i = 0; i < grid.spec.nx; ++i) values[grid.cellIndex(i, j, k)] = sdf(grid.cellCentre(i, j, k));
@@ -76,8 +76,8 @@ std::vector<double> sampleCells(const MacGrid& grid, const Sdf& sdf) {
 // builds the right-hand side, so a mistake there would cancel): sum over the cell's faces of
 // +-(A_f u_f + (1 - A_f) u_solid,f), + on high faces, raw collider fractions, Wall faces
 // carrying only what a collider reaching through them moves ((1 - A_f) u_solid,f).
-inline std::vector<double> netOutflowByDefinition(const MacGrid& grid, const FaceFractionField& fractions) {
-  std::vector<double> out(static_cast<size_t>(grid.cellCount()), 0.0);
+inline Array<double> netOutflowByDefinition(const MacGrid& grid, const FaceFractionField& fractions) {
+  Array<double> out(static_cast<size_t>(grid.cellCount()), 0.0);
   for (int k = 0; k < grid.spec.nz; ++k)
     for (int j = 0; j < grid.spec.ny; ++j)
       for (int i = 0; i < grid.spec.nx; ++i) {

@@ -13,7 +13,7 @@ namespace {
 
 struct Drop {
   MacGrid grid;
-  std::vector<double> phi;
+  Array<double> phi;
 };
 
 Drop makeDrop(int n, const Eigen::Vector3d& centre, double radius) {
@@ -86,8 +86,8 @@ TEST(FluidLiquidVolume, CellWeightsExcludeColliders) {
   const PreparedCollider* list[] = {&collider};
   ASSERT_EQ(computeFaceFractions(list, 1, &fractions), Status::Ok);
   const double level = 0.6;
-  const std::vector<double> phi = testutil::sampleCells(grid, [&](const Eigen::Vector3d& x) { return x.y() - level; });
-  std::vector<double> weights;
+  const Array<double> phi = testutil::sampleCells(grid, [&](const Eigen::Vector3d& x) { return x.y() - level; });
+  Array<double> weights;
   cellOpenFractions(*tasks, fractions, &weights);
   const double boxVolume = 8.0 * box.halfExtents.prod();
   const double exact = level - boxVolume;

@@ -17,10 +17,10 @@ namespace {
 
 struct Surface {
   SurfaceMesh mesh;
-  std::vector<Eigen::Vector3d> normals;
+  Array<Eigen::Vector3d> normals;
 };
 
-Surface extract(TaskSystem& tasks, const MacGridSpec& spec, const std::vector<double>& phi) {
+Surface extract(TaskSystem& tasks, const MacGridSpec& spec, const Array<double>& phi) {
   Surface s;
   MarchingCubesWorkspace workspace;
   EXPECT_EQ(extractLiquidSurface(tasks, spec, phi.data(), &s.mesh, &s.normals, workspace), Status::Ok) << lastError();
@@ -66,7 +66,7 @@ TEST(FluidMarchingCubes, SphereIsClosedWithAreaVolumeAndOutwardNormals) {
   ASSERT_EQ(initMacGrid(testutil::unitCubeGrid(48), testutil::kClosedTank, &grid), Status::Ok);
   const double radius = 0.3, h = grid.spec.h;
   const Eigen::Vector3d centre(0.503, 0.488, 0.512);
-  const std::vector<double> phi =
+  const Array<double> phi =
       testutil::sampleCells(grid, [&](const Eigen::Vector3d& x) { return (x - centre).norm() - radius; });
   const Surface s = extract(*tasks, grid.spec, phi);
   ASSERT_GT(s.mesh.triangles.size(), 1000u);
@@ -110,7 +110,7 @@ TEST(FluidMarchingCubes, RandomFieldsGiveClosedOrientedSurfaces) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> value(-1.0, 1.0);
   for (int trial = 0; trial < 5; ++trial) {
-    std::vector<double> phi(static_cast<size_t>(grid.cellCount()));
+    Array<double> phi(static_cast<size_t>(grid.cellCount()));
     for (int k = 0; k < 12; ++k)
       for (int j = 0; j < 12; ++j)
         for (int i = 0; i < 12; ++i) {
@@ -132,7 +132,7 @@ TEST(FluidMarchingCubes, FlatSurfaceReachesTheDomainSidesAndIsDeterministic) {
   MacGrid grid;
   ASSERT_EQ(initMacGrid(spec, testutil::kClosedTank, &grid), Status::Ok);
   const double level = 0.1 + 0.437;
-  const std::vector<double> phi = testutil::sampleCells(grid, [&](const Eigen::Vector3d& x) { return x.y() - level; });
+  const Array<double> phi = testutil::sampleCells(grid, [&](const Eigen::Vector3d& x) { return x.y() - level; });
   auto one = TaskSystem::create(TaskHooks{}, 1);
   auto two = TaskSystem::create(TaskHooks{}, 2);
   const Surface a = extract(*one, spec, phi), b = extract(*two, spec, phi);

@@ -59,7 +59,7 @@ TEST(FluidMultigrid, CoarseLevelsOfAnOpenBoxAreTheVoxelOperatorAtTwiceTheSpacing
   for (size_t c = 0; c < cut.diagonal.size(); ++c) EXPECT_DOUBLE_EQ(cut.diagonal[c], voxel.diagonal[c]) << c;
   EXPECT_DOUBLE_EQ(cut.coupling[0][1 + 4 * (1 + 3 * 1)], 2.0);
   EXPECT_DOUBLE_EQ(dirichletPart(cut, 1 + 3 * (2 + 3 * 0)), 2.0);
-  EXPECT_EQ(cut.regionFloating, std::vector<uint8_t>{0});
+  EXPECT_EQ(cut.regionFloating, Array<uint8_t>{0});
   EXPECT_EQ(cut.fluidCellCount, 18);
 }
 
@@ -97,7 +97,7 @@ TEST(FluidMultigrid, CutCellCoarseCouplingsFollowTheFineFractions) {
   EXPECT_DOUBLE_EQ(cut.coupling[0][face], 0.5 * columns);
   EXPECT_DOUBLE_EQ(voxel.coupling[0][face], 2.0);
   EXPECT_DOUBLE_EQ(cut.coupling[0][face + 6], 2.0);  // (1, 0, 1): fully open fine faces
-  EXPECT_EQ(cut.regionFloating, std::vector<uint8_t>{1});
+  EXPECT_EQ(cut.regionFloating, Array<uint8_t>{1});
   EXPECT_DOUBLE_EQ(dirichletPart(cut, 0), 0.0);
 }
 

@@ -139,7 +139,7 @@ struct LiquidMotion {
 
 LiquidMotion measureLiquid(const FluidActor& fluid) {
   const MacGrid& g = fluid.grid();
-  const std::vector<double>& phi = fluid.levelSet();
+  const Array<double>& phi = fluid.levelSet();
   LiquidMotion m;
   const double cellMass = fluid.desc().density * g.spec.h * g.spec.h * g.spec.h;
   for (int k = 0; k < g.spec.nz; ++k)

@@ -318,8 +318,8 @@ TEST(FluidPressureSlices, RejectsABadSliceBound) {
 
 // The flood fill labelFluidRegions replaced: seeds in cell order, breadth first through
 // positive couplings.
-void floodFillRegions(const CutCellPoisson& op, std::vector<int32_t>* region, std::vector<uint8_t>* floating,
-                      std::vector<int64_t>* counts) {
+void floodFillRegions(const CutCellPoisson& op, Array<int32_t>* region, Array<uint8_t>* floating,
+                      Array<int64_t>* counts) {
   const MacGridSpec& g = op.grid;
   const int64_t nx = g.nx, ny = g.ny, nz = g.nz, cells = nx * ny * nz;
   region->assign(static_cast<size_t>(cells), -1);
@@ -396,9 +396,9 @@ TEST(FluidPressureSlices, RegionLabelsAreThoseOfAFloodFillHoweverTheScanIsCut) {
       if (unit(rng) < 0.05) sum += 1.0;  // a Dirichlet face
       op.diagonal[static_cast<size_t>(c)] = sum;
     }
-    std::vector<int32_t> region;
-    std::vector<uint8_t> floating;
-    std::vector<int64_t> counts;
+    Array<int32_t> region;
+    Array<uint8_t> floating;
+    Array<int64_t> counts;
     floodFillRegions(op, &region, &floating, &counts);
     for (int64_t samples : {int64_t{1}, int64_t{7}, kWhole}) {
       CutCellPoisson labelled = op;

@@ -61,7 +61,7 @@ void makeScene(const MacGridSpec& spec, const std::array<DomainSide, 6>& sides, 
   ASSERT_EQ(computeFaceFractions(list, 1, &scene->fractions), Status::Ok) << lastError();
 }
 
-double norm2(const std::vector<double>& v) {
+double norm2(const Array<double>& v) {
   double s = 0.0;
   for (double x : v) s += x * x;
   return std::sqrt(s);
@@ -73,7 +73,7 @@ double norm2(const std::vector<double>& v) {
 // collider fractions. Wall faces carry nothing (the scenes' colliders stay off the walls). Faces
 // the operator treats as closed (A_f < 1e-6) hold u_f = u_solid after projection, so the raw
 // fraction gives the same flux there.
-std::vector<double> netOutflow(const Scene& scene) {
+Array<double> netOutflow(const Scene& scene) {
   return testutil::netOutflowByDefinition(scene.grid, scene.fractions);
 }
 
@@ -87,7 +87,7 @@ void expectDivergenceFree(TaskSystem& tasks, Scene& scene, double tolerance) {
   PressureState state;
   PressureSolveStats stats;
   ASSERT_EQ(buildCutCellPoisson(tasks, scene.grid, scene.fractions, &state.poisson), Status::Ok);
-  std::vector<double> initial = netOutflow(scene);
+  Array<double> initial = netOutflow(scene);
   for (size_t c = 0; c < initial.size(); ++c)
     if (!state.poisson.isFluid(c)) initial[c] = 0.0;
   const double before = norm2(initial);
@@ -99,7 +99,7 @@ void expectDivergenceFree(TaskSystem& tasks, Scene& scene, double tolerance) {
   EXPECT_TRUE(stats.converged);
   EXPECT_FALSE(stats.budgetCut);
   EXPECT_LE(stats.relativeResidual, tolerance);
-  const std::vector<double> after = netOutflow(scene);
+  const Array<double> after = netOutflow(scene);
   double worst = 0.0;
   for (size_t c = 0; c < after.size(); ++c)
     if (state.poisson.isFluid(c)) worst = std::max(worst, std::fabs(after[c]));
@@ -141,7 +141,7 @@ TEST(FluidMacGrid, IndexingAndTrilinearSamplingOfLinearFields) {
     const Eigen::Vector3d v = grid.sampleVelocity(x);
     for (int a = 0; a < 3; ++a) EXPECT_NEAR(v[a], field(a, x), 1e-12);
   }
-  std::vector<double> scalar(static_cast<size_t>(grid.cellCount()));
+  Array<double> scalar(static_cast<size_t>(grid.cellCount()));
   for (int k = 0; k < spec.nz; ++k)
     for (int j = 0; j < spec.ny; ++j)
       for (int i = 0; i < spec.nx; ++i) scalar[grid.cellIndex(i, j, k)] = field(0, grid.cellCentre(i, j, k));
@@ -238,8 +238,8 @@ TEST(FluidProjection, OperatorAndMic0AreSymmetricPositive) {
   const size_t n = static_cast<size_t>(scene.grid.cellCount());
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::vector<double> x(n), y(n), ax(n), ay(n);
-  auto dot = [](const std::vector<double>& a, const std::vector<double>& b) {
+  Array<double> x(n), y(n), ax(n), ay(n);
+  auto dot = [](const Array<double>& a, const Array<double>& b) {
     double s = 0.0;
     for (size_t i = 0; i < a.size(); ++i) s += a[i] * b[i];
     return s;
@@ -310,7 +310,7 @@ ManufacturedError manufacturedSphereError(TaskSystem& tasks, int n) {
     return a == 0 ? std::exp(x.x()) * std::sin(x.y()) : a == 1 ? std::exp(x.x()) * std::cos(x.y()) : 0.0;
   };
   const size_t cells = static_cast<size_t>(grid.cellCount());
-  std::vector<double> b(cells, 0.0), p(cells, 0.0);
+  Array<double> b(cells, 0.0), p(cells, 0.0);
   for (int k = 0; k < n; ++k)
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
@@ -340,8 +340,8 @@ ManufacturedError manufacturedSphereError(TaskSystem& tasks, int n) {
   EXPECT_TRUE(cg.converged);
   result.iterations = cg.iterations;
   result.residual = cg.relativeResidual;
-  std::vector<double> error(cells, 0.0);
-  std::vector<uint8_t> centreInFluid(cells, 0);
+  Array<double> error(cells, 0.0);
+  Array<uint8_t> centreInFluid(cells, 0);
   double meanError = 0.0;
   for (int k = 0; k < n; ++k)
     for (int j = 0; j < n; ++j)

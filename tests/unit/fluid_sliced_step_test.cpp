@@ -76,7 +76,7 @@ struct Colliders {
 };
 
 struct Fields {
-  std::vector<double> u[3], smoke, heat, phi, pressure;
+  Array<double> u[3], smoke, heat, phi, pressure;
   std::vector<FluidColliderLoad> loads;
   explicit Fields(const FluidActor& a) {
     for (int k = 0; k < 3; ++k) u[k] = a.grid().velocity[k];

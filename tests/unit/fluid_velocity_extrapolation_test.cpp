@@ -20,7 +20,7 @@ using testutil::forEachFace;
 struct Liquid {
   MacGrid grid;
   FaceFractionField fractions;
-  std::vector<double> phi;
+  Array<double> phi;
 };
 
 template <class Sdf>

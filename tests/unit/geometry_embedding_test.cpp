@@ -36,10 +36,10 @@ SphereMesh voxelSphere(int resolution) {
   return s;
 }
 
-std::vector<Eigen::Vector3d> randomPointsInBall(size_t n, double radius, unsigned seed) {
+Array<Eigen::Vector3d> randomPointsInBall(size_t n, double radius, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-radius, radius);
-  std::vector<Eigen::Vector3d> points;
+  Array<Eigen::Vector3d> points;
   while (points.size() < n) {
     Eigen::Vector3d p(u(rng), u(rng), u(rng));
     if (p.norm() < radius) points.push_back(p);
@@ -61,12 +61,12 @@ TEST(GeometryEmbedding, InsidePointsHaveNonNegativeCoordinates) {
   const SphereMesh s = voxelSphere(10);
   // Inside the analytic sphere of radius 0.99 < inscribed radius of the icosphere, hence
   // inside the tets (which cover the icosphere), plus the surface vertices themselves.
-  std::vector<Eigen::Vector3d> points = randomPointsInBall(2000, 0.99 * std::cos(0.2), 1);
+  Array<Eigen::Vector3d> points = randomPointsInBall(2000, 0.99 * std::cos(0.2), 1);
   points.insert(points.end(), s.surface.vertices.begin(), s.surface.vertices.end());
   // Lattice vertices of the tet mesh: on shared faces/edges of many tets.
   for (size_t v = 0; v < s.mesh.vertices.size(); v += 7) points.push_back(s.mesh.vertices[v]);
 
-  std::vector<EmbeddedPoint> embedding;
+  Array<EmbeddedPoint> embedding;
   EmbeddingReport report;
   ASSERT_EQ(embedPoints(s.mesh, points, &embedding, &report), Status::Ok) << lastError();
   ASSERT_EQ(embedding.size(), points.size());
@@ -83,7 +83,7 @@ TEST(GeometryEmbedding, InsidePointsHaveNonNegativeCoordinates) {
 
 TEST(GeometryEmbedding, OutsidePointsGetTheNearestTet) {
   const SphereMesh s = voxelSphere(8);
-  std::vector<Eigen::Vector3d> points;
+  Array<Eigen::Vector3d> points;
   std::mt19937 rng(2);
   std::normal_distribution<double> g;
   for (int i = 0; i < 300; ++i) {
@@ -91,7 +91,7 @@ TEST(GeometryEmbedding, OutsidePointsGetTheNearestTet) {
     points.push_back(dir * (1.6 + 0.01 * i));  // outside the hull (at most 1 + sqrt(3) h)
   }
   points.emplace_back(40.0, -3.0, 2.0);  // far outside the grid
-  std::vector<EmbeddedPoint> embedding;
+  Array<EmbeddedPoint> embedding;
   EmbeddingReport report;
   ASSERT_EQ(embedPoints(s.mesh, points, &embedding, &report), Status::Ok) << lastError();
   EXPECT_EQ(report.outsidePoints, static_cast<int64_t>(points.size()));
@@ -129,24 +129,24 @@ TEST(GeometryEmbedding, RenderMeshFollowsRigidMotion) {
   // that some points lie outside the voxel hull and use extrapolated coordinates.
   SurfaceMesh render = s.surface;
   for (size_t v = 0; v < render.vertices.size(); v += 3) render.vertices[v] *= 1.5;
-  std::vector<EmbeddedPoint> embedding;
+  Array<EmbeddedPoint> embedding;
   EmbeddingReport report;
   ASSERT_EQ(embedPoints(s.mesh, render.vertices, &embedding, &report), Status::Ok) << lastError();
   EXPECT_GT(report.outsidePoints, 0);
 
   const Eigen::Matrix3d R = Eigen::AngleAxisd(2.1, Eigen::Vector3d(-0.3, 0.8, 0.5).normalized()).toRotationMatrix();
   const Eigen::Vector3d t(1.5, -2.0, 0.7);
-  std::vector<Eigen::Vector3d> deformed;
+  Array<Eigen::Vector3d> deformed;
   for (const auto& x : s.mesh.vertices) deformed.push_back(R * x + t);
 
-  std::vector<Eigen::Vector3d> positions;
+  Array<Eigen::Vector3d> positions;
   ASSERT_EQ(evaluateEmbedded(s.mesh.tets, deformed, embedding, &positions), Status::Ok) << lastError();
   ASSERT_EQ(positions.size(), render.vertices.size());
   // Extrapolated points (|l| up to ~10) amplify round-off accordingly.
   for (size_t i = 0; i < positions.size(); ++i)
     EXPECT_LT((positions[i] - (R * render.vertices[i] + t)).norm(), 10 * kRoundOff) << i;
 
-  std::vector<Eigen::Vector3d> restNormals, movedNormals;
+  Array<Eigen::Vector3d> restNormals, movedNormals;
   ASSERT_EQ(computeVertexNormals(render.vertices, render.triangles, &restNormals), Status::Ok);
   ASSERT_EQ(computeVertexNormals(positions, render.triangles, &movedNormals), Status::Ok);
   for (size_t i = 0; i < positions.size(); ++i) {
@@ -157,9 +157,9 @@ TEST(GeometryEmbedding, RenderMeshFollowsRigidMotion) {
 
 TEST(GeometryEmbedding, VertexNormalsAreAreaWeighted) {
   // Two triangles at vertex 0: one in the xy plane (area 2), one in the xz plane (area 0.5).
-  const std::vector<Eigen::Vector3d> x = {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {0, 0, -1}};
-  const std::vector<std::array<int32_t, 3>> tris = {{{0, 1, 2}}, {{0, 1, 3}}};
-  std::vector<Eigen::Vector3d> normals;
+  const Array<Eigen::Vector3d> x = {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {0, 0, -1}};
+  const Array<std::array<int32_t, 3>> tris = {{{0, 1, 2}}, {{0, 1, 3}}};
+  Array<Eigen::Vector3d> normals;
   ASSERT_EQ(computeVertexNormals(x, tris, &normals), Status::Ok);
   // Face normals: +z with area 2 and (2,0,0)x(0,0,-1) = (0,2,0)/2 -> +y with area 1.
   EXPECT_LT((normals[0] - Eigen::Vector3d(0, 1, 2).normalized()).norm(), 1e-15);
@@ -169,8 +169,8 @@ TEST(GeometryEmbedding, VertexNormalsAreAreaWeighted) {
 
 TEST(GeometryEmbedding, Errors) {
   const SphereMesh s = voxelSphere(4);
-  std::vector<EmbeddedPoint> embedding(3);
-  std::vector<Eigen::Vector3d> points = {{0, 0, 0}, {0.1, NAN, 0}};
+  Array<EmbeddedPoint> embedding(3);
+  Array<Eigen::Vector3d> points = {{0, 0, 0}, {0.1, NAN, 0}};
   EXPECT_EQ(embedPoints(s.mesh, points, &embedding), Status::InvalidArgument);
   EXPECT_NE(std::string(lastError()).find("point 1"), std::string::npos) << lastError();
   EXPECT_EQ(embedding.size(), 3u);
@@ -181,8 +181,8 @@ TEST(GeometryEmbedding, Errors) {
   EXPECT_NE(std::string(lastError()).find("degenerate"), std::string::npos) << lastError();
 
   ASSERT_EQ(embedPoints(s.mesh, {{0, 0, 0}, {0.2, 0.1, 0}}, &embedding), Status::Ok);
-  std::vector<Eigen::Vector3d> positions(1);
-  std::vector<Eigen::Vector3d> tooFew(s.mesh.vertices.begin(), s.mesh.vertices.begin() + 2);
+  Array<Eigen::Vector3d> positions(1);
+  Array<Eigen::Vector3d> tooFew(s.mesh.vertices.begin(), s.mesh.vertices.begin() + 2);
   EXPECT_EQ(evaluateEmbedded(s.mesh.tets, tooFew, embedding, &positions), Status::InvalidArgument);
   EXPECT_NE(std::string(lastError()).find("point 0"), std::string::npos) << lastError();
   EXPECT_EQ(positions.size(), 1u);
@@ -197,8 +197,8 @@ TEST(GeometryEmbedding, Errors) {
 TEST(GeometryEmbedding, LargeMesh) {
   const SphereMesh s = voxelSphere(30);
   ASSERT_GT(s.mesh.tets.size(), 80000u);
-  std::vector<Eigen::Vector3d> points = randomPointsInBall(100000, 1.2, 3);
-  std::vector<EmbeddedPoint> embedding;
+  Array<Eigen::Vector3d> points = randomPointsInBall(100000, 1.2, 3);
+  Array<EmbeddedPoint> embedding;
   const auto start = std::chrono::steady_clock::now();
   ASSERT_EQ(embedPoints(s.mesh, points, &embedding), Status::Ok) << lastError();
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -46,7 +46,7 @@ inline SurfaceMesh icosphere(int levels, double r) {
       midpoint.emplace(key, m);
       return m;
     };
-    std::vector<std::array<int32_t, 3>> finer;
+    Array<std::array<int32_t, 3>> finer;
     for (const auto& tri : s.triangles) {
       const int32_t a = mid(tri[0], tri[1]), b = mid(tri[1], tri[2]), c = mid(tri[2], tri[0]);
       finer.push_back({{tri[0], a, c}});

@@ -48,7 +48,7 @@ TEST(GeometryValidation, ValidMeshPassesUnchanged) {
   EXPECT_TRUE(sameMesh(twoTets(), mesh));
   EXPECT_EQ(report.invertedTetsFixed, 0);
   EXPECT_EQ(report.unusedVerticesRemoved, 0);
-  EXPECT_EQ(report.newIndexOfOldVertex, (std::vector<int32_t>{0, 1, 2, 3, 4}));
+  EXPECT_EQ(report.newIndexOfOldVertex, (Array<int32_t>{0, 1, 2, 3, 4}));
   EXPECT_EQ(validateAndRepairTetMesh(mesh, nullptr), Status::Ok);
 }
 
@@ -137,7 +137,7 @@ TEST(GeometryValidation, RemovesUnusedVerticesAndRemaps) {
   ASSERT_EQ(validateAndRepairTetMesh(mesh, &report), Status::Ok) << lastError();
   EXPECT_EQ(report.unusedVerticesRemoved, 3);
   EXPECT_EQ(report.invertedTetsFixed, 0);
-  EXPECT_EQ(report.newIndexOfOldVertex, (std::vector<int32_t>{-1, 0, 1, -1, 2, 3, 4, -1}));
+  EXPECT_EQ(report.newIndexOfOldVertex, (Array<int32_t>{-1, 0, 1, -1, 2, 3, 4, -1}));
   EXPECT_TRUE(sameMesh(twoTets(), mesh));
 }
 

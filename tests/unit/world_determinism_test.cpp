@@ -38,7 +38,7 @@ std::vector<double> runScene(int workers, int steps, const char* scene = VP_TEST
   for (FluidHandle h : world->fluidHandles()) {
     const FluidActor& f = *world->fluid(h);
     for (int a = 0; a < 3; ++a) state.insert(state.end(), f.grid().velocity[a].begin(), f.grid().velocity[a].end());
-    for (const std::vector<double>* field : {&f.smokeDensity(), &f.levelSet(), &f.pressure()})
+    for (const Array<double>* field : {&f.smokeDensity(), &f.levelSet(), &f.pressure()})
       state.insert(state.end(), field->begin(), field->end());
   }
   return state;

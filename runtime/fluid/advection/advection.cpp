@@ -97,7 +97,7 @@ struct ScalarCellRules {
 
   bool solid(size_t c) const { return faces != nullptr && !(faces[c] & kCellIsFluid); }
   bool keeps(size_t c) const { return kept != nullptr && kept[c]; }
-  double solidResult(const std::vector<double>& old, size_t c) const {
+  double solidResult(const Array<double>& old, size_t c) const {
     return solidValue != nullptr ? *solidValue : old[c];
   }
   bool advected(size_t c) const { return !solid(c) && !keeps(c); }
@@ -116,7 +116,7 @@ struct ScalarCellRules {
 };
 
 ScalarCellRules scalarCellRules(const AdvectionRows& slab, const CellOpenFaces* openFaces,
-                                const std::vector<double>& solidValues, double keepBeyond,
+                                const Array<double>& solidValues, double keepBeyond,
                                 const AdvectionWorkspace& work) {
   ScalarCellRules rules;
   rules.faces = openFaces != nullptr ? openFaces->faces.data() : nullptr;
@@ -303,7 +303,7 @@ void buildCellOpenFaces(TaskSystem& tasks, const MacGrid& grid, const FaceFracti
 }
 
 void ScalarAdvectionSlices::prepare(TaskSystem& tasks, const MacGrid& grid, double dt, AdvectionScheme scheme,
-                                    std::vector<double>* const* fields, int fieldCount, AdvectionWorkspace& work,
+                                    Array<double>* const* fields, int fieldCount, AdvectionWorkspace& work,
                                     const CellOpenFaces* openFaces, const double* solidValues, double keepBeyond,
                                     int conservedField) {
   grid_ = &grid;
@@ -411,7 +411,7 @@ void ScalarAdvectionSlices::tracePass(const AdvectionRows& slab) {
 void ScalarAdvectionSlices::forwardPass(const AdvectionRows& slab) {
   AdvectionWorkspace& work = *work_;
   const ScalarCellRules rules = scalarCellRules(slab, openFaces_, solidValues_, keepBeyond_, work);
-  const std::vector<double>& old = *fields_[static_cast<size_t>(slab.target)];
+  const Array<double>& old = *fields_[static_cast<size_t>(slab.target)];
   const bool maccormack = maccormack_;
   // Semi-Lagrangian: the forward result is the advected field.
   double* fwd = maccormack ? work.forward.data() : work.advected[0].data();
@@ -437,7 +437,7 @@ void ScalarAdvectionSlices::forwardPass(const AdvectionRows& slab) {
 void ScalarAdvectionSlices::correctionPass(const AdvectionRows& slab) {
   AdvectionWorkspace& work = *work_;
   const ScalarCellRules rules = scalarCellRules(slab, openFaces_, solidValues_, keepBeyond_, work);
-  const std::vector<double>& old = *fields_[static_cast<size_t>(slab.target)];
+  const Array<double>& old = *fields_[static_cast<size_t>(slab.target)];
   const size_t cells = static_cast<size_t>(grid_->cellCount());
   const double* fwd = work.forward.data();
   double* out = work.advected[0].data();
@@ -454,7 +454,7 @@ void ScalarAdvectionSlices::correctionPass(const AdvectionRows& slab) {
 }
 
 void advectCellScalars(TaskSystem& tasks, const MacGrid& grid, double dt, AdvectionScheme scheme,
-                       std::vector<double>* const* fields, int fieldCount, AdvectionWorkspace& work,
+                       Array<double>* const* fields, int fieldCount, AdvectionWorkspace& work,
                        const CellOpenFaces* openFaces, const double* solidValues, double keepBeyond,
                        int conservedField) {
   ScalarAdvectionSlices slices;

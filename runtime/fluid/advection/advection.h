@@ -32,6 +32,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/allocator.h"
 #include "core/slab_passes.h"
 #include "core/task_system.h"
 #include "fluid/fluid_desc.h"
@@ -42,17 +43,17 @@ namespace vp {
 
 // Scratch arrays, kept between steps so advection does not allocate.
 struct AdvectionWorkspace {
-  std::vector<double> advected[3];  // new velocity, per axis
-  std::vector<double> forward, rangeLo, rangeHi;
-  std::vector<Eigen::Vector3d> cellTrace;  // per cell: where its centre came from
-  std::vector<uint8_t> kept;               // per cell: left as it was (keepBeyond)
+  Array<double> advected[3];  // new velocity, per axis
+  Array<double> forward, rangeLo, rangeHi;
+  Array<Eigen::Vector3d> cellTrace;  // per cell: where its centre came from
+  Array<uint8_t> kept;               // per cell: left as it was (keepBeyond)
 };
 
 // Per-cell open faces for advection that does not interpolate across solids (layout in
 // grid_sampling.h: faces bits and kCellIsFluid, blockOpen flags).
 struct CellOpenFaces {
-  std::vector<uint8_t> faces;
-  std::vector<uint8_t> blockOpen;
+  Array<uint8_t> faces;
+  Array<uint8_t> blockOpen;
 };
 
 // From the effective open fractions (cut_cell_poisson.h: Wall faces and slivers closed).
@@ -64,7 +65,7 @@ void buildCellOpenFaces(TaskSystem& tasks, const MacGrid& grid, const FaceFracti
 // farther from the liquid than a sub-step's trace reaches (a third of the tank's faces in the
 // default scene).
 struct FaceSkipMask {
-  const std::vector<uint8_t>* marks = nullptr;  // 3 arrays, one per axis; null: advect all
+  const Array<uint8_t>* marks = nullptr;  // 3 arrays, one per axis; null: advect all
   uint8_t skipMark = 0;
 };
 
@@ -89,7 +90,7 @@ void advectVelocity(TaskSystem& tasks, MacGrid& grid, double dt, AdvectionScheme
 // held far more smoke than it was given. A uniform scale is the correction that keeps the
 // field's shape and sign (as the liquid's volume correction is a uniform shift).
 void advectCellScalars(TaskSystem& tasks, const MacGrid& grid, double dt, AdvectionScheme scheme,
-                       std::vector<double>* const* fields, int fieldCount, AdvectionWorkspace& work,
+                       Array<double>* const* fields, int fieldCount, AdvectionWorkspace& work,
                        const CellOpenFaces* openFaces = nullptr, const double* solidValues = nullptr,
                        double keepBeyond = 0.0, int conservedField = -1);
 
@@ -156,7 +157,7 @@ class ScalarAdvectionSlices {
   // Arguments as advectCellScalars'. Sizes the workspace and lists the passes, which run on
   // `tasks` (none when fieldCount <= 0).
   void prepare(TaskSystem& tasks, const MacGrid& grid, double dt, AdvectionScheme scheme,
-               std::vector<double>* const* fields, int fieldCount, AdvectionWorkspace& work,
+               Array<double>* const* fields, int fieldCount, AdvectionWorkspace& work,
                const CellOpenFaces* openFaces, const double* solidValues, double keepBeyond,
                int conservedField = -1);
   // Runs the next slice of at most maxSamples cell samples (one row at least), parallel over
@@ -180,11 +181,11 @@ class ScalarAdvectionSlices {
   AdvectionWorkspace* work_ = nullptr;
   double dt_ = 0.0;
   bool maccormack_ = false;
-  std::vector<std::vector<double>*> fields_;
+  std::vector<Array<double>*> fields_;
   const CellOpenFaces* openFaces_ = nullptr;
-  std::vector<double> solidValues_;  // per field; empty: solid cells keep their values
+  Array<double> solidValues_;  // per field; empty: solid cells keep their values
   double keepBeyond_ = 0.0;
-  std::vector<double> rowSums_;
+  Array<double> rowSums_;
   double targetTotal_ = 0.0, scale_ = 1.0;
   SlabPasses passes_;
 };

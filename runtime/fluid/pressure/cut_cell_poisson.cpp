@@ -169,7 +169,7 @@ void buildDiagonalCells(const MacGrid& grid, const FaceFractionField& fractions,
 }
 
 template <class T>
-void sizeOrClear(std::vector<T>& values, bool used, size_t count) {
+void sizeOrClear(Array<T>& values, bool used, size_t count) {
   if (used) values.resize(count);
   else values.clear();
 }
@@ -395,7 +395,7 @@ void filterCutCellPoisson(TaskSystem& tasks, const CutCellPoisson& op, T* values
     });
     return;
   }
-  std::vector<double> mean(regions, 0.0);
+  Array<double> mean(regions, 0.0);
   for (size_t c = 0; c < cells; ++c) {
     const int32_t r = op.region[c];
     if (r < 0) values[c] = 0.0;

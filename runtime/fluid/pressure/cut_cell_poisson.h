@@ -32,6 +32,7 @@
 #include <functional>
 #include <vector>
 
+#include "core/allocator.h"
 #include "core/slab_passes.h"
 #include "core/status.h"
 #include "core/task_system.h"
@@ -47,33 +48,33 @@ struct PoissonCoefficients {
   MacGridSpec grid;
   // Per face (face layout): A_f for faces between two cells of the grid, 0 for boundary faces
   // (their Dirichlet part is in the diagonal) and closed faces.
-  std::vector<T> coupling[3];
+  Array<T> coupling[3];
   // Per cell: sum of A_f over the cell's open faces, Dirichlet faces included; 0 off fluid.
-  std::vector<T> diagonal;
+  Array<T> diagonal;
   // Per grid row (j + ny k): [begin, end) of the i of its fluid cells, first to last (begin ==
   // end when the row has none). Kernels skip the rest of the row (poisson_rows.h); empty means
   // "every row spans all its cells".
-  std::vector<int32_t> rowSpan;
+  Array<int32_t> rowSpan;
 };
 
 struct CutCellPoisson : PoissonCoefficients<double> {
   // Per cell: connected fluid region id, -1 for cells that are not fluid.
-  std::vector<int32_t> region;
-  std::vector<uint8_t> regionFloating;  // per region: 1 when it has no Dirichlet face
-  std::vector<int64_t> regionCellCount;
+  Array<int32_t> region;
+  Array<uint8_t> regionFloating;  // per region: 1 when it has no Dirichlet face
+  Array<int64_t> regionCellCount;
   int64_t fluidCellCount = 0;
   // Per cell, with a free surface only (else empty): 1 for an air cell (level set >= 0) that is
   // not wholly inside a solid. The voxel-label multigrid baseline makes coarse cells over air
   // Dirichlet (multigrid_coarsening.h); the operator itself does not need it.
-  std::vector<uint8_t> air;
+  Array<uint8_t> air;
   // With a free surface only (else empty), so that the multigrid's coarse levels can place the
   // surface with the same ghost-fluid rule at their own spacing (multigrid_coarsening.h)
   // instead of summing the fine levels' terms, which puts it at the wrong depth:
   // per cell the level set, per face the open fraction a coupling would have without the free
   // surface (interior faces; the coupling's units), per cell the free-surface part of the diagonal.
-  std::vector<double> liquidPhi;
-  std::vector<double> openFraction[3];
-  std::vector<double> surfaceDirichlet;
+  Array<double> liquidPhi;
+  Array<double> openFraction[3];
+  Array<double> surfaceDirichlet;
 
   bool isFluid(size_t cell) const { return region[cell] >= 0; }
 };

@@ -15,7 +15,7 @@ Status buildMic0Preconditioner(const CutCellPoisson& op, const Mic0Settings& set
   const MacGridSpec& g = op.grid;
   const int64_t nx = g.nx, ny = g.ny, nz = g.nz;
   const int64_t sy = nx, sz = nx * ny;
-  std::vector<double>& precon = preconditioner->inverseSqrtPivot;
+  Array<double>& precon = preconditioner->inverseSqrtPivot;
   precon.assign(static_cast<size_t>(nx * ny * nz), 0.0);
   const double* cu = op.coupling[0].data();
   const double* cv = op.coupling[1].data();

@@ -11,6 +11,7 @@
 
 #include <vector>
 
+#include "core/allocator.h"
 #include "core/status.h"
 #include "fluid/pressure/cut_cell_poisson.h"
 
@@ -23,7 +24,7 @@ struct Mic0Settings {
 
 struct Mic0Preconditioner {
   // Per cell: 1 / sqrt(pivot) of the factor's diagonal; 0 on non-fluid cells.
-  std::vector<double> inverseSqrtPivot;
+  Array<double> inverseSqrtPivot;
 };
 
 Status buildMic0Preconditioner(const CutCellPoisson& op, const Mic0Settings& settings,

@@ -32,7 +32,7 @@ struct Dims {
 
 // Diagonal = couplings of the six faces + Dirichlet part, cells of rows [begin, end);
 // couplings must be set.
-void assembleDiagonalRows(const std::vector<double>& dirichlet, CutCellPoisson* op, int64_t begin, int64_t end) {
+void assembleDiagonalRows(const Array<double>& dirichlet, CutCellPoisson* op, int64_t begin, int64_t end) {
   const Dims d(op->grid);
   for (int64_t row = begin; row < end; ++row) {
     const int64_t j = row % d.ny, k = row / d.ny;
@@ -148,8 +148,8 @@ void coarseFaceRow(const Dims& f, const Dims& c, int a, int64_t C1, int64_t C2, 
   for (int64_t I = 0; I < count; ++I) out[I] *= 0.5;
 }
 
-void addCoarseFacePass(SlabPasses* passes, const Dims& f, const Dims& c, int a, const std::vector<double>* in,
-                       const std::vector<double>* inner, std::vector<double>* out) {
+void addCoarseFacePass(SlabPasses* passes, const Dims& f, const Dims& c, int a, const Array<double>* in,
+                       const Array<double>* inner, Array<double>* out) {
   // The pass runs over the coarse face lattice, so it writes every face (0 on the domain's).
   const int64_t faces[3] = {c.nx + (a == 0), c.ny + (a == 1), c.nz + (a == 2)};
   passes->addParallel(faces[1] * faces[2], faces[0] * kChildren, kRowGrain, [=](int64_t begin, int64_t end) {
@@ -173,7 +173,7 @@ void addCoarseFacePass(SlabPasses* passes, const Dims& f, const Dims& c, int a, 
 // colliders, 64/128^3: 7/7 summed, 6/6 placed again.
 // Where no such face exists (air pockets smaller than the coarse cell), the summed rule stays.
 void addCoarseFreeSurfacePasses(SlabPasses* passes, const CutCellPoisson* fine, const Dims& f, const Dims& c,
-                                CutCellPoisson* coarse, std::vector<uint8_t>* fluidCells) {
+                                CutCellPoisson* coarse, Array<uint8_t>* fluidCells) {
   addCellPass(passes, c, kChildren, [=](int64_t I, int64_t J, int64_t K) {
     double phi = 0.0;
     int children = 0;
@@ -188,7 +188,7 @@ void addCoarseFreeSurfacePasses(SlabPasses* passes, const CutCellPoisson* fine, 
     (*fluidCells)[cell] = anyFluid ? 1 : 0;
   });
   addCellPass(passes, c, 1, [=](int64_t I, int64_t J, int64_t K) {
-    const std::vector<uint8_t>& fluid = *fluidCells;
+    const Array<uint8_t>& fluid = *fluidCells;
     const size_t cell = static_cast<size_t>(c.cell(I, J, K));
     coarse->surfaceDirichlet[cell] = 0.0;
     if (!fluid[cell]) return;
@@ -224,7 +224,7 @@ void addCoarseFreeSurfacePasses(SlabPasses* passes, const CutCellPoisson* fine, 
 // result is added), summed in forEachChild's order.
 void coarseDirichletRows(const CutCellPoisson& fine, const Dims& f, const Dims& c, bool freeSurface,
                          const CutCellPoisson& coarse, int64_t begin, int64_t end, double* dirichlet) {
-  std::vector<double> parts(static_cast<size_t>(4 * f.nx));
+  Array<double> parts(static_cast<size_t>(4 * f.nx));
   for (int64_t row = begin; row < end; ++row) {
     const int64_t J = row % c.ny, K = row / c.ny;
     int childRows = 0;
@@ -303,7 +303,7 @@ void appendCoarsenCutCell(const CutCellPoisson& fine, CutCellPoisson* coarse, Co
     for (int a = 0; a < 3; ++a) {
       // Solids close a column, the free surface does not (its faces have coupling 0 only because
       // the air has no row; the coarse surface is placed by the free-surface passes).
-      const std::vector<double>* open = freeSurface ? &fp->openFraction[a] : &fp->coupling[a];
+      const Array<double>* open = freeSurface ? &fp->openFraction[a] : &fp->coupling[a];
       addCoarseFacePass(passes, f, c, a, &fp->coupling[a], open, &coarse->coupling[a]);
       if (freeSurface) addCoarseFacePass(passes, f, c, a, open, open, &coarse->openFraction[a]);
     }

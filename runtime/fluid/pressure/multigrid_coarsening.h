@@ -36,6 +36,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/allocator.h"
 #include "core/status.h"
 #include "core/task_system.h"
 #include "fluid/mac_grid.h"
@@ -54,8 +55,8 @@ Status coarsenVoxel(TaskSystem& tasks, const CutCellPoisson& fine, const std::ar
 // Per coarse cell, between the passes of one coarsening (kept by the caller so a rebuild every
 // step does not reallocate; one level at a time).
 struct CoarseningScratch {
-  std::vector<double> dirichlet;
-  std::vector<uint8_t> fluid;
+  Array<double> dirichlet;
+  Array<uint8_t> fluid;
 };
 
 // The coarsenings as passes (core/slab_passes.h), each in slabs of coarse rows

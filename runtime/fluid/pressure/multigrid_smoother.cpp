@@ -109,7 +109,7 @@ void smoothRedBlackCells(TaskSystem& tasks, const PoissonCoefficients<float>& op
   const int64_t nx = op.grid.nx, sz = nx * op.grid.ny;
   const int64_t step[6] = {-1, 1, -nx, nx, -sz, sz};
   for (int half = 0; half < 2; ++half) {
-    const std::vector<BoundaryCell>& list = byColour[static_cast<size_t>(reverse ? 1 - half : half)];
+    const Array<BoundaryCell>& list = byColour[static_cast<size_t>(reverse ? 1 - half : half)];
     parallelFor(tasks, static_cast<int64_t>(list.size()), kBoundaryCellsPerChunk, [&](int64_t begin, int64_t end) {
       for (int64_t n = begin; n < end; ++n) {
         const BoundaryCell& e = list[static_cast<size_t>(n)];
@@ -125,18 +125,18 @@ void smoothRedBlackCells(TaskSystem& tasks, const PoissonCoefficients<float>& op
 void findBoundaryCells(TaskSystem& tasks, const CutCellPoisson& op, double fullCoupling,
                        BoundaryCellLists* byColour) {
   SlabPasses passes(tasks);
-  std::vector<uint8_t> cut;
+  Array<uint8_t> cut;
   appendFindBoundaryCells(op, fullCoupling, byColour, &cut, &passes);
   passes.runAll();
 }
 
 void appendFindBoundaryCells(const CutCellPoisson& op, double fullCoupling, BoundaryCellLists* byColour,
-                             std::vector<uint8_t>* cutCells, SlabPasses* passes) {
+                             Array<uint8_t>* cutCells, SlabPasses* passes) {
   const CutCellPoisson* level = &op;
   passes->addStep([level, fullCoupling, byColour, cutCells, passes] {
     const Stencil<double> s(*level);
     cutCells->resize(static_cast<size_t>(s.rows() * s.nx));
-    for (std::vector<BoundaryCell>& list : *byColour) list.clear();
+    for (Array<BoundaryCell>& list : *byColour) list.clear();
     uint8_t* cut = cutCells->data();
     passes->addParallel(s.rows(), s.nx, s.rowGrain(), [s, cut, fullCoupling](int64_t begin, int64_t end) {
       for (int64_t row = begin; row < end; ++row) {

@@ -29,6 +29,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/allocator.h"
 #include "core/task_system.h"
 #include "fluid/pressure/cut_cell_poisson.h"
 
@@ -61,7 +62,7 @@ struct BoundaryCell {
   float coupling[6];  // faces -x, +x, -y, +y, -z, +z
   float inverseDiagonal;
 };
-using BoundaryCellLists = std::array<std::vector<BoundaryCell>, 2>;  // red, black
+using BoundaryCellLists = std::array<Array<BoundaryCell>, 2>;  // red, black
 
 void smoothRedBlackCells(TaskSystem& tasks, const PoissonCoefficients<float>& op, const BoundaryCellLists& byColour,
                          const float* b, float* x, bool reverse);
@@ -78,7 +79,7 @@ void findBoundaryCells(TaskSystem& tasks, const CutCellPoisson& op, double fullC
 // cell) in slabs of rows, then the lists in rows taken in order. Nothing is read before the
 // first pass runs; the arguments must outlive the passes.
 void appendFindBoundaryCells(const CutCellPoisson& op, double fullCoupling, BoundaryCellLists* byColour,
-                             std::vector<uint8_t>* cut, SlabPasses* passes);
+                             Array<uint8_t>* cut, SlabPasses* passes);
 
 // r = b - A x on fluid cells, 0 elsewhere.
 template <class T>

@@ -69,8 +69,8 @@ void gatherRows(const AxisWeights& w, int64_t count, const Line& line, T* out) {
 // AxisStencil along x for every fine i of a row, as arrays, so a row's loop has no branches.
 template <class T>
 struct XStencils {
-  std::vector<int32_t> index[2];
-  std::vector<T> weight[2];
+  Array<int32_t> index[2];
+  Array<T> weight[2];
   int64_t coarseCount;
   XStencils(int64_t nx, int64_t cx, const TransferSides& sides) : coarseCount(cx) {
     for (int e = 0; e < 2; ++e) index[e].resize(static_cast<size_t>(nx)), weight[e].resize(static_cast<size_t>(nx));
@@ -155,10 +155,10 @@ void prolongateRow(const ProlongationRow<double>& r) { prolongateRowBody(r); }
 // the coarse cells whose four fine cells 2I - 1 .. 2I + 2 all lie in the row.
 template <class T>
 struct XWeights {
-  std::vector<AxisWeights> all;
-  std::vector<T> weight[4];
+  Array<AxisWeights> all;
+  Array<T> weight[4];
   int64_t innerBegin, innerEnd;  // those coarse cells
-  XWeights(std::vector<AxisWeights> perCell, int64_t nx) : all(std::move(perCell)) {
+  XWeights(Array<AxisWeights> perCell, int64_t nx) : all(std::move(perCell)) {
     const int64_t cx = static_cast<int64_t>(all.size());
     innerBegin = std::min<int64_t>(1, cx);
     innerEnd = std::max(innerBegin, std::min(cx, nx >= 3 ? (nx - 3) / 2 + 1 : 0));
@@ -209,14 +209,14 @@ void restrictRowAlongX(const XWeights<double>& xw, const double* scale, const do
 }  // namespace
 
 void computeProlongationScale(TaskSystem& tasks, const CutCellPoisson& fine, const CutCellPoisson& coarse,
-                              const TransferSides& sides, std::vector<double>* scale) {
+                              const TransferSides& sides, Array<double>* scale) {
   SlabPasses passes(tasks);
   appendComputeProlongationScale(fine, coarse, sides, scale, &passes);
   passes.runAll();
 }
 
 void appendComputeProlongationScale(const CutCellPoisson& fine, const CutCellPoisson& coarse,
-                                    const TransferSides& sides, std::vector<double>* scale, SlabPasses* passes) {
+                                    const TransferSides& sides, Array<double>* scale, SlabPasses* passes) {
   const CutCellPoisson* fp = &fine;
   const CutCellPoisson* cp = &coarse;
   passes->addStep([fp, cp, sides, scale, passes] {
@@ -276,14 +276,14 @@ void prolongateAdd(TaskSystem& tasks, const CutCellPoisson& fine, const CutCellP
 
 template <class T>
 void restrictResidual(TaskSystem& tasks, const CutCellPoisson& fine, const CutCellPoisson& coarse,
-                      const TransferSides& sides, const T* scale, const T* fineR, T* coarseB, std::vector<T>* scratch) {
+                      const TransferSides& sides, const T* scale, const T* fineR, T* coarseB, Array<T>* scratch) {
   const int64_t nx = fine.grid.nx, ny = fine.grid.ny, nz = fine.grid.nz;
   const int64_t cx = coarse.grid.nx, cy = coarse.grid.ny, cz = coarse.grid.nz;
   // R is P^T with P's weights a product over the axes, so it runs as three 1D gathers (x, then
   // y, then z), each coarse value collecting the fine indices 2I-1 .. 2I+2 whose stencils name
   // it with the weight their AxisStencil gives it (AxisWeights): 4 + 4 + 4 multiply-adds per
   // coarse value of each pass instead of 64.
-  std::vector<AxisWeights> wx, wy, wz;
+  Array<AxisWeights> wx, wy, wz;
   for (int64_t I = 0; I < cx; ++I) wx.emplace_back(I, nx, cx, sides, 0);
   for (int64_t J = 0; J < cy; ++J) wy.emplace_back(J, ny, cy, sides, 1);
   for (int64_t K = 0; K < cz; ++K) wz.emplace_back(K, nz, cz, sides, 2);
@@ -318,7 +318,7 @@ void restrictResidual(TaskSystem& tasks, const CutCellPoisson& fine, const CutCe
   template void prolongateAdd<T>(TaskSystem&, const CutCellPoisson&, const CutCellPoisson&, const TransferSides&, \
                                  const T*, const T*, T*);                                                      \
   template void restrictResidual<T>(TaskSystem&, const CutCellPoisson&, const CutCellPoisson&,                   \
-                                    const TransferSides&, const T*, const T*, T*, std::vector<T>*);
+                                    const TransferSides&, const T*, const T*, T*, Array<T>*);
 VP_INSTANTIATE_TRANSFERS(double)
 VP_INSTANTIATE_TRANSFERS(float)
 #undef VP_INSTANTIATE_TRANSFERS

@@ -18,6 +18,7 @@
 
 #include <vector>
 
+#include "core/allocator.h"
 #include "core/task_system.h"
 #include "fluid/pressure/cut_cell_poisson.h"
 
@@ -30,11 +31,11 @@ struct TransferSides {
 
 // Per fine cell: 1 / S_i, 0 on non-fluid fine cells and where no coarse neighbour is fluid.
 void computeProlongationScale(TaskSystem& tasks, const CutCellPoisson& fine, const CutCellPoisson& coarse,
-                              const TransferSides& sides, std::vector<double>* scale);
+                              const TransferSides& sides, Array<double>* scale);
 // The same as passes (core/slab_passes.h), in slabs of fine rows; nothing is read
 // before the first runs. The arguments must outlive the passes.
 void appendComputeProlongationScale(const CutCellPoisson& fine, const CutCellPoisson& coarse,
-                                    const TransferSides& sides, std::vector<double>* scale, SlabPasses* passes);
+                                    const TransferSides& sides, Array<double>* scale, SlabPasses* passes);
 
 // fineX += P coarseX.
 // T: double or float (the V-cycle's precision, poisson_multigrid.h).
@@ -45,6 +46,6 @@ void prolongateAdd(TaskSystem& tasks, const CutCellPoisson& fine, const CutCellP
 // coarseB = P^T fineR. `scratch` holds the partial sums (resized, so reuse it across calls).
 template <class T>
 void restrictResidual(TaskSystem& tasks, const CutCellPoisson& fine, const CutCellPoisson& coarse,
-                      const TransferSides& sides, const T* scale, const T* fineR, T* coarseB, std::vector<T>* scratch);
+                      const TransferSides& sides, const T* scale, const T* fineR, T* coarseB, Array<T>* scratch);
 
 }  // namespace vp

@@ -15,7 +15,7 @@ constexpr int64_t kValueGrain = 4096;
 // `sweeps` sweeps (adjoint order when `adjoint`); `fromZero`: x holds anything and the smoothing
 // starts from 0 (both smoothers fold the clearing into their first sweep).
 void smooth(TaskSystem& tasks, const PoissonCoefficients<float>& op, const MultigridSettings& s, const float* b,
-            float* x, std::vector<float>& scratch, int sweeps, bool adjoint, bool fromZero) {
+            float* x, Array<float>& scratch, int sweeps, bool adjoint, bool fromZero) {
   if (s.smoother == PoissonSmoother::DampedJacobi) {
     smoothJacobi(tasks, op, b, x, scratch.data(), s.jacobiWeight, sweeps, fromZero);
     return;
@@ -26,7 +26,7 @@ void smooth(TaskSystem& tasks, const PoissonCoefficients<float>& op, const Multi
 // Pre-smoothing (from zero): full sweeps then boundary sweeps; post-smoothing: the adjoint, in
 // reverse order.
 void smoothLevel(TaskSystem& tasks, const PoissonCoefficients<float>& op, const MultigridSettings& s,
-                 const BoundaryCellLists& boundary, const float* b, float* x, std::vector<float>& scratch,
+                 const BoundaryCellLists& boundary, const float* b, float* x, Array<float>& scratch,
                  bool post) {
   if (!post) smooth(tasks, op, s, b, x, scratch, s.sweeps, false, true);
   for (int i = 0; i < s.boundarySweeps; ++i) smoothRedBlackCells(tasks, op, boundary, b, x, post);
@@ -45,7 +45,7 @@ void convertVector(TaskSystem& tasks, int64_t count, const From* from, To* to) {
 
 // A pass converting `from` into `to` (sized by it when the pass is added).
 template <class From, class To>
-void addConversion(SlabPasses* passes, const std::vector<From>* from, std::vector<To>* to) {
+void addConversion(SlabPasses* passes, const Array<From>* from, Array<To>* to) {
   to->resize(from->size());
   passes->addParallel(static_cast<int64_t>(from->size()), 1, kValueGrain, [from, to](int64_t begin, int64_t end) {
     convertValues(from->data(), to->data(), begin, end);
@@ -155,7 +155,7 @@ void applyPoissonMultigrid(TaskSystem& tasks, const CutCellPoisson& fine, Poisso
   auto filter = [&](int l, float* v) {
     if (l > 0 && mg.coarseFloating[static_cast<size_t>(l - 1)]) filterCutCellPoisson(tasks, op(l), v);
   };
-  auto scratchOf = [&](int l) -> std::vector<float>& { return mg.r[static_cast<size_t>(l)]; };
+  auto scratchOf = [&](int l) -> Array<float>& { return mg.r[static_cast<size_t>(l)]; };
   const int64_t fineCells = static_cast<int64_t>(fine.diagonal.size());
   convertVector(tasks, fineCells, r, bOf(0));
 

@@ -30,6 +30,7 @@
 #include <array>
 #include <vector>
 
+#include "core/allocator.h"
 #include "core/status.h"
 #include "core/task_system.h"
 #include "fluid/mac_grid.h"
@@ -65,15 +66,15 @@ struct PoissonMultigrid {
   MultigridSettings settings;
   TransferSides sides;
   std::vector<CutCellPoisson> coarse;                 // levels 1 .. L-1, built in double
-  std::vector<PoissonCoefficients<float>> single;     // levels 0 .. L-1: what the V-cycle applies
-  std::vector<uint8_t> coarseFloating;                // per coarse level: any floating region
-  std::vector<std::vector<float>> prolongScale;       // levels 0 .. L-2 (multigrid_transfer.h)
+  Array<PoissonCoefficients<float>> single;     // levels 0 .. L-1: what the V-cycle applies
+  Array<uint8_t> coarseFloating;                // per coarse level: any floating region
+  std::vector<Array<float>> prolongScale;       // levels 0 .. L-2 (multigrid_transfer.h)
   std::vector<BoundaryCellLists> boundaryCells;       // per level (multigrid_smoother.h)
-  std::vector<std::vector<float>> x, b, r;            // per level; level 0: the caller's r and z
-  std::vector<float> restrictScratch;
-  std::vector<double> scaleScratch;
+  std::vector<Array<float>> x, b, r;            // per level; level 0: the caller's r and z
+  Array<float> restrictScratch;
+  Array<double> scaleScratch;
   CoarseningScratch coarseningScratch;
-  std::vector<uint8_t> boundaryScratch;
+  Array<uint8_t> boundaryScratch;
 
   int levelCount() const { return 1 + static_cast<int>(coarse.size()); }
 };

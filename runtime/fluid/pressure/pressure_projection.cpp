@@ -138,7 +138,7 @@ void PressureProjectionRun::updateVelocityRows(int a, int64_t begin, int64_t end
   const double* p = state_->pressure.data();
   const Eigen::Vector3i d = grid.faceDims(a);
   const int cellsAlong = a == 0 ? g.nx : a == 1 ? g.ny : g.nz;
-  std::vector<double>& u = grid_->velocity[a];
+  Array<double>& u = grid_->velocity[a];
   for (int64_t row = begin; row < end; ++row) {
     const int j = static_cast<int>(row % d.y()), k = static_cast<int>(row / d.y());
     for (int i = 0; i < d.x(); ++i) {

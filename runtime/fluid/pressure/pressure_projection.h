@@ -21,6 +21,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/allocator.h"
 #include "core/budget_clock.h"
 #include "core/status.h"
 #include "core/task_system.h"
@@ -68,12 +69,12 @@ struct PressureSolveStats {
 // changes) and the solver's cell-sized buffers, so a projection every frame does not
 // reallocate them.
 struct PressureState {
-  std::vector<double> pressure;  // per cell; reset to 0 when the grid's cell count changes
+  Array<double> pressure;  // per cell; reset to 0 when the grid's cell count changes
   CutCellPoisson poisson;
   Mic0Preconditioner preconditioner;
   PoissonMultigrid multigrid;
   CgWorkspace cg;
-  std::vector<double> rhs;
+  Array<double> rhs;
   bool operatorBuilt = false;  // poisson and the preconditioner below are those of builtFor
   PressureSolver builtFor = PressureSolver::CutCellMgpcg;
 };

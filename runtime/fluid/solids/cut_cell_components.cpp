@@ -295,10 +295,10 @@ class SplitCellPass {
   FaceFractionField* field_;
   CutCellComponentStats* stats_;
   CellBox apply_, sampled_;
-  std::vector<uint8_t> thin_;
-  std::vector<std::vector<SplitCell>> rowSplits_;
-  std::vector<int64_t> rowCut_;
-  std::vector<SplitCell> split_;
+  Array<uint8_t> thin_;
+  std::vector<Array<SplitCell>> rowSplits_;
+  Array<int64_t> rowCut_;
+  Array<SplitCell> split_;
 };
 
 void SplitCellPass::sampleRows(int64_t begin, int64_t end) {

@@ -21,6 +21,7 @@
 //                     colliders' values weighted by their individual coverage.
 #pragma once
 
+#include "core/allocator.h"
 #include "collide/face_coverage.h"
 #include "core/slab_passes.h"
 #include "core/status.h"
@@ -37,8 +38,8 @@ struct MacGridSpec {
 
 struct FaceFractionField {
   MacGridSpec grid;
-  std::vector<double> open[3];
-  std::vector<double> solidVelocity[3];
+  Array<double> open[3];
+  Array<double> solidVelocity[3];
 
   // Face-count dimensions of axis a: (nx + (a == 0), ny + (a == 1), nz + (a == 2)).
   Eigen::Vector3i faceDims(int axis) const;

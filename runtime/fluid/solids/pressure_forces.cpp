@@ -13,9 +13,9 @@ namespace {
 // A box of cells around the collider with the pressure known or extended into it.
 struct LocalPressure {
   Eigen::Vector3i lo, dims;
-  std::vector<double> value;
-  std::vector<int> layer;  // 0 known from the solve, k > 0 extended in layer k, -1 unknown
-  std::vector<uint8_t> air;  // air of a liquid (p = 0, not fluid)
+  Array<double> value;
+  Array<int> layer;  // 0 known from the solve, k > 0 extended in layer k, -1 unknown
+  Array<uint8_t> air;  // air of a liquid (p = 0, not fluid)
 
   int64_t index(const Eigen::Vector3i& c) const {
     const Eigen::Vector3i l = c - lo;
@@ -43,7 +43,7 @@ void extendIntoSolid(const MacGrid& grid, const FaceFractionField& fractions, co
   local.value.assign(static_cast<size_t>(count), 0.0);
   local.layer.assign(static_cast<size_t>(count), 0);
   local.air.assign(static_cast<size_t>(count), 0);
-  std::vector<int64_t> unknown;
+  Array<int64_t> unknown;
   for (int k = 0; k < local.dims.z(); ++k)
     for (int j = 0; j < local.dims.y(); ++j)
       for (int i = 0; i < local.dims.x(); ++i) {
@@ -60,8 +60,8 @@ void extendIntoSolid(const MacGrid& grid, const FaceFractionField& fractions, co
         }
       }
   for (int layer = 1; !unknown.empty(); ++layer) {
-    std::vector<int64_t> still;
-    std::vector<std::pair<int64_t, double>> found;
+    Array<int64_t> still;
+    Array<std::pair<int64_t, double>> found;
     for (int64_t l : unknown) {
       const Eigen::Vector3i c = local.lo + Eigen::Vector3i(int(l % local.dims.x()),
                                                           int((l / local.dims.x()) % local.dims.y()),

@@ -153,11 +153,11 @@ void RedistanceRun::detectSurface(int64_t begin, int64_t end) {
   double* dist = ws_->distance.data();
   uint8_t* layer = ws_->layer.data();
   const int64_t chunks = (end - begin + kCellGrain - 1) / kCellGrain;
-  std::vector<std::vector<int32_t>>& found = ws_->chunkSurface;
+  std::vector<Array<int32_t>>& found = ws_->chunkSurface;
   if (static_cast<int64_t>(found.size()) < chunks) found.resize(static_cast<size_t>(chunks));
   parallelFor(*tasks_, chunks, 1, [&](int64_t first, int64_t last) {
     for (int64_t chunk = first; chunk < last; ++chunk) {
-      std::vector<int32_t>& out = found[static_cast<size_t>(chunk)];
+      Array<int32_t>& out = found[static_cast<size_t>(chunk)];
       out.clear();
       const int64_t chunkEnd = std::min(end, begin + (chunk + 1) * kCellGrain);
       for (int64_t c = begin + chunk * kCellGrain; c < chunkEnd; ++c) {
@@ -192,7 +192,7 @@ void RedistanceRun::detectSurface(int64_t begin, int64_t end) {
     }
   });
   for (int64_t chunk = 0; chunk < chunks; ++chunk) {
-    const std::vector<int32_t>& part = found[static_cast<size_t>(chunk)];
+    const Array<int32_t>& part = found[static_cast<size_t>(chunk)];
     ws_->surface.insert(ws_->surface.end(), part.begin(), part.end());
   }
 }
@@ -203,7 +203,7 @@ void RedistanceRun::detectSurface(int64_t begin, int64_t end) {
 int64_t RedistanceRun::claimBand(int64_t budget) {
   const Lattice lat(grid_);
   uint8_t* layer = ws_->layer.data();
-  std::vector<int32_t>& queue = ws_->reached;
+  Array<int32_t>& queue = ws_->reached;
   int64_t done = 0;
   for (; done < budget && position_ < static_cast<int64_t>(queue.size()); ++done, ++position_) {
     const int32_t c = queue[static_cast<size_t>(position_)];

@@ -26,6 +26,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/allocator.h"
 #include "core/status.h"
 #include "core/task_system.h"
 #include "fluid/solids/face_fraction_field.h"
@@ -45,11 +46,11 @@ struct RedistanceStats {
 };
 
 struct RedistanceWorkspace {
-  std::vector<double> distance;
-  std::vector<uint8_t> layer;
-  std::vector<int32_t> surface, band[2];  // band[0] red, band[1] black (i + j + k parity)
-  std::vector<int32_t> reached;  // breadth-first queue: surface cells, then band cells as claimed
-  std::vector<std::vector<int32_t>> chunkSurface;  // surface cells found per chunk of a slab
+  Array<double> distance;
+  Array<uint8_t> layer;
+  Array<int32_t> surface, band[2];  // band[0] red, band[1] black (i + j + k parity)
+  Array<int32_t> reached;  // breadth-first queue: surface cells, then band cells as claimed
+  std::vector<Array<int32_t>> chunkSurface;  // surface cells found per chunk of a slab
 };
 
 // phi: cellCount values in cell order, rewritten in place. Needs at least one sign change to

@@ -8,16 +8,16 @@
 
 namespace vp {
 
-void extendLevelSetIntoSolids(const MacGridSpec& g, const std::vector<double>& cellWeights, std::vector<double>& phi,
-                              std::vector<int64_t>& scratch) {
+void extendLevelSetIntoSolids(const MacGridSpec& g, const Array<double>& cellWeights, Array<double>& phi,
+                              Array<int64_t>& scratch) {
   SolidExtensionRun run;
   if (!ok(run.prepare(g, cellWeights, phi, scratch, std::numeric_limits<int64_t>::max()))) return;
   while (!run.advance()) {
   }
 }
 
-Status SolidExtensionRun::prepare(const MacGridSpec& grid, const std::vector<double>& cellWeights,
-                                  std::vector<double>& phi, std::vector<int64_t>& scratch, int64_t samplesPerSlice) {
+Status SolidExtensionRun::prepare(const MacGridSpec& grid, const Array<double>& cellWeights,
+                                  Array<double>& phi, Array<int64_t>& scratch, int64_t samplesPerSlice) {
   pass_ = Pass::Done;
   const int64_t cells = static_cast<int64_t>(grid.nx) * grid.ny * grid.nz;
   if (cells <= 0 || static_cast<int64_t>(phi.size()) != cells || static_cast<int64_t>(cellWeights.size()) != cells)
@@ -47,8 +47,8 @@ bool SolidExtensionRun::advance() {
 
 int64_t SolidExtensionRun::step(int64_t budget) {
   const MacGridSpec& g = grid_;
-  std::vector<double>& phi = *phi_;
-  std::vector<int64_t>& unknown = *unknown_;
+  Array<double>& phi = *phi_;
+  Array<int64_t>& unknown = *unknown_;
   const int64_t passLength = pass_ == Pass::Collect ? static_cast<int64_t>(phi.size())
                              : pass_ == Pass::Scan  ? static_cast<int64_t>(unknown.size())
                                                     : static_cast<int64_t>(found_.size());

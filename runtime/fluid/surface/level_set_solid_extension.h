@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/allocator.h"
 #include "core/status.h"
 #include "fluid/solids/face_fraction_field.h"
 
@@ -32,8 +33,8 @@ constexpr double kMaxCoveredCellWeight = 1.0 / 12.0;
 // cellWeights and phi: cellCount values in cell order; scratch is the run's list of unknown
 // cells. Does nothing when the sizes do not match the grid. Runs SolidExtensionRun in one
 // slice.
-void extendLevelSetIntoSolids(const MacGridSpec& grid, const std::vector<double>& cellWeights, std::vector<double>& phi,
-                              std::vector<int64_t>& scratch);
+void extendLevelSetIntoSolids(const MacGridSpec& grid, const Array<double>& cellWeights, Array<double>& phi,
+                              Array<int64_t>& scratch);
 
 // extendLevelSetIntoSolids in slices, bitwise the same result however it is sliced. Serial. A
 // slice does at most samplesPerSlice samples of work (one at least) and runs on into the next
@@ -48,8 +49,8 @@ void extendLevelSetIntoSolids(const MacGridSpec& grid, const std::vector<double>
 // must stay as they are. A run kept from step to step reuses its storage.
 class SolidExtensionRun {
  public:
-  Status prepare(const MacGridSpec& grid, const std::vector<double>& cellWeights, std::vector<double>& phi,
-                 std::vector<int64_t>& scratch, int64_t samplesPerSlice);
+  Status prepare(const MacGridSpec& grid, const Array<double>& cellWeights, Array<double>& phi,
+                 Array<int64_t>& scratch, int64_t samplesPerSlice);
   // Runs one slice; true once all is done (also after a failed or missing prepare()).
   bool advance();
   bool done() const { return pass_ == Pass::Done; }
@@ -60,15 +61,15 @@ class SolidExtensionRun {
   int64_t step(int64_t budget);  // part of the current pass; returns the samples it did
 
   MacGridSpec grid_;
-  const std::vector<double>* weights_ = nullptr;
-  std::vector<double>* phi_ = nullptr;
-  std::vector<int64_t>* unknown_ = nullptr;
+  const Array<double>* weights_ = nullptr;
+  Array<double>* phi_ = nullptr;
+  Array<int64_t>* unknown_ = nullptr;
   int64_t samplesPerSlice_ = 1, lastSliceSamples_ = 0;
   Pass pass_ = Pass::Done;
   int64_t position_ = 0;  // in the current pass
-  std::vector<int8_t> pending_;  // per cell: 1 while unknown
-  std::vector<int64_t> still_;   // unknown after this layer
-  std::vector<std::pair<int64_t, double>> found_;  // this layer's cells and values
+  Array<int8_t> pending_;  // per cell: 1 while unknown
+  Array<int64_t> still_;   // unknown after this layer
+  Array<std::pair<int64_t, double>> found_;  // this layer's cells and values
 };
 
 }  // namespace vp

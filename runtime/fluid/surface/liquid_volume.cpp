@@ -89,7 +89,7 @@ int64_t cellCount(const MacGridSpec& g) { return static_cast<int64_t>(g.nx) * g.
 
 }  // namespace
 
-void cellOpenFractions(TaskSystem& tasks, const FaceFractionField& fractions, std::vector<double>* weights) {
+void cellOpenFractions(TaskSystem& tasks, const FaceFractionField& fractions, Array<double>* weights) {
   const int64_t cells = cellCount(fractions.grid);
   weights->resize(static_cast<size_t>(cells));
   parallelFor(tasks, cells, kCellGrain, [&](int64_t begin, int64_t end) {
@@ -97,7 +97,7 @@ void cellOpenFractions(TaskSystem& tasks, const FaceFractionField& fractions, st
   });
 }
 
-void addCellOpenFractionPasses(SlabPasses& passes, const FaceFractionField& fractions, std::vector<double>* weights) {
+void addCellOpenFractionPasses(SlabPasses& passes, const FaceFractionField& fractions, Array<double>* weights) {
   const int64_t cells = cellCount(fractions.grid);
   weights->resize(static_cast<size_t>(cells));
   passes.addParallel(cells, 1, kCellGrain, [&fractions, w = weights->data()](int64_t begin, int64_t end) {

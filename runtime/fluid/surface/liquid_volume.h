@@ -26,6 +26,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/allocator.h"
 #include "core/slab_passes.h"
 #include "core/status.h"
 #include "core/task_system.h"
@@ -45,9 +46,9 @@ double liquidVolume(TaskSystem& tasks, const MacGridSpec& grid, const double* ph
 // not count), a first-order estimate of the cell's non-solid volume fraction: exact for an
 // empty or a fully covered cell, and within a few tens of percent of a cut cell's fraction,
 // which matters only in the thin shell of cells that colliders cut.
-void cellOpenFractions(TaskSystem& tasks, const FaceFractionField& fractions, std::vector<double>* weights);
+void cellOpenFractions(TaskSystem& tasks, const FaceFractionField& fractions, Array<double>* weights);
 // The same as a pass of bounded slices (core/slab_passes.h); sizes `weights` now.
-void addCellOpenFractionPasses(SlabPasses& passes, const FaceFractionField& fractions, std::vector<double>* weights);
+void addCellOpenFractionPasses(SlabPasses& passes, const FaceFractionField& fractions, Array<double>* weights);
 
 struct VolumeCorrectionSettings {
   double widthCells = kDefaultHeavisideWidthCells;
@@ -97,7 +98,7 @@ class VolumeCorrectionRun {
   enum class Pass : uint8_t { Gather, Evaluate, Shift, Done };
   // The cells whose fraction can change under the shifts allowed, in cell order.
   struct Band {
-    std::vector<double> phi, weight;
+    Array<double> phi, weight;
     double fullWeight = 0.0;  // sum of w over cells that stay fully liquid
     Band& operator+=(const Band& o);
   };
@@ -111,7 +112,7 @@ class VolumeCorrectionRun {
   template <class T>
   struct ChunkedSum {
     T total, open;
-    std::vector<T> pieces;  // scratch: per chunk of a slab
+    Array<T> pieces;  // scratch: per chunk of a slab
   };
 
   int64_t step(int64_t budget);  // part of the current pass; returns the samples it did

@@ -164,7 +164,7 @@ int popcount3(int bits) { return (bits & 1) + ((bits >> 1) & 1) + ((bits >> 2) &
 }  // namespace
 
 Status extractLiquidSurface(TaskSystem& tasks, const MacGridSpec& grid, const double* phi, SurfaceMesh* mesh,
-                            std::vector<Eigen::Vector3d>* normals, MarchingCubesWorkspace& workspace) {
+                            Array<Eigen::Vector3d>* normals, MarchingCubesWorkspace& workspace) {
   if (phi == nullptr || mesh == nullptr || normals == nullptr)
     return fail(Status::InvalidArgument, "marching cubes: phi, mesh and normals must not be null");
   if (grid.nx <= 0 || grid.ny <= 0 || grid.nz <= 0 || !(grid.h > 0.0))
@@ -234,11 +234,11 @@ Status extractLiquidSurface(TaskSystem& tasks, const MacGridSpec& grid, const do
   });
 
   const std::array<CaseTriangles, 256>& table = caseTable();
-  std::vector<std::vector<std::array<int32_t, 3>>> slabTriangles(static_cast<size_t>(nz - 1));
+  std::vector<Array<std::array<int32_t, 3>>> slabTriangles(static_cast<size_t>(nz - 1));
   parallelFor(tasks, nz - 1, 1, [&](int64_t begin, int64_t end) {
     for (int64_t K64 = begin; K64 < end; ++K64) {
       const int K = static_cast<int>(K64);
-      std::vector<std::array<int32_t, 3>>& out = slabTriangles[static_cast<size_t>(K)];
+      Array<std::array<int32_t, 3>>& out = slabTriangles[static_cast<size_t>(K)];
       out.clear();
       for (int J = 0; J + 1 < ny; ++J)
         for (int I = 0; I + 1 < nx; ++I) {

@@ -28,6 +28,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/allocator.h"
 #include "core/status.h"
 #include "core/task_system.h"
 #include "fluid/solids/face_fraction_field.h"
@@ -36,13 +37,13 @@
 namespace vp {
 
 struct MarchingCubesWorkspace {
-  std::vector<int32_t> firstVertex;  // per node: index of its first crossing edge's vertex
-  std::vector<uint8_t> nodeBits;     // per node: bits 0-2 crossing edges along +x, +y, +z; bit 3 liquid
-  std::vector<int64_t> slabCount;
+  Array<int32_t> firstVertex;  // per node: index of its first crossing edge's vertex
+  Array<uint8_t> nodeBits;     // per node: bits 0-2 crossing edges along +x, +y, +z; bit 3 liquid
+  Array<int64_t> slabCount;
 };
 
 // phi: cellCount values. normals gets one unit vector per mesh vertex.
 Status extractLiquidSurface(TaskSystem& tasks, const MacGridSpec& grid, const double* phi, SurfaceMesh* mesh,
-                            std::vector<Eigen::Vector3d>* normals, MarchingCubesWorkspace& workspace);
+                            Array<Eigen::Vector3d>* normals, MarchingCubesWorkspace& workspace);
 
 }  // namespace vp

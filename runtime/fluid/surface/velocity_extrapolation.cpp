@@ -224,7 +224,7 @@ void VelocityExtrapolationRun::extrapolateRows(int64_t begin, int64_t end) {
   if (static_cast<int64_t>(assigned_.size()) < chunks) assigned_.resize(static_cast<size_t>(chunks));
   parallelFor(*tasks_, chunks, 1, [&](int64_t firstChunk, int64_t lastChunk) {
     for (int64_t chunk = firstChunk; chunk < lastChunk; ++chunk) {
-      std::vector<int64_t>& out = assigned_[static_cast<size_t>(chunk)];
+      Array<int64_t>& out = assigned_[static_cast<size_t>(chunk)];
       out.clear();
       for (int64_t row = begin + chunk * kRowGrain; row < std::min(end, begin + (chunk + 1) * kRowGrain); ++row) {
         const int j = static_cast<int>(row % d.y()), k = static_cast<int>(row / d.y());
@@ -244,7 +244,7 @@ void VelocityExtrapolationRun::extrapolateRows(int64_t begin, int64_t end) {
     }
   });
   for (int64_t chunk = 0; chunk < chunks; ++chunk) {
-    const std::vector<int64_t>& set = assigned_[static_cast<size_t>(chunk)];
+    const Array<int64_t>& set = assigned_[static_cast<size_t>(chunk)];
     for (int64_t f : set) mark[f] = static_cast<uint8_t>(layer);
     layerFaces_ += static_cast<int64_t>(set.size());
     lastLayer_[axis_].insert(lastLayer_[axis_].end(), set.begin(), set.end());
@@ -256,7 +256,7 @@ void VelocityExtrapolationRun::extrapolateRows(int64_t begin, int64_t end) {
 void VelocityExtrapolationRun::claimFrontier(int64_t begin, int64_t end) {
   const Eigen::Vector3i d = grid_->faceDims(axis_);
   uint8_t* mark = state_->mark[axis_].data();
-  const std::vector<int64_t>& last = lastLayer_[axis_];
+  const Array<int64_t>& last = lastLayer_[axis_];
   for (int64_t e = begin; e < end; ++e)
     forFaceNeighbours(d, last[static_cast<size_t>(e)], [&](int64_t n) {
       if (mark[n] != kExtrapolationUnreached) return;

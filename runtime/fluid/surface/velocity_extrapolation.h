@@ -27,6 +27,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/allocator.h"
 #include "core/status.h"
 #include "core/task_system.h"
 #include "fluid/mac_grid.h"
@@ -54,7 +55,7 @@ constexpr uint8_t kExtrapolationUnreached = 255;
 constexpr uint8_t kExtrapolationFixed = 254;
 
 struct VelocityExtrapolationState {
-  std::vector<uint8_t> mark[3];
+  Array<uint8_t> mark[3];
 };
 
 // liquidPhi: cellCount values (free_surface.h). layers in [0, 250]. Runs
@@ -112,9 +113,9 @@ class VelocityExtrapolationRun {
   int axis_ = 0, layer_ = 0;
   int64_t row_ = 0;  // next face row of the axis (j + dims.y * k), or entry of claimed_
   int64_t layerFaces_ = 0;  // faces the running layer has set
-  std::vector<std::vector<int64_t>> assigned_;  // per chunk of a slab: the faces it set
-  std::vector<int64_t> lastLayer_[3];            // per axis: the faces its last layer set
-  std::vector<int64_t> claimed_;                 // the running layer's faces (after layer 1)
+  std::vector<Array<int64_t>> assigned_;  // per chunk of a slab: the faces it set
+  Array<int64_t> lastLayer_[3];            // per axis: the faces its last layer set
+  Array<int64_t> claimed_;                 // the running layer's faces (after layer 1)
   bool claimedAxis_ = false;                     // claimed_ holds all the running axis' faces
 };
 
