@@ -1,5 +1,6 @@
 // Validation of a ColliderShape and its world-space preparation (planes, mesh BVH, bounds).
 #include "collide/face_coverage_detail.h"
+#include "geometry/closed_surface.h"
 
 #include <algorithm>
 #include <limits>
@@ -74,8 +75,6 @@ Status validateShape(const ColliderShape& s) {
       for (int i = 0; i < nv; ++i)
         if (!finite3(s.meshVertices[i]))
           return fail(Status::InvalidArgument, "triangleMesh: meshVertices[%d] is not finite", i);
-      std::vector<std::pair<int, int>> edges;
-      edges.reserve(3 * s.meshTriangles.size());
       for (size_t t = 0; t < s.meshTriangles.size(); ++t) {
         const Eigen::Vector3i& tri = s.meshTriangles[t];
         for (int c = 0; c < 3; ++c) {
@@ -86,21 +85,9 @@ Status validateShape(const ColliderShape& s) {
         }
         if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2])
           return fail(Status::InvalidArgument, "triangleMesh: meshTriangles[%zu] repeats a vertex", t);
-        for (int c = 0; c < 3; ++c) edges.emplace_back(tri[c], tri[(c + 1) % 3]);
       }
-      std::sort(edges.begin(), edges.end());
-      for (size_t e = 0; e < edges.size(); ++e) {
-        if (e + 1 < edges.size() && edges[e] == edges[e + 1])
-          return fail(Status::InvalidArgument,
-                      "triangleMesh: edge (%d, %d) used twice in the same direction "
-                      "(not closed or inconsistently oriented)",
-                      edges[e].first, edges[e].second);
-        if (!std::binary_search(edges.begin(), edges.end(),
-                                std::make_pair(edges[e].second, edges[e].first)))
-          return fail(Status::InvalidArgument,
-                      "triangleMesh: edge (%d, %d) has no opposite half-edge (mesh not closed)",
-                      edges[e].first, edges[e].second);
-      }
+      // Inside and outside are decided by the surface: it must be closed (geometry/closed_surface.h).
+      VP_TRY(checkClosedSurface(s.meshVertices, s.meshTriangles, "triangleMesh"));
       break;
     }
   }

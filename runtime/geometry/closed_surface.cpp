@@ -7,8 +7,9 @@
 
 namespace vp {
 
-Status checkClosedSurface(const Array<Eigen::Vector3d>& vertices,
-                          const Array<std::array<int32_t, 3>>& triangles, const char* what) {
+template <class Triangle>
+Status checkClosedSurface(const Array<Eigen::Vector3d>& vertices, const Array<Triangle>& triangles,
+                          const char* what) {
   // Weld: each vertex maps to the first vertex at exactly its position.
   std::map<std::tuple<double, double, double>, int32_t> first;
   Array<int32_t> weld(vertices.size());
@@ -49,5 +50,8 @@ Status checkClosedSurface(const Array<Eigen::Vector3d>& vertices,
   }
   return Status::Ok;
 }
+
+template Status checkClosedSurface(const Array<Eigen::Vector3d>&, const Array<std::array<int32_t, 3>>&, const char*);
+template Status checkClosedSurface(const Array<Eigen::Vector3d>&, const Array<Eigen::Vector3i>&, const char*);
 
 }  // namespace vp

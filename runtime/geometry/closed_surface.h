@@ -17,8 +17,10 @@
 namespace vp {
 
 // InvalidArgument naming the first open or doubled edge by its (unwelded) vertex indices and
-// position; `what` prefixes the message (e.g. "surface").
-Status checkClosedSurface(const Array<Eigen::Vector3d>& vertices,
-                          const Array<std::array<int32_t, 3>>& triangles, const char* what);
+// position; `what` prefixes the message (e.g. "surface"). Triangle is std::array<int32_t, 3>
+// (surface files) or Eigen::Vector3i (collider meshes); the indices must be in range.
+template <class Triangle>
+Status checkClosedSurface(const Array<Eigen::Vector3d>& vertices, const Array<Triangle>& triangles,
+                          const char* what);
 
 }  // namespace vp

@@ -93,6 +93,32 @@ TEST(FluidFaceMesh, CubeAsTrianglesEqualsBox) {
   EXPECT_GE(partial, 10);
 }
 
+// A mesh split along seams (every triangle with vertices of its own, as importers write texture
+// seams) is closed once welded, by the same rule as a deformable's surfaceFile, and covers
+// faces exactly as the welded mesh does.
+TEST(FluidFaceMesh, MeshSplitAlongSeamsIsClosedAndCoversAsWelded) {
+  ColliderShape welded;
+  welded.kind = ShapeKind::TriangleMesh;
+  cubeMesh(Eigen::Vector3d(0.3, 0.2, 0.25), Eigen::Vector3d(0.1, 0, 0), &welded);
+  ColliderShape split = welded;
+  split.meshVertices.clear();
+  for (Eigen::Vector3i& t : split.meshTriangles)
+    for (int c = 0; c < 3; ++c) {
+      split.meshVertices.push_back(welded.meshVertices[static_cast<size_t>(t[c])]);
+      t[c] = static_cast<int>(split.meshVertices.size()) - 1;
+    }
+  PreparedCollider pw, ps;
+  ASSERT_EQ(prepareCollider(welded, &pw), Status::Ok) << lastError();
+  ASSERT_EQ(prepareCollider(split, &ps), Status::Ok) << lastError();
+  for (int axis = 0; axis < 3; ++axis) {
+    const AxisFace f = testutil::unitFace(axis, Eigen::Vector3d(0.05, -0.02, 0.03), 0.8);
+    EXPECT_EQ(coveredFraction(ps, f), coveredFraction(pw, f)) << "axis " << axis;
+  }
+  split.meshTriangles.pop_back();  // a hole: named by the shared rule
+  EXPECT_EQ(prepareCollider(split, &ps), Status::InvalidArgument);
+  EXPECT_NE(std::string(lastError()).find("triangleMesh: is not closed: edge ("), std::string::npos) << lastError();
+}
+
 TEST(FluidFaceMesh, InwardOrientedMeshIsFlipped) {
   ColliderShape m;
   m.kind = ShapeKind::TriangleMesh;
