@@ -271,6 +271,9 @@ void World::stepRigidBodies(double dt, const Deadline& frame, StepStats* stats) 
     c.clearFluidLoad();
     loaded.push_back(&c);
   });
+  colliders_.forEach([&](ColliderHandle, Collider& c) {
+    if (c.hasHostLoad()) loaded.push_back(&c);
+  });
   std::sort(loaded.begin(), loaded.end());
   loaded.erase(std::unique(loaded.begin(), loaded.end()), loaded.end());
   forEachFluidLoad([](Collider& c, const PressureLoad& l) { c.addFluidLoad(l.force, l.torque, l.addedMass); });
@@ -288,7 +291,10 @@ void World::stepRigidBodies(double dt, const Deadline& frame, StepStats* stats) 
   if (rigid.diverged)
     log(LogLevel::Warning, "%d rigid bod%s diverged; restored to their state before the step", result.restoredBodies,
         result.restoredBodies == 1 ? "y" : "ies");
-  for (Collider* c : loaded) c->clearFluidLoad();
+  for (Collider* c : loaded) {
+    c->clearFluidLoad();
+    c->clearHostLoad();
+  }
   colliders_.forEach([](ColliderHandle, Collider& c) { c.syncGeometry(); });
   rigid.phase(Phase::Rigid).ms = frame.elapsedMs() - start;
   rigid.totalMs = rigid.phase(Phase::Rigid).ms;

@@ -141,13 +141,64 @@ void Collider::prepareFluidLoad(double dt, const Vec3& gravity) {
       (fluidTorque_ + k * Vec3(inertiaTimesAlpha.x(), inertiaTimesAlpha.y(), inertiaTimesAlpha.z())) / (1.0 + k);
 }
 
-void Collider::applyFluidLoad() {
+void Collider::applyExternalLoads() {
   if (desc_.bodyType != BodyType::Dynamic) return;
   body_->activate(true);
-  body_->applyCentralForce(
-      btVector3(btScalar(appliedFluidForce_.x()), btScalar(appliedFluidForce_.y()), btScalar(appliedFluidForce_.z())));
-  body_->applyTorque(
-      btVector3(btScalar(appliedFluidTorque_.x()), btScalar(appliedFluidTorque_.y()), btScalar(appliedFluidTorque_.z())));
+  body_->applyCentralForce(bt(appliedFluidForce_ + hostForce_));
+  body_->applyTorque(bt(appliedFluidTorque_ + hostTorque_));
+}
+
+void Collider::addHostLoad(const Vec3& force, const Vec3& torque) {
+  if (desc_.bodyType != BodyType::Dynamic) return;
+  hostForce_ += force;
+  hostTorque_ += torque;
+  hasHostLoad_ = true;
+  body_->activate(true);
+}
+
+void Collider::clearHostLoad() {
+  hostForce_ = hostTorque_ = Vec3::Zero();
+  hasHostLoad_ = false;
+}
+
+void Collider::applyImpulse(const Vec3& linear, const Vec3& angular) {
+  if (desc_.bodyType != BodyType::Dynamic) return;
+  body_->applyCentralImpulse(bt(linear));
+  body_->applyTorqueImpulse(bt(angular));
+  body_->activate(true);
+}
+
+void Collider::setProperties(const BodyProperties& p) {
+  if (desc_.bodyType == BodyType::Dynamic && p.mass != desc_.mass) {
+    btVector3 inertia(0, 0, 0);
+    shape_.shape->calculateLocalInertia(btScalar(p.mass), inertia);
+    body_->setMassProps(btScalar(p.mass), inertia);
+    body_->updateInertiaTensor();
+    body_->activate(true);
+  }
+  body_->setFriction(btScalar(p.friction));
+  body_->setRestitution(btScalar(p.restitution));
+  body_->setDamping(btScalar(p.linearDamping), btScalar(p.angularDamping));
+  desc_.mass = p.mass;
+  desc_.friction = p.friction;
+  desc_.restitution = p.restitution;
+  desc_.linearDamping = p.linearDamping;
+  desc_.angularDamping = p.angularDamping;
+}
+
+bool Collider::sleeping() const {
+  return desc_.bodyType == BodyType::Dynamic && body_->getActivationState() == ISLAND_SLEEPING;
+}
+
+void Collider::setSleeping(bool asleep) {
+  if (desc_.bodyType != BodyType::Dynamic) return;
+  if (!asleep) {
+    body_->activate(true);
+    return;
+  }
+  body_->setLinearVelocity(btVector3(0, 0, 0));
+  body_->setAngularVelocity(btVector3(0, 0, 0));
+  body_->setActivationState(ISLAND_SLEEPING);
 }
 
 void Collider::clearFluidLoad() {

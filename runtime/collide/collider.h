@@ -34,6 +34,20 @@ class Collider {
   void setVelocity(const Vec3& linear, const Vec3& angular);
   void setKinematicTarget(const Pose& target);
 
+  // Host control of a dynamic body (the C ABI refuses the other types before calling these).
+  // A host load (force, and torque about the body's origin, its centre of mass) acts on every
+  // Bullet sub-step of the next world step, then is cleared; loads given before one step add up.
+  void addHostLoad(const Vec3& force, const Vec3& torque);
+  bool hasHostLoad() const { return hasHostLoad_; }
+  void clearHostLoad();
+  // An impulse changes the velocity at once: dv = J / m, dw = I^-1 L (L about the origin).
+  void applyImpulse(const Vec3& linear, const Vec3& angular);
+  BodyProperties properties() const { return bodyPropertiesOf(desc_); }
+  void setProperties(const BodyProperties& properties);  // validated; mass rescales the inertia
+  // Bullet puts a body that stays slow for a while to sleep; a load, impulse or velocity wakes it.
+  bool sleeping() const;
+  void setSleeping(bool sleeping);  // asleep: velocities zeroed, as PhysX's putToSleep
+
   // Exact geometry for deformable contacts and fluid face fractions, at the pose and
   // velocity of the last step; nullptr when the shape has none (an open triangle mesh).
   const PreparedCollider* geometry() const { return geometry_.get(); }
@@ -50,7 +64,8 @@ class Collider {
   // Once per world step, before its sub-steps: turns the accumulated load into the force
   // Bullet applies, stabilized for the added mass (collider.cpp says how).
   void prepareFluidLoad(double dt, const Vec3& gravity);
-  void applyFluidLoad();  // before each sub-step (Bullet clears forces after each one)
+  // Before each sub-step (Bullet clears forces after each one): the fluid's load and the host's.
+  void applyExternalLoads();
   void clearFluidLoad();
   // At the start of every world step: remembers how much the velocity changed in the last one.
   void trackVelocity();
@@ -73,6 +88,8 @@ class Collider {
   Vec3 fluidForce_ = Vec3::Zero(), fluidTorque_ = Vec3::Zero();
   Vec3 appliedFluidForce_ = Vec3::Zero(), appliedFluidTorque_ = Vec3::Zero();
   double fluidAddedMass_ = 0.0;
+  Vec3 hostForce_ = Vec3::Zero(), hostTorque_ = Vec3::Zero();
+  bool hasHostLoad_ = false;
   Vec3 trackedVelocity_ = Vec3::Zero(), lastVelocityChange_ = Vec3::Zero();
   Vec3 trackedSpin_ = Vec3::Zero(), lastSpinChange_ = Vec3::Zero();
 };

@@ -49,6 +49,20 @@ struct ColliderDesc {
   void* userData = nullptr;
 };
 
+// What a host may change on a body after creation (vpColliderSetProperties); the same fields
+// of ColliderDesc. `mass` matters for dynamic bodies only.
+struct BodyProperties {
+  double mass = 1.0;
+  double friction = 0.5;
+  double restitution = 0.0;
+  double linearDamping = 0.0;
+  double angularDamping = 0.05;
+};
+BodyProperties bodyPropertiesOf(const ColliderDesc& desc);
+// The one check of these fields, for creation and for run-time changes; messages name them as
+// in vpColliderDef ("mass = 0: ...").
+Status validateBodyProperties(BodyType bodyType, const BodyProperties& properties);
+
 // Checks every field (messages name the field as in vpColliderDef, e.g. "shape.radius"),
 // normalizes the plane normal and the rotation, and loads `shape.meshFile` into
 // points/triangles with assimp. On failure `desc` is unchanged.

@@ -129,6 +129,19 @@ const char* bodyTypeName(BodyType type) {
   return i >= 0 && i < 3 ? names[i] : "unknown";
 }
 
+BodyProperties bodyPropertiesOf(const ColliderDesc& desc) {
+  return BodyProperties{desc.mass, desc.friction, desc.restitution, desc.linearDamping, desc.angularDamping};
+}
+
+Status validateBodyProperties(BodyType bodyType, const BodyProperties& p) {
+  if (bodyType == BodyType::Dynamic) VP_TRY(checkMass("mass", p.mass));
+  VP_TRY(checkRange("friction", p.friction, 0.0, 1e3));
+  VP_TRY(checkRange("restitution", p.restitution, 0.0, 1.0));
+  VP_TRY(checkRange("linearDamping", p.linearDamping, 0.0, 1.0));
+  VP_TRY(checkRange("angularDamping", p.angularDamping, 0.0, 1.0));
+  return Status::Ok;
+}
+
 Status validateColliderDesc(ColliderDesc& in) {
   ColliderDesc desc = in;  // work on a copy: a failure leaves the caller's desc unchanged
   int bodyType = static_cast<int>(desc.bodyType);
@@ -140,11 +153,7 @@ Status validateColliderDesc(ColliderDesc& in) {
   VP_TRY(checkAngularVelocity("angularVelocity", desc.angularVelocity));
   if (desc.bodyType == BodyType::Static && (desc.linearVelocity.squaredNorm() > 0 || desc.angularVelocity.squaredNorm() > 0))
     return fail(Status::InvalidArgument, "linearVelocity/angularVelocity: a static body cannot move");
-  if (desc.bodyType == BodyType::Dynamic) VP_TRY(checkMass("mass", desc.mass));
-  VP_TRY(checkRange("friction", desc.friction, 0.0, 1e3));
-  VP_TRY(checkRange("restitution", desc.restitution, 0.0, 1.0));
-  VP_TRY(checkRange("linearDamping", desc.linearDamping, 0.0, 1.0));
-  VP_TRY(checkRange("angularDamping", desc.angularDamping, 0.0, 1.0));
+  VP_TRY(validateBodyProperties(desc.bodyType, bodyPropertiesOf(desc)));
   VP_TRY(validateShape(desc.shape, desc.bodyType));
   if (desc.shape.type == ShapeType::Plane) desc.shape.normal.normalize();
   in = std::move(desc);

@@ -113,7 +113,7 @@ CollisionWorld::StepResult CollisionWorld::step(double dt, double maxSubstep, Co
   for (int k = 0; k < count; ++k) kinematics[k]->beginKinematicStep(dt);
   for (int s = 0; s < substeps; ++s) {
     for (int k = 0; k < count; ++k) kinematics[k]->advanceKinematic(h, s + 1 == substeps);
-    for (int k = 0; k < loadedCount; ++k) loaded[k]->applyFluidLoad();
+    for (int k = 0; k < loadedCount; ++k) loaded[k]->applyExternalLoads();
     // maxSubSteps = 0: one step of exactly h, no interpolation.
     world_->stepSimulation(btScalar(h), 0);
   }

@@ -34,7 +34,7 @@ class CollisionWorld {
     int restoredBodies = 0;  // dynamic bodies the divergence guard put back
   };
   // Steps by dt in ceil(dt / maxSubstep) equal sub-steps. `kinematics` lists the kinematic
-  // colliders to drive (count entries); `loaded` the dynamic ones carrying a fluid load
+  // colliders to drive (count entries); `loaded` the dynamic ones carrying a fluid or host load
   // (loadedCount entries), applied on every sub-step.
   // Divergence guard: a dynamic body whose pose or velocity comes out of the step not finite,
   // or faster than kMaxSpeed (kMaxAngularSpeed turning; core/physical_limits.h, the limits a

@@ -62,4 +62,6 @@ Status checkAngularVelocity(const char* field, const Vec3& v) {
   return checkMagnitude(field, v, kMaxAngularSpeed, "rad/s");
 }
 
+Status checkLoad(const char* field, const Vec3& load) { return checkMagnitude(field, load, kMaxLoad, "(SI units)"); }
+
 }  // namespace vp

@@ -28,6 +28,10 @@ constexpr double kMaxDensity = 1e6;
 constexpr double kMaxSpeed = 1e5;
 constexpr double kMaxAngularSpeed = 1e5;
 
+// Forces, torques and impulses a host applies: up to what brings the heaviest body to the top
+// speed in one second (or at once, for an impulse).
+constexpr double kMaxLoad = kMaxMass * kMaxSpeed;
+
 Status checkPosition(const char* field, const Vec3& position);
 // Position in range, rotation a unit quaternion up to float round-off (then normalized).
 Status checkPose(const char* field, Pose* pose);
@@ -36,5 +40,7 @@ Status checkMass(const char* field, double mass);
 Status checkDensity(const char* field, double density);
 Status checkLinearVelocity(const char* field, const Vec3& velocity);
 Status checkAngularVelocity(const char* field, const Vec3& velocity);
+// A force, torque or impulse (any of them): finite, at most kMaxLoad in magnitude.
+Status checkLoad(const char* field, const Vec3& load);
 
 }  // namespace vp

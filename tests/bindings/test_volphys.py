@@ -139,6 +139,34 @@ class Rigid(unittest.TestCase):
             self.assertAlmostEqual(kin.position[2], 1.0, places=5)
 
 
+    def test_push_a_body_change_its_mass_and_put_it_to_sleep(self):
+        with volphys.World(gravity=(0, 0, 0), frame_budget_ms=0) as w:
+            ball = w.create_collider(volphys.Sphere(0.5), mass=2.0, angular_damping=0.0)
+            self.assertAlmostEqual(ball.properties.mass, 2.0)
+            ball.set_properties(mass=4.0, friction=0.8)
+            self.assertAlmostEqual(ball.properties.friction, 0.8, places=6)
+            # J at r = (0.5, 0, 0): dv = J / m, dw = (r x J) / (2/5 m r^2).
+            ball.apply_impulse((0, 0, 1), point=(0.5, 0, 0))
+            lin, ang = ball.velocity
+            self.assertAlmostEqual(lin[2], 0.25, places=5)
+            self.assertAlmostEqual(ang[1], -0.5 / (0.4 * 4.0 * 0.25), places=4)
+            ball.apply_force((8, 0, 0))
+            w.step(0.5)
+            self.assertAlmostEqual(ball.velocity[0][0], 1.0, places=4)
+            ball.sleeping = True
+            self.assertTrue(ball.sleeping)
+            with self.assertRaises(volphys.InvalidArgumentError) as e:
+                ball.set_properties(restitution=2)
+            self.assertIn("restitution = 2", str(e.exception))
+            self.assertAlmostEqual(ball.properties.mass, 4.0)
+            with self.assertRaises(TypeError):
+                ball.set_properties(bounciness=1)
+            floor = w.create_collider(volphys.Plane(), body_type="static")
+            with self.assertRaises(volphys.InvalidArgumentError) as e:
+                floor.apply_force((1, 0, 0))
+            self.assertIn("static", str(e.exception))
+
+
 @unittest.skipIf(np is None, "numpy is not importable")
 class Deformables(unittest.TestCase):
     def make(self, w, **kw):

@@ -1,4 +1,7 @@
 // A rigid collider by id (a value: copying it does not copy the body).
+using System;
+using System.Runtime.InteropServices;
+
 namespace VolPhys
 {
     public struct Collider
@@ -22,6 +25,11 @@ namespace VolPhys
             get { BodyType b; VolPhysException.Check(Native.vpColliderGetBodyType(Id, out b), "vpColliderGetBodyType"); return b; }
         }
 
+        public void GetVelocity(out vpVec3 linear, out vpVec3 angular)
+        {
+            VolPhysException.Check(Native.vpColliderGetVelocity(Id, out linear, out angular), "vpColliderGetVelocity");
+        }
+
         public void SetVelocity(vpVec3 linear, vpVec3 angular)
         {
             VolPhysException.Check(Native.vpColliderSetVelocity(Id, linear, angular), "vpColliderSetVelocity");
@@ -30,6 +38,54 @@ namespace VolPhys
         public void SetKinematicTarget(vpTransform target)
         {
             VolPhysException.Check(Native.vpColliderSetKinematicTarget(Id, ref target), "vpColliderSetKinematicTarget");
+        }
+
+        // Pushing a dynamic body: a force or torque acts during the whole next step, an impulse at
+        // once; `point` is in world space, null for the centre of mass.
+        public void ApplyForce(vpVec3 force, vpVec3? point = null)
+        {
+            vpVec3 p = point.GetValueOrDefault();
+            VolPhysException.Check(point.HasValue ? Native.vpColliderApplyForce(Id, force, ref p)
+                                                  : Native.vpColliderApplyForce(Id, force, IntPtr.Zero), "vpColliderApplyForce");
+        }
+
+        public void ApplyTorque(vpVec3 torque)
+        {
+            VolPhysException.Check(Native.vpColliderApplyTorque(Id, torque), "vpColliderApplyTorque");
+        }
+
+        public void ApplyImpulse(vpVec3 impulse, vpVec3? point = null)
+        {
+            vpVec3 p = point.GetValueOrDefault();
+            VolPhysException.Check(point.HasValue ? Native.vpColliderApplyImpulse(Id, impulse, ref p)
+                                                  : Native.vpColliderApplyImpulse(Id, impulse, IntPtr.Zero), "vpColliderApplyImpulse");
+        }
+
+        public void ApplyAngularImpulse(vpVec3 angularImpulse)
+        {
+            VolPhysException.Check(Native.vpColliderApplyAngularImpulse(Id, angularImpulse), "vpColliderApplyAngularImpulse");
+        }
+
+        // Mass (dynamic bodies), friction, restitution and damping; a failed set changes nothing.
+        public vpBodyProperties Properties
+        {
+            get
+            {
+                vpBodyProperties p = new vpBodyProperties { structSize = (uint)Marshal.SizeOf(typeof(vpBodyProperties)) };
+                VolPhysException.Check(Native.vpColliderGetProperties(Id, ref p), "vpColliderGetProperties");
+                return p;
+            }
+            set
+            {
+                value.structSize = (uint)Marshal.SizeOf(typeof(vpBodyProperties));
+                VolPhysException.Check(Native.vpColliderSetProperties(Id, ref value), "vpColliderSetProperties");
+            }
+        }
+
+        public bool Sleeping
+        {
+            get { int s; VolPhysException.Check(Native.vpColliderIsSleeping(Id, out s), "vpColliderIsSleeping"); return s != 0; }
+            set { VolPhysException.Check(Native.vpColliderSetSleeping(Id, value ? 1 : 0), "vpColliderSetSleeping"); }
         }
 
         public void Destroy() { VolPhysException.Check(Native.vpColliderDestroy(Id), "vpColliderDestroy"); }

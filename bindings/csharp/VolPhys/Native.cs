@@ -47,6 +47,17 @@ namespace VolPhys
         [DllImport(Library)] public static extern Status vpColliderGetVelocity(vpColliderId collider, out vpVec3 linear, out vpVec3 angular);
         [DllImport(Library)] public static extern Status vpColliderSetVelocity(vpColliderId collider, vpVec3 linear, vpVec3 angular);
         [DllImport(Library)] public static extern Status vpColliderSetKinematicTarget(vpColliderId collider, ref vpTransform target);
+        // point: a vpVec3 by ref, or IntPtr.Zero for the centre of mass (the two overloads).
+        [DllImport(Library)] public static extern Status vpColliderApplyForce(vpColliderId collider, vpVec3 force, ref vpVec3 point);
+        [DllImport(Library)] public static extern Status vpColliderApplyForce(vpColliderId collider, vpVec3 force, IntPtr point);
+        [DllImport(Library)] public static extern Status vpColliderApplyTorque(vpColliderId collider, vpVec3 torque);
+        [DllImport(Library)] public static extern Status vpColliderApplyImpulse(vpColliderId collider, vpVec3 impulse, ref vpVec3 point);
+        [DllImport(Library)] public static extern Status vpColliderApplyImpulse(vpColliderId collider, vpVec3 impulse, IntPtr point);
+        [DllImport(Library)] public static extern Status vpColliderApplyAngularImpulse(vpColliderId collider, vpVec3 angularImpulse);
+        [DllImport(Library)] public static extern Status vpColliderGetProperties(vpColliderId collider, ref vpBodyProperties properties);
+        [DllImport(Library)] public static extern Status vpColliderSetProperties(vpColliderId collider, ref vpBodyProperties properties);
+        [DllImport(Library)] public static extern Status vpColliderIsSleeping(vpColliderId collider, out int sleeping);
+        [DllImport(Library)] public static extern Status vpColliderSetSleeping(vpColliderId collider, int sleeping);
         [DllImport(Library)] public static extern Status vpColliderGetBodyType(vpColliderId collider, out BodyType type);
         [DllImport(Library)] public static extern Status vpColliderGetUserData(vpColliderId collider, out IntPtr userData);
         [DllImport(Library)] public static extern Status vpColliderGetShapeMeshSize(vpColliderId collider, out int vertexCount, out int triangleCount);

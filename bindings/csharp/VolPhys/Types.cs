@@ -203,6 +203,17 @@ namespace VolPhys
     }
 
     [StructLayout(LayoutKind.Sequential)]
+    public struct vpBodyProperties
+    {
+        public uint structSize;
+        public float mass;
+        public float friction;
+        public float restitution;
+        public float linearDamping;
+        public float angularDamping;
+    }
+
+    [StructLayout(LayoutKind.Sequential)]
     public struct vpDeformableDef
     {
         public uint structSize;

@@ -12,7 +12,7 @@ from ._api import call as _call, lib as _lib
 from ._arrays import HAVE_NUMPY
 from ._types import (ActorKind, Advection, BodyType, DomainSide, FluidField, FluidKind, LogLevel, Phase, ShapeType,
                      Status)
-from .collider import Collider, Transform
+from .collider import BodyProperties, Collider, Transform
 from .deformable import Deformable
 from .fluid import Fluid
 from .fluid_sources import BoxRegion, Emitter, SphereRegion

@@ -239,6 +239,17 @@ class vpColliderDef(ctypes.Structure):
     ]
 
 
+class vpBodyProperties(ctypes.Structure):
+    _fields_ = [
+        ("structSize", c_uint32),
+        ("mass", c_float),
+        ("friction", c_float),
+        ("restitution", c_float),
+        ("linearDamping", c_float),
+        ("angularDamping", c_float),
+    ]
+
+
 class vpDeformableDef(ctypes.Structure):
     _fields_ = [
         ("structSize", c_uint32),

@@ -9,6 +9,12 @@ from ._handle import ActorHandle
 
 # position (x, y, z) and rotation quaternion (x, y, z, w), as in vpTransform.
 Transform = namedtuple("Transform", "position rotation")
+# vpBodyProperties without its structSize; mass is 0 for static and kinematic bodies.
+BodyProperties = namedtuple("BodyProperties", "mass friction restitution linear_damping angular_damping")
+
+
+def _point_ref(point):
+    return None if point is None else ctypes.byref(_arrays.vec3(point))
 IDENTITY_ROTATION = (0.0, 0.0, 0.0, 1.0)
 
 
@@ -61,6 +67,51 @@ class Collider(ActorHandle):
     def set_kinematic_target(self, position, rotation=IDENTITY_ROTATION):
         t = make_transform(position, rotation)
         call("vpColliderSetKinematicTarget", self._id, ctypes.byref(t))
+
+    # Pushing a dynamic body (the others raise InvalidArgumentError). A force or torque acts
+    # during the whole next step, then is cleared; an impulse changes the velocity at once.
+    # `point` is in world space; None is the centre of mass.
+    def apply_force(self, force, point=None):
+        call("vpColliderApplyForce", self._id, _arrays.vec3(force), _point_ref(point))
+
+    def apply_torque(self, torque):
+        call("vpColliderApplyTorque", self._id, _arrays.vec3(torque))
+
+    def apply_impulse(self, impulse, point=None):
+        call("vpColliderApplyImpulse", self._id, _arrays.vec3(impulse), _point_ref(point))
+
+    def apply_angular_impulse(self, angular_impulse):
+        call("vpColliderApplyAngularImpulse", self._id, _arrays.vec3(angular_impulse))
+
+    @property
+    def properties(self):
+        """BodyProperties(mass, friction, restitution, linear_damping, angular_damping)."""
+        p = T.vpBodyProperties(structSize=ctypes.sizeof(T.vpBodyProperties))
+        call("vpColliderGetProperties", self._id, ctypes.byref(p))
+        return BodyProperties(p.mass, p.friction, p.restitution, p.linearDamping, p.angularDamping)
+
+    def set_properties(self, **changes):
+        """Changes some of BodyProperties' fields by name (validated as at creation; a
+        failure changes nothing), e.g. set_properties(mass=3, friction=0.8)."""
+        current = self.properties._asdict()
+        unknown = set(changes) - set(current)
+        if unknown:
+            raise TypeError("set_properties: unknown field(s) %s; known: %s"
+                            % (", ".join(sorted(unknown)), ", ".join(BodyProperties._fields)))
+        current.update(changes)
+        p = T.vpBodyProperties(ctypes.sizeof(T.vpBodyProperties), current["mass"], current["friction"],
+                               current["restitution"], current["linear_damping"], current["angular_damping"])
+        call("vpColliderSetProperties", self._id, ctypes.byref(p))
+
+    @property
+    def sleeping(self):
+        s = ctypes.c_int32()
+        call("vpColliderIsSleeping", self._id, ctypes.byref(s))
+        return bool(s.value)
+
+    @sleeping.setter
+    def sleeping(self, value):
+        call("vpColliderSetSleeping", self._id, 1 if value else 0)
 
     @property
     def body_type(self):

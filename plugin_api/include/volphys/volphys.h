@@ -394,6 +394,38 @@ VP_API vpStatus vpColliderSetVelocity(vpColliderId collider, vpVec3 linear, vpVe
 /* Kinematic only: the body reaches `target` at the end of the next step, moving with the
  * constant velocity that gets it there (this is what deformables and fluids see). */
 VP_API vpStatus vpColliderSetKinematicTarget(vpColliderId collider, const vpTransform* target);
+/* Pushing a dynamic body (static and kinematic ones: InvalidArgument). A force or torque acts
+ * during the whole next vpWorldStep, on each of its rigid sub-steps, then is cleared; several
+ * given before one step add up. An impulse changes the velocity at once (dv = impulse / mass).
+ * `point` is where a force or impulse acts, in world space; NULL means the body's origin, which
+ * is its centre of mass (a force there adds no torque). Torques and angular impulses are in
+ * world axes. Magnitudes above 1e14 (SI units) or not finite are InvalidArgument. Each call
+ * wakes the body. */
+VP_API vpStatus vpColliderApplyForce(vpColliderId collider, vpVec3 force, const vpVec3* point);
+VP_API vpStatus vpColliderApplyTorque(vpColliderId collider, vpVec3 torque);
+VP_API vpStatus vpColliderApplyImpulse(vpColliderId collider, vpVec3 impulse, const vpVec3* point);
+VP_API vpStatus vpColliderApplyAngularImpulse(vpColliderId collider, vpVec3 angularImpulse);
+
+/* A body's material and mass at run time, validated as in vpColliderDef (the same fields and
+ * ranges); a failed set changes nothing. `mass` is used by dynamic bodies only (its inertia is
+ * recomputed from the shape); get returns 0 for the others. Set structSize =
+ * sizeof(vpBodyProperties) for both calls (or start from vpColliderGetProperties). */
+typedef struct vpBodyProperties {
+  uint32_t structSize;
+  float mass;
+  float friction;
+  float restitution;
+  float linearDamping;
+  float angularDamping;
+} vpBodyProperties;
+VP_API vpStatus vpColliderGetProperties(vpColliderId collider, vpBodyProperties* outProperties);
+VP_API vpStatus vpColliderSetProperties(vpColliderId collider, const vpBodyProperties* properties);
+
+/* Sleeping: Bullet puts a dynamic body that stays slow for a while to sleep until something
+ * touches or pushes it. Setting sleeping != 0 stops the body (velocities zeroed) and puts it to
+ * sleep; 0 wakes it. Static and kinematic bodies never sleep (set: InvalidArgument). */
+VP_API vpStatus vpColliderIsSleeping(vpColliderId collider, int32_t* outSleeping);
+VP_API vpStatus vpColliderSetSleeping(vpColliderId collider, int32_t sleeping);
 VP_API vpStatus vpColliderGetBodyType(vpColliderId collider, vpBodyType* outType);
 VP_API vpStatus vpColliderGetUserData(vpColliderId collider, void** outUserData);
 /* A triangle mesh of the collider's shape in its local frame, for drawing and export (place

@@ -57,7 +57,7 @@ static class VolPhysTests
         int checkedFields = 0;
         Type[] types = { typeof(vpVersion), typeof(vpVec3), typeof(vpQuat), typeof(vpTransform), typeof(vpWorldId),
                          typeof(vpColliderId), typeof(vpDeformableId), typeof(vpWorldDef), typeof(vpPhaseStats),
-                         typeof(vpActorStats), typeof(vpStepStats), typeof(vpShapeDef), typeof(vpColliderDef),
+                         typeof(vpActorStats), typeof(vpStepStats), typeof(vpShapeDef), typeof(vpColliderDef), typeof(vpBodyProperties),
                          typeof(vpDeformableDef), typeof(vpFluidId), typeof(vpFluidRegion), typeof(vpFluidEmitter),
                          typeof(vpFluidDef), typeof(vpBuildInfo) };
         foreach (Type t in types)
@@ -296,6 +296,48 @@ static class VolPhysTests
             int deformables;
             VolPhysException.Check(Native.vpWorldGetDeformableCount(world.Id, out deformables), "vpWorldGetDeformableCount");
             Check(deformables == 1 && world.GetFluids().Length == 1, "nothing was created: " + deformables + " deformables");
+        }
+    }
+
+    public static void TestImpulsesPropertiesAndSleepOnADynamicBody()
+    {
+        vpWorldDef def = World.DefaultDef();
+        def.frameBudgetMs = 0;
+        def.gravity = new vpVec3(0, 0, 0);
+        using (var world = new World(def))
+        {
+            vpColliderDef ballDef = Collider.DefaultDef();
+            ballDef.bodyType = BodyType.Dynamic;
+            ballDef.mass = 2.0f;
+            ballDef.angularDamping = 0.0f;
+            Collider ball = world.CreateCollider(ballDef);
+            vpBodyProperties p = ball.Properties;
+            Check(p.mass == 2.0f, "mass read back " + p.mass);
+            p.mass = 4.0f;
+            ball.Properties = p;
+            // J at r = (r, 0, 0) from the centre: dv = J / m, dw = (r x J) / (2/5 m r^2).
+            float r = ballDef.shape.radius;
+            ball.ApplyImpulse(new vpVec3(0, 0, 1), new vpVec3(r, 0, 0));
+            vpVec3 v, w;
+            ball.GetVelocity(out v, out w);
+            Check(Math.Abs(v.z - 0.25f) < 1e-5f, "dv = J / m: " + v);
+            Check(Math.Abs(w.y + r / (0.4f * 4.0f * r * r)) < 1e-4f, "dw = I^-1 (r x J): " + w);
+            ball.ApplyForce(new vpVec3(8, 0, 0));
+            world.Step(0.5f);
+            ball.GetVelocity(out v, out w);
+            Check(Math.Abs(v.x - 1.0f) < 1e-4f, "dv = F dt / m: " + v);
+            ball.Sleeping = true;
+            Check(ball.Sleeping, "put to sleep");
+            try
+            {
+                p.friction = -1.0f;
+                ball.Properties = p;
+                Check(false, "negative friction accepted");
+            }
+            catch (VolPhysException e)
+            {
+                Check(e.Status == Status.InvalidArgument && e.Message.Contains("friction = -1"), e.Message);
+            }
         }
     }
 

@@ -41,6 +41,9 @@ int main(void) {
   FIELD(vpColliderDef, pose); FIELD(vpColliderDef, linearVelocity); FIELD(vpColliderDef, angularVelocity);
   FIELD(vpColliderDef, mass); FIELD(vpColliderDef, friction); FIELD(vpColliderDef, restitution);
   FIELD(vpColliderDef, linearDamping); FIELD(vpColliderDef, angularDamping); FIELD(vpColliderDef, userData);
+  SIZE(vpBodyProperties); FIELD(vpBodyProperties, structSize); FIELD(vpBodyProperties, mass);
+  FIELD(vpBodyProperties, friction); FIELD(vpBodyProperties, restitution); FIELD(vpBodyProperties, linearDamping);
+  FIELD(vpBodyProperties, angularDamping);
   SIZE(vpDeformableDef); FIELD(vpDeformableDef, structSize); FIELD(vpDeformableDef, degree);
   FIELD(vpDeformableDef, vertices); FIELD(vpDeformableDef, vertexCount); FIELD(vpDeformableDef, tets);
   FIELD(vpDeformableDef, tetCount); FIELD(vpDeformableDef, tetFile); FIELD(vpDeformableDef, surfaceFile);
