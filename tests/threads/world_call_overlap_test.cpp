@@ -54,8 +54,18 @@ struct ProbeFromInsideStep {
       std::thread other([p] {
         vpStepStats stats = vpDefaultStepStats();
         vpTransform pose;
-        const vpStatus results[] = {vpWorldStep(p->world, 0.01f), vpWorldGetStepStats(p->world, &stats),
-                                    vpColliderGetPose(p->collider, &pose), vpWorldDestroy(p->world)};
+        vpBodyProperties properties{};
+        properties.structSize = sizeof properties;
+        int32_t sleeping = 0;
+        const vpStatus results[] = {vpWorldStep(p->world, 0.01f),
+                                    vpWorldGetStepStats(p->world, &stats),
+                                    vpColliderGetPose(p->collider, &pose),
+                                    vpColliderApplyForce(p->collider, vpVec3{1, 0, 0}, nullptr),
+                                    vpColliderApplyImpulse(p->collider, vpVec3{1, 0, 0}, nullptr),
+                                    vpColliderGetProperties(p->collider, &properties),
+                                    vpColliderIsSleeping(p->collider, &sleeping),
+                                    vpColliderSetSleeping(p->collider, 1),
+                                    vpWorldDestroy(p->world)};
         for (vpStatus s : results) {
           p->statuses.push_back(s);
           p->messages.emplace_back(vpGetLastError());
@@ -79,7 +89,7 @@ TEST(WorldCallOverlap, CallsDuringAStepAreRefusedNamingTheStep) {
   probe.world = w.id;
   ASSERT_VP_OK(vpWorldStep(w.id, 0.01f));
   ASSERT_TRUE(probe.probed);
-  ASSERT_EQ(probe.statuses.size(), 4u);
+  ASSERT_EQ(probe.statuses.size(), 9u);
   for (size_t i = 0; i < probe.statuses.size(); ++i) {
     EXPECT_EQ(probe.statuses[i], vpStatus_Busy) << "call " << i;
     EXPECT_NE(probe.messages[i].find("in use by vpWorldStep"), std::string::npos) << probe.messages[i];
