@@ -221,6 +221,23 @@ double longestDeformableSliceMs(const ActorStats& a) {
   return longest;
 }
 
+// A collider as an actor's stage sees it, with the collider's filter.
+template <class Entry>
+struct Filtered {
+  CollisionFilter filter;
+  Entry entry;
+};
+
+// The colliders an actor with `filter` meets, in the list's order.
+template <class Entry>
+std::vector<Entry> meeting(const std::vector<Filtered<Entry>>& colliders, const CollisionFilter& filter) {
+  std::vector<Entry> out;
+  out.reserve(colliders.size());
+  for (const Filtered<Entry>& c : colliders)
+    if (c.filter.meets(filter)) out.push_back(c.entry);
+  return out;
+}
+
 }  // namespace
 
 bool World::runsConcurrently(int actors) const {
@@ -313,9 +330,9 @@ double World::fluidsExpectedMs(int priority) {
 }
 
 bool World::stepDeformables(double dt, const Deadline& frame, StepStats* stats) {
-  std::vector<ContactCollider> contactColliders;
+  std::vector<Filtered<ContactCollider>> contactColliders;
   colliders_.forEach([&](ColliderHandle, const Collider& c) {
-    if (c.geometry()) contactColliders.push_back(ContactCollider{c.geometry(), c.desc().friction});
+    if (c.geometry()) contactColliders.push_back({c.filter(), ContactCollider{c.geometry(), c.desc().friction}});
   });
   const std::vector<DeformableHandle> handles = deformableHandles();
   std::vector<FramePlan::Deformable> planned;
@@ -362,7 +379,7 @@ bool World::stepDeformables(double dt, const Deadline& frame, StepStats* stats) 
     input.deadline = deadlines[i].share;
     input.floorDeadline = deadlines[i].floor;
     input.tasks = tasks_.get();
-    input.colliders = contactColliders;
+    input.colliders = meeting(contactColliders, body.desc().filter);
     input.collider = [this](uint32_t index1, uint32_t generation) -> const Collider* {
       return colliders_.get(index1, generation);
     };
@@ -409,12 +426,12 @@ bool World::stepDeformables(double dt, const Deadline& frame, StepStats* stats) 
 }
 
 void World::stepFluids(double dt, const Deadline& frame, bool floorsHeld, StepStats* stats) {
-  std::vector<FluidCollider> colliders;
+  std::vector<Filtered<FluidCollider>> colliders;
   if (fluids_.size() > 0)
     colliders_.forEach([&](ColliderHandle h, const Collider& c) {
       if (c.geometry())
-        colliders.push_back(
-            FluidCollider{h.index1, h.generation, c.geometry(), c.sharedGeometry(), c.bodyType() == BodyType::Dynamic});
+        colliders.push_back({c.filter(), FluidCollider{h.index1, h.generation, c.geometry(), c.sharedGeometry(),
+                                                       c.bodyType() == BodyType::Dynamic}});
     });
   const std::vector<FluidHandle> handles = fluidHandles();
   std::vector<int> priorities;
@@ -462,7 +479,7 @@ void World::stepFluids(double dt, const Deadline& frame, bool floorsHeld, StepSt
       input.dt = s.pendingDt;
       input.gravity = config_.gravity;
       input.tasks = tasks_.get();
-      input.colliders = colliders;
+      input.colliders = meeting(colliders, f.desc().filter);
       s.pendingDt = 0.0;
       s.stepMs = 0.0;
     }

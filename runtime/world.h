@@ -74,6 +74,8 @@ class World {
   size_t fluidCount() const { return fluids_.size(); }
   bool findFluid(const std::string& name, FluidHandle* out) const;
 
+  // Filters (core/collision_filter.h) take effect from the next step; every value is valid.
+  void setColliderFilter(Collider& collider, const CollisionFilter& filter) { collision_.setFilter(collider, filter); }
   Status setGravity(const Vec3& gravity);
   const Vec3& gravity() const { return config_.gravity; }
   Status setFrameBudget(double frameBudgetMs);

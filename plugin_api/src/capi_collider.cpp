@@ -70,6 +70,7 @@ vpColliderDef vpDefaultColliderDef(void) {
   def.mass = 1.0f;
   def.friction = 0.5f;
   def.angularDamping = 0.05f;
+  def.filter = toC(CollisionFilter{});
   return def;
 }
 
@@ -91,6 +92,7 @@ vpStatus vpColliderCreate(vpWorldId worldId, const vpColliderDef* def, vpCollide
     desc.restitution = def->restitution;
     desc.linearDamping = def->linearDamping;
     desc.angularDamping = def->angularDamping;
+    desc.filter = toFilter(def->filter);
     desc.userData = def->userData;
     ColliderHandle h;
     VP_TRY(world->createCollider(std::move(desc), &h));

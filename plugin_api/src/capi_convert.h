@@ -7,6 +7,7 @@
 #include <type_traits>
 #include <new>
 
+#include "core/collision_filter.h"
 #include "core/math_types.h"
 #include "core/status.h"
 #include "volphys/volphys.h"
@@ -19,6 +20,8 @@ inline Quat toQuat(const vpQuat& q) { return Quat(q.w, q.x, q.y, q.z); }
 inline vpQuat toC(const Quat& q) { return vpQuat{float(q.x()), float(q.y()), float(q.z()), float(q.w())}; }
 inline Pose toPose(const vpTransform& t) { return Pose{toVec3(t.position), toQuat(t.rotation)}; }
 inline vpTransform toC(const Pose& p) { return vpTransform{toC(p.position), toC(p.rotation)}; }
+inline CollisionFilter toFilter(const vpCollisionFilter& f) { return CollisionFilter{f.categoryBits, f.maskBits}; }
+inline vpCollisionFilter toC(const CollisionFilter& f) { return vpCollisionFilter{f.category, f.mask}; }
 
 static_assert(static_cast<int>(Status::Internal) == vpStatus_Internal, "vp::Status and vpStatus must match");
 inline vpStatus toC(Status s) { return static_cast<vpStatus>(s); }

@@ -78,6 +78,7 @@ vpDeformableDef vpDefaultDeformableDef(void) {
   d.solverMaxIterations = defaults.solver.maxIterations;
   d.targetResidual = static_cast<float>(defaults.solver.targetResidual);
   d.priority = defaults.priority;
+  d.filter = toC(defaults.filter);
   return d;
 }
 
@@ -105,6 +106,7 @@ vpStatus vpDeformableCreate(vpWorldId worldId, const vpDeformableDef* def, vpDef
     desc.solver.maxIterations = def->solverMaxIterations;
     desc.solver.targetResidual = def->targetResidual;
     desc.priority = def->priority;
+    desc.filter = toFilter(def->filter);
     desc.userData = def->userData;
     DeformableHandle h;
     VP_TRY(world->createDeformable(std::move(desc), &h));

@@ -77,6 +77,7 @@ Status translateFluidDef(const vpFluidDef& d, FluidDesc* desc) {
   }
   desc->twoWayCoupling = d.twoWayCoupling != 0;
   desc->priority = d.priority;
+  desc->filter = toFilter(d.filter);
   desc->userData = d.userData;
   return Status::Ok;
 }
@@ -110,6 +111,7 @@ vpFluidDef vpDefaultFluidDef(void) {
   d.temperatureDissipation = static_cast<float>(defaults.smoke.temperatureDissipation);
   d.twoWayCoupling = defaults.twoWayCoupling ? 1 : 0;
   d.priority = defaults.priority;
+  d.filter = toC(defaults.filter);
   return d;
 }
 

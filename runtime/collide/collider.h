@@ -43,6 +43,9 @@ class Collider {
   // An impulse changes the velocity at once: dv = J / m, dw = I^-1 L (L about the origin).
   void applyImpulse(const Vec3& linear, const Vec3& angular);
   BodyProperties properties() const { return bodyPropertiesOf(desc_); }
+  const CollisionFilter& filter() const { return desc_.filter; }
+  // Only through CollisionWorld::setFilter, which gives Bullet the new bits.
+  void setFilter(const CollisionFilter& filter) { desc_.filter = filter; }
   void setProperties(const BodyProperties& properties);  // validated; mass rescales the inertia
   // Bullet puts a body that stays slow for a while to sleep; a load, impulse or velocity wakes it.
   bool sleeping() const;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/allocator.h"
+#include "core/collision_filter.h"
 #include "core/math_types.h"
 #include "core/status.h"
 
@@ -46,6 +47,7 @@ struct ColliderDesc {
   double restitution = 0.0;
   double linearDamping = 0.0;
   double angularDamping = 0.05;
+  CollisionFilter filter;  // which rigid bodies, deformables and fluids it meets
   void* userData = nullptr;
 };
 

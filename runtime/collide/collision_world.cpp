@@ -23,6 +23,20 @@ btDefaultCollisionConstructionInfo poolSizes() {
   return info;
 }
 
+// The filter rule on the bits Bullet keeps in each proxy, and no static or kinematic pairs.
+struct PairFilter : btOverlapFilterCallback {
+  bool needBroadphaseCollision(btBroadphaseProxy* a, btBroadphaseProxy* b) const override {
+    const auto* objectA = static_cast<const btCollisionObject*>(a->m_clientObject);
+    const auto* objectB = static_cast<const btCollisionObject*>(b->m_clientObject);
+    if (objectA->isStaticOrKinematicObject() && objectB->isStaticOrKinematicObject()) return false;
+    const CollisionFilter filterA{static_cast<uint32_t>(a->m_collisionFilterGroup),
+                                  static_cast<uint32_t>(a->m_collisionFilterMask)};
+    const CollisionFilter filterB{static_cast<uint32_t>(b->m_collisionFilterGroup),
+                                  static_cast<uint32_t>(b->m_collisionFilterMask)};
+    return filterA.meets(filterB);
+  }
+};
+
 }  // namespace
 
 CollisionWorld::CollisionWorld(const Vec3& gravity)
@@ -31,7 +45,9 @@ CollisionWorld::CollisionWorld(const Vec3& gravity)
       broadphase_(std::make_unique<btDbvtBroadphase>()),
       solver_(std::make_unique<btSequentialImpulseConstraintSolver>()),
       world_(std::make_unique<btDiscreteDynamicsWorld>(dispatcher_.get(), broadphase_.get(), solver_.get(),
-                                                       configuration_.get())) {
+                                                       configuration_.get())),
+      pairFilter_(std::make_unique<PairFilter>()) {
+  world_->getPairCache()->setOverlapFilterCallback(pairFilter_.get());
   setGravity(gravity);
   // Bullet's solver shuffles constraints with a random seed only when this flag is set;
   // keep the default order so runs are reproducible.
@@ -42,7 +58,26 @@ CollisionWorld::~CollisionWorld() {
   // Colliders own their bodies; by now they are removed (World destroys them first).
 }
 
-void CollisionWorld::add(Collider& collider) { world_->addRigidBody(collider.body()); }
+void CollisionWorld::add(Collider& collider) {
+  // Bullet keeps the bits as int; the cast keeps them as they are.
+  world_->addRigidBody(collider.body(), static_cast<int>(collider.filter().category),
+                       static_cast<int>(collider.filter().mask));
+}
+
+void CollisionWorld::setFilter(Collider& collider, const CollisionFilter& filter) {
+  // Bodies asleep on it would stay asleep (hanging in the air) once it stops meeting them.
+  btRigidBody* body = collider.body();
+  btDispatcher* dispatcher = world_->getDispatcher();
+  for (int m = 0; m < dispatcher->getNumManifolds(); ++m) {
+    const btPersistentManifold* manifold = dispatcher->getManifoldByIndexInternal(m);
+    if (manifold->getBody0() != body && manifold->getBody1() != body) continue;
+    const_cast<btCollisionObject*>(manifold->getBody0())->activate(true);
+    const_cast<btCollisionObject*>(manifold->getBody1())->activate(true);
+  }
+  remove(collider);
+  collider.setFilter(filter);
+  add(collider);
+}
 
 void CollisionWorld::remove(Collider& collider) { world_->removeRigidBody(collider.body()); }
 

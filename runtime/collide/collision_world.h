@@ -6,6 +6,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/collision_filter.h"
 #include "core/math_types.h"
 
 class btDefaultCollisionConfiguration;
@@ -13,6 +14,7 @@ class btCollisionDispatcher;
 class btBroadphaseInterface;
 class btSequentialImpulseConstraintSolver;
 class btDiscreteDynamicsWorld;
+struct btOverlapFilterCallback;
 
 namespace vp {
 
@@ -25,8 +27,13 @@ class CollisionWorld {
   CollisionWorld(const CollisionWorld&) = delete;
   CollisionWorld& operator=(const CollisionWorld&) = delete;
 
+  // Bullet sees the collider's CollisionFilter; pairs of which neither body is dynamic are
+  // never tested (as Bullet's default filter does).
   void add(Collider& collider);
   void remove(Collider& collider);
+  // A new filter takes effect from the next step: the body is taken out and put back, so the
+  // broadphase forgets its old pairs and finds the ones the new bits allow.
+  void setFilter(Collider& collider, const CollisionFilter& filter);
   void setGravity(const Vec3& gravity);
 
   struct StepResult {
@@ -50,6 +57,7 @@ class CollisionWorld {
   std::unique_ptr<btBroadphaseInterface> broadphase_;
   std::unique_ptr<btSequentialImpulseConstraintSolver> solver_;
   std::unique_ptr<btDiscreteDynamicsWorld> world_;
+  std::unique_ptr<btOverlapFilterCallback> pairFilter_;
   struct BodyState;
   std::vector<BodyState> before_;  // the dynamic bodies at the start of the step
   void saveDynamicBodies();

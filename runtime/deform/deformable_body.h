@@ -58,6 +58,7 @@ class DeformableBody {
   void abandonStep();
 
   const DeformableDesc& desc() const { return desc_; }
+  void setCollisionFilter(const CollisionFilter& filter) { desc_.filter = filter; }  // from the next step
   ActorSchedule& schedule() { return schedule_; }
   int32_t nodeCount() const { return nodeCount_; }
   int64_t elementCount() const { return static_cast<int64_t>(restVolume_.size()); }

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "core/collision_filter.h"
 #include "core/math_types.h"
 #include "core/status.h"
 #include "geometry/surface_mesh.h"
@@ -76,6 +77,7 @@ struct DeformableDesc {
   DeformableMaterial material;
   DeformableSolverSettings solver;
   int priority = 0;  // higher is served first when the frame budget is short (actor_priority.h)
+  CollisionFilter filter;  // which colliders it contacts
   void* userData = nullptr;
 };
 

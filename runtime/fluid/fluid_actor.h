@@ -147,6 +147,8 @@ class FluidActor {
 
   // What readers see: the last completed step.
   const FluidDesc& desc() const { return desc_; }
+  // From the next step that begins (a step in progress keeps the colliders it began with).
+  void setCollisionFilter(const CollisionFilter& filter) { desc_.filter = filter; }
   ActorSchedule& schedule() { return schedule_; }
   // The longest slice run by the last advance().
   double maxSliceMs() const { return maxSliceMs_; }

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/collision_filter.h"
 #include "core/math_types.h"
 #include "core/status.h"
 #include "fluid/mac_grid.h"
@@ -80,6 +81,7 @@ struct FluidDesc {
   FluidSolverSettings solver;
   bool twoWayCoupling = true;  // pressure forces act on dynamic colliders
   int priority = 0;  // higher is served first when the frame budget is short (actor_priority.h)
+  CollisionFilter filter;  // which colliders its face fractions see
   void* userData = nullptr;
 };
 

@@ -105,4 +105,27 @@ Status parseEnum(const JsonObject& obj, const char* key, std::initializer_list<c
 }
 
 
+namespace {
+
+Status bits32(const JsonObject& obj, const char* key, uint32_t* out) {
+  if (!obj.has(key)) return Status::Ok;
+  const nlohmann::json& v = obj.at(key);
+  if (!v.is_number_integer() || v.get<int64_t>() < 0 || v.get<int64_t>() > int64_t(0xFFFFFFFF))
+    return fail(Status::ParseError, "%s = %s: expected an integer in [0, 4294967295] (32 bits)", obj.pathOf(key).c_str(),
+                v.dump().substr(0, 40).c_str());
+  *out = static_cast<uint32_t>(v.get<int64_t>());
+  return Status::Ok;
+}
+
+}  // namespace
+
+Status parseCollisionFilter(const JsonObject& obj, CollisionFilter* out) {
+  std::optional<JsonObject> filter;
+  VP_TRY(obj.object("collisionFilter", &filter, false));
+  if (!filter) return Status::Ok;
+  VP_TRY(filter->checkKeys({"category", "mask"}));
+  VP_TRY(bits32(*filter, "category", &out->category));
+  return bits32(*filter, "mask", &out->mask);
+}
+
 }  // namespace vp

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "core/collision_filter.h"
 #include "core/math_types.h"
 #include "core/status.h"
 
@@ -39,6 +40,10 @@ class JsonObject {
 };
 
 const char* jsonTypeName(const nlohmann::json& value);
+
+// The optional "collisionFilter": {"category": bits, "mask": bits}, each an integer in
+// [0, 2^32 - 1]; a missing one keeps *out's.
+Status parseCollisionFilter(const JsonObject& obj, CollisionFilter* out);
 
 // An optional string field that must be one of `names`; *out = its position in the list.
 Status parseEnum(const JsonObject& obj, const char* key, std::initializer_list<const char*> names, int* out);

@@ -70,7 +70,8 @@ Status parseEmitter(const JsonObject& e, FluidEmitter* emitter) {
 Status parseFluid(const JsonObject& obj, FluidDesc* d) {
   VP_TRY(obj.checkKeys({"name", "kind", "origin", "resolution", "cellSize", "sides", "density", "kinematicViscosity", "advection",
                         "cflNumber", "maxSubsteps", "pressureTolerance", "pressureMaxIterations", "smoke",
-                        "initialLiquid", "emitters", "drains", "twoWayCoupling", "priority"}));
+                        "initialLiquid", "emitters", "drains", "twoWayCoupling", "priority",
+                        "collisionFilter"}));
   VP_TRY(obj.string("name", &d->name));
   int kind = 0;
   VP_TRY(parseEnum(obj, "kind", {"smoke", "liquid"}, &kind));
@@ -118,6 +119,7 @@ Status parseFluid(const JsonObject& obj, FluidDesc* d) {
   }));
   VP_TRY(obj.boolean("twoWayCoupling", &d->twoWayCoupling));
   VP_TRY(obj.integer("priority", &d->priority));
+  VP_TRY(parseCollisionFilter(obj, &d->filter));
   const Status s = validateFluidDesc(*d);
   if (!ok(s)) return addErrorContext(s, obj.path());
   return Status::Ok;

@@ -118,7 +118,8 @@ Status parsePose(const JsonObject& obj, Pose* pose) {
 
 Status parseCollider(const JsonObject& obj, const std::string& baseDirectory, ColliderDesc* desc) {
   VP_TRY(obj.checkKeys({"name", "bodyType", "shape", "position", "rotation", "axisAngle", "linearVelocity",
-                        "angularVelocity", "mass", "friction", "restitution", "linearDamping", "angularDamping"}));
+                        "angularVelocity", "mass", "friction", "restitution", "linearDamping", "angularDamping",
+                        "collisionFilter"}));
   VP_TRY(obj.string("name", &desc->name));
   int body = 0;
   VP_TRY(parseEnum(obj, "bodyType", {"static", "kinematic", "dynamic"}, &body));
@@ -134,6 +135,7 @@ Status parseCollider(const JsonObject& obj, const std::string& baseDirectory, Co
   VP_TRY(obj.number("restitution", &desc->restitution));
   VP_TRY(obj.number("linearDamping", &desc->linearDamping));
   VP_TRY(obj.number("angularDamping", &desc->angularDamping));
+  VP_TRY(parseCollisionFilter(obj, &desc->filter));
   // Validate now (with the JSON path) so that applying the scene cannot fail half-way.
   Status s = validateColliderDesc(*desc);
   if (!ok(s)) return addErrorContext(s, obj.path());
@@ -212,7 +214,8 @@ Status parseDeformable(const JsonObject& obj, const std::string& baseDirectory, 
   VP_TRY(obj.checkKeys({"name", "degree", "box", "tetFile", "surfaceFile", "voxelResolution", "renderFile", "scale",
                         "ifFileMissing", "position", "rotation", "axisAngle", "linearVelocity", "youngsModulus",
                         "poissonRatio", "density", "massDamping", "stiffnessDamping", "friction", "solverTolerance",
-                        "solverMaxIterations", "targetResidual", "priority", "pinBox", "attach"}));
+                        "solverMaxIterations", "targetResidual", "priority", "pinBox", "attach",
+                        "collisionFilter"}));
   bool replaced = false;
   VP_TRY(applyFileFallback(obj, baseDirectory, out, &replaced));
   if (replaced) return Status::Ok;
@@ -251,6 +254,7 @@ Status parseDeformable(const JsonObject& obj, const std::string& baseDirectory, 
   VP_TRY(obj.integer("solverMaxIterations", &desc.solver.maxIterations));
   VP_TRY(obj.number("targetResidual", &desc.solver.targetResidual));
   VP_TRY(obj.integer("priority", &desc.priority));
+  VP_TRY(parseCollisionFilter(obj, &desc.filter));
   // Resolve and validate now so that applying the scene cannot fail half-way.
   Status s = resolveDeformableMesh(source, &desc);
   if (!ok(s)) return addErrorContext(s, obj.path());

@@ -167,6 +167,24 @@ class Rigid(unittest.TestCase):
             self.assertIn("static", str(e.exception))
 
 
+    def test_collision_filter_lets_a_ball_through_the_ground_until_changed(self):
+        with volphys.World(frame_budget_ms=0) as w:
+            ground = w.create_collider(volphys.Plane(), body_type="static", collision_filter=(2, 0xFFFFFFFF))
+            ball = w.create_collider(volphys.Sphere(0.5), position=(0, 3, 0), collision_filter=(1, ~2 & 0xFFFFFFFF))
+            self.assertEqual(ball.collision_filter, volphys.CollisionFilter(1, 0xFFFFFFFD))
+            for _ in range(10):
+                w.step(DT)
+            ball.collision_filter = volphys.CollisionFilter(1, 0xFFFFFFFF)
+            for _ in range(120):
+                w.step(DT)
+            self.assertAlmostEqual(ball.position[1], 0.5, delta=0.01)
+            self.assertEqual(ground.collision_filter.category, 2)
+            fluid = w.create_fluid(resolution=(4, 4, 4), collision_filter=(4, 4))
+            self.assertEqual(fluid.collision_filter, (4, 4))
+            fluid.collision_filter = (8, 1)
+            self.assertEqual(fluid.collision_filter.mask, 1)
+
+
 @unittest.skipIf(np is None, "numpy is not importable")
 class Deformables(unittest.TestCase):
     def make(self, w, **kw):
@@ -511,7 +529,7 @@ class FramePlanFields(unittest.TestCase):
         self.assertEqual(d.targetResidual, ctypes.c_float(1e-2).value)
         self.assertEqual(d.priority, 0)
         self.assertEqual(volphys._lib.vpDefaultFluidDef().priority, 0)
-        self.assertEqual((T.VP_VERSION_MAJOR, T.VP_VERSION_MINOR), (0, 3))
+        self.assertEqual((T.VP_VERSION_MAJOR, T.VP_VERSION_MINOR), (0, 4))
 
     def test_priorities_and_floor_reach_the_stats(self):
         jelly = self.world.create_deformable(vertices=self.verts, tets=self.tets, target_residual=0.05, priority=5)

@@ -169,7 +169,16 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{R"({"colliders": [{"shape": {"type": "plane"}}], "fluids": [{"emitters": [{"velocity": [0, 1, 0]}]}]})",
                  Status::ParseError, "$.fluids[0].emitters[0].region: missing"},
         BadScene{R"({"colliders": [{"shape": {"type": "plane"}}], "fluids": [{"smoke": {"heat": 1}}]})",
-                 Status::ParseError, "$.fluids[0].smoke.heat: unknown key"}));
+                 Status::ParseError, "$.fluids[0].smoke.heat: unknown key"},
+        BadScene{R"({"colliders": [{"shape": {"type": "plane"}, "collisionFilter": {"category": -1}}]})",
+                 Status::ParseError, "$.colliders[0].collisionFilter.category = -1: expected an integer in [0, 4294967295]"},
+        BadScene{R"({"colliders": [{"shape": {"type": "plane"}, "collisionFilter": {"mask": 4294967296}}]})",
+                 Status::ParseError, "$.colliders[0].collisionFilter.mask = 4294967296: expected an integer"},
+        BadScene{R"({"deformables": [{"box": {}, "collisionFilter": {"mask": 1.5}}]})", Status::ParseError,
+                 "$.deformables[0].collisionFilter.mask = 1.5: expected an integer"},
+        BadScene{R"({"fluids": [{"collisionFilter": {"group": 1}}]})", Status::ParseError,
+                 "$.fluids[0].collisionFilter.group: unknown key"},
+        BadScene{R"({"fluids": [{"collisionFilter": 3}]})", Status::ParseError, "$.fluids[0].collisionFilter"}));
 
 TEST(SceneLoader, DeformableWithPinsAndAnAttachment) {
   auto world = makeWorld();
@@ -213,6 +222,33 @@ TEST(SceneLoader, ReadsTheAccuracyFloorAndPriorities) {
   FluidHandle tank;
   ASSERT_TRUE(world->findFluid("tank", &tank));
   EXPECT_EQ(world->fluid(tank)->desc().priority, -7);
+}
+
+TEST(SceneLoader, ReadsCollisionFiltersAndKeepsTheDefaultsOfKeysLeftOut) {
+  auto world = makeWorld();
+  ASSERT_EQ(loadSceneFromString(*world, R"({
+      "colliders": [{"name": "floor", "shape": {"type": "plane"}, "collisionFilter": {"category": 4294967295, "mask": 6}},
+                    {"name": "wall", "shape": {"type": "box", "halfExtents": [1, 1, 1]}, "collisionFilter": {"mask": 0}}],
+      "deformables": [{"name": "jelly", "box": {"cells": [1, 1, 1], "size": [1, 1, 1]}, "position": [0, 3, 0],
+                       "collisionFilter": {"category": 2}}],
+      "fluids": [{"name": "tank", "resolution": [4, 4, 4], "collisionFilter": {"category": 8, "mask": 1}}]})", "."),
+            Status::Ok)
+      << lastError();
+  ColliderHandle floor, wall;
+  ASSERT_TRUE(world->findCollider("floor", &floor));
+  ASSERT_TRUE(world->findCollider("wall", &wall));
+  EXPECT_EQ(world->collider(floor)->filter().category, 0xFFFFFFFFu);
+  EXPECT_EQ(world->collider(floor)->filter().mask, 6u);
+  EXPECT_EQ(world->collider(wall)->filter().category, 1u);
+  EXPECT_EQ(world->collider(wall)->filter().mask, 0u);
+  DeformableHandle jelly;
+  ASSERT_TRUE(world->findDeformable("jelly", &jelly));
+  EXPECT_EQ(world->deformable(jelly)->desc().filter.category, 2u);
+  EXPECT_EQ(world->deformable(jelly)->desc().filter.mask, 0xFFFFFFFFu);
+  FluidHandle tank;
+  ASSERT_TRUE(world->findFluid("tank", &tank));
+  EXPECT_EQ(world->fluid(tank)->desc().filter.category, 8u);
+  EXPECT_EQ(world->fluid(tank)->desc().filter.mask, 1u);
 }
 
 // A closed unit cube as an OBJ surface, and a scene with one deformable whose extra keys are

@@ -14,6 +14,13 @@ namespace VolPhys
 
         public bool IsValid { get { return Native.vpColliderIsValid(Id) == Status.Ok; } }
 
+        /// <summary>Which colliders it meets; a change takes effect from the next step.</summary>
+        public vpCollisionFilter CollisionFilter
+        {
+            get { vpCollisionFilter f; VolPhysException.Check(Native.vpColliderGetCollisionFilter(Id, out f), "vpColliderGetCollisionFilter"); return f; }
+            set { VolPhysException.Check(Native.vpColliderSetCollisionFilter(Id, value), "vpColliderSetCollisionFilter"); }
+        }
+
         public vpTransform Pose
         {
             get { vpTransform t; VolPhysException.Check(Native.vpColliderGetPose(Id, out t), "vpColliderGetPose"); return t; }

@@ -11,6 +11,13 @@ namespace VolPhys
 
         public bool IsValid { get { return Native.vpDeformableIsValid(Id) == Status.Ok; } }
 
+        /// <summary>Which colliders it meets; a change takes effect from the next step.</summary>
+        public vpCollisionFilter CollisionFilter
+        {
+            get { vpCollisionFilter f; VolPhysException.Check(Native.vpDeformableGetCollisionFilter(Id, out f), "vpDeformableGetCollisionFilter"); return f; }
+            set { VolPhysException.Check(Native.vpDeformableSetCollisionFilter(Id, value), "vpDeformableSetCollisionFilter"); }
+        }
+
         public int NodeCount
         {
             get { int n; VolPhysException.Check(Native.vpDeformableGetNodeCount(Id, out n), "vpDeformableGetNodeCount"); return n; }

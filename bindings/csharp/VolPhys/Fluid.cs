@@ -12,6 +12,13 @@ namespace VolPhys
 
         public bool IsValid { get { return Native.vpFluidIsValid(Id) == Status.Ok; } }
 
+        /// <summary>Which colliders it meets; a change takes effect from the next step.</summary>
+        public vpCollisionFilter CollisionFilter
+        {
+            get { vpCollisionFilter f; VolPhysException.Check(Native.vpFluidGetCollisionFilter(Id, out f), "vpFluidGetCollisionFilter"); return f; }
+            set { VolPhysException.Check(Native.vpFluidSetCollisionFilter(Id, value), "vpFluidSetCollisionFilter"); }
+        }
+
         public void GetResolution(out int nx, out int ny, out int nz)
         {
             VolPhysException.Check(Native.vpFluidGetResolution(Id, out nx, out ny, out nz), "vpFluidGetResolution");

@@ -58,6 +58,12 @@ namespace VolPhys
         [DllImport(Library)] public static extern Status vpColliderSetProperties(vpColliderId collider, ref vpBodyProperties properties);
         [DllImport(Library)] public static extern Status vpColliderIsSleeping(vpColliderId collider, out int sleeping);
         [DllImport(Library)] public static extern Status vpColliderSetSleeping(vpColliderId collider, int sleeping);
+        [DllImport(Library)] public static extern Status vpColliderGetCollisionFilter(vpColliderId collider, out vpCollisionFilter filter);
+        [DllImport(Library)] public static extern Status vpColliderSetCollisionFilter(vpColliderId collider, vpCollisionFilter filter);
+        [DllImport(Library)] public static extern Status vpDeformableGetCollisionFilter(vpDeformableId deformable, out vpCollisionFilter filter);
+        [DllImport(Library)] public static extern Status vpDeformableSetCollisionFilter(vpDeformableId deformable, vpCollisionFilter filter);
+        [DllImport(Library)] public static extern Status vpFluidGetCollisionFilter(vpFluidId fluid, out vpCollisionFilter filter);
+        [DllImport(Library)] public static extern Status vpFluidSetCollisionFilter(vpFluidId fluid, vpCollisionFilter filter);
         [DllImport(Library)] public static extern Status vpColliderGetBodyType(vpColliderId collider, out BodyType type);
         [DllImport(Library)] public static extern Status vpColliderGetUserData(vpColliderId collider, out IntPtr userData);
         [DllImport(Library)] public static extern Status vpColliderGetShapeMeshSize(vpColliderId collider, out int vertexCount, out int triangleCount);

@@ -33,7 +33,7 @@ namespace VolPhys
 
     public static class Constants
     {
-        public const int VersionMajor = 0, VersionMinor = 3, VersionPatch = 0;
+        public const int VersionMajor = 0, VersionMinor = 4, VersionPatch = 0;
         public const uint HeaderVersion = (VersionMajor << 16) | (VersionMinor << 8) | VersionPatch;
         public const int MaxPhases = 16;
     }
@@ -167,6 +167,15 @@ namespace VolPhys
         public float maxSliceMs;
     }
 
+    /// <summary>Two objects meet when each one's categoryBits share a bit with the other's maskBits.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct vpCollisionFilter
+    {
+        public uint categoryBits;
+        public uint maskBits;
+        public vpCollisionFilter(uint categoryBits, uint maskBits) { this.categoryBits = categoryBits; this.maskBits = maskBits; }
+    }
+
     [StructLayout(LayoutKind.Sequential)]
     public struct vpShapeDef
     {
@@ -200,6 +209,7 @@ namespace VolPhys
         public float linearDamping;
         public float angularDamping;
         public IntPtr userData;
+        public vpCollisionFilter filter;
     }
 
     [StructLayout(LayoutKind.Sequential)]
@@ -244,6 +254,8 @@ namespace VolPhys
         public float targetResidual;
         /// <summary>Higher is served first when the frame budget is short.</summary>
         public int priority;
+        /// <summary>The colliders it contacts.</summary>
+        public vpCollisionFilter filter;
     }
 
     /// <summary>A region in world coordinates: a box (centre, halfExtents) or a sphere (centre, radius).</summary>
@@ -308,6 +320,8 @@ namespace VolPhys
         public float kinematicViscosity;
         /// <summary>Higher is served first when the frame budget is short.</summary>
         public int priority;
+        /// <summary>The colliders that bound it.</summary>
+        public vpCollisionFilter filter;
 
         public void SetResolution(int nx, int ny, int nz)
         {

@@ -13,6 +13,7 @@ from ._arrays import HAVE_NUMPY
 from ._types import (ActorKind, Advection, BodyType, DomainSide, FluidField, FluidKind, LogLevel, Phase, ShapeType,
                      Status)
 from .collider import BodyProperties, Collider, Transform
+from ._handle import CollisionFilter
 from .deformable import Deformable
 from .fluid import Fluid
 from .fluid_sources import BoxRegion, Emitter, SphereRegion

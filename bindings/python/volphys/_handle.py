@@ -1,16 +1,31 @@
 """ActorHandle: what Collider, Deformable and Fluid share. It holds only the id: operations on a
 destroyed object (or one of a destroyed world) raise InvalidIdError from the library, they
 never crash."""
+from collections import namedtuple
 import ctypes
 
 from . import _arrays
+from . import _types as T
 from ._api import call, lib
+
+# vpCollisionFilter: two objects meet when each one's category shares a bit with the other's
+# mask. Default CollisionFilter(1, 0xFFFFFFFF): everything meets everything.
+CollisionFilter = namedtuple("CollisionFilter", "category mask")
+
+
+def c_filter(value):
+    """CollisionFilter or (category, mask) -> vpCollisionFilter."""
+    category, mask = value
+    return T.vpCollisionFilter(int(category), int(mask))
 
 
 class ActorHandle:
-    # Set by subclasses: the C functions that check and destroy this kind of id.
+    # Set by subclasses: the C functions that check and destroy this kind of id, and that get
+    # and set its collision filter.
     _is_valid_function = None
     _destroy_function = None
+    _get_filter_function = None
+    _set_filter_function = None
 
     def __init__(self, world, handle_id):
         self.world = world
@@ -41,6 +56,18 @@ class ActorHandle:
 
     def destroy(self):
         call(self._destroy_function, self._id)
+
+    @property
+    def collision_filter(self):
+        """CollisionFilter(category, mask); set it with a CollisionFilter or a (category, mask)
+        pair. A change takes effect from the next step."""
+        f = T.vpCollisionFilter()
+        call(self._get_filter_function, self._id, ctypes.byref(f))
+        return CollisionFilter(f.categoryBits, f.maskBits)
+
+    @collision_filter.setter
+    def collision_filter(self, value):
+        call(self._set_filter_function, self._id, c_filter(value))
 
     def _read_mesh(self, size_function, mesh_function):
         """A mesh through the ABI's size + fill pair: (positions (v,3) float32, normals (v,3)

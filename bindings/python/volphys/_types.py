@@ -8,7 +8,7 @@ import enum
 from ctypes import c_float, c_int32, c_uint16, c_uint32, c_uint64, c_void_p, c_char_p, c_double, c_size_t, POINTER
 
 VP_VERSION_MAJOR = 0
-VP_VERSION_MINOR = 3
+VP_VERSION_MINOR = 4
 VP_VERSION_PATCH = 0
 VP_HEADER_VERSION = (VP_VERSION_MAJOR << 16) | (VP_VERSION_MINOR << 8) | VP_VERSION_PATCH
 VP_MAX_PHASES = 16
@@ -204,6 +204,10 @@ class vpStepStats(ctypes.Structure):
     ]
 
 
+class vpCollisionFilter(ctypes.Structure):
+    _fields_ = [("categoryBits", c_uint32), ("maskBits", c_uint32)]
+
+
 class vpShapeDef(ctypes.Structure):
     _fields_ = [
         ("structSize", c_uint32),
@@ -236,6 +240,7 @@ class vpColliderDef(ctypes.Structure):
         ("linearDamping", c_float),
         ("angularDamping", c_float),
         ("userData", c_void_p),
+        ("filter", vpCollisionFilter),
     ]
 
 
@@ -278,6 +283,7 @@ class vpDeformableDef(ctypes.Structure):
         ("userData", c_void_p),
         ("targetResidual", c_float),
         ("priority", c_int32),
+        ("filter", vpCollisionFilter),
     ]
 
 
@@ -319,6 +325,7 @@ class vpFluidDef(ctypes.Structure):
         ("userData", c_void_p),
         ("kinematicViscosity", c_float),
         ("priority", c_int32),
+        ("filter", vpCollisionFilter),
     ]
 
 

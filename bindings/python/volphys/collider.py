@@ -30,6 +30,8 @@ def transform_tuple(t):
 class Collider(ActorHandle):
     _is_valid_function = "vpColliderIsValid"
     _destroy_function = "vpColliderDestroy"
+    _get_filter_function = "vpColliderGetCollisionFilter"
+    _set_filter_function = "vpColliderSetCollisionFilter"
 
     @property
     def pose(self):

@@ -12,6 +12,8 @@ from .stats import ActorStats
 class Deformable(ActorHandle):
     _is_valid_function = "vpDeformableIsValid"
     _destroy_function = "vpDeformableDestroy"
+    _get_filter_function = "vpDeformableGetCollisionFilter"
+    _set_filter_function = "vpDeformableSetCollisionFilter"
 
     @property
     def node_count(self):

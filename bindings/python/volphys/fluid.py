@@ -15,6 +15,8 @@ from .stats import ActorStats
 class Fluid(ActorHandle):
     _is_valid_function = "vpFluidIsValid"
     _destroy_function = "vpFluidDestroy"
+    _get_filter_function = "vpFluidGetCollisionFilter"
+    _set_filter_function = "vpFluidSetCollisionFilter"
 
     @property
     def resolution(self):

@@ -5,6 +5,7 @@ from ctypes import c_int32
 from . import _arrays
 from . import _types as T
 from ._api import call, encode_path, lib
+from ._handle import c_filter
 from .collider import Collider
 from .deformable import Deformable
 from .fluid import Fluid
@@ -71,6 +72,12 @@ def _body_type(value):
 
 
 def _set_scalars(d, table, kwargs):
+    """Sets d's fields named by `table` from keywords; collision_filter (a CollisionFilter or a
+    (category, mask) pair) is accepted by every def."""
+    kwargs = dict(kwargs)
+    collision_filter = kwargs.pop("collision_filter", None)
+    if collision_filter is not None:
+        d.filter = c_filter(collision_filter)
     for key, value in kwargs.items():
         if key not in table:
             raise TypeError("unexpected keyword argument %r" % key)
@@ -198,7 +205,8 @@ class World:
                         linear_velocity=None, angular_velocity=None, **scalars):
         """shape: a volphys.Shape (Sphere(...), Box(...), Plane(...), ...). body_type: BodyType
         or 'static' / 'kinematic' / 'dynamic'. Further keywords: mass, friction, restitution,
-        linear_damping, angular_damping. Anything not given keeps vpDefaultColliderDef()'s value."""
+        linear_damping, angular_damping, collision_filter ((category, mask)). Anything not given
+        keeps vpDefaultColliderDef()'s value."""
         d = lib.vpDefaultColliderDef()
         d.bodyType = int(_body_type(body_type))
         keep = shape._fill(d.shape)
@@ -226,7 +234,8 @@ class World:
         Further keywords: degree, voxel_resolution, youngs_modulus, poisson_ratio, density,
         mass_damping, stiffness_damping, friction, solver_tolerance, solver_max_iterations,
         target_residual (the accuracy floor of the implicit solve, in [solver_tolerance, 1]),
-        priority (higher is served first when the frame budget is short)."""
+        priority (higher is served first when the frame budget is short), collision_filter
+        ((category, mask): the colliders it contacts)."""
         d = lib.vpDefaultDeformableDef()
         keep = []
         if vertices is not None:
@@ -276,7 +285,8 @@ class World:
         kinematic_viscosity, cfl_number, max_substeps, pressure_tolerance, pressure_max_iterations,
         ambient_temperature, density_buoyancy, thermal_buoyancy, vorticity_confinement,
         density_dissipation, temperature_dissipation, two_way_coupling, priority (higher is served
-        first when the frame budget is short). Anything not given keeps vpDefaultFluidDef()'s value."""
+        first when the frame budget is short), collision_filter ((category, mask): the colliders
+        that bound it). Anything not given keeps vpDefaultFluidDef()'s value."""
         d = lib.vpDefaultFluidDef()
         d.kind = _enum_value(T.FluidKind, kind, "kind")
         if origin is not None:

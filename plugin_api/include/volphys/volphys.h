@@ -65,7 +65,7 @@ extern "C" {
 /* ---------------------------------------------------------------- version */
 
 #define VP_VERSION_MAJOR 0
-#define VP_VERSION_MINOR 3
+#define VP_VERSION_MINOR 4
 #define VP_VERSION_PATCH 0
 /* Major changes break the ABI; minor ones only add. */
 #define VP_HEADER_VERSION ((VP_VERSION_MAJOR << 16) | (VP_VERSION_MINOR << 8) | VP_VERSION_PATCH)
@@ -330,6 +330,22 @@ VP_API vpStatus vpWorldGetStepStats(vpWorldId world, vpStepStats* outStats);
  * pseudo-actor (the Bullet step). */
 VP_API vpStatus vpWorldGetActorStats(vpWorldId world, int32_t actorIndex, vpActorStats* outStats);
 
+/* ---------------------------------------------------------------- collision filtering */
+
+/* Every collider, deformable and fluid has a filter. Two of them meet when each one's
+ * categoryBits share a bit with the other's maskBits (Box2D's rule); every value is valid
+ * (categoryBits = 0 meets nothing). Default {1, 0xFFFFFFFF}: everything meets everything.
+ * Where it applies: rigid pairs in Bullet (two bodies of which neither is dynamic never
+ * collide); a deformable's contacts with colliders; a fluid's solid boundaries (its face
+ * fractions, and the pressure loads it puts on dynamic bodies) from colliders. Deformables and
+ * fluids do not act on each other yet, so their bits matter only against colliders.
+ * vpXxxSetCollisionFilter takes effect from the next step (for a fluid, from the next fluid
+ * step that begins). */
+typedef struct vpCollisionFilter {
+  uint32_t categoryBits;
+  uint32_t maskBits;
+} vpCollisionFilter;
+
 /* ---------------------------------------------------------------- colliders */
 
 typedef enum vpBodyType {
@@ -377,6 +393,7 @@ typedef struct vpColliderDef {
   float linearDamping;   /* 0..1; default 0 */
   float angularDamping;  /* 0..1; default 0.05 */
   void* userData;
+  vpCollisionFilter filter;
 } vpColliderDef;
 
 VP_API vpShapeDef vpDefaultShapeDef(void);
@@ -426,6 +443,8 @@ VP_API vpStatus vpColliderSetProperties(vpColliderId collider, const vpBodyPrope
  * sleep; 0 wakes it. Static and kinematic bodies never sleep (set: InvalidArgument). */
 VP_API vpStatus vpColliderIsSleeping(vpColliderId collider, int32_t* outSleeping);
 VP_API vpStatus vpColliderSetSleeping(vpColliderId collider, int32_t sleeping);
+VP_API vpStatus vpColliderGetCollisionFilter(vpColliderId collider, vpCollisionFilter* outFilter);
+VP_API vpStatus vpColliderSetCollisionFilter(vpColliderId collider, vpCollisionFilter filter);
 VP_API vpStatus vpColliderGetBodyType(vpColliderId collider, vpBodyType* outType);
 VP_API vpStatus vpColliderGetUserData(vpColliderId collider, void** outUserData);
 /* A triangle mesh of the collider's shape in its local frame, for drawing and export (place
@@ -485,12 +504,15 @@ typedef struct vpDeformableDef {
                                    [solverTolerance, 1]; default 1e-2 */
   int32_t priority;             /* -1000000..1000000: higher is served first when the frame budget
                                    is short (deformables and fluids share the scale); default 0 */
+  vpCollisionFilter filter;     /* the colliders it contacts */
 } vpDeformableDef;
 
 VP_API vpDeformableDef vpDefaultDeformableDef(void);
 VP_API vpStatus vpDeformableCreate(vpWorldId world, const vpDeformableDef* def, vpDeformableId* outDeformable);
 VP_API vpStatus vpDeformableDestroy(vpDeformableId deformable);
 VP_API vpStatus vpDeformableIsValid(vpDeformableId deformable); /* Ok or InvalidId */
+VP_API vpStatus vpDeformableGetCollisionFilter(vpDeformableId deformable, vpCollisionFilter* outFilter);
+VP_API vpStatus vpDeformableSetCollisionFilter(vpDeformableId deformable, vpCollisionFilter filter);
 VP_API vpStatus vpDeformableGetNodeCount(vpDeformableId deformable, int32_t* outCount);
 /* Node positions / velocities, xyz per node, into a host array of capacity nodes. */
 VP_API vpStatus vpDeformableGetPositions(vpDeformableId deformable, float* outXyz, int32_t capacity);
@@ -601,6 +623,7 @@ typedef struct vpFluidDef {
                                        the velocity, solids no-slip; default 0 = inviscid, no cost */
   int32_t priority;                 /* -1000000..1000000: higher is served first when the frame budget
                                        is short (as vpDeformableDef.priority); default 0 */
+  vpCollisionFilter filter;         /* the colliders that bound it */
 } vpFluidDef;
 
 typedef enum vpFluidField {
@@ -614,6 +637,8 @@ VP_API vpFluidDef vpDefaultFluidDef(void);
 VP_API vpStatus vpFluidCreate(vpWorldId world, const vpFluidDef* def, vpFluidId* outFluid);
 VP_API vpStatus vpFluidDestroy(vpFluidId fluid);
 VP_API vpStatus vpFluidIsValid(vpFluidId fluid); /* Ok or InvalidId */
+VP_API vpStatus vpFluidGetCollisionFilter(vpFluidId fluid, vpCollisionFilter* outFilter);
+VP_API vpStatus vpFluidSetCollisionFilter(vpFluidId fluid, vpCollisionFilter filter);
 VP_API vpStatus vpFluidGetResolution(vpFluidId fluid, int32_t* outNx, int32_t* outNy, int32_t* outNz);
 /* What the fluid was created as, so a host can draw one it did not create (a scene's). Any
  * output may be NULL. Cell (i, j, k) is centred at origin + cellSize * (i + 0.5, j + 0.5, k + 0.5). */

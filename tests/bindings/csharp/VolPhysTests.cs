@@ -57,7 +57,7 @@ static class VolPhysTests
         int checkedFields = 0;
         Type[] types = { typeof(vpVersion), typeof(vpVec3), typeof(vpQuat), typeof(vpTransform), typeof(vpWorldId),
                          typeof(vpColliderId), typeof(vpDeformableId), typeof(vpWorldDef), typeof(vpPhaseStats),
-                         typeof(vpActorStats), typeof(vpStepStats), typeof(vpShapeDef), typeof(vpColliderDef), typeof(vpBodyProperties),
+                         typeof(vpActorStats), typeof(vpStepStats), typeof(vpShapeDef), typeof(vpColliderDef), typeof(vpBodyProperties), typeof(vpCollisionFilter),
                          typeof(vpDeformableDef), typeof(vpFluidId), typeof(vpFluidRegion), typeof(vpFluidEmitter),
                          typeof(vpFluidDef), typeof(vpBuildInfo) };
         foreach (Type t in types)
@@ -328,6 +328,9 @@ static class VolPhysTests
             Check(Math.Abs(v.x - 1.0f) < 1e-4f, "dv = F dt / m: " + v);
             ball.Sleeping = true;
             Check(ball.Sleeping, "put to sleep");
+            Check(ball.CollisionFilter.categoryBits == 1 && ball.CollisionFilter.maskBits == 0xFFFFFFFF, "default filter");
+            ball.CollisionFilter = new vpCollisionFilter(2, 5);
+            Check(ball.CollisionFilter.categoryBits == 2 && ball.CollisionFilter.maskBits == 5, "filter set");
             try
             {
                 p.friction = -1.0f;

@@ -41,6 +41,8 @@ int main(void) {
   FIELD(vpColliderDef, pose); FIELD(vpColliderDef, linearVelocity); FIELD(vpColliderDef, angularVelocity);
   FIELD(vpColliderDef, mass); FIELD(vpColliderDef, friction); FIELD(vpColliderDef, restitution);
   FIELD(vpColliderDef, linearDamping); FIELD(vpColliderDef, angularDamping); FIELD(vpColliderDef, userData);
+  FIELD(vpColliderDef, filter);
+  SIZE(vpCollisionFilter); FIELD(vpCollisionFilter, categoryBits); FIELD(vpCollisionFilter, maskBits);
   SIZE(vpBodyProperties); FIELD(vpBodyProperties, structSize); FIELD(vpBodyProperties, mass);
   FIELD(vpBodyProperties, friction); FIELD(vpBodyProperties, restitution); FIELD(vpBodyProperties, linearDamping);
   FIELD(vpBodyProperties, angularDamping);
@@ -54,6 +56,7 @@ int main(void) {
   FIELD(vpDeformableDef, massDamping); FIELD(vpDeformableDef, stiffnessDamping); FIELD(vpDeformableDef, friction);
   FIELD(vpDeformableDef, solverTolerance); FIELD(vpDeformableDef, solverMaxIterations);
   FIELD(vpDeformableDef, userData); FIELD(vpDeformableDef, targetResidual); FIELD(vpDeformableDef, priority);
+  FIELD(vpDeformableDef, filter);
   SIZE(vpFluidId); FIELD(vpFluidId, index1); FIELD(vpFluidId, generation); FIELD(vpFluidId, world);
   SIZE(vpFluidRegion); FIELD(vpFluidRegion, type); FIELD(vpFluidRegion, centre); FIELD(vpFluidRegion, halfExtents);
   FIELD(vpFluidRegion, radius);
@@ -69,6 +72,7 @@ int main(void) {
   FIELD(vpFluidDef, emitters); FIELD(vpFluidDef, emitterCount); FIELD(vpFluidDef, drains);
   FIELD(vpFluidDef, drainCount); FIELD(vpFluidDef, twoWayCoupling); FIELD(vpFluidDef, userData);
   FIELD(vpFluidDef, kinematicViscosity); FIELD(vpFluidDef, priority);
+  FIELD(vpFluidDef, filter);
   SIZE(vpBuildInfo); FIELD(vpBuildInfo, cudaCompiled); FIELD(vpBuildInfo, cudaDeviceCount);
   FIELD(vpBuildInfo, hardwareThreads);
   return 0;
