@@ -4,6 +4,7 @@
 
 #include "capi_convert.h"
 #include "capi_copy_out.h"
+#include "capi_versioned_struct.h"
 #include "core/physical_limits.h"
 #include "world_registry.h"
 
@@ -12,8 +13,9 @@ using namespace vp::capi;
 
 namespace {
 
-Status translateShape(const vpShapeDef& in, ShapeDesc* out) {
-  VP_TRY(checkStructSize("vpShapeDef", in.structSize, sizeof(vpShapeDef)));
+Status translateShape(const vpShapeDef& given, ShapeDesc* out) {
+  vpShapeDef in;
+  VP_TRY(readVersioned("vpShapeDef", &given, vpDefaultShapeDef(), &in));
   out->type = static_cast<ShapeType>(rawEnum(in.type));
   out->radius = in.radius;
   out->halfHeight = in.halfHeight;
@@ -80,20 +82,21 @@ vpStatus vpColliderCreate(vpWorldId worldId, const vpColliderDef* def, vpCollide
     VP_REQUIRE_POINTER(outCollider);
     WorldLease world;
     VP_TRY(resolveWorld(worldId, &world));
-    VP_TRY(checkStructSize("vpColliderDef", def->structSize, sizeof(vpColliderDef)));
+    vpColliderDef d;  // the host's def, with an older header's missing fields at their defaults
+    VP_TRY(readVersioned("vpColliderDef", def, vpDefaultColliderDef(), &d));
     ColliderDesc desc;
-    desc.bodyType = static_cast<BodyType>(rawEnum(def->bodyType));
-    VP_TRY(translateShape(def->shape, &desc.shape));
-    desc.pose = toPose(def->pose);
-    desc.linearVelocity = toVec3(def->linearVelocity);
-    desc.angularVelocity = toVec3(def->angularVelocity);
-    desc.mass = def->mass;
-    desc.friction = def->friction;
-    desc.restitution = def->restitution;
-    desc.linearDamping = def->linearDamping;
-    desc.angularDamping = def->angularDamping;
-    desc.filter = toFilter(def->filter);
-    desc.userData = def->userData;
+    desc.bodyType = static_cast<BodyType>(rawEnum(d.bodyType));
+    VP_TRY(translateShape(d.shape, &desc.shape));
+    desc.pose = toPose(d.pose);
+    desc.linearVelocity = toVec3(d.linearVelocity);
+    desc.angularVelocity = toVec3(d.angularVelocity);
+    desc.mass = d.mass;
+    desc.friction = d.friction;
+    desc.restitution = d.restitution;
+    desc.linearDamping = d.linearDamping;
+    desc.angularDamping = d.angularDamping;
+    desc.filter = toFilter(d.filter);
+    desc.userData = d.userData;
     ColliderHandle h;
     VP_TRY(world->createCollider(std::move(desc), &h));
     *outCollider = makeColliderId(worldId, h);

@@ -64,7 +64,6 @@ vpStatus guarded(const char* function, Body&& body) {
 #define VP_REQUIRE_POINTER(p) \
   if (!(p)) return ::vp::fail(::vp::Status::InvalidArgument, "%s: " #p " is NULL", __func__)
 
-Status checkStructSize(const char* structName, uint32_t given, uint32_t expected);
 
 Status checkVec3(const char* field, const vpVec3& v);
 

@@ -2,6 +2,7 @@
 #include <cmath>
 
 #include "capi_convert.h"
+#include "capi_versioned_struct.h"
 #include "capi_copy_out.h"
 #include "deform/deformable_mesh_source.h"
 #include "world_registry.h"
@@ -88,26 +89,27 @@ vpStatus vpDeformableCreate(vpWorldId worldId, const vpDeformableDef* def, vpDef
     VP_REQUIRE_POINTER(out);
     WorldLease world;
     VP_TRY(resolveWorld(worldId, &world));
-    VP_TRY(checkStructSize("vpDeformableDef", def->structSize, sizeof(vpDeformableDef)));
+    vpDeformableDef d;  // the host's def, with an older header's missing fields at their defaults
+    VP_TRY(readVersioned("vpDeformableDef", def, vpDefaultDeformableDef(), &d));
     DeformableMeshSource source;
-    VP_TRY(translateMeshSource(*def, &source));
+    VP_TRY(translateMeshSource(d, &source));
     DeformableDesc desc;
     VP_TRY(resolveDeformableMesh(source, &desc));
-    desc.degree = def->degree;
-    desc.pose = toPose(def->pose);
-    desc.linearVelocity = toVec3(def->linearVelocity);
-    desc.material.youngsModulus = def->youngsModulus;
-    desc.material.poissonRatio = def->poissonRatio;
-    desc.material.density = def->density;
-    desc.material.massDamping = def->massDamping;
-    desc.material.stiffnessDamping = def->stiffnessDamping;
-    desc.material.friction = def->friction;
-    desc.solver.tolerance = def->solverTolerance;
-    desc.solver.maxIterations = def->solverMaxIterations;
-    desc.solver.targetResidual = def->targetResidual;
-    desc.priority = def->priority;
-    desc.filter = toFilter(def->filter);
-    desc.userData = def->userData;
+    desc.degree = d.degree;
+    desc.pose = toPose(d.pose);
+    desc.linearVelocity = toVec3(d.linearVelocity);
+    desc.material.youngsModulus = d.youngsModulus;
+    desc.material.poissonRatio = d.poissonRatio;
+    desc.material.density = d.density;
+    desc.material.massDamping = d.massDamping;
+    desc.material.stiffnessDamping = d.stiffnessDamping;
+    desc.material.friction = d.friction;
+    desc.solver.tolerance = d.solverTolerance;
+    desc.solver.maxIterations = d.solverMaxIterations;
+    desc.solver.targetResidual = d.targetResidual;
+    desc.priority = d.priority;
+    desc.filter = toFilter(d.filter);
+    desc.userData = d.userData;
     DeformableHandle h;
     VP_TRY(world->createDeformable(std::move(desc), &h));
     *out = makeDeformableId(worldId, h);
@@ -262,13 +264,13 @@ vpStatus vpDeformableGetStats(vpDeformableId id, vpActorStats* outStats) {
     WorldLease w;
     DeformableBody* d;
     VP_TRY(resolveDeformable(id, &w, &d));
-    *outStats = vpActorStats{};
-    outStats->kind = vpActorKind_Deformable;
-    outStats->index1 = id.index1;
+    vpActorStats stats = vpDefaultActorStats();
+    stats.kind = vpActorKind_Deformable;
+    stats.index1 = id.index1;
     for (const ActorStats& a : w->lastStats().actors)
       if (a.kind == ActorKind::Deformable && a.index1 == id.index1 && a.generation == handleOf(id).generation)
-        fillActorStats(a, outStats);
-    return Status::Ok;
+        fillActorStats(a, &stats);
+    return writeVersioned("vpActorStats", stats, outStats);
   });
 }
 

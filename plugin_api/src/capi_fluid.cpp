@@ -2,6 +2,7 @@
 #include <cmath>
 
 #include "capi_convert.h"
+#include "capi_versioned_struct.h"
 #include "capi_copy_out.h"
 #include "world_registry.h"
 
@@ -121,9 +122,10 @@ vpStatus vpFluidCreate(vpWorldId worldId, const vpFluidDef* def, vpFluidId* out)
     VP_REQUIRE_POINTER(out);
     WorldLease world;
     VP_TRY(resolveWorld(worldId, &world));
-    VP_TRY(checkStructSize("vpFluidDef", def->structSize, sizeof(vpFluidDef)));
+    vpFluidDef d;  // the host's def, with an older header's missing fields at their defaults
+    VP_TRY(readVersioned("vpFluidDef", def, vpDefaultFluidDef(), &d));
     FluidDesc desc;
-    VP_TRY(translateFluidDef(*def, &desc));
+    VP_TRY(translateFluidDef(d, &desc));
     FluidHandle h;
     VP_TRY(world->createFluid(std::move(desc), &h));
     *out = makeFluidId(worldId, h);
@@ -299,12 +301,12 @@ vpStatus vpFluidGetStats(vpFluidId id, vpActorStats* outStats) {
     WorldLease w;
     FluidActor* f;
     VP_TRY(resolveFluid(id, &w, &f));
-    *outStats = vpActorStats{};
-    outStats->kind = vpActorKind_Fluid;
-    outStats->index1 = id.index1;
+    vpActorStats stats = vpDefaultActorStats();
+    stats.kind = vpActorKind_Fluid;
+    stats.index1 = id.index1;
     for (const ActorStats& a : w->lastStats().actors)
-      if (a.kind == ActorKind::Fluid && a.index1 == id.index1 && a.generation == handleOf(id).generation) fillActorStats(a, outStats);
-    return Status::Ok;
+      if (a.kind == ActorKind::Fluid && a.index1 == id.index1 && a.generation == handleOf(id).generation) fillActorStats(a, &stats);
+    return writeVersioned("vpActorStats", stats, outStats);
   });
 }
 

@@ -13,14 +13,6 @@ using namespace vp::capi;
 
 namespace vp::capi {
 
-Status checkStructSize(const char* structName, uint32_t given, uint32_t expected) {
-  if (given != expected)
-    return fail(Status::VersionMismatch,
-                "%s.structSize = %u: expected %u (start from vpDefault%s(); is the header from another version?)",
-                structName, given, expected, structName + 2);
-  return Status::Ok;
-}
-
 Status checkVec3(const char* field, const vpVec3& v) {
   if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
     return fail(Status::InvalidArgument, "%s = (%g, %g, %g): must be finite", field, v.x, v.y, v.z);
@@ -46,7 +38,11 @@ vpStatus vpCheckHeaderVersion(uint32_t headerVersion, uint32_t worldDefSize) {
     if (major != VP_VERSION_MAJOR || !minorServed)
       return fail(Status::VersionMismatch, "header version %u.%u is not served by library version %d.%d.%d", major,
                   minor, VP_VERSION_MAJOR, VP_VERSION_MINOR, VP_VERSION_PATCH);
-    return checkStructSize("vpWorldDef", worldDefSize, sizeof(vpWorldDef));
+    // Same version, so the same layout: another size means another compiler's packing.
+    if (worldDefSize != sizeof(vpWorldDef))
+      return fail(Status::VersionMismatch, "vpWorldDef.structSize = %u: this library's is %zu (same header version, "
+                  "other packing?)", worldDefSize, sizeof(vpWorldDef));
+    return Status::Ok;
   });
 }
 

@@ -1,5 +1,6 @@
 // Host control of rigid bodies after creation: loads, impulses, material and mass, sleeping.
 #include "capi_convert.h"
+#include "capi_versioned_struct.h"
 #include "core/physical_limits.h"
 #include "world_registry.h"
 
@@ -25,6 +26,18 @@ Status momentAbout(const Collider& c, const Vec3& load, const vpVec3* point, Vec
   VP_TRY(checkPosition("point", p));
   *torque = (p - c.pose().position).cross(load);
   return Status::Ok;
+}
+
+vpBodyProperties propertiesOf(const Collider& c) {
+  const BodyProperties p = c.properties();
+  vpBodyProperties out{};
+  out.structSize = sizeof out;
+  out.mass = c.bodyType() == BodyType::Dynamic ? static_cast<float>(p.mass) : 0.0f;
+  out.friction = static_cast<float>(p.friction);
+  out.restitution = static_cast<float>(p.restitution);
+  out.linearDamping = static_cast<float>(p.linearDamping);
+  out.angularDamping = static_cast<float>(p.angularDamping);
+  return out;
 }
 
 // A force or an impulse, with the torque or angular impulse its point adds.
@@ -83,33 +96,27 @@ vpStatus vpColliderApplyAngularImpulse(vpColliderId id, vpVec3 angularImpulse) {
 vpStatus vpColliderGetProperties(vpColliderId id, vpBodyProperties* outProperties) {
   return guarded(__func__, [&] {
     VP_REQUIRE_POINTER(outProperties);
-    VP_TRY(checkStructSize("vpBodyProperties", outProperties->structSize, sizeof(vpBodyProperties)));
     WorldLease w;
     Collider* c;
     VP_TRY(resolveCollider(id, &w, &c));
-    const BodyProperties p = c->properties();
-    outProperties->mass = c->bodyType() == BodyType::Dynamic ? static_cast<float>(p.mass) : 0.0f;
-    outProperties->friction = static_cast<float>(p.friction);
-    outProperties->restitution = static_cast<float>(p.restitution);
-    outProperties->linearDamping = static_cast<float>(p.linearDamping);
-    outProperties->angularDamping = static_cast<float>(p.angularDamping);
-    return Status::Ok;
+    return writeVersioned("vpBodyProperties", propertiesOf(*c), outProperties);
   });
 }
 
 vpStatus vpColliderSetProperties(vpColliderId id, const vpBodyProperties* properties) {
   return guarded(__func__, [&] {
     VP_REQUIRE_POINTER(properties);
-    VP_TRY(checkStructSize("vpBodyProperties", properties->structSize, sizeof(vpBodyProperties)));
     WorldLease w;
     Collider* c;
     VP_TRY(resolveCollider(id, &w, &c));
+    vpBodyProperties given;  // an older header's missing fields keep their current values
+    VP_TRY(readVersioned("vpBodyProperties", properties, propertiesOf(*c), &given));
     BodyProperties p = c->properties();
-    if (c->bodyType() == BodyType::Dynamic) p.mass = properties->mass;
-    p.friction = properties->friction;
-    p.restitution = properties->restitution;
-    p.linearDamping = properties->linearDamping;
-    p.angularDamping = properties->angularDamping;
+    if (c->bodyType() == BodyType::Dynamic) p.mass = given.mass;
+    p.friction = given.friction;
+    p.restitution = given.restitution;
+    p.linearDamping = given.linearDamping;
+    p.angularDamping = given.angularDamping;
     VP_TRY(validateBodyProperties(c->bodyType(), p));
     c->setProperties(p);
     return Status::Ok;

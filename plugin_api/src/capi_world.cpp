@@ -2,6 +2,7 @@
 #include <type_traits>
 
 #include "capi_convert.h"
+#include "capi_versioned_struct.h"
 #include "scene/scene_loader.h"
 #include "world_registry.h"
 
@@ -25,20 +26,21 @@ vpStatus vpWorldCreate(const vpWorldDef* def, vpWorldId* outWorld) {
   return guarded(__func__, [&] {
     VP_REQUIRE_POINTER(def);
     VP_REQUIRE_POINTER(outWorld);
-    VP_TRY(checkStructSize("vpWorldDef", def->structSize, sizeof(vpWorldDef)));
-    VP_TRY(checkVec3("gravity", def->gravity));
+    vpWorldDef d;  // the host's def, with an older header's missing fields at their defaults
+    VP_TRY(readVersioned("vpWorldDef", def, vpDefaultWorldDef(), &d));
+    VP_TRY(checkVec3("gravity", d.gravity));
     WorldConfig config;
-    config.gravity = toVec3(def->gravity);
-    config.workerCount = def->workerCount;
-    config.frameBudgetMs = def->frameBudgetMs;
-    config.rigidMaxSubstep = def->rigidMaxSubstep;
+    config.gravity = toVec3(d.gravity);
+    config.workerCount = d.workerCount;
+    config.frameBudgetMs = d.frameBudgetMs;
+    config.rigidMaxSubstep = d.rigidMaxSubstep;
     static_assert(std::is_same_v<EnqueueTaskFn, vpEnqueueTaskFn*>, "task hook types must match");
-    config.tasks.enqueue = def->enqueueTask;
-    config.tasks.finish = def->finishTask;
-    config.tasks.userContext = def->userTaskContext;
-    config.clock.now = def->clock;
-    config.clock.context = def->clockContext;
-    config.userData = def->userData;
+    config.tasks.enqueue = d.enqueueTask;
+    config.tasks.finish = d.finishTask;
+    config.tasks.userContext = d.userTaskContext;
+    config.clock.now = d.clock;
+    config.clock.context = d.clockContext;
+    config.userData = d.userData;
     std::unique_ptr<World> world;
     VP_TRY(World::create(config, &world));
     return registerWorld(std::move(world), outWorld);
@@ -106,26 +108,32 @@ vpStepStats vpDefaultStepStats(void) {
   return s;
 }
 
+vpActorStats vpDefaultActorStats(void) {
+  vpActorStats s{};
+  s.structSize = sizeof(vpActorStats);
+  return s;
+}
+
 vpStatus vpWorldGetStepStats(vpWorldId id, vpStepStats* out) {
   return guarded(__func__, [&] {
     VP_REQUIRE_POINTER(out);
-    VP_TRY(checkStructSize("vpStepStats", out->structSize, sizeof(vpStepStats)));
     WorldLease w;
     VP_TRY(resolveWorld(id, &w));
     const StepStats& s = w->lastStats();
-    out->stepIndex = s.stepIndex;
-    out->dt = static_cast<float>(s.dt);
-    out->totalMs = static_cast<float>(s.totalMs);
-    out->budgetMs = static_cast<float>(s.budgetMs);
-    out->budgetCut = s.budgetCut ? 1 : 0;
-    out->actorCount = static_cast<int32_t>(s.actors.size());
-    out->colliderCount = s.colliderCount;
-    out->rigidSubsteps = s.rigidSubsteps;
-    out->fluidInterval = s.fluidInterval;
-    out->overBudgetMs = static_cast<float>(s.overBudgetMs);
-    out->budgetInfeasible = s.budgetInfeasible ? 1 : 0;
-    out->maxSliceMs = static_cast<float>(s.maxSliceMs);
-    return Status::Ok;
+    vpStepStats stats = vpDefaultStepStats();
+    stats.stepIndex = s.stepIndex;
+    stats.dt = static_cast<float>(s.dt);
+    stats.totalMs = static_cast<float>(s.totalMs);
+    stats.budgetMs = static_cast<float>(s.budgetMs);
+    stats.budgetCut = s.budgetCut ? 1 : 0;
+    stats.actorCount = static_cast<int32_t>(s.actors.size());
+    stats.colliderCount = s.colliderCount;
+    stats.rigidSubsteps = s.rigidSubsteps;
+    stats.fluidInterval = s.fluidInterval;
+    stats.overBudgetMs = static_cast<float>(s.overBudgetMs);
+    stats.budgetInfeasible = s.budgetInfeasible ? 1 : 0;
+    stats.maxSliceMs = static_cast<float>(s.maxSliceMs);
+    return writeVersioned("vpStepStats", stats, out);
   });
 }
 
@@ -137,8 +145,9 @@ vpStatus vpWorldGetActorStats(vpWorldId id, int32_t actorIndex, vpActorStats* ou
     const StepStats& s = w->lastStats();
     if (actorIndex < 0 || actorIndex >= static_cast<int32_t>(s.actors.size()))
       return fail(Status::InvalidArgument, "actorIndex = %d: must be in [0, %zu)", actorIndex, s.actors.size());
-    fillActorStats(s.actors[static_cast<size_t>(actorIndex)], out);
-    return Status::Ok;
+    vpActorStats stats;
+    fillActorStats(s.actors[static_cast<size_t>(actorIndex)], &stats);
+    return writeVersioned("vpActorStats", stats, out);
   });
 }
 

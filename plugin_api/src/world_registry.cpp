@@ -163,7 +163,7 @@ Status resolveFluid(vpFluidId id, WorldLease* world, FluidActor** out) {
 }
 
 void fillActorStats(const ActorStats& in, vpActorStats* out) {
-  *out = vpActorStats{};
+  *out = vpDefaultActorStats();
   out->kind = static_cast<vpActorKind>(in.kind);
   out->index1 = in.index1;
   out->totalMs = static_cast<float>(in.totalMs);

@@ -15,7 +15,7 @@ int hudStatsLines(vpWorldId world, char lines[HUD_MAX_LINES][HUD_LINE_CHARS]) {
            step.totalMs, step.budgetMs, step.budgetMs <= 0.0f ? " (unlimited)" : step.budgetCut ? "  CUT" : "",
            step.budgetInfeasible ? "  INFEASIBLE" : step.fluidInterval > 1 ? "  fluid steps span frames" : "");
   for (a = 0; a < step.actorCount && n < HUD_MAX_LINES; ++a) {
-    vpActorStats s;
+    vpActorStats s = vpDefaultActorStats();
     size_t used;
     int p;
     char* line = lines[n++];

@@ -170,7 +170,7 @@ static void writeStatsHeader(FILE* csv, vpWorldId world, int actorCount) {
           "fluid_fractions_ms,fluid_pressure_ms,fluid_pressure_iters,fluid_pressure_max_residual,fluid_surface_ms,"
           "fluid_interval,diverged");
   for (a = 1; a < actorCount; ++a) {
-    vpActorStats s;
+    vpActorStats s = vpDefaultActorStats();
     const ActorColumns* c;
     int k;
     if (vpWorldGetActorStats(world, a, &s) != vpStatus_Ok || !(c = actorColumns(s.kind))) continue;
@@ -189,7 +189,7 @@ static void writeStatsHeader(FILE* csv, vpWorldId world, int actorCount) {
 static void writeActorColumns(FILE* csv, vpWorldId world, int actorCount) {
   int a, p;
   for (a = 1; a < actorCount; ++a) {
-    vpActorStats s;
+    vpActorStats s = vpDefaultActorStats();
     const ActorColumns* c;
     if (vpWorldGetActorStats(world, a, &s) != vpStatus_Ok || !(c = actorColumns(s.kind))) continue;
     fprintf(csv, ",%.4f", s.totalMs);
@@ -227,7 +227,7 @@ static int run(vpWorldId world, const Options* o) {
 
   printf("volphys_host: scene %s, %d frames, dt %.5f s, %d workers\n", o->scene, o->frames, o->dt, o->workers);
   for (frame = 0; frame < o->frames; ++frame) {
-    vpActorStats rigid;
+    vpActorStats rigid = vpDefaultActorStats();
     DeformSummary deform;
     FluidSummary fluid;
     double t0 = wallMs(), wall;

@@ -15,7 +15,7 @@ static int startActors(RunSummary* r, vpWorldId world, int actorCount) {
   r->actors = (ActorIntervals*)calloc((size_t)(r->actorCount > 0 ? r->actorCount : 1), sizeof *r->actors);
   if (!r->actors) return 0;
   for (a = 0; a < r->actorCount; ++a) {
-    vpActorStats s;
+    vpActorStats s = vpDefaultActorStats();
     if (vpWorldGetActorStats(world, a + 1, &s) != vpStatus_Ok) s.kind = vpActorKind_Rigid;
     r->actors[a].kind = s.kind;
     r->actors[a].minInterval = r->actors[a].maxInterval = -1;
@@ -31,7 +31,7 @@ int runSummaryAdd(RunSummary* r, vpWorldId world, const vpStepStats* step) {
   if (step->budgetMs > 0.0f && step->totalMs > RUN_SUMMARY_OVER_BUDGET_FACTOR * step->budgetMs) ++r->overBudgetFrames;
   for (a = 0; a < r->actorCount && a + 1 < step->actorCount; ++a) {
     ActorIntervals* i = &r->actors[a];
-    vpActorStats s;
+    vpActorStats s = vpDefaultActorStats();
     if (vpWorldGetActorStats(world, a + 1, &s) != vpStatus_Ok || s.kind != i->kind) continue;
     if (i->minInterval < 0 || s.interval < i->minInterval) i->minInterval = s.interval;
     if (s.interval > i->maxInterval) i->maxInterval = s.interval;

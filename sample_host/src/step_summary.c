@@ -6,7 +6,7 @@ void summarizeDeformables(vpWorldId world, int actorCount, DeformSummary* out) {
   int a;
   memset(out, 0, sizeof *out);
   for (a = 1; a < actorCount; ++a) {
-    vpActorStats s;
+    vpActorStats s = vpDefaultActorStats();
     if (vpWorldGetActorStats(world, a, &s) != vpStatus_Ok || s.kind != vpActorKind_Deformable) continue;
     out->ms += s.totalMs;
     out->solveMs += s.phases[vpPhase_Solve].ms;
@@ -20,7 +20,7 @@ void summarizeFluids(vpWorldId world, int actorCount, FluidSummary* out) {
   int a;
   memset(out, 0, sizeof *out);
   for (a = 1; a < actorCount; ++a) {
-    vpActorStats s;
+    vpActorStats s = vpDefaultActorStats();
     const vpPhaseStats* pressure;
     if (vpWorldGetActorStats(world, a, &s) != vpStatus_Ok || s.kind != vpActorKind_Fluid) continue;
     pressure = &s.phases[vpPhase_Pressure];

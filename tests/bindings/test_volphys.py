@@ -553,12 +553,13 @@ class FramePlanFields(unittest.TestCase):
             self.assertGreaterEqual(stats.residual, 0.0)
 
     def test_actor_stats_struct_is_the_size_the_library_writes(self):
-        # vpActorStats has no structSize for the import check: the library must fill exactly
-        # the bytes of the ctypes mirror, no more (a short mirror) and no fewer (a long one).
+        # The library fills exactly the structSize bytes of the ctypes mirror, no more (a short
+        # mirror) and no fewer (a long one).
         self.world.create_deformable(vertices=self.verts, tets=self.tets, priority=-9)
         self.world.step(DT)
         size = ctypes.sizeof(T.vpActorStats)
         buffer = (ctypes.c_uint8 * (size + 16))(*([0xAB] * (size + 16)))
+        ctypes.c_uint32.from_buffer(buffer).value = size
         volphys._call("vpWorldGetActorStats", self.world.id, 1, ctypes.cast(buffer, ctypes.POINTER(T.vpActorStats)))
         self.assertEqual(list(buffer[size:]), [0xAB] * 16)
         # Every field is 4 bytes wide, so there is no padding: every word was written.

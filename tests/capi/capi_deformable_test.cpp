@@ -55,7 +55,7 @@ TEST(CApiDeformable, CreateStepReadAndDestroy) {
   // Free fall for 0.5 s: backward Euler gives v = -g t exactly for a rigidly falling body.
   for (int i = 0; i < nodes; ++i) EXPECT_NEAR(v[3 * i + 1], -9.81f * 0.5f, 1e-3f);
   EXPECT_LT(x[1], 5.0f - 1.0f);
-  vpActorStats stats;
+  vpActorStats stats = vpDefaultActorStats();
   ASSERT_VP_OK(vpDeformableGetStats(id, &stats));
   EXPECT_EQ(stats.kind, vpActorKind_Deformable);
   EXPECT_GE(stats.phases[vpPhase_Solve].iterations, 0);
@@ -161,7 +161,7 @@ TEST(CApiDeformable, DefRejectsBadValuesAndAddsNothing) {
     vpStatus status;
     void (*mutate)(vpDeformableDef&);
   } cases[] = {
-      {"vpDeformableDef.structSize", vpStatus_VersionMismatch, [](vpDeformableDef& d) { d.structSize = 8; }},
+      {"vpDeformableDef.structSize = 6", vpStatus_VersionMismatch, [](vpDeformableDef& d) { d.structSize = 6; }},
       {"youngsModulus = 0", vpStatus_InvalidArgument, [](vpDeformableDef& d) { d.youngsModulus = 0; }},
       {"poissonRatio = 0.6", vpStatus_InvalidArgument, [](vpDeformableDef& d) { d.poissonRatio = 0.6f; }},
       {"density = -1", vpStatus_InvalidArgument, [](vpDeformableDef& d) { d.density = -1; }},

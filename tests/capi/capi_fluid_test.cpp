@@ -54,7 +54,7 @@ TEST(CApiFluid, SmokeWithAnEmitterAndASphereRisesAndReportsStats) {
   ASSERT_VP_OK(vpFluidSampleVelocity(fluid, &probe, 1, &v));
   EXPECT_GT(v.y, 0.1f);
 
-  vpActorStats stats{};
+  vpActorStats stats = vpDefaultActorStats();
   ASSERT_VP_OK(vpFluidGetStats(fluid, &stats));
   EXPECT_EQ(stats.kind, vpActorKind_Fluid);
   EXPECT_GT(stats.phases[vpPhase_Pressure].iterations, 0);
@@ -109,7 +109,7 @@ TEST(CApiFluid, BadDefinitionsNameTheFieldAndCreateNothing) {
        [](vpFluidDef& d, vpFluidEmitter*) { d.priority = 1000001; }},
       {"priority = -1000001: must be in [-1000000, 1000000]",
        [](vpFluidDef& d, vpFluidEmitter*) { d.priority = -1000001; }},
-      {"structSize", [](vpFluidDef& d, vpFluidEmitter*) { d.structSize = 8; }},
+      {"vpFluidDef.structSize = 6", [](vpFluidDef& d, vpFluidEmitter*) { d.structSize = 6; }},
   };
   for (const Case& c : cases) {
     vpFluidDef def = smallSmoke();
@@ -235,7 +235,7 @@ TEST(CApiFluid, BadViscosityIsNamedAndChangesNothing) {
   vpFluidId viscous{};
   ASSERT_VP_OK(vpFluidCreate(w.id, &def, &viscous));
   for (int s = 0; s < 3; ++s) ASSERT_VP_OK(vpWorldStep(w.id, 1.0f / 60.0f));
-  vpActorStats before{};
+  vpActorStats before = vpDefaultActorStats();
   ASSERT_VP_OK(vpFluidGetStats(viscous, &before));
   EXPECT_GT(before.phases[vpPhase_Viscosity].iterations, 0);
   const struct {
@@ -256,7 +256,7 @@ TEST(CApiFluid, BadViscosityIsNamedAndChangesNothing) {
   int32_t count = -1;
   ASSERT_VP_OK(vpWorldGetFluidCount(w.id, &count));
   EXPECT_EQ(count, 1);
-  vpActorStats after{};
+  vpActorStats after = vpDefaultActorStats();
   ASSERT_VP_OK(vpFluidGetStats(viscous, &after));
   EXPECT_EQ(after.phases[vpPhase_Viscosity].iterations, before.phases[vpPhase_Viscosity].iterations);
 }

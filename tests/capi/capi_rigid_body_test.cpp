@@ -190,7 +190,7 @@ TEST(CApiRigidBody, BadLoadsAndPropertiesAreNamedAndChangeNothing) {
     vpStatus status;
     void (*mutate)(vpBodyProperties&);
   } cases[] = {
-      {"vpBodyProperties.structSize", vpStatus_VersionMismatch, [](vpBodyProperties& p) { p.structSize = 4; }},
+      {"vpBodyProperties.structSize = 6", vpStatus_VersionMismatch, [](vpBodyProperties& p) { p.structSize = 6; }},
       {"mass = 0", vpStatus_InvalidArgument, [](vpBodyProperties& p) { p.mass = 0; }},
       {"mass = nan", vpStatus_InvalidArgument, [](vpBodyProperties& p) { p.mass = NAN; }},
       {"mass = 1e+12", vpStatus_InvalidArgument, [](vpBodyProperties& p) { p.mass = 1e12f; }},

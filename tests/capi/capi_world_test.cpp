@@ -44,7 +44,7 @@ TEST(CApiWorld, CreateStepDestroy) {
   EXPECT_EQ(stats.actorCount, 1);
   EXPECT_EQ(stats.rigidSubsteps, 2);
   EXPECT_GE(stats.totalMs, 0.0f);
-  vpActorStats rigid;
+  vpActorStats rigid = vpDefaultActorStats();
   ASSERT_VP_OK(vpWorldGetActorStats(world, 0, &rigid));
   EXPECT_EQ(rigid.kind, vpActorKind_Rigid);
   EXPECT_GE(rigid.phases[vpPhase_Rigid].ms, 0.0f);
@@ -99,8 +99,9 @@ TEST(CApiWorld, StepAndActorStatsCarryTheFramePlanFields) {
   const int32_t expectedPriority[3] = {0, 7, -3};
   const vpActorKind expectedKind[3] = {vpActorKind_Rigid, vpActorKind_Deformable, vpActorKind_Fluid};
   for (int32_t a = 0; a < step.actorCount; ++a) {
-    vpActorStats s;
+    vpActorStats s = vpDefaultActorStats();
     std::memset(&s, 0xFF, sizeof s);  // every field must be written
+    s.structSize = sizeof s;
     ASSERT_VP_OK(vpWorldGetActorStats(w.id, a, &s));
     EXPECT_EQ(s.kind, expectedKind[a]);
     EXPECT_EQ(s.priority, expectedPriority[a]) << "actor " << a;
@@ -112,7 +113,7 @@ TEST(CApiWorld, StepAndActorStatsCarryTheFramePlanFields) {
     EXPECT_TRUE(s.floorMissed == 0 || s.floorMissed == 1) << s.floorMissed;
   }
   // The per-actor getters give the same record.
-  vpActorStats byId;
+  vpActorStats byId = vpDefaultActorStats();
   ASSERT_VP_OK(vpDeformableGetStats(jellyId, &byId));
   EXPECT_EQ(byId.priority, 7);
   EXPECT_EQ(byId.interval, 1);

@@ -58,7 +58,7 @@ namespace VolPhys
 
         public vpActorStats Stats
         {
-            get { vpActorStats s; VolPhysException.Check(Native.vpDeformableGetStats(Id, out s), "vpDeformableGetStats"); return s; }
+            get { vpActorStats s = Native.vpDefaultActorStats(); VolPhysException.Check(Native.vpDeformableGetStats(Id, ref s), "vpDeformableGetStats"); return s; }
         }
 
         public void Destroy() { VolPhysException.Check(Native.vpDeformableDestroy(Id), "vpDeformableDestroy"); }

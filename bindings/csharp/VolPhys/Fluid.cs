@@ -87,7 +87,7 @@ namespace VolPhys
 
         public vpActorStats Stats
         {
-            get { vpActorStats s; VolPhysException.Check(Native.vpFluidGetStats(Id, out s), "vpFluidGetStats"); return s; }
+            get { vpActorStats s = Native.vpDefaultActorStats(); VolPhysException.Check(Native.vpFluidGetStats(Id, ref s), "vpFluidGetStats"); return s; }
         }
 
         public void Destroy() { VolPhysException.Check(Native.vpFluidDestroy(Id), "vpFluidDestroy"); }

@@ -34,8 +34,9 @@ namespace VolPhys
         [DllImport(Library)] public static extern Status vpWorldLoadScene(vpWorldId world, [MarshalAs(UnmanagedType.LPStr)] string path);
 
         [DllImport(Library)] public static extern vpStepStats vpDefaultStepStats();
+        [DllImport(Library)] public static extern vpActorStats vpDefaultActorStats();
         [DllImport(Library)] public static extern Status vpWorldGetStepStats(vpWorldId world, ref vpStepStats stats);
-        [DllImport(Library)] public static extern Status vpWorldGetActorStats(vpWorldId world, int actorIndex, out vpActorStats stats);
+        [DllImport(Library)] public static extern Status vpWorldGetActorStats(vpWorldId world, int actorIndex, ref vpActorStats stats);
 
         [DllImport(Library)] public static extern vpShapeDef vpDefaultShapeDef();
         [DllImport(Library)] public static extern vpColliderDef vpDefaultColliderDef();
@@ -89,7 +90,7 @@ namespace VolPhys
         [DllImport(Library)] public static extern Status vpDeformableGetRenderMeshSize(vpDeformableId deformable, out int vertexCount, out int triangleCount);
         [DllImport(Library)] public static extern Status vpDeformableGetRenderMesh(vpDeformableId deformable, [Out] float[] positions, [Out] float[] normals,
                                                                                   int vertexCapacity, [Out] int[] triangles, int triangleCapacity);
-        [DllImport(Library)] public static extern Status vpDeformableGetStats(vpDeformableId deformable, out vpActorStats stats);
+        [DllImport(Library)] public static extern Status vpDeformableGetStats(vpDeformableId deformable, ref vpActorStats stats);
         [DllImport(Library)] public static extern Status vpWorldGetDeformableCount(vpWorldId world, out int count);
         [DllImport(Library)] public static extern Status vpWorldGetDeformables(vpWorldId world, [Out] vpDeformableId[] ids, int capacity, out int count);
         [DllImport(Library)] public static extern Status vpWorldFindDeformable(vpWorldId world, [MarshalAs(UnmanagedType.LPStr)] string name, out vpDeformableId deformable);
@@ -108,7 +109,7 @@ namespace VolPhys
         [DllImport(Library)] public static extern Status vpFluidGetSurfaceMesh(vpFluidId fluid, [Out] float[] positions, [Out] float[] normals,
                                                                               int vertexCapacity, [Out] int[] triangles, int triangleCapacity);
         [DllImport(Library)] public static extern Status vpFluidGetAmount(vpFluidId fluid, out float amount);
-        [DllImport(Library)] public static extern Status vpFluidGetStats(vpFluidId fluid, out vpActorStats stats);
+        [DllImport(Library)] public static extern Status vpFluidGetStats(vpFluidId fluid, ref vpActorStats stats);
         [DllImport(Library)] public static extern Status vpWorldGetFluidCount(vpWorldId world, out int count);
         [DllImport(Library)] public static extern Status vpWorldGetFluids(vpWorldId world, [Out] vpFluidId[] ids, int capacity, out int count);
         [DllImport(Library)] public static extern Status vpWorldFindFluid(vpWorldId world, [MarshalAs(UnmanagedType.LPStr)] string name, out vpFluidId fluid);

@@ -119,6 +119,7 @@ namespace VolPhys
     [StructLayout(LayoutKind.Sequential)]
     public unsafe struct vpActorStats
     {
+        public uint structSize;
         public ActorKind kind;
         public uint index1;
         public float totalMs;

@@ -49,8 +49,8 @@ namespace VolPhys
 
         public vpActorStats ActorStats(int actorIndex)
         {
-            vpActorStats s;
-            VolPhysException.Check(Native.vpWorldGetActorStats(Id, actorIndex, out s), "vpWorldGetActorStats");
+            vpActorStats s = Native.vpDefaultActorStats();
+            VolPhysException.Check(Native.vpWorldGetActorStats(Id, actorIndex, ref s), "vpWorldGetActorStats");
             return s;
         }
 

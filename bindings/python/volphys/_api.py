@@ -34,6 +34,7 @@ _PROTOTYPES = {
     "vpWorldStep": (_S, [T.vpWorldId, c_float]),
     "vpWorldLoadScene": (_S, [T.vpWorldId, c_char_p]),
     "vpDefaultStepStats": (T.vpStepStats, []),
+    "vpDefaultActorStats": (T.vpActorStats, []),
     "vpWorldGetStepStats": (_S, [T.vpWorldId, _P(T.vpStepStats)]),
     "vpWorldGetActorStats": (_S, [T.vpWorldId, c_int32, _P(T.vpActorStats)]),
     "vpDefaultShapeDef": (T.vpShapeDef, []),
@@ -146,6 +147,7 @@ def _check_struct_sizes():
     # Every struct with a structSize default tells us the library's sizeof.
     mismatches = []
     for fn, struct in (("vpDefaultWorldDef", T.vpWorldDef), ("vpDefaultStepStats", T.vpStepStats),
+                       ("vpDefaultActorStats", T.vpActorStats),
                        ("vpDefaultShapeDef", T.vpShapeDef), ("vpDefaultColliderDef", T.vpColliderDef),
                        ("vpDefaultDeformableDef", T.vpDeformableDef), ("vpDefaultFluidDef", T.vpFluidDef)):
         lib_size = getattr(lib, fn)().structSize

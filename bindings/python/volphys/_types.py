@@ -170,6 +170,7 @@ class vpPhaseStats(ctypes.Structure):
 
 class vpActorStats(ctypes.Structure):
     _fields_ = [
+        ("structSize", c_uint32),
         ("kind", c_enum),
         ("index1", c_uint32),
         ("totalMs", c_float),

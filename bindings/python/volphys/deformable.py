@@ -4,7 +4,7 @@ from ctypes import c_float, c_int32
 
 from . import _arrays
 from . import _types as T
-from ._api import call
+from ._api import call, lib
 from ._handle import ActorHandle
 from .stats import ActorStats
 
@@ -69,6 +69,6 @@ class Deformable(ActorHandle):
         return self._read_mesh("vpDeformableGetRenderMeshSize", "vpDeformableGetRenderMesh")
 
     def stats(self):
-        s = T.vpActorStats()
+        s = lib.vpDefaultActorStats()
         call("vpDeformableGetStats", self._id, ctypes.byref(s))
         return ActorStats._from_c(s)

@@ -7,7 +7,7 @@ from ctypes import c_float, c_int32
 
 from . import _arrays
 from . import _types as T
-from ._api import call
+from ._api import call, lib
 from ._handle import ActorHandle
 from .stats import ActorStats
 
@@ -92,7 +92,7 @@ class Fluid(ActorHandle):
         return a.value
 
     def stats(self):
-        s = T.vpActorStats()
+        s = lib.vpDefaultActorStats()
         call("vpFluidGetStats", self._id, ctypes.byref(s))
         return ActorStats._from_c(s)
 

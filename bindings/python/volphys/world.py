@@ -174,7 +174,7 @@ class World:
         n = self.stats().actor_count
         out = []
         for i in range(n):
-            s = T.vpActorStats()
+            s = lib.vpDefaultActorStats()
             call("vpWorldGetActorStats", self._id, i, ctypes.byref(s))
             out.append(ActorStats._from_c(s))
         return out

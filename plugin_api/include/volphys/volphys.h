@@ -11,7 +11,17 @@
  *   deformable or fluid id carries its kind in the top two bits of its generation, so one
  *   kind's id reinterpreted as another's is InvalidId too.
  * - Creation takes an XxxDef struct. Always start from vpDefaultXxxDef() and then change
- *   fields: the structSize field lets the library detect a header/library mismatch.
+ *   fields.
+ * - Versioned structs (those with a structSize: the defs, vpStepStats, vpActorStats,
+ *   vpBodyProperties) only ever grow by fields appended at the end, so an older header's
+ *   struct is a prefix of this one. The library accepts a structSize equal to its own sizeof or
+ *   to the offset where one of its fields begins (the size of an older header's struct). A
+ *   struct it reads (defs, vpColliderSetProperties) is read up to structSize only, the missing
+ *   fields taking their defaults (for properties: their current values); a struct it fills
+ *   (stats, vpColliderGetProperties) is written up to structSize only. A larger structSize (a
+ *   header newer than the library), or one that ends inside a field, is VersionMismatch naming
+ *   the struct. Set structSize from vpDefaultXxx() or sizeof. vpShapeDef is embedded in
+ *   vpColliderDef, so it will not grow within a major version.
  * - Units are SI (metres, seconds, kilograms, pascals). Y is up only by the default gravity.
  *   Values are range-checked where they enter (defs, setters, scene files): positions within
  *   +-1e6 m, lengths (radii, half extents, cell sizes) in [1e-6, 1e5] m, masses in [1e-6, 1e9]
@@ -284,6 +294,7 @@ typedef enum vpActorKind {
 } vpActorKind;
 
 typedef struct vpActorStats {
+  uint32_t structSize;
   vpActorKind kind;
   uint32_t index1;    /* the actor id's index1 (0 for the rigid pseudo-actor) */
   float totalMs;
@@ -324,6 +335,7 @@ typedef struct vpStepStats {
 } vpStepStats;
 
 VP_API vpStepStats vpDefaultStepStats(void);
+VP_API vpActorStats vpDefaultActorStats(void);
 /* Statistics of the last completed step. */
 VP_API vpStatus vpWorldGetStepStats(vpWorldId world, vpStepStats* outStats);
 /* Per-actor statistics of the last step; actorIndex in [0, actorCount). Entry 0 is the rigid

@@ -83,6 +83,7 @@ static class VolPhysTests
         Check(Native.vpDefaultColliderDef().structSize == Marshal.SizeOf(typeof(vpColliderDef)), "vpColliderDef.structSize");
         Check(Native.vpDefaultDeformableDef().structSize == Marshal.SizeOf(typeof(vpDeformableDef)), "vpDeformableDef.structSize");
         Check(Native.vpDefaultStepStats().structSize == Marshal.SizeOf(typeof(vpStepStats)), "vpStepStats.structSize");
+        Check(Native.vpDefaultActorStats().structSize == Marshal.SizeOf(typeof(vpActorStats)), "vpActorStats.structSize");
         Check(Native.vpDefaultFluidDef().structSize == Marshal.SizeOf(typeof(vpFluidDef)), "vpFluidDef.structSize");
     }
 

@@ -23,7 +23,7 @@ int main(void) {
   FIELD(vpWorldDef, clockContext); FIELD(vpWorldDef, userData);
   SIZE(vpPhaseStats); FIELD(vpPhaseStats, ms); FIELD(vpPhaseStats, iterations); FIELD(vpPhaseStats, residual);
   FIELD(vpPhaseStats, budgetCut);
-  SIZE(vpActorStats); FIELD(vpActorStats, kind); FIELD(vpActorStats, index1); FIELD(vpActorStats, totalMs);
+  SIZE(vpActorStats); FIELD(vpActorStats, structSize); FIELD(vpActorStats, kind); FIELD(vpActorStats, index1); FIELD(vpActorStats, totalMs);
   FIELD(vpActorStats, diverged); FIELD(vpActorStats, phases); FIELD(vpActorStats, simulatedDt);
   FIELD(vpActorStats, interval); FIELD(vpActorStats, completedStep); FIELD(vpActorStats, progress);
   FIELD(vpActorStats, slices); FIELD(vpActorStats, residual); FIELD(vpActorStats, priority);
