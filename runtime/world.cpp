@@ -155,6 +155,13 @@ std::vector<ColliderHandle> World::colliderHandles() const { return handlesOf(co
 bool World::findCollider(const std::string& name, ColliderHandle* out) const {
   return findByName(colliders_, name, out);
 }
+bool World::colliderHandleOf(const Collider* collider, ColliderHandle* out) const {
+  bool found = false;
+  colliders_.forEach([&](ColliderHandle h, const Collider& c) {
+    if (&c == collider) *out = h, found = true;
+  });
+  return found;
+}
 
 Status World::setGravity(const Vec3& gravity) {
   VP_TRY(validateGravity(gravity));

@@ -59,6 +59,8 @@ class World {
   std::vector<ColliderHandle> colliderHandles() const;  // slot order
   size_t colliderCount() const { return colliders_.size(); }
   bool findCollider(const std::string& name, ColliderHandle* out) const;
+  bool colliderHandleOf(const Collider* collider, ColliderHandle* out) const;
+  CollisionWorld& collisionWorld() { return collision_; }  // scene queries read Bullet's world
 
   Status createDeformable(DeformableDesc desc, DeformableHandle* out);
   Status destroyDeformable(DeformableHandle handle);

@@ -185,11 +185,46 @@ class Rigid(unittest.TestCase):
             self.assertEqual(fluid.collision_filter.mask, 1)
 
 
+    def test_rays_and_overlaps_find_colliders(self):
+        with volphys.World(frame_budget_ms=0) as w:
+            ball = w.create_collider(volphys.Sphere(1.0), body_type="static")
+            far = w.create_collider(volphys.Sphere(1.0), body_type="static", position=(10, 0, 0))
+            hit = w.raycast((-5, 0.5, 0), (2, 0, 0))  # any length: normalized
+            self.assertEqual(hit.kind, volphys.HitKind.Collider)
+            self.assertEqual(hit.obj, ball)
+            self.assertAlmostEqual(hit.distance, 5 - 0.75 ** 0.5, places=4)
+            self.assertAlmostEqual(hit.normal[1], 0.5, places=4)
+            self.assertEqual([h.obj for h in w.raycast_all((-5, 0, 0), (1, 0, 0))], [ball, far])
+            self.assertIsNone(w.raycast((-5, 0, 0), (1, 0, 0), kinds=volphys.QueryKind.Deformables))
+            self.assertIsNone(w.raycast((-5, 3, 0), (1, 0, 0)))
+            batch = w.raycast_batch([(-5, 0, 0), (-5, 3, 0)], [(1, 0, 0), (1, 0, 0)])
+            self.assertEqual(batch[0].obj, ball)
+            self.assertIsNone(batch[1])
+            self.assertEqual([h.obj for h in w.overlap_sphere((1.5, 0, 0), 0.6)], [ball])
+            self.assertEqual(w.overlap_box((1.4, 0, 0), (0.3, 0.3, 0.3)), [])
+            with self.assertRaises(volphys.InvalidArgumentError) as e:
+                w.raycast((0, 0, 0), (0, 0, 0))
+            self.assertIn("ray.direction", str(e.exception))
+
+
 @unittest.skipIf(np is None, "numpy is not importable")
 class Deformables(unittest.TestCase):
     def make(self, w, **kw):
         verts, tets = box_tet_mesh(2, 0.4)
         return w.create_deformable(vertices=verts, tets=tets, position=(0, 2, 0), **kw), verts
+
+    def test_ray_hits_the_deformable_surface(self):
+        with volphys.World(frame_budget_ms=0) as w:
+            d, verts = self.make(w)
+            top = 2 + float(np.max(verts[:, 1]))
+            hit = w.raycast((0.2, 10, 0.2), (0, -1, 0))
+            self.assertEqual(hit.kind, volphys.HitKind.Deformable)
+            self.assertEqual(hit.obj, d)
+            self.assertAlmostEqual(hit.point[1], top, places=5)
+            self.assertGreaterEqual(hit.triangle, 0)
+            self.assertAlmostEqual(sum(hit.barycentric), 1.0, places=5)
+            self.assertTrue(0 <= hit.nearest_node < d.node_count)
+            self.assertEqual([h.obj for h in w.overlap_sphere((0.2, 2.2, 0.2), 0.05)], [d])
 
     def test_box_from_numpy_falls(self):
         with volphys.World(frame_budget_ms=0) as w:

@@ -9,35 +9,6 @@
 
 namespace {
 
-// A 2x1x1 box of 2 cubes (12 tets) as plain arrays.
-struct BoxArrays {
-  std::vector<float> vertices;
-  std::vector<int32_t> tets;
-  BoxArrays() {
-    for (int k = 0; k < 2; ++k)
-      for (int j = 0; j < 2; ++j)
-        for (int i = 0; i < 3; ++i) vertices.insert(vertices.end(), {float(i), float(j), float(k)});
-    auto v = [](int i, int j, int k) { return i + 3 * (j + 2 * k); };
-    const int orders[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-    for (int cube = 0; cube < 2; ++cube)
-      for (const auto& o : orders) {
-        int c[3] = {cube, 0, 0};
-        int32_t t[4];
-        t[0] = v(c[0], c[1], c[2]);
-        for (int s = 0; s < 3; ++s) c[o[s]]++, t[s + 1] = v(c[0], c[1], c[2]);
-        tets.insert(tets.end(), t, t + 4);  // orientation repaired by the library if needed
-      }
-  }
-  vpDeformableDef def() const {
-    vpDeformableDef d = vpDefaultDeformableDef();
-    d.vertices = vertices.data();
-    d.vertexCount = static_cast<int32_t>(vertices.size() / 3);
-    d.tets = tets.data();
-    d.tetCount = static_cast<int32_t>(tets.size() / 4);
-    return d;
-  }
-};
-
 TEST(CApiDeformable, CreateStepReadAndDestroy) {
   ScopedWorld w;
   BoxArrays box;

@@ -10,8 +10,9 @@ import ctypes
 from . import _types as _T
 from ._api import call as _call, lib as _lib
 from ._arrays import HAVE_NUMPY
-from ._types import (ActorKind, Advection, BodyType, DomainSide, FluidField, FluidKind, LogLevel, Phase, ShapeType,
-                     Status)
+from ._types import (ActorKind, Advection, BodyType, DomainSide, FluidField, FluidKind, HitKind, LogLevel, Phase,
+                     QueryKind, ShapeType, Status)
+from .queries import Hit
 from .collider import BodyProperties, Collider, Transform
 from ._handle import CollisionFilter
 from .deformable import Deformable

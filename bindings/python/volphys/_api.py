@@ -105,6 +105,15 @@ _PROTOTYPES = {
     "vpWorldGetFluids": (_S, [T.vpWorldId, _P(T.vpFluidId), c_int32, _P(c_int32)]),
     "vpWorldFindFluid": (_S, [T.vpWorldId, c_char_p, _P(T.vpFluidId)]),
     "vpGetBuildInfo": (_S, [_P(T.vpBuildInfo)]),
+    "vpDefaultQueryFilter": (T.vpQueryFilter, []),
+    "vpWorldRaycast": (_S, [T.vpWorldId, _P(T.vpRay), _P(T.vpQueryFilter), _P(T.vpQueryHit), _P(c_int32)]),
+    "vpWorldRaycastAll": (_S, [T.vpWorldId, _P(T.vpRay), _P(T.vpQueryFilter), _P(T.vpQueryHit), c_int32,
+                               _P(c_int32)]),
+    "vpWorldRaycastBatch": (_S, [T.vpWorldId, _P(T.vpRay), c_int32, _P(T.vpQueryFilter), _P(T.vpQueryHit)]),
+    "vpWorldOverlapSphere": (_S, [T.vpWorldId, T.vpVec3, c_float, _P(T.vpQueryFilter), _P(T.vpQueryHit), c_int32,
+                                  _P(c_int32)]),
+    "vpWorldOverlapBox": (_S, [T.vpWorldId, _P(T.vpTransform), T.vpVec3, _P(T.vpQueryFilter), _P(T.vpQueryHit),
+                               c_int32, _P(c_int32)]),
 }
 
 for _name, (_res, _args) in _PROTOTYPES.items():

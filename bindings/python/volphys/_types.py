@@ -63,6 +63,20 @@ class ActorKind(enum.IntEnum):
     Fluid = 2
 
 
+class QueryKind(enum.IntFlag):
+    Colliders = 1
+    Deformables = 2
+    Liquids = 4
+    All = 7
+
+
+class HitKind(enum.IntEnum):
+    NoHit = 0
+    Collider = 1
+    Deformable = 2
+    Liquid = 3
+
+
 class BodyType(enum.IntEnum):
     Static = 0
     Kinematic = 1
@@ -332,3 +346,26 @@ class vpFluidDef(ctypes.Structure):
 
 class vpBuildInfo(ctypes.Structure):
     _fields_ = [("cudaCompiled", c_int32), ("cudaDeviceCount", c_int32), ("hardwareThreads", c_int32)]
+
+
+class vpQueryFilter(ctypes.Structure):
+    _fields_ = [("kinds", c_int32), ("filter", vpCollisionFilter)]
+
+
+class vpRay(ctypes.Structure):
+    _fields_ = [("origin", vpVec3), ("direction", vpVec3), ("maxDistance", c_float)]
+
+
+class vpQueryHit(ctypes.Structure):
+    _fields_ = [
+        ("kind", c_enum),
+        ("collider", vpColliderId),
+        ("deformable", vpDeformableId),
+        ("fluid", vpFluidId),
+        ("distance", c_float),
+        ("point", vpVec3),
+        ("normal", vpVec3),
+        ("triangle", c_int32),
+        ("barycentric", vpVec3),
+        ("nearestNode", c_int32),
+    ]

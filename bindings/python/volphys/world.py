@@ -10,6 +10,7 @@ from .collider import Collider
 from .deformable import Deformable
 from .fluid import Fluid
 from .fluid_sources import emitter_array, region_array
+from . import queries
 from .stats import ActorStats, StepStats
 
 # Python keyword -> vpColliderDef field, for the plain float fields.
@@ -178,6 +179,28 @@ class World:
             call("vpWorldGetActorStats", self._id, i, ctypes.byref(s))
             out.append(ActorStats._from_c(s))
         return out
+
+    # -------------------------------------------------------------- scene queries
+    # kinds: QueryKind bits; collision_filter: (category, mask) the objects must meet. Hits are
+    # volphys.queries.Hit tuples; see that module.
+    def raycast(self, origin, direction, max_distance=1000.0, kinds=T.QueryKind.All, collision_filter=None):
+        """The nearest hit along the ray, or None."""
+        return queries.raycast(self, origin, direction, max_distance, kinds, collision_filter)
+
+    def raycast_all(self, origin, direction, max_distance=1000.0, kinds=T.QueryKind.All, collision_filter=None):
+        """Every object the ray hits (its nearest hit on each), nearest first."""
+        return queries.raycast_all(self, origin, direction, max_distance, kinds, collision_filter)
+
+    def raycast_batch(self, origins, directions, max_distance=1000.0, kinds=T.QueryKind.All, collision_filter=None):
+        """Each ray's nearest hit or None, in one call."""
+        return queries.raycast_batch(self, origins, directions, max_distance, kinds, collision_filter)
+
+    def overlap_sphere(self, centre, radius, kinds=T.QueryKind.All, collision_filter=None):
+        return queries.overlap_sphere(self, centre, radius, kinds, collision_filter)
+
+    def overlap_box(self, centre, half_extents, rotation=(0.0, 0.0, 0.0, 1.0), kinds=T.QueryKind.All,
+                    collision_filter=None):
+        return queries.overlap_box(self, centre, half_extents, rotation, kinds, collision_filter)
 
     # -------------------------------------------------------------- colliders
     def _list(self, count_function, list_function, id_type, handle_type):

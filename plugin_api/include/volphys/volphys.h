@@ -49,6 +49,9 @@
  *   is created (vpSetAllocator returns vpStatus_Busy while any world exists).
  * - During a step nothing the host owns is written; results are read afterwards through
  *   the getters into host buffers.
+ * - Scene queries (vpWorldRaycast and the rest) may be called from any thread outside a
+ *   step; they hold the world like any other call, so queries on one world run one at a
+ *   time (an overlapping one is Busy), and queries on different worlds run concurrently.
  */
 #ifndef VOLPHYS_H
 #define VOLPHYS_H
@@ -674,6 +677,74 @@ VP_API vpStatus vpFluidGetStats(vpFluidId fluid, vpActorStats* outStats);
 VP_API vpStatus vpWorldGetFluidCount(vpWorldId world, int32_t* outCount);
 VP_API vpStatus vpWorldGetFluids(vpWorldId world, vpFluidId* outIds, int32_t capacity, int32_t* outCount);
 VP_API vpStatus vpWorldFindFluid(vpWorldId world, const char* name, vpFluidId* outFluid);
+
+/* ---------------------------------------------------------------- scene queries */
+
+/* Rays and overlaps against colliders, deformables and liquids. Call them outside a step, from
+ * any thread; like every call on a world they hold it while they run (two at once on one world:
+ * the second is Busy). Colliders are tested through Bullet's shapes; a deformable through its
+ * render surface at the current positions (what the host draws); a liquid through the zero
+ * level set of its last completed step. Smoke is never hit. Each object is reported at most
+ * once: for a ray, its nearest hit on it. README, "Scene queries", has the costs. */
+typedef enum vpQueryKind {
+  vpQueryKind_Colliders = 1,
+  vpQueryKind_Deformables = 2,
+  vpQueryKind_Liquids = 4,
+  vpQueryKind_All = 7
+} vpQueryKind;
+
+/* Which objects a query sees: those of `kinds` (vpQueryKind bits) that meet `filter` by the
+ * collision rule above. NULL where a query takes a filter: vpDefaultQueryFilter(). */
+typedef struct vpQueryFilter {
+  int32_t kinds;             /* default vpQueryKind_All */
+  vpCollisionFilter filter;  /* default {1, 0xFFFFFFFF} */
+} vpQueryFilter;
+VP_API vpQueryFilter vpDefaultQueryFilter(void);
+
+typedef struct vpRay {
+  vpVec3 origin;
+  vpVec3 direction;   /* unit length (within 1e-3) */
+  float maxDistance;  /* metres, >= 0 */
+} vpRay;
+
+typedef enum vpHitKind {
+  vpHitKind_None = 0,  /* a batch entry whose ray hit nothing */
+  vpHitKind_Collider = 1,
+  vpHitKind_Deformable = 2,
+  vpHitKind_Liquid = 3
+} vpHitKind;
+
+typedef struct vpQueryHit {
+  vpHitKind kind;
+  vpColliderId collider;      /* the object hit, by kind; the other two ids are null */
+  vpDeformableId deformable;
+  vpFluidId fluid;
+  float distance;             /* rays: along the ray; overlaps: 0 */
+  vpVec3 point;               /* rays: the hit point */
+  vpVec3 normal;              /* rays: the surface's outward normal there (a liquid's: out of the
+                                 liquid); a ray starting inside a liquid hits at distance 0 */
+  int32_t triangle;           /* deformables: the render-mesh triangle hit; else -1 */
+  vpVec3 barycentric;         /* deformables: weights of that triangle's three vertices */
+  int32_t nearestNode;        /* deformables: the simulation node nearest the hit; else -1 */
+} vpQueryHit;
+
+/* The nearest hit: *outHitCount = 1 and *outHit filled, or *outHitCount = 0. */
+VP_API vpStatus vpWorldRaycast(vpWorldId world, const vpRay* ray, const vpQueryFilter* filter, vpQueryHit* outHit,
+                               int32_t* outHitCount);
+/* Every object the ray hits, nearest first: min(capacity, total) entries are written and
+ * *outCount = the total (call again with a larger buffer when it exceeds capacity). */
+VP_API vpStatus vpWorldRaycastAll(vpWorldId world, const vpRay* ray, const vpQueryFilter* filter, vpQueryHit* outHits,
+                                  int32_t capacity, int32_t* outCount);
+/* rays[i]'s nearest hit into outHits[i] (kind vpHitKind_None for a miss); count in [0, 2^20]. */
+VP_API vpStatus vpWorldRaycastBatch(vpWorldId world, const vpRay* rays, int32_t count, const vpQueryFilter* filter,
+                                    vpQueryHit* outHits);
+/* Every object sharing a point with the sphere or the box (pose: its centre and rotation), as
+ * vpWorldRaycastAll returns them (colliders, deformables, liquids; slot order within each). */
+VP_API vpStatus vpWorldOverlapSphere(vpWorldId world, vpVec3 centre, float radius, const vpQueryFilter* filter,
+                                     vpQueryHit* outHits, int32_t capacity, int32_t* outCount);
+VP_API vpStatus vpWorldOverlapBox(vpWorldId world, const vpTransform* pose, vpVec3 halfExtents,
+                                  const vpQueryFilter* filter, vpQueryHit* outHits, int32_t capacity,
+                                  int32_t* outCount);
 
 /* ---------------------------------------------------------------- build information */
 
