@@ -114,6 +114,13 @@ namespace VolPhys
         [DllImport(Library)] public static extern Status vpWorldGetFluids(vpWorldId world, [Out] vpFluidId[] ids, int capacity, out int count);
         [DllImport(Library)] public static extern Status vpWorldFindFluid(vpWorldId world, [MarshalAs(UnmanagedType.LPStr)] string name, out vpFluidId fluid);
 
+        [DllImport(Library)] public static extern vpQueryFilter vpDefaultQueryFilter();
+        [DllImport(Library)] public static extern Status vpWorldRaycast(vpWorldId world, ref vpRay ray, ref vpQueryFilter filter, out vpQueryHit hit, out int hitCount);
+        [DllImport(Library)] public static extern Status vpWorldRaycastAll(vpWorldId world, ref vpRay ray, ref vpQueryFilter filter, [Out] vpQueryHit[] hits, int capacity, out int count);
+        [DllImport(Library)] public static extern Status vpWorldRaycastBatch(vpWorldId world, vpRay[] rays, int count, ref vpQueryFilter filter, [Out] vpQueryHit[] hits);
+        [DllImport(Library)] public static extern Status vpWorldOverlapSphere(vpWorldId world, vpVec3 centre, float radius, ref vpQueryFilter filter, [Out] vpQueryHit[] hits, int capacity, out int count);
+        [DllImport(Library)] public static extern Status vpWorldOverlapBox(vpWorldId world, ref vpTransform pose, vpVec3 halfExtents, ref vpQueryFilter filter, [Out] vpQueryHit[] hits, int capacity, out int count);
+
         public static string LastError() { return Marshal.PtrToStringAnsi(vpGetLastError()) ?? ""; }
     }
 }

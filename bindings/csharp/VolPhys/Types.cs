@@ -30,6 +30,8 @@ namespace VolPhys
     public enum DomainSide : int { Wall = 0, Open = 1 }
     public enum RegionType : int { Box = 0, Sphere = 1 }
     public enum FluidField : int { SmokeDensity = 0, Temperature = 1, LevelSet = 2, Pressure = 3 }
+    [Flags] public enum QueryKind : int { Colliders = 1, Deformables = 2, Liquids = 4, All = 7 }
+    public enum HitKind : int { None = 0, Collider = 1, Deformable = 2, Liquid = 3 }
 
     public static class Constants
     {
@@ -175,6 +177,37 @@ namespace VolPhys
         public uint categoryBits;
         public uint maskBits;
         public vpCollisionFilter(uint categoryBits, uint maskBits) { this.categoryBits = categoryBits; this.maskBits = maskBits; }
+    }
+
+    [StructLayout(LayoutKind.Sequential)]
+    public struct vpQueryFilter
+    {
+        public QueryKind kinds;
+        public vpCollisionFilter filter;
+    }
+
+    [StructLayout(LayoutKind.Sequential)]
+    public struct vpRay
+    {
+        public vpVec3 origin;
+        public vpVec3 direction;
+        public float maxDistance;
+        public vpRay(vpVec3 origin, vpVec3 direction, float maxDistance) { this.origin = origin; this.direction = direction; this.maxDistance = maxDistance; }
+    }
+
+    [StructLayout(LayoutKind.Sequential)]
+    public struct vpQueryHit
+    {
+        public HitKind kind;
+        public vpColliderId collider;
+        public vpDeformableId deformable;
+        public vpFluidId fluid;
+        public float distance;
+        public vpVec3 point;
+        public vpVec3 normal;
+        public int triangle;
+        public vpVec3 barycentric;
+        public int nearestNode;
     }
 
     [StructLayout(LayoutKind.Sequential)]

@@ -54,6 +54,53 @@ namespace VolPhys
             return s;
         }
 
+        // Scene queries: filter from Native.vpDefaultQueryFilter() (every kind, every category).
+        /// <summary>The nearest hit along the ray; false when nothing is hit.</summary>
+        public bool Raycast(vpRay ray, vpQueryFilter filter, out vpQueryHit hit)
+        {
+            int count;
+            VolPhysException.Check(Native.vpWorldRaycast(Id, ref ray, ref filter, out hit, out count), "vpWorldRaycast");
+            return count == 1;
+        }
+
+        /// <summary>Every object the ray hits, nearest first.</summary>
+        public vpQueryHit[] RaycastAll(vpRay ray, vpQueryFilter filter)
+        {
+            return Collect((hits, capacity) => { int n; VolPhysException.Check(Native.vpWorldRaycastAll(Id, ref ray, ref filter, hits, capacity, out n), "vpWorldRaycastAll"); return n; });
+        }
+
+        /// <summary>Each ray's nearest hit (kind HitKind.None for a miss).</summary>
+        public vpQueryHit[] RaycastBatch(vpRay[] rays, vpQueryFilter filter)
+        {
+            var hits = new vpQueryHit[rays.Length];
+            VolPhysException.Check(Native.vpWorldRaycastBatch(Id, rays, rays.Length, ref filter, hits), "vpWorldRaycastBatch");
+            return hits;
+        }
+
+        public vpQueryHit[] OverlapSphere(vpVec3 centre, float radius, vpQueryFilter filter)
+        {
+            return Collect((hits, capacity) => { int n; VolPhysException.Check(Native.vpWorldOverlapSphere(Id, centre, radius, ref filter, hits, capacity, out n), "vpWorldOverlapSphere"); return n; });
+        }
+
+        public vpQueryHit[] OverlapBox(vpTransform pose, vpVec3 halfExtents, vpQueryFilter filter)
+        {
+            return Collect((hits, capacity) => { int n; VolPhysException.Check(Native.vpWorldOverlapBox(Id, ref pose, halfExtents, ref filter, hits, capacity, out n), "vpWorldOverlapBox"); return n; });
+        }
+
+        // Fills a buffer, growing it until every hit fits.
+        static vpQueryHit[] Collect(Func<vpQueryHit[], int, int> fill)
+        {
+            var hits = new vpQueryHit[8];
+            int count = fill(hits, hits.Length);
+            if (count > hits.Length)
+            {
+                hits = new vpQueryHit[count];
+                count = fill(hits, hits.Length);
+            }
+            Array.Resize(ref hits, Math.Min(count, hits.Length));
+            return hits;
+        }
+
         public Collider CreateCollider(vpColliderDef def)
         {
             vpColliderId id;

@@ -58,6 +58,7 @@ static class VolPhysTests
         Type[] types = { typeof(vpVersion), typeof(vpVec3), typeof(vpQuat), typeof(vpTransform), typeof(vpWorldId),
                          typeof(vpColliderId), typeof(vpDeformableId), typeof(vpWorldDef), typeof(vpPhaseStats),
                          typeof(vpActorStats), typeof(vpStepStats), typeof(vpShapeDef), typeof(vpColliderDef), typeof(vpBodyProperties), typeof(vpCollisionFilter),
+                         typeof(vpQueryFilter), typeof(vpRay), typeof(vpQueryHit),
                          typeof(vpDeformableDef), typeof(vpFluidId), typeof(vpFluidRegion), typeof(vpFluidEmitter),
                          typeof(vpFluidDef), typeof(vpBuildInfo) };
         foreach (Type t in types)
@@ -342,6 +343,27 @@ static class VolPhysTests
             {
                 Check(e.Status == Status.InvalidArgument && e.Message.Contains("friction = -1"), e.Message);
             }
+        }
+    }
+
+    public static void TestRaysAndOverlapsFindTheSphere()
+    {
+        using (var world = new World())
+        {
+            Collider sphere = world.CreateCollider(Collider.DefaultDef());  // static, radius 0.5
+            vpQueryFilter all = Native.vpDefaultQueryFilter();
+            vpQueryHit hit;
+            Check(world.Raycast(new vpRay(new vpVec3(-5, 0, 0), new vpVec3(1, 0, 0), 10), all, out hit), "ray hits");
+            Check(hit.kind == HitKind.Collider && hit.collider.index1 == sphere.Id.index1, "the sphere");
+            Check(Math.Abs(hit.distance - 4.5f) < 1e-4f, "distance " + hit.distance);
+            Check(world.RaycastAll(new vpRay(new vpVec3(-5, 2, 0), new vpVec3(1, 0, 0), 10), all).Length == 0, "miss");
+            vpQueryHit[] batch = world.RaycastBatch(new[] { new vpRay(new vpVec3(0, 5, 0), new vpVec3(0, -1, 0), 10) }, all);
+            Check(batch[0].kind == HitKind.Collider && Math.Abs(batch[0].distance - 4.5f) < 1e-4f, "batch");
+            Check(world.OverlapSphere(new vpVec3(0.8f, 0, 0), 0.4f, all).Length == 1, "overlap sphere");
+            vpTransform pose = new vpTransform { position = new vpVec3(2, 0, 0), rotation = vpQuat.Identity };
+            Check(world.OverlapBox(pose, new vpVec3(1, 1, 1), all).Length == 0, "overlap box");
+            all.kinds = QueryKind.Deformables;
+            Check(!world.Raycast(new vpRay(new vpVec3(-5, 0, 0), new vpVec3(1, 0, 0), 10), all, out hit), "filtered");
         }
     }
 

@@ -43,6 +43,11 @@ int main(void) {
   FIELD(vpColliderDef, linearDamping); FIELD(vpColliderDef, angularDamping); FIELD(vpColliderDef, userData);
   FIELD(vpColliderDef, filter);
   SIZE(vpCollisionFilter); FIELD(vpCollisionFilter, categoryBits); FIELD(vpCollisionFilter, maskBits);
+  SIZE(vpQueryFilter); FIELD(vpQueryFilter, kinds); FIELD(vpQueryFilter, filter);
+  SIZE(vpRay); FIELD(vpRay, origin); FIELD(vpRay, direction); FIELD(vpRay, maxDistance);
+  SIZE(vpQueryHit); FIELD(vpQueryHit, kind); FIELD(vpQueryHit, collider); FIELD(vpQueryHit, deformable);
+  FIELD(vpQueryHit, fluid); FIELD(vpQueryHit, distance); FIELD(vpQueryHit, point); FIELD(vpQueryHit, normal);
+  FIELD(vpQueryHit, triangle); FIELD(vpQueryHit, barycentric); FIELD(vpQueryHit, nearestNode);
   SIZE(vpBodyProperties); FIELD(vpBodyProperties, structSize); FIELD(vpBodyProperties, mass);
   FIELD(vpBodyProperties, friction); FIELD(vpBodyProperties, restitution); FIELD(vpBodyProperties, linearDamping);
   FIELD(vpBodyProperties, angularDamping);
