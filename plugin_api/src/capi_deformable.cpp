@@ -56,6 +56,14 @@ Status checkNodeArray(const int32_t* nodes, int32_t count) {
   return Status::Ok;
 }
 
+// A host array of xyz per node, for every node of `d`, as doubles.
+Status readNodeArray(const DeformableBody& d, const float* xyz, int32_t nodeCount, std::vector<double>* out) {
+  if (nodeCount != d.nodeCount())
+    return fail(Status::InvalidArgument, "nodeCount = %d: the actor has %d nodes", nodeCount, d.nodeCount());
+  out->assign(xyz, xyz + 3 * static_cast<size_t>(nodeCount));
+  return Status::Ok;
+}
+
 }  // namespace
 
 extern "C" {
@@ -177,11 +185,27 @@ vpStatus vpDeformableSetVelocities(vpDeformableId id, const float* xyz, int32_t 
     WorldLease w;
     DeformableBody* d;
     VP_TRY(resolveDeformable(id, &w, &d));
-    if (nodeCount != d->nodeCount())
-      return fail(Status::InvalidArgument, "nodeCount = %d: the actor has %d nodes", nodeCount, d->nodeCount());
-    std::vector<double> v(3 * static_cast<size_t>(nodeCount));
-    for (size_t i = 0; i < v.size(); ++i) v[i] = xyz[i];
+    std::vector<double> v;
+    VP_TRY(readNodeArray(*d, xyz, nodeCount, &v));
     return d->setVelocities(v.data(), static_cast<int64_t>(v.size()));
+  });
+}
+
+vpStatus vpDeformableSetPositions(vpDeformableId id, const float* xyz, int32_t nodeCount, int32_t resetVelocities) {
+  return guarded(__func__, [&] {
+    VP_REQUIRE_POINTER(xyz);
+    WorldLease w;
+    DeformableBody* d;
+    VP_TRY(resolveDeformable(id, &w, &d));
+    std::vector<double> x;
+    VP_TRY(readNodeArray(*d, xyz, nodeCount, &x));
+    VP_TRY(d->setPositions(x.data(), static_cast<int64_t>(x.size())));
+    if (resetVelocities != 0) {
+      std::fill(x.begin(), x.end(), 0.0);
+      VP_TRY(d->setVelocities(x.data(), static_cast<int64_t>(x.size())));
+    }
+    d->updateRenderMesh(w->tasks());
+    return Status::Ok;
   });
 }
 

@@ -45,6 +45,11 @@ VP_OFFSETS(vpColliderDef, VP_AT(bodyType), VP_AT(shape), VP_AT(pose), VP_AT(line
            VP_AT(userData), VP_AT(filter));
 VP_OFFSETS(vpBodyProperties, VP_AT(mass), VP_AT(friction), VP_AT(restitution), VP_AT(linearDamping),
            VP_AT(angularDamping));
+VP_OFFSETS(vpDeformableMaterial, VP_AT(youngsModulus), VP_AT(poissonRatio), VP_AT(density), VP_AT(massDamping),
+           VP_AT(stiffnessDamping), VP_AT(friction));
+VP_OFFSETS(vpFluidParameters, VP_AT(ambientTemperature), VP_AT(densityBuoyancy), VP_AT(thermalBuoyancy),
+           VP_AT(vorticityConfinement), VP_AT(densityDissipation), VP_AT(temperatureDissipation),
+           VP_AT(kinematicViscosity));
 VP_OFFSETS(vpDeformableDef, VP_AT(degree), VP_AT(vertices), VP_AT(vertexCount), VP_AT(tets), VP_AT(tetCount),
            VP_AT(tetFile), VP_AT(surfaceFile), VP_AT(voxelResolution), VP_AT(renderVertices),
            VP_AT(renderVertexCount), VP_AT(renderTriangles), VP_AT(renderTriangleCount), VP_AT(pose),

@@ -229,6 +229,31 @@ Status DeformableBody::setPositions(const double* positions, int64_t count) {
   return Status::Ok;
 }
 
+Status DeformableBody::setMaterial(const DeformableMaterial& material) {
+  VP_TRY(validateDeformableMaterial(material));
+  const int64_t elements = elementCount();
+  const int N = nodesPerElement_;
+  Array<double> stiffness;  // computed in full before anything changes
+  if (degree_ > 1) {
+    stiffness.resize(elementStiffness_.size());
+    for (int64_t e = 0; e < elements; ++e) {
+      double corners[12];
+      for (int a = 0; a < 4; ++a)
+        for (int k = 0; k < 3; ++k) corners[3 * a + k] = restX_[3 * elementNodes_[N * e + a] + k];
+      VP_TRY(bbStiffnessMatrix(degree_, corners, material.lameLambda(), material.lameMu(),
+                               &stiffness[9 * N * N * e]));
+    }
+    elementStiffness_ = std::move(stiffness);
+  }
+  lambda_ = material.lameLambda();
+  mu_ = material.lameMu();
+  const double densityRatio = material.density / desc_.material.density;
+  for (double& m : mass_) m *= densityRatio;
+  for (DegreeLevelAssembly& level : degreeLevels_) level.scaleMasses(densityRatio);
+  desc_.material = material;
+  return Status::Ok;
+}
+
 Status DeformableBody::applyForce(int32_t node, const Vec3& force) {
   VP_TRY(checkNode("node", node));
   if (!force.allFinite())

@@ -72,6 +72,12 @@ class DeformableBody {
 
   Status setVelocities(const double* velocities, int64_t count);  // 3 * nodeCount values
   Status setPositions(const double* positions, int64_t count);    // teleport / reset
+  // A new material from the next step (validated; on failure nothing changes): the Lamé
+  // parameters and, for degree > 1, the element stiffness matrices are recomputed, and the
+  // lumped masses rescaled by the density's ratio (they are linear in it).
+  Status setMaterial(const DeformableMaterial& material);
+  // The render mesh moved to the current node positions (each step does it; a teleport too).
+  void updateRenderMesh(TaskSystem& tasks);
   Status applyForce(int32_t node, const Vec3& force);    // for the next step only
   Status applyImpulse(int32_t node, const Vec3& impulse);  // changes the velocity now
   Status setPinned(const int32_t* nodes, int64_t count, bool pinned);
@@ -113,7 +119,6 @@ class DeformableBody {
   void corotateAndAssembleBB(TaskSystem& tasks, double stiffnessScale);  // degree 2, 3
   template <class AddBlock>
   void gatherRows(TaskSystem& tasks, int64_t grain, const AddBlock& addBlock);
-  void updateRenderMesh(TaskSystem& tasks);
   // The multigrid preconditioners' constraint filters from constrained_, and their setup
   // redone with them (called whenever the constraint set changes within a step); massScale
   // scales the re-discretized p-multigrid levels' mass as the fine system's.

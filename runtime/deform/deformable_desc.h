@@ -81,6 +81,9 @@ struct DeformableDesc {
   void* userData = nullptr;
 };
 
+// The material's fields, for creation and run-time changes; messages name them as vpDeformableDef.
+Status validateDeformableMaterial(const DeformableMaterial& material);
+
 // Field names in messages follow vpDeformableDef. Repairs the mesh orientation and drops
 // unused vertices (see validateAndRepairTetMesh). On failure `desc` is unchanged.
 Status validateDeformableDesc(DeformableDesc& desc);

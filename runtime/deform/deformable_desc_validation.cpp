@@ -22,10 +22,7 @@ Status checkNonNegative(const char* field, double value, double maxValue) {
 
 }  // namespace
 
-Status validateDeformableDesc(DeformableDesc& in) {
-  if (in.degree < 1 || in.degree > 3)
-    return fail(Status::InvalidArgument, "degree = %d: must be 1, 2 or 3", in.degree);
-  const DeformableMaterial& m = in.material;
+Status validateDeformableMaterial(const DeformableMaterial& m) {
   VP_TRY(checkPositive("youngsModulus", m.youngsModulus, 1e13));
   // ν = 0.5 makes λ infinite; stop just short of it (near-incompressible needs degree > 1).
   if (!(m.poissonRatio > -0.999 && m.poissonRatio < 0.4999))
@@ -33,7 +30,13 @@ Status validateDeformableDesc(DeformableDesc& in) {
   VP_TRY(checkDensity("density", m.density));
   VP_TRY(checkNonNegative("massDamping", m.massDamping, 1e3));
   VP_TRY(checkNonNegative("stiffnessDamping", m.stiffnessDamping, 10.0));
-  VP_TRY(checkNonNegative("friction", m.friction, 1e3));
+  return checkNonNegative("friction", m.friction, 1e3);
+}
+
+Status validateDeformableDesc(DeformableDesc& in) {
+  if (in.degree < 1 || in.degree > 3)
+    return fail(Status::InvalidArgument, "degree = %d: must be 1, 2 or 3", in.degree);
+  VP_TRY(validateDeformableMaterial(in.material));
   if (!(in.solver.tolerance > 0.0 && in.solver.tolerance < 1.0))
     return fail(Status::InvalidArgument, "solverTolerance = %g: must be in (0, 1)", in.solver.tolerance);
   // A floor below the solve's own tolerance could never be reached.

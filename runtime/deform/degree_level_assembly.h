@@ -44,6 +44,9 @@ class DegreeLevelAssembly {
   BlockSparseMatrix<double>& matrix() { return matrix_; }
   const BlockSparseMatrix<double>& matrix() const { return matrix_; }
   const Array<double>& nodeMasses() const { return mass_; }  // lumped, unscaled
+  void scaleMasses(double factor) {  // a new density: the lumped mass is linear in it
+    for (double& m : mass_) m *= factor;
+  }
 
  private:
   int degree_ = 1;

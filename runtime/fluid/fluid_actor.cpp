@@ -407,7 +407,26 @@ double FluidActor::progress() const {
   return work_.fraction();
 }
 
+FluidControls FluidActor::controls() const {
+  return pendingControls_ ? *pendingControls_ : FluidControls{desc_.smoke, desc_.kinematicViscosity, desc_.emitters};
+}
+
+Status FluidActor::setControls(const FluidControls& controls) {
+  if (controls.emitters.size() != desc_.emitters.size())
+    return fail(Status::InvalidArgument, "emitters: %zu given, the fluid has %zu (they can be changed, not added)",
+                controls.emitters.size(), desc_.emitters.size());
+  VP_TRY(validateFluidControls(controls));
+  pendingControls_ = controls;
+  return Status::Ok;
+}
+
 void FluidActor::beginStep(const FluidStepInput& input) {
+  if (pendingControls_) {
+    desc_.smoke = pendingControls_->smoke;
+    desc_.kinematicViscosity = pendingControls_->kinematicViscosity;
+    desc_.emitters = pendingControls_->emitters;
+    pendingControls_.reset();
+  }
   step_ = std::make_unique<StepInProgress>();
   step_->input = input;
   job_.reset();

@@ -39,6 +39,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "core/allocator.h"
@@ -149,6 +150,10 @@ class FluidActor {
   const FluidDesc& desc() const { return desc_; }
   // From the next step that begins (a step in progress keeps the colliders it began with).
   void setCollisionFilter(const CollisionFilter& filter) { desc_.filter = filter; }
+  // The controls as last set (those waiting for the next step included); a change is
+  // validated (on failure nothing changes) and takes effect when the next step begins.
+  FluidControls controls() const;
+  Status setControls(const FluidControls& controls);
   ActorSchedule& schedule() { return schedule_; }
   // The longest slice run by the last advance().
   double maxSliceMs() const { return maxSliceMs_; }
@@ -249,6 +254,7 @@ class FluidActor {
   };
 
   FluidDesc desc_;
+  std::optional<FluidControls> pendingControls_;  // applied by beginStep
   MacGrid grid_;
   FaceFractionField fractions_;
   std::vector<ColliderSnapshot> snapshots_;  // the colliders the fractions were computed for

@@ -40,6 +40,7 @@ struct FluidEmitter {
   Vec3 velocity = Vec3::Zero();
   double densityRate = 1.0;  // smoke density units per second
   double temperature = 1.0;  // above ambient
+  bool enabled = true;       // a host may switch an emitter off and on (vpFluidSetEmitter)
 };
 
 struct SmokeParameters {
@@ -95,5 +96,15 @@ constexpr double kMaxKinematicViscosity = 10.0;
 
 // Field names in messages follow vpFluidDef.
 Status validateFluidDesc(const FluidDesc& desc);
+
+// What a host may change on a fluid after creation: the forces on the smoke, the viscosity,
+// and its emitters (on/off, rate, velocity, temperature; not their shapes).
+struct FluidControls {
+  SmokeParameters smoke;
+  double kinematicViscosity = 0.0;
+  std::vector<FluidEmitter> emitters;
+};
+// The one check of these fields, for creation and for changes (messages as for vpFluidDef).
+Status validateFluidControls(const FluidControls& controls);
 
 }  // namespace vp

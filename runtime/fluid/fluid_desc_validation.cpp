@@ -53,14 +53,7 @@ Status validateFluidDesc(const FluidDesc& d) {
       return fail(Status::InvalidArgument, "sides[%d] = %d: must be 0 (wall) or 1 (open)", s,
                   static_cast<int>(d.sides[s]));
   VP_TRY(checkDensity("density", d.density));
-  VP_TRY(checkRange("kinematicViscosity", d.kinematicViscosity, 0.0, kMaxKinematicViscosity));
-  const SmokeParameters& sp = d.smoke;
-  VP_TRY(checkRange("ambientTemperature", sp.ambientTemperature, -1e6, 1e6));
-  VP_TRY(checkRange("densityBuoyancy", sp.densityBuoyancy, -1e4, 1e4));
-  VP_TRY(checkRange("thermalBuoyancy", sp.thermalBuoyancy, -1e4, 1e4));
-  VP_TRY(checkRange("vorticityConfinement", sp.vorticityConfinement, 0.0, 100.0));
-  VP_TRY(checkRange("densityDissipation", sp.densityDissipation, 0.0, 1e3));
-  VP_TRY(checkRange("temperatureDissipation", sp.temperatureDissipation, 0.0, 1e3));
+  VP_TRY(validateFluidControls(FluidControls{d.smoke, d.kinematicViscosity, d.emitters}));
   const FluidSolverSettings& s = d.solver;
   if (s.advection != AdvectionScheme::SemiLagrangian && s.advection != AdvectionScheme::MacCormack)
     return fail(Status::InvalidArgument, "advection = %d: must be 0 (semi-Lagrangian) or 1 (MacCormack)",
@@ -79,9 +72,21 @@ Status validateFluidDesc(const FluidDesc& d) {
   for (size_t i = 0; i < d.initialLiquid.size(); ++i)
     VP_TRY(validateShape("initialLiquid[" + std::to_string(i) + "]", d.initialLiquid[i]));
   for (size_t i = 0; i < d.drains.size(); ++i) VP_TRY(validateShape("drains[" + std::to_string(i) + "]", d.drains[i]));
-  for (size_t i = 0; i < d.emitters.size(); ++i) {
+  return Status::Ok;
+}
+
+Status validateFluidControls(const FluidControls& c) {
+  VP_TRY(checkRange("kinematicViscosity", c.kinematicViscosity, 0.0, kMaxKinematicViscosity));
+  const SmokeParameters& sp = c.smoke;
+  VP_TRY(checkRange("ambientTemperature", sp.ambientTemperature, -1e6, 1e6));
+  VP_TRY(checkRange("densityBuoyancy", sp.densityBuoyancy, -1e4, 1e4));
+  VP_TRY(checkRange("thermalBuoyancy", sp.thermalBuoyancy, -1e4, 1e4));
+  VP_TRY(checkRange("vorticityConfinement", sp.vorticityConfinement, 0.0, 100.0));
+  VP_TRY(checkRange("densityDissipation", sp.densityDissipation, 0.0, 1e3));
+  VP_TRY(checkRange("temperatureDissipation", sp.temperatureDissipation, 0.0, 1e3));
+  for (size_t i = 0; i < c.emitters.size(); ++i) {
     const std::string field = "emitters[" + std::to_string(i) + "]";
-    const FluidEmitter& e = d.emitters[i];
+    const FluidEmitter& e = c.emitters[i];
     VP_TRY(validateShape(field + ".shape", e.shape));
     if (!finite(e.velocity) || e.velocity.norm() > 1e4)
       return fail(Status::InvalidArgument, "%s.velocity = (%g, %g, %g): must be finite, magnitude <= 1e4",

@@ -51,6 +51,7 @@ void setFaceVelocitiesInside(MacGrid& grid, const FluidEmitter& e) {
 void applySmokeEmitters(MacGrid& grid, const std::vector<FluidEmitter>& emitters, double dt,
                         Array<double>& smokeDensity, Array<double>& temperature) {
   for (const FluidEmitter& e : emitters) {
+    if (!e.enabled) continue;
     forCellsNear(grid, e.shape, [&](int i, int j, int k) {
       if (e.shape.signedDistance(grid.cellCentre(i, j, k)) >= 0.0) return;
       const size_t c = grid.cellIndex(i, j, k);
@@ -63,6 +64,7 @@ void applySmokeEmitters(MacGrid& grid, const std::vector<FluidEmitter>& emitters
 
 void applyLiquidEmitters(MacGrid& grid, const std::vector<FluidEmitter>& emitters, Array<double>& phi) {
   for (const FluidEmitter& e : emitters) {
+    if (!e.enabled) continue;
     forCellsNear(grid, e.shape, [&](int i, int j, int k) {
       const size_t c = grid.cellIndex(i, j, k);
       phi[c] = std::min(phi[c], e.shape.signedDistance(grid.cellCentre(i, j, k)));

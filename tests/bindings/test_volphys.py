@@ -213,6 +213,21 @@ class Deformables(unittest.TestCase):
         verts, tets = box_tet_mesh(2, 0.4)
         return w.create_deformable(vertices=verts, tets=tets, position=(0, 2, 0), **kw), verts
 
+    def test_material_and_teleport(self):
+        with volphys.World(frame_budget_ms=0) as w:
+            d, verts = self.make(w)
+            d.set_material(youngs_modulus=2e6, density=500)
+            m = d.material
+            self.assertEqual((m.youngs_modulus, m.density), (2e6, 500))
+            with self.assertRaises(volphys.InvalidArgumentError) as e:
+                d.set_material(poisson_ratio=0.5)
+            self.assertIn("poissonRatio = 0.5", str(e.exception))
+            self.assertAlmostEqual(d.material.poisson_ratio, 0.3, places=6)
+            x = d.positions() + np.array([3.0, 0.0, 0.0], dtype=np.float32)
+            d.set_positions(x, reset_velocities=True)
+            np.testing.assert_allclose(d.positions(), x)
+            self.assertGreater(float(d.render_mesh()[0][:, 0].min()), 2.0)
+
     def test_ray_hits_the_deformable_surface(self):
         with volphys.World(frame_budget_ms=0) as w:
             d, verts = self.make(w)
@@ -318,6 +333,24 @@ class Fluids(unittest.TestCase):
 
     def tearDown(self):
         self.world.destroy()
+
+    def test_parameters_and_emitters_change_at_run_time(self):
+        emitter = volphys.Emitter(volphys.SphereRegion((0.5, 0.2, 0.5), 0.15), velocity=(0, 1, 0))
+        fluid = self.world.create_fluid("smoke", resolution=(8, 8, 8), cell_size=0.125, emitters=[emitter])
+        self.assertEqual(fluid.emitter_count, 1)
+        fluid.set_emitter(0, enabled=False)
+        self.world.step(DT)
+        self.assertEqual(fluid.amount, 0.0)
+        fluid.set_emitter(0, enabled=True, density_rate=2.0, velocity=(0, 1, 0))
+        self.world.step(DT)
+        self.assertGreater(fluid.amount, 0.0)
+        fluid.set_parameters(kinematic_viscosity=1e-3)
+        self.assertAlmostEqual(fluid.parameters.kinematic_viscosity, 1e-3)
+        self.world.step(DT)
+        self.assertGreater(fluid.stats().phases[volphys.Phase.Viscosity].iterations, 0)
+        with self.assertRaises(volphys.InvalidArgumentError) as e:
+            fluid.set_parameters(vorticity_confinement=-1)
+        self.assertIn("vorticityConfinement = -1", str(e.exception))
 
     def test_smoke_from_an_emitter_fills_fields_shaped_z_y_x(self):
         # A box that is not a cube, so a transposed layout would change the shapes; the

@@ -61,6 +61,28 @@ namespace VolPhys
             get { vpActorStats s = Native.vpDefaultActorStats(); VolPhysException.Check(Native.vpDeformableGetStats(Id, ref s), "vpDeformableGetStats"); return s; }
         }
 
+        /// <summary>Teleports every node (xyz per node); the render mesh follows.</summary>
+        public void SetPositions(float[] xyz, bool resetVelocities)
+        {
+            VolPhysException.Check(Native.vpDeformableSetPositions(Id, xyz, xyz.Length / 3, resetVelocities ? 1 : 0), "vpDeformableSetPositions");
+        }
+
+        /// <summary>The material, validated on set (a failure changes nothing); acts from the next step.</summary>
+        public vpDeformableMaterial Material
+        {
+            get
+            {
+                var m = new vpDeformableMaterial { structSize = (uint)System.Runtime.InteropServices.Marshal.SizeOf(typeof(vpDeformableMaterial)) };
+                VolPhysException.Check(Native.vpDeformableGetMaterial(Id, ref m), "vpDeformableGetMaterial");
+                return m;
+            }
+            set
+            {
+                value.structSize = (uint)System.Runtime.InteropServices.Marshal.SizeOf(typeof(vpDeformableMaterial));
+                VolPhysException.Check(Native.vpDeformableSetMaterial(Id, ref value), "vpDeformableSetMaterial");
+            }
+        }
+
         public void Destroy() { VolPhysException.Check(Native.vpDeformableDestroy(Id), "vpDeformableDestroy"); }
     }
 }

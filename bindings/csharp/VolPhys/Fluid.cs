@@ -90,6 +90,32 @@ namespace VolPhys
             get { vpActorStats s = Native.vpDefaultActorStats(); VolPhysException.Check(Native.vpFluidGetStats(Id, ref s), "vpFluidGetStats"); return s; }
         }
 
+        /// <summary>Forces and viscosity as last set; a set acts from the next fluid step that begins.</summary>
+        public vpFluidParameters Parameters
+        {
+            get
+            {
+                var p = new vpFluidParameters { structSize = (uint)System.Runtime.InteropServices.Marshal.SizeOf(typeof(vpFluidParameters)) };
+                VolPhysException.Check(Native.vpFluidGetParameters(Id, ref p), "vpFluidGetParameters");
+                return p;
+            }
+            set
+            {
+                value.structSize = (uint)System.Runtime.InteropServices.Marshal.SizeOf(typeof(vpFluidParameters));
+                VolPhysException.Check(Native.vpFluidSetParameters(Id, ref value), "vpFluidSetParameters");
+            }
+        }
+
+        public int EmitterCount
+        {
+            get { int n; VolPhysException.Check(Native.vpFluidGetEmitterCount(Id, out n), "vpFluidGetEmitterCount"); return n; }
+        }
+
+        public void SetEmitter(int index, bool enabled, float densityRate, vpVec3 velocity, float temperature)
+        {
+            VolPhysException.Check(Native.vpFluidSetEmitter(Id, index, enabled ? 1 : 0, densityRate, velocity, temperature), "vpFluidSetEmitter");
+        }
+
         public void Destroy() { VolPhysException.Check(Native.vpFluidDestroy(Id), "vpFluidDestroy"); }
     }
 }

@@ -114,6 +114,13 @@ namespace VolPhys
         [DllImport(Library)] public static extern Status vpWorldGetFluids(vpWorldId world, [Out] vpFluidId[] ids, int capacity, out int count);
         [DllImport(Library)] public static extern Status vpWorldFindFluid(vpWorldId world, [MarshalAs(UnmanagedType.LPStr)] string name, out vpFluidId fluid);
 
+        [DllImport(Library)] public static extern Status vpDeformableSetPositions(vpDeformableId deformable, float[] xyz, int nodeCount, int resetVelocities);
+        [DllImport(Library)] public static extern Status vpDeformableGetMaterial(vpDeformableId deformable, ref vpDeformableMaterial material);
+        [DllImport(Library)] public static extern Status vpDeformableSetMaterial(vpDeformableId deformable, ref vpDeformableMaterial material);
+        [DllImport(Library)] public static extern Status vpFluidGetParameters(vpFluidId fluid, ref vpFluidParameters parameters);
+        [DllImport(Library)] public static extern Status vpFluidSetParameters(vpFluidId fluid, ref vpFluidParameters parameters);
+        [DllImport(Library)] public static extern Status vpFluidGetEmitterCount(vpFluidId fluid, out int count);
+        [DllImport(Library)] public static extern Status vpFluidSetEmitter(vpFluidId fluid, int index, int enabled, float densityRate, vpVec3 velocity, float temperature);
         [DllImport(Library)] public static extern vpQueryFilter vpDefaultQueryFilter();
         [DllImport(Library)] public static extern Status vpWorldRaycast(vpWorldId world, ref vpRay ray, ref vpQueryFilter filter, out vpQueryHit hit, out int hitCount);
         [DllImport(Library)] public static extern Status vpWorldRaycastAll(vpWorldId world, ref vpRay ray, ref vpQueryFilter filter, [Out] vpQueryHit[] hits, int capacity, out int count);

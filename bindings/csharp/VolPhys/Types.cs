@@ -180,6 +180,31 @@ namespace VolPhys
     }
 
     [StructLayout(LayoutKind.Sequential)]
+    public struct vpDeformableMaterial
+    {
+        public uint structSize;
+        public float youngsModulus;
+        public float poissonRatio;
+        public float density;
+        public float massDamping;
+        public float stiffnessDamping;
+        public float friction;
+    }
+
+    [StructLayout(LayoutKind.Sequential)]
+    public struct vpFluidParameters
+    {
+        public uint structSize;
+        public float ambientTemperature;
+        public float densityBuoyancy;
+        public float thermalBuoyancy;
+        public float vorticityConfinement;
+        public float densityDissipation;
+        public float temperatureDissipation;
+        public float kinematicViscosity;
+    }
+
+    [StructLayout(LayoutKind.Sequential)]
     public struct vpQueryFilter
     {
         public QueryKind kinds;

@@ -15,8 +15,8 @@ from ._types import (ActorKind, Advection, BodyType, DomainSide, FluidField, Flu
 from .queries import Hit
 from .collider import BodyProperties, Collider, Transform
 from ._handle import CollisionFilter
-from .deformable import Deformable
-from .fluid import Fluid
+from .deformable import Deformable, Material
+from .fluid import Fluid, FluidParameters
 from .fluid_sources import BoxRegion, Emitter, SphereRegion
 from .log import set_log_callback
 from .errors import (BusyError, DivergedError, InternalError, InvalidArgumentError, InvalidIdError, IoError,

@@ -270,6 +270,31 @@ class vpBodyProperties(ctypes.Structure):
     ]
 
 
+class vpDeformableMaterial(ctypes.Structure):
+    _fields_ = [
+        ("structSize", c_uint32),
+        ("youngsModulus", c_float),
+        ("poissonRatio", c_float),
+        ("density", c_float),
+        ("massDamping", c_float),
+        ("stiffnessDamping", c_float),
+        ("friction", c_float),
+    ]
+
+
+class vpFluidParameters(ctypes.Structure):
+    _fields_ = [
+        ("structSize", c_uint32),
+        ("ambientTemperature", c_float),
+        ("densityBuoyancy", c_float),
+        ("thermalBuoyancy", c_float),
+        ("vorticityConfinement", c_float),
+        ("densityDissipation", c_float),
+        ("temperatureDissipation", c_float),
+        ("kinematicViscosity", c_float),
+    ]
+
+
 class vpDeformableDef(ctypes.Structure):
     _fields_ = [
         ("structSize", c_uint32),

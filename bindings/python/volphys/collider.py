@@ -5,6 +5,7 @@ import ctypes
 from . import _arrays
 from . import _types as T
 from ._api import call
+from . import _settings
 from ._handle import ActorHandle
 
 # position (x, y, z) and rotation quaternion (x, y, z, w), as in vpTransform.
@@ -88,22 +89,13 @@ class Collider(ActorHandle):
     @property
     def properties(self):
         """BodyProperties(mass, friction, restitution, linear_damping, angular_damping)."""
-        p = T.vpBodyProperties(structSize=ctypes.sizeof(T.vpBodyProperties))
-        call("vpColliderGetProperties", self._id, ctypes.byref(p))
-        return BodyProperties(p.mass, p.friction, p.restitution, p.linearDamping, p.angularDamping)
+        return _settings.read("vpColliderGetProperties", self._id, T.vpBodyProperties, BodyProperties)
 
     def set_properties(self, **changes):
         """Changes some of BodyProperties' fields by name (validated as at creation; a
         failure changes nothing), e.g. set_properties(mass=3, friction=0.8)."""
-        current = self.properties._asdict()
-        unknown = set(changes) - set(current)
-        if unknown:
-            raise TypeError("set_properties: unknown field(s) %s; known: %s"
-                            % (", ".join(sorted(unknown)), ", ".join(BodyProperties._fields)))
-        current.update(changes)
-        p = T.vpBodyProperties(ctypes.sizeof(T.vpBodyProperties), current["mass"], current["friction"],
-                               current["restitution"], current["linear_damping"], current["angular_damping"])
-        call("vpColliderSetProperties", self._id, ctypes.byref(p))
+        _settings.change("vpColliderGetProperties", "vpColliderSetProperties", self._id, T.vpBodyProperties,
+                         BodyProperties, changes)
 
     @property
     def sleeping(self):

@@ -1,12 +1,18 @@
 """Deformable: a handle (vpDeformableId) to a tetrahedral FEM volume of a World."""
+from collections import namedtuple
 import ctypes
 from ctypes import c_float, c_int32
 
 from . import _arrays
 from . import _types as T
 from ._api import call, lib
+from . import _settings
 from ._handle import ActorHandle
 from .stats import ActorStats
+
+
+# vpDeformableMaterial without its structSize.
+Material = namedtuple("Material", "youngs_modulus poisson_ratio density mass_damping stiffness_damping friction")
 
 
 class Deformable(ActorHandle):
@@ -38,6 +44,21 @@ class Deformable(ActorHandle):
         ptr, n, keep = _arrays.floats3(velocities, "velocities")
         call("vpDeformableSetVelocities", self._id, ptr, n)
         del keep  # held until here: C copied it
+
+    def set_positions(self, positions, reset_velocities=False):
+        """Teleports every node ((n, 3), n = node_count); the render mesh follows."""
+        ptr, n, keep = _arrays.floats3(positions, "positions")
+        call("vpDeformableSetPositions", self._id, ptr, n, 1 if reset_velocities else 0)
+        del keep
+
+    @property
+    def material(self):
+        return _settings.read("vpDeformableGetMaterial", self._id, T.vpDeformableMaterial, Material)
+
+    def set_material(self, **changes):
+        """Changes Material fields by name from the next step, e.g. set_material(youngs_modulus=2e6)."""
+        _settings.change("vpDeformableGetMaterial", "vpDeformableSetMaterial", self._id, T.vpDeformableMaterial,
+                         Material, changes)
 
     def apply_force(self, node, force):
         """Acts during the next step only."""

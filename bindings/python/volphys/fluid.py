@@ -2,14 +2,21 @@
 
 Grids come back as numpy arrays indexed [k, j, i] (shape (nz, ny, nx), x fastest as in the C
 layout, so no copy or transpose is made); without numpy, as flat lists in the C order."""
+from collections import namedtuple
 import ctypes
 from ctypes import c_float, c_int32
 
 from . import _arrays
 from . import _types as T
 from ._api import call, lib
+from . import _settings
 from ._handle import ActorHandle
 from .stats import ActorStats
+
+
+# vpFluidParameters without its structSize.
+FluidParameters = namedtuple("FluidParameters", "ambient_temperature density_buoyancy thermal_buoyancy "
+                             "vorticity_confinement density_dissipation temperature_dissipation kinematic_viscosity")
 
 
 class Fluid(ActorHandle):
@@ -95,6 +102,26 @@ class Fluid(ActorHandle):
         s = lib.vpDefaultActorStats()
         call("vpFluidGetStats", self._id, ctypes.byref(s))
         return ActorStats._from_c(s)
+
+    @property
+    def parameters(self):
+        """FluidParameters as last set (they act from the next fluid step that begins)."""
+        return _settings.read("vpFluidGetParameters", self._id, T.vpFluidParameters, FluidParameters)
+
+    def set_parameters(self, **changes):
+        _settings.change("vpFluidGetParameters", "vpFluidSetParameters", self._id, T.vpFluidParameters,
+                         FluidParameters, changes)
+
+    @property
+    def emitter_count(self):
+        n = c_int32()
+        call("vpFluidGetEmitterCount", self._id, ctypes.byref(n))
+        return n.value
+
+    def set_emitter(self, index, enabled=True, density_rate=1.0, velocity=(0.0, 0.0, 0.0), temperature=1.0):
+        """Emitter `index` on or off, with its rate, velocity and temperature (its region stays)."""
+        call("vpFluidSetEmitter", self._id, int(index), 1 if enabled else 0, density_rate, _arrays.vec3(velocity),
+             temperature)
 
 
 def _field(which):

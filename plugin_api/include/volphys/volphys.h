@@ -13,7 +13,7 @@
  * - Creation takes an XxxDef struct. Always start from vpDefaultXxxDef() and then change
  *   fields.
  * - Versioned structs (those with a structSize: the defs, vpStepStats, vpActorStats,
- *   vpBodyProperties) only ever grow by fields appended at the end, so an older header's
+ *   vpBodyProperties, vpDeformableMaterial, vpFluidParameters) only ever grow by fields appended at the end, so an older header's
  *   struct is a prefix of this one. The library accepts a structSize equal to its own sizeof or
  *   to the offset where one of its fields begins (the size of an older header's struct). A
  *   struct it reads (defs, vpColliderSetProperties) is read up to structSize only, the missing
@@ -533,6 +533,27 @@ VP_API vpStatus vpDeformableGetNodeCount(vpDeformableId deformable, int32_t* out
 VP_API vpStatus vpDeformableGetPositions(vpDeformableId deformable, float* outXyz, int32_t capacity);
 VP_API vpStatus vpDeformableGetVelocities(vpDeformableId deformable, float* outXyz, int32_t capacity);
 VP_API vpStatus vpDeformableSetVelocities(vpDeformableId deformable, const float* xyz, int32_t nodeCount);
+/* Teleport: every node to a new position (xyz per node, nodeCount = the node count), velocities
+ * zeroed when resetVelocities != 0; the render mesh follows at once. Positions are checked as
+ * everywhere (finite, within +-1e6 m); on failure nothing moves. */
+VP_API vpStatus vpDeformableSetPositions(vpDeformableId deformable, const float* xyz, int32_t nodeCount,
+                                         int32_t resetVelocities);
+
+/* The material at run time, validated as in vpDeformableDef (same fields and ranges; a failed
+ * set changes nothing); it acts from the next step. Stiffness, Poisson ratio and density
+ * rebuild what depends on them (element stiffness for degree > 1, lumped masses). Set
+ * structSize = sizeof(vpDeformableMaterial) or start from vpDeformableGetMaterial. */
+typedef struct vpDeformableMaterial {
+  uint32_t structSize;
+  float youngsModulus;
+  float poissonRatio;
+  float density;
+  float massDamping;
+  float stiffnessDamping;
+  float friction;
+} vpDeformableMaterial;
+VP_API vpStatus vpDeformableGetMaterial(vpDeformableId deformable, vpDeformableMaterial* outMaterial);
+VP_API vpStatus vpDeformableSetMaterial(vpDeformableId deformable, const vpDeformableMaterial* material);
 /* A force acts during the next step only; an impulse changes the velocity now. */
 VP_API vpStatus vpDeformableApplyForce(vpDeformableId deformable, int32_t node, vpVec3 force);
 VP_API vpStatus vpDeformableApplyImpulse(vpDeformableId deformable, int32_t node, vpVec3 impulse);
@@ -672,6 +693,27 @@ VP_API vpStatus vpFluidGetSurfaceMesh(vpFluidId fluid, float* outPositions, floa
                                       int32_t* outTriangles, int32_t triangleCapacity);
 /* Liquid: volume in m^3 (0 for smoke). Smoke: total smoke (density * m^3; 0 for liquid). */
 VP_API vpStatus vpFluidGetAmount(vpFluidId fluid, float* outAmount);
+
+/* A fluid's forces and viscosity at run time, validated as in vpFluidDef; they act from the
+ * next fluid step that begins (a step spanning frames finishes with the values it began with).
+ * Get returns the values last set. Set structSize from vpFluidGetParameters or sizeof. */
+typedef struct vpFluidParameters {
+  uint32_t structSize;
+  float ambientTemperature;
+  float densityBuoyancy;
+  float thermalBuoyancy;
+  float vorticityConfinement;
+  float densityDissipation;
+  float temperatureDissipation;
+  float kinematicViscosity;  /* 0 switches the viscosity solve off */
+} vpFluidParameters;
+VP_API vpStatus vpFluidGetParameters(vpFluidId fluid, vpFluidParameters* outParameters);
+VP_API vpStatus vpFluidSetParameters(vpFluidId fluid, const vpFluidParameters* parameters);
+/* Emitter `index` of the def's emitters (0..emitterCount-1): on or off, and its rate, velocity
+ * and temperature (its region stays); from the next fluid step that begins, as above. */
+VP_API vpStatus vpFluidGetEmitterCount(vpFluidId fluid, int32_t* outCount);
+VP_API vpStatus vpFluidSetEmitter(vpFluidId fluid, int32_t index, int32_t enabled, float densityRate,
+                                  vpVec3 velocity, float temperature);
 VP_API vpStatus vpFluidGetStats(vpFluidId fluid, vpActorStats* outStats);
 /* Number of fluids and their ids, in slot order (stable while none is destroyed). */
 VP_API vpStatus vpWorldGetFluidCount(vpWorldId world, int32_t* outCount);

@@ -58,7 +58,8 @@ static class VolPhysTests
         Type[] types = { typeof(vpVersion), typeof(vpVec3), typeof(vpQuat), typeof(vpTransform), typeof(vpWorldId),
                          typeof(vpColliderId), typeof(vpDeformableId), typeof(vpWorldDef), typeof(vpPhaseStats),
                          typeof(vpActorStats), typeof(vpStepStats), typeof(vpShapeDef), typeof(vpColliderDef), typeof(vpBodyProperties), typeof(vpCollisionFilter),
-                         typeof(vpQueryFilter), typeof(vpRay), typeof(vpQueryHit),
+                         typeof(vpQueryFilter), typeof(vpRay), typeof(vpQueryHit), typeof(vpDeformableMaterial),
+                         typeof(vpFluidParameters),
                          typeof(vpDeformableDef), typeof(vpFluidId), typeof(vpFluidRegion), typeof(vpFluidEmitter),
                          typeof(vpFluidDef), typeof(vpBuildInfo) };
         foreach (Type t in types)
@@ -138,6 +139,15 @@ static class VolPhysTests
             int[] tris;
             body.GetRenderMesh(out p, out n, out tris);
             Check(p.Length == 36 && tris.Length == 3 * 20, "render mesh sizes");
+
+            vpDeformableMaterial m = body.Material;
+            Check(m.youngsModulus == 2e5f, "material read back");
+            m.youngsModulus = 4e5f;
+            body.Material = m;
+            Check(body.Material.youngsModulus == 4e5f, "material set");
+            for (int i = 0; i < body.NodeCount; ++i) x[3 * i] += 10.0f;
+            body.SetPositions(x, true);
+            Check(body.GetPositions()[0] == x[0], "teleported");
         }
     }
 
@@ -193,6 +203,10 @@ static class VolPhysTests
             liquid.GetResolution(out nx, out ny, out nz);
             Check(nx == 16 && ny == 12 && nz == 8, string.Format("resolution {0} {1} {2}", nx, ny, nz));
             Check(Math.Abs(liquid.Amount - 0.1875f) < 0.01f, "liquid volume " + liquid.Amount);
+            vpFluidParameters fp = liquid.Parameters;
+            fp.kinematicViscosity = 1e-3f;
+            liquid.Parameters = fp;
+            Check(liquid.Parameters.kinematicViscosity == 1e-3f && liquid.EmitterCount == 0, "parameters and emitters");
             int vertices, triangles;
             liquid.GetSurfaceMeshSize(out vertices, out triangles);
             Check(vertices > 0 && triangles > 0, string.Format("surface of {0} vertices, {1} triangles", vertices, triangles));

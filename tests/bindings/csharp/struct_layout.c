@@ -48,6 +48,14 @@ int main(void) {
   SIZE(vpQueryHit); FIELD(vpQueryHit, kind); FIELD(vpQueryHit, collider); FIELD(vpQueryHit, deformable);
   FIELD(vpQueryHit, fluid); FIELD(vpQueryHit, distance); FIELD(vpQueryHit, point); FIELD(vpQueryHit, normal);
   FIELD(vpQueryHit, triangle); FIELD(vpQueryHit, barycentric); FIELD(vpQueryHit, nearestNode);
+  SIZE(vpDeformableMaterial); FIELD(vpDeformableMaterial, structSize); FIELD(vpDeformableMaterial, youngsModulus);
+  FIELD(vpDeformableMaterial, poissonRatio); FIELD(vpDeformableMaterial, density);
+  FIELD(vpDeformableMaterial, massDamping); FIELD(vpDeformableMaterial, stiffnessDamping);
+  FIELD(vpDeformableMaterial, friction);
+  SIZE(vpFluidParameters); FIELD(vpFluidParameters, structSize); FIELD(vpFluidParameters, ambientTemperature);
+  FIELD(vpFluidParameters, densityBuoyancy); FIELD(vpFluidParameters, thermalBuoyancy);
+  FIELD(vpFluidParameters, vorticityConfinement); FIELD(vpFluidParameters, densityDissipation);
+  FIELD(vpFluidParameters, temperatureDissipation); FIELD(vpFluidParameters, kinematicViscosity);
   SIZE(vpBodyProperties); FIELD(vpBodyProperties, structSize); FIELD(vpBodyProperties, mass);
   FIELD(vpBodyProperties, friction); FIELD(vpBodyProperties, restitution); FIELD(vpBodyProperties, linearDamping);
   FIELD(vpBodyProperties, angularDamping);
