@@ -106,6 +106,7 @@ Status World::destroyDeformable(DeformableHandle handle) {
   std::unique_ptr<DeformableBody> body = deformables_.remove(handle.index1, handle.generation);
   if (!body)
     return fail(Status::InvalidId, "deformable id (%u, %u) is stale or null", handle.index1, handle.generation);
+  contactEvents_.forget(handle.index1, handle.generation);
   return Status::Ok;
 }
 
@@ -186,6 +187,7 @@ Status World::step(double dt) {
   stats.colliderCount = static_cast<int>(colliders_.size());
   const double runDelayAtStart = poolRunDelayMs();
   actorOutOfMemory_ = false;
+  contactEvents_.beginFrame();
   stepRigidBodies(dt, frame, &stats);
   const bool floorsHeld = stepDeformables(dt, frame, &stats);
   stepFluids(dt, frame, floorsHeld, &stats);
@@ -338,8 +340,10 @@ double World::fluidsExpectedMs(int priority) {
 
 bool World::stepDeformables(double dt, const Deadline& frame, StepStats* stats) {
   std::vector<Filtered<ContactCollider>> contactColliders;
-  colliders_.forEach([&](ColliderHandle, const Collider& c) {
-    if (c.geometry()) contactColliders.push_back({c.filter(), ContactCollider{c.geometry(), c.desc().friction}});
+  colliders_.forEach([&](ColliderHandle h, const Collider& c) {
+    if (c.geometry())
+      contactColliders.push_back(
+          {c.filter(), ContactCollider{c.geometry(), c.desc().friction, h.index1, h.generation}});
   });
   const std::vector<DeformableHandle> handles = deformableHandles();
   std::vector<FramePlan::Deformable> planned;
@@ -410,6 +414,7 @@ bool World::stepDeformables(double dt, const Deadline& frame, StepStats* stats) 
       continue;
     }
     a.completedStep = true;
+    contactEvents_.update(handles[i].index1, handles[i].generation, *deformable(handles[i]));
     a.slices = 1 + a.phase(Phase::Solve).iterations;
     stats->maxSliceMs = std::max(stats->maxSliceMs, longestDeformableSliceMs(a));
     missed[i] = a.floorMissed;

@@ -9,6 +9,7 @@
 
 #include "collide/collider.h"
 #include "collide/collision_world.h"
+#include "contact_events.h"
 #include "core/budget_clock.h"
 #include "core/slot_map.h"
 #include "core/task_system.h"
@@ -51,6 +52,8 @@ class World {
 
   Status step(double dt);
   const StepStats& lastStats() const { return stats_; }
+  // Deformable-collider contacts that began or ended in the last step (contact_events.h).
+  const std::vector<ContactEvent>& contactEvents() const { return contactEvents_.events(); }
 
   // Validates (and may load a mesh file); on failure nothing changes.
   Status createCollider(ColliderDesc desc, ColliderHandle* out);
@@ -113,6 +116,7 @@ class World {
   SlotMap<DeformableBody> deformables_;
   SlotMap<FluidActor> fluids_;
   StepStats stats_;
+  ContactEventTracker contactEvents_;
   // Set when an actor's step ran out of memory and was undone (actors may run side by side).
   std::atomic<bool> actorOutOfMemory_{false};
 };

@@ -151,4 +151,30 @@ vpStatus vpWorldGetActorStats(vpWorldId id, int32_t actorIndex, vpActorStats* ou
   });
 }
 
+
+vpStatus vpWorldGetContactEvents(vpWorldId id, vpContactEvent* outEvents, int32_t capacity, int32_t* outCount) {
+  return guarded(__func__, [&] {
+    VP_REQUIRE_POINTER(outCount);
+    if (capacity < 0) return fail(Status::InvalidArgument, "capacity = %d: must be >= 0", capacity);
+    if (capacity > 0 && outEvents == nullptr)
+      return fail(Status::InvalidArgument, "outEvents is NULL with capacity = %d", capacity);
+    WorldLease w;
+    VP_TRY(resolveWorld(id, &w));
+    const std::vector<ContactEvent>& events = w->contactEvents();
+    for (size_t i = 0; i < events.size() && i < static_cast<size_t>(capacity); ++i) {
+      const ContactEvent& e = events[i];
+      vpContactEvent& out = outEvents[i];
+      out = vpContactEvent{};
+      out.type = e.type == ContactEvent::Type::Begin ? vpContactEventType_Begin : vpContactEventType_End;
+      out.deformable = makeDeformableId(id, DeformableHandle{e.deformableIndex1, e.deformableGeneration});
+      out.collider = makeColliderId(id, ColliderHandle{e.colliderIndex1, e.colliderGeneration});
+      out.nodeCount = e.nodeCount;
+      out.point = toC(e.point);
+      out.normal = toC(e.normal);
+    }
+    *outCount = static_cast<int32_t>(events.size());
+    return Status::Ok;
+  });
+}
+
 }  // extern "C"

@@ -52,6 +52,8 @@ void findNodeContacts(const Array<double>& x, const Array<double>& v, const Arra
       best.colliderVelocity = vc;
       best.normalSpeed = vc.dot(n) + std::min(-phi / h, kMaxPushOutSpeed);
       best.friction = bodyFriction * cc.friction;
+      best.colliderIndex1 = cc.index1;
+      best.colliderGeneration = cc.generation;
       bestPredicted = predicted;
     }
     if (best.node >= 0) out->push_back(best);

@@ -31,6 +31,7 @@ namespace vp {
 struct ContactCollider {
   const PreparedCollider* geometry = nullptr;
   double friction = 0.5;
+  uint32_t index1 = 0, generation = 0;  // the collider's handle, carried into its contacts
 };
 
 struct NodeContact {
@@ -39,6 +40,7 @@ struct NodeContact {
   Vec3 colliderVelocity = Vec3::Zero();  // of the collider's material point at the node
   double normalSpeed = 0.0;              // prescribed v·n
   double friction = 0.0;                 // combined coefficient
+  uint32_t colliderIndex1 = 0, colliderGeneration = 0;  // which collider (ContactCollider's handle)
 };
 
 // Push-out speed cap for nodes that start inside a collider: resolves deep penetrations

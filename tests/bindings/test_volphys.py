@@ -228,6 +228,19 @@ class Deformables(unittest.TestCase):
             np.testing.assert_allclose(d.positions(), x)
             self.assertGreater(float(d.render_mesh()[0][:, 0].min()), 2.0)
 
+    def test_landing_on_the_floor_is_one_begin_event(self):
+        with volphys.World(frame_budget_ms=0) as w:
+            floor = w.create_collider(volphys.Plane(), body_type="static")
+            d, verts = self.make(w)
+            events = []
+            for _ in range(90):
+                w.step(DT)
+                events += w.contact_events()
+            self.assertEqual(len(events), 1)
+            self.assertEqual(events[0].type, volphys.ContactEventType.Begin)
+            self.assertEqual((events[0].deformable, events[0].collider), (d, floor))
+            self.assertAlmostEqual(events[0].normal[1], 1.0, places=3)
+
     def test_ray_hits_the_deformable_surface(self):
         with volphys.World(frame_budget_ms=0) as w:
             d, verts = self.make(w)

@@ -32,6 +32,7 @@ namespace VolPhys
     public enum FluidField : int { SmokeDensity = 0, Temperature = 1, LevelSet = 2, Pressure = 3 }
     [Flags] public enum QueryKind : int { Colliders = 1, Deformables = 2, Liquids = 4, All = 7 }
     public enum HitKind : int { None = 0, Collider = 1, Deformable = 2, Liquid = 3 }
+    public enum ContactEventType : int { Begin = 0, End = 1 }
 
     public static class Constants
     {
@@ -202,6 +203,17 @@ namespace VolPhys
         public float densityDissipation;
         public float temperatureDissipation;
         public float kinematicViscosity;
+    }
+
+    [StructLayout(LayoutKind.Sequential)]
+    public struct vpContactEvent
+    {
+        public ContactEventType type;
+        public vpDeformableId deformable;
+        public vpColliderId collider;
+        public int nodeCount;
+        public vpVec3 point;
+        public vpVec3 normal;
     }
 
     [StructLayout(LayoutKind.Sequential)]

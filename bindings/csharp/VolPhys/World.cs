@@ -54,6 +54,16 @@ namespace VolPhys
             return s;
         }
 
+        /// <summary>Deformable-collider contacts that began or ended in the last step.</summary>
+        public vpContactEvent[] ContactEvents()
+        {
+            int count;
+            VolPhysException.Check(Native.vpWorldGetContactEvents(Id, null, 0, out count), "vpWorldGetContactEvents");
+            var events = new vpContactEvent[count];
+            VolPhysException.Check(Native.vpWorldGetContactEvents(Id, events, count, out count), "vpWorldGetContactEvents");
+            return events;
+        }
+
         // Scene queries: filter from Native.vpDefaultQueryFilter() (every kind, every category).
         /// <summary>The nearest hit along the ray; false when nothing is hit.</summary>
         public bool Raycast(vpRay ray, vpQueryFilter filter, out vpQueryHit hit)

@@ -10,8 +10,8 @@ import ctypes
 from . import _types as _T
 from ._api import call as _call, lib as _lib
 from ._arrays import HAVE_NUMPY
-from ._types import (ActorKind, Advection, BodyType, DomainSide, FluidField, FluidKind, HitKind, LogLevel, Phase,
-                     QueryKind, ShapeType, Status)
+from ._types import (ActorKind, Advection, BodyType, ContactEventType, DomainSide, FluidField, FluidKind, HitKind,
+                     LogLevel, Phase, QueryKind, ShapeType, Status)
 from .queries import Hit
 from .collider import BodyProperties, Collider, Transform
 from ._handle import CollisionFilter
@@ -23,7 +23,7 @@ from .errors import (BusyError, DivergedError, InternalError, InvalidArgumentErr
                      OutOfMemoryError, ParseError, UnsupportedError, VersionMismatchError, VolPhysError)
 from .shapes import Box, Capsule, ConvexHull, Cylinder, Plane, Shape, Sphere, TriangleMesh
 from .stats import ActorStats, PhaseStats, StepStats
-from .world import World
+from .world import ContactEvent, World
 
 __version__ = "%d.%d.%d" % (_T.VP_VERSION_MAJOR, _T.VP_VERSION_MINOR, _T.VP_VERSION_PATCH)
 

@@ -106,6 +106,7 @@ _PROTOTYPES = {
     "vpWorldFindFluid": (_S, [T.vpWorldId, c_char_p, _P(T.vpFluidId)]),
     "vpGetBuildInfo": (_S, [_P(T.vpBuildInfo)]),
     "vpDefaultQueryFilter": (T.vpQueryFilter, []),
+    "vpWorldGetContactEvents": (_S, [T.vpWorldId, _P(T.vpContactEvent), c_int32, _P(c_int32)]),
     "vpDeformableSetPositions": (_S, [T.vpDeformableId, _P(c_float), c_int32, c_int32]),
     "vpDeformableGetMaterial": (_S, [T.vpDeformableId, _P(T.vpDeformableMaterial)]),
     "vpDeformableSetMaterial": (_S, [T.vpDeformableId, _P(T.vpDeformableMaterial)]),

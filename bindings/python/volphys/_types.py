@@ -394,3 +394,19 @@ class vpQueryHit(ctypes.Structure):
         ("barycentric", vpVec3),
         ("nearestNode", c_int32),
     ]
+
+
+class ContactEventType(enum.IntEnum):
+    Begin = 0
+    End = 1
+
+
+class vpContactEvent(ctypes.Structure):
+    _fields_ = [
+        ("type", c_enum),
+        ("deformable", vpDeformableId),
+        ("collider", vpColliderId),
+        ("nodeCount", c_int32),
+        ("point", vpVec3),
+        ("normal", vpVec3),
+    ]

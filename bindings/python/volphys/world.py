@@ -1,4 +1,5 @@
 """World: owns colliders, deformables and fluids; steps them under a frame budget."""
+from collections import namedtuple
 import ctypes
 from ctypes import c_int32
 
@@ -11,6 +12,8 @@ from .deformable import Deformable
 from .fluid import Fluid
 from .fluid_sources import emitter_array, region_array
 from . import queries
+
+ContactEvent = namedtuple("ContactEvent", "type deformable collider node_count point normal")
 from .stats import ActorStats, StepStats
 
 # Python keyword -> vpColliderDef field, for the plain float fields.
@@ -179,6 +182,18 @@ class World:
             call("vpWorldGetActorStats", self._id, i, ctypes.byref(s))
             out.append(ActorStats._from_c(s))
         return out
+
+    def contact_events(self):
+        """Deformable-collider contacts that began or ended in the last step: a list of
+        ContactEvent(type, deformable, collider, node_count, point, normal)."""
+        count = c_int32()
+        call("vpWorldGetContactEvents", self._id, None, 0, ctypes.byref(count))
+        events = (T.vpContactEvent * max(count.value, 1))()
+        call("vpWorldGetContactEvents", self._id, events, count.value, ctypes.byref(count))
+        v = lambda p: (p.x, p.y, p.z)
+        return [ContactEvent(T.ContactEventType(e.type), Deformable(self, T.vpDeformableId.from_buffer_copy(e.deformable)),
+                             Collider(self, T.vpColliderId.from_buffer_copy(e.collider)), e.nodeCount, v(e.point),
+                             v(e.normal)) for e in events[:count.value]]
 
     # -------------------------------------------------------------- scene queries
     # kinds: QueryKind bits; collision_filter: (category, mask) the objects must meet. Hits are

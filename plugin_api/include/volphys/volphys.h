@@ -720,6 +720,33 @@ VP_API vpStatus vpWorldGetFluidCount(vpWorldId world, int32_t* outCount);
 VP_API vpStatus vpWorldGetFluids(vpWorldId world, vpFluidId* outIds, int32_t capacity, int32_t* outCount);
 VP_API vpStatus vpWorldFindFluid(vpWorldId world, const char* name, vpFluidId* outFluid);
 
+/* ---------------------------------------------------------------- contact events */
+
+/* Deformable-collider contacts that began or ended in the last vpWorldStep, read after it (no
+ * callbacks run during a step). A pair touches while at least one node of the deformable is in
+ * contact with the collider (colliders it meets by the collision filter). A deformable that did
+ * not step in a frame (its rate lowered by the budget) keeps its pairs; destroying a deformable
+ * drops its pairs without events; a destroyed collider's pairs end at the next step (the event
+ * carries its now stale id). */
+typedef enum vpContactEventType {
+  vpContactEventType_Begin = 0,
+  vpContactEventType_End = 1
+} vpContactEventType;
+
+typedef struct vpContactEvent {
+  vpContactEventType type;
+  vpDeformableId deformable;
+  vpColliderId collider;
+  int32_t nodeCount;  /* Begin: nodes touching; End: 0 */
+  vpVec3 point;       /* Begin: mean position of the touching nodes */
+  vpVec3 normal;      /* Begin: their mean contact normal, out of the collider */
+} vpContactEvent;
+
+/* min(capacity, total) events of the last step into outEvents (Begin and End in the order the
+ * deformables stepped), *outCount = the total. */
+VP_API vpStatus vpWorldGetContactEvents(vpWorldId world, vpContactEvent* outEvents, int32_t capacity,
+                                        int32_t* outCount);
+
 /* ---------------------------------------------------------------- scene queries */
 
 /* Rays and overlaps against colliders, deformables and liquids. Call them outside a step, from

@@ -56,6 +56,9 @@ int main(void) {
   FIELD(vpFluidParameters, densityBuoyancy); FIELD(vpFluidParameters, thermalBuoyancy);
   FIELD(vpFluidParameters, vorticityConfinement); FIELD(vpFluidParameters, densityDissipation);
   FIELD(vpFluidParameters, temperatureDissipation); FIELD(vpFluidParameters, kinematicViscosity);
+  SIZE(vpContactEvent); FIELD(vpContactEvent, type); FIELD(vpContactEvent, deformable);
+  FIELD(vpContactEvent, collider); FIELD(vpContactEvent, nodeCount); FIELD(vpContactEvent, point);
+  FIELD(vpContactEvent, normal);
   SIZE(vpBodyProperties); FIELD(vpBodyProperties, structSize); FIELD(vpBodyProperties, mass);
   FIELD(vpBodyProperties, friction); FIELD(vpBodyProperties, restitution); FIELD(vpBodyProperties, linearDamping);
   FIELD(vpBodyProperties, angularDamping);
