@@ -21,6 +21,7 @@ struct PhaseStats {
   int iterations = 0;
   double residual = 0.0;
   bool budgetCut = false;
+  bool failed = false;  // hit an error: the step went on without it (World::step says so)
 };
 
 struct ActorStats {

@@ -125,6 +125,19 @@ Status World::destroyFluid(FluidHandle handle) {
 
 namespace {
 
+// The first actor phase of the frame that failed, as "fluid (1, 1): phase 9" (vpPhase numbers).
+bool describeFailedPhase(const StepStats& stats, std::string* what) {
+  for (const ActorStats& a : stats.actors)
+    for (int p = 0; p < kPhaseCount; ++p)
+      if (a.phases[p].failed) {
+        const char* kind = a.kind == ActorKind::Fluid ? "fluid" : a.kind == ActorKind::Deformable ? "deformable" : "rigid";
+        *what = std::string(kind) + " (" + std::to_string(a.index1) + ", " + std::to_string(a.generation) +
+                "): phase " + std::to_string(p);
+        return true;
+      }
+  return false;
+}
+
 // Handles of every object in slot order, and the first one with a given name (scene files
 // name objects; names need not be unique).
 template <class T>
@@ -197,6 +210,10 @@ Status World::step(double dt) {
   if (actorOutOfMemory_)
     return fail(Status::OutOfMemory, "out of memory: an actor's step was undone (the others stepped); the world "
                                      "can be stepped again");
+  std::string failed;
+  if (describeFailedPhase(stats_, &failed))
+    return fail(Status::PhaseFailed, "%s failed (vpActorStats.failedPhases; the log says why); the step completed "
+                "the rest and the world can be stepped again", failed.c_str());
   return Status::Ok;
 }
 

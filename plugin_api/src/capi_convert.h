@@ -23,7 +23,7 @@ inline vpTransform toC(const Pose& p) { return vpTransform{toC(p.position), toC(
 inline CollisionFilter toFilter(const vpCollisionFilter& f) { return CollisionFilter{f.categoryBits, f.maskBits}; }
 inline vpCollisionFilter toC(const CollisionFilter& f) { return vpCollisionFilter{f.category, f.mask}; }
 
-static_assert(static_cast<int>(Status::Internal) == vpStatus_Internal, "vp::Status and vpStatus must match");
+static_assert(static_cast<int>(Status::PhaseFailed) == vpStatus_PhaseFailed, "vp::Status and vpStatus must match");
 inline vpStatus toC(Status s) { return static_cast<vpStatus>(s); }
 
 // A C enum field may hold any int the host wrote; in C++ loading an out-of-range value as the

@@ -181,6 +181,7 @@ void fillActorStats(const ActorStats& in, vpActorStats* out) {
     const PhaseStats& ph = in.phases[p];
     out->phases[p] = vpPhaseStats{static_cast<float>(ph.ms), ph.iterations, static_cast<float>(ph.residual),
                                   ph.budgetCut ? 1 : 0};
+    if (ph.failed) out->failedPhases |= 1u << p;
   }
 }
 

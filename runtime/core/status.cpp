@@ -39,6 +39,7 @@ const char* statusName(Status code) {
     case Status::Diverged: return "Diverged";
     case Status::VersionMismatch: return "VersionMismatch";
     case Status::Internal: return "Internal";
+    case Status::PhaseFailed: return "PhaseFailed";
   }
   return "Unknown";
 }

@@ -21,6 +21,7 @@ enum class Status : int {
   Diverged = 8,         // the simulation blew up; the actor was restored
   VersionMismatch = 9,  // header and library disagree
   Internal = 10,        // a bug: an invariant of VolPhys itself was broken
+  PhaseFailed = 11,     // a step completed what it could; a phase of some actor failed (its stats say which)
 };
 
 // Records a printf-style message as the calling thread's last error and returns `code`.

@@ -86,16 +86,23 @@ const FluidSurface& FluidActor::surface() {
   return surface_;
 }
 
+bool FluidActor::phaseOk(Phase phase, const char* what, Status status) {
+  if (ok(status) && injectedFailure_ == phase) {
+    injectedFailure_.reset();
+    status = fail(Status::Internal, "failure injected by a test");
+  }
+  if (ok(status)) return true;
+  log(LogLevel::Error, "fluid '%s': %s failed: %s", desc_.name.c_str(), what, lastError());
+  if (step_ && step_->stats) step_->stats->phase(phase).failed = true;
+  return false;
+}
+
 bool FluidActor::keepLevelSetHealthySlice() {
   StepInProgress& st = *step_;
   LevelSetUpkeep& u = st.levelSet;
   TaskSystem& tasks = *st.input.tasks;
   const int64_t slice = slabSamples(FluidSlice::LevelSet);
-  auto failed = [&](const char* what, Status s) {
-    if (ok(s)) return false;
-    log(LogLevel::Error, "fluid '%s': %s failed: %s", desc_.name.c_str(), what, lastError());
-    return true;
-  };
+  auto failed = [&](const char* what, Status s) { return !phaseOk(Phase::Surface, what, s); };
   bool done = false;  // the run in progress; its samples are the slice's work
   switch (u.stage) {
     case LevelSetUpkeep::Extend:
@@ -146,20 +153,17 @@ VelocityExtrapolationSettings FluidActor::extrapolationSettings() const {
 }
 
 void FluidActor::extrapolateLiquidVelocity() {
-  if (Status s = extrapolateVelocity(*tasks_, grid_, fractions_, phi_.data(), extrapolationSettings(), extrapolation_);
-      !ok(s))
-    log(LogLevel::Error, "fluid '%s': velocity extrapolation failed: %s", desc_.name.c_str(), lastError());
+  phaseOk(Phase::Advect, "velocity extrapolation",
+          extrapolateVelocity(*tasks_, grid_, fractions_, phi_.data(), extrapolationSettings(), extrapolation_));
 }
 
 bool FluidActor::extrapolateLiquidVelocitySlice() {
   StepInProgress& st = *step_;
   if (!st.extrapolating) {
-    if (Status s = st.extrapolation.prepare(*st.input.tasks, grid_, fractions_, phi_.data(), extrapolationSettings(),
-                                            extrapolation_, slabSamples(FluidSlice::Extrapolate));
-        !ok(s)) {
-      log(LogLevel::Error, "fluid '%s': velocity extrapolation failed: %s", desc_.name.c_str(), lastError());
+    if (!phaseOk(Phase::Advect, "velocity extrapolation",
+                 st.extrapolation.prepare(*st.input.tasks, grid_, fractions_, phi_.data(), extrapolationSettings(),
+                                          extrapolation_, slabSamples(FluidSlice::Extrapolate))))
       return true;
-    }
     st.extrapolating = true;
   }
   const bool done = st.extrapolation.advance();
@@ -171,10 +175,9 @@ bool FluidActor::extrapolateLiquidVelocitySlice() {
 
 void FluidActor::diffuseVelocity() {
   ViscosityStats vs;
-  if (Status s = applyViscosity(*step_->input.tasks, grid_, fractions_, liquidPhi(), desc_.kinematicViscosity,
-                                step_->h, Deadline{}, ViscositySettings{}, viscosity_, &vs);
-      !ok(s))
-    log(LogLevel::Error, "fluid '%s': viscosity failed: %s", desc_.name.c_str(), lastError());
+  phaseOk(Phase::Viscosity, "viscosity",
+          applyViscosity(*step_->input.tasks, grid_, fractions_, liquidPhi(), desc_.kinematicViscosity, step_->h,
+                         Deadline{}, ViscositySettings{}, viscosity_, &vs));
   PhaseStats& phase = step_->stats->phase(Phase::Viscosity);
   phase.iterations += vs.solve.iterations;
   phase.residual = std::max(phase.residual, vs.solve.relativeResidual);
@@ -440,10 +443,7 @@ void FluidActor::beginStep(const FluidStepInput& input) {
 void FluidActor::planFractionUpdate() {
   SlabPasses& passes = step_->fractionUpdate;
   passes.reset(*step_->input.tasks);
-  if (Status st = addFractionUpdatePasses(passes); st != Status::Ok) {
-    log(LogLevel::Error, "fluid '%s': face fractions failed: %s", desc_.name.c_str(), lastError());
-    passes.reset(*step_->input.tasks);
-  }
+  if (!phaseOk(Phase::Fractions, "face fractions", addFractionUpdatePasses(passes))) passes.reset(*step_->input.tasks);
   if (desc_.kind == FluidKind::Liquid) addCellOpenFractionPasses(passes, fractions_, &cellWeights_);
 }
 
@@ -517,10 +517,10 @@ bool FluidActor::setUpProjectionSlice() {
   settings.operatorUnchanged = desc_.kind == FluidKind::Smoke && !pressureOperatorStale_;
   pressureOperatorStale_ = false;
   st.projectionPrepared = true;
-  st.projectionFailed = !ok(st.projection.prepare(*st.input.tasks, grid_, fractions_, st.h, desc_.density, settings,
-                                                  pressure_, liquidPhi(), slabSamples(FluidSlice::PressureUpdate)));
-  if (st.projectionFailed)
-    log(LogLevel::Error, "fluid '%s': pressure projection failed: %s", desc_.name.c_str(), lastError());
+  st.projectionFailed = !phaseOk(Phase::Pressure, "pressure projection",
+                                 st.projection.prepare(*st.input.tasks, grid_, fractions_, st.h, desc_.density,
+                                                       settings, pressure_, liquidPhi(),
+                                                       slabSamples(FluidSlice::PressureUpdate)));
   return st.projectionFailed || st.projection.advanceSetup();
 }
 

@@ -150,6 +150,8 @@ class FluidActor {
   const FluidDesc& desc() const { return desc_; }
   // From the next step that begins (a step in progress keeps the colliders it began with).
   void setCollisionFilter(const CollisionFilter& filter) { desc_.filter = filter; }
+  // Test hook: the next fallible part of `phase` fails as if its solver had (see phaseOk).
+  void injectPhaseFailureForTesting(Phase phase) { injectedFailure_ = phase; }
   // The controls as last set (those waiting for the next step included); a change is
   // validated (on failure nothing changes) and takes effect when the next step begins.
   FluidControls controls() const;
@@ -255,6 +257,10 @@ class FluidActor {
 
   FluidDesc desc_;
   std::optional<FluidControls> pendingControls_;  // applied by beginStep
+  std::optional<Phase> injectedFailure_;
+  // One fallible part of a step's phase: on failure (or an injected one) logs it, marks the
+  // phase failed in the frame's stats, and returns false; the step goes on without that part.
+  bool phaseOk(Phase phase, const char* what, Status status);
   MacGrid grid_;
   FaceFractionField fractions_;
   std::vector<ColliderSnapshot> snapshots_;  // the colliders the fractions were computed for

@@ -105,6 +105,7 @@ TEST(CApiWorld, StepAndActorStatsCarryTheFramePlanFields) {
     ASSERT_VP_OK(vpWorldGetActorStats(w.id, a, &s));
     EXPECT_EQ(s.kind, expectedKind[a]);
     EXPECT_EQ(s.priority, expectedPriority[a]) << "actor " << a;
+    EXPECT_EQ(s.failedPhases, 0u) << "actor " << a;
     EXPECT_EQ(s.interval, 1) << "actor " << a;
     EXPECT_TRUE(s.completedStep == 0 || s.completedStep == 1) << s.completedStep;
     EXPECT_TRUE(s.progress >= 0.0f && s.progress <= 1.0f) << s.progress;

@@ -10,7 +10,7 @@ namespace VolPhys
     public enum Status : int
     {
         Ok = 0, InvalidArgument = 1, InvalidId = 2, OutOfMemory = 3, Unsupported = 4, IoError = 5,
-        ParseError = 6, Busy = 7, Diverged = 8, VersionMismatch = 9, Internal = 10
+        ParseError = 6, Busy = 7, Diverged = 8, VersionMismatch = 9, Internal = 10, PhaseFailed = 11
     }
 
     public enum LogLevel : int { Debug = 0, Info = 1, Warning = 2, Error = 3, Off = 4 }
@@ -141,6 +141,7 @@ namespace VolPhys
         public int priority;
         /// <summary>Deformable: its solve ended the frame above its targetResidual.</summary>
         public int floorMissed;
+        public uint failedPhases;
 
         public vpPhaseStats Phase(Phase phase)
         {

@@ -29,6 +29,7 @@ class Status(enum.IntEnum):
     Diverged = 8
     VersionMismatch = 9
     Internal = 10
+    PhaseFailed = 11
 
 
 class LogLevel(enum.IntEnum):
@@ -198,6 +199,7 @@ class vpActorStats(ctypes.Structure):
         ("residual", c_float),
         ("priority", c_int32),
         ("floorMissed", c_int32),
+        ("failedPhases", c_uint32),
     ]
 
 

@@ -54,6 +54,10 @@ class InternalError(VolPhysError):
     pass
 
 
+class PhaseFailedError(VolPhysError):
+    """World.step: a phase of some actor failed; the rest of the step ran (actor_stats say which)."""
+
+
 _BY_STATUS = {
     Status.InvalidArgument: InvalidArgumentError,
     Status.InvalidId: InvalidIdError,
@@ -65,6 +69,7 @@ _BY_STATUS = {
     Status.Diverged: DivergedError,
     Status.VersionMismatch: VersionMismatchError,
     Status.Internal: InternalError,
+    Status.PhaseFailed: PhaseFailedError,
 }
 
 

@@ -51,6 +51,7 @@ class ActorStats:
     priority: int         # the def's priority
     floor_missed: bool    # deformable: its solve ended the frame above its target_residual
     phases: Dict[Phase, PhaseStats] = field(default_factory=dict)
+    failed_phases: tuple = ()  # phases that hit an error in this frame (World.step raised PhaseFailedError)
 
     @classmethod
     def _from_c(cls, s):
@@ -64,4 +65,5 @@ class ActorStats:
         return cls(kind=kind, index1=s.index1, total_ms=s.totalMs, diverged=bool(s.diverged),
                    simulated_dt=s.simulatedDt, interval=s.interval, completed_step=bool(s.completedStep),
                    progress=s.progress, slices=s.slices, residual=s.residual, priority=s.priority,
-                   floor_missed=bool(s.floorMissed), phases=phases)
+                   floor_missed=bool(s.floorMissed), phases=phases,
+                   failed_phases=tuple(Phase(i) for i in range(PHASE_COUNT) if s.failedPhases & (1 << i)))

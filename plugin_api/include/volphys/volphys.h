@@ -105,7 +105,10 @@ typedef enum vpStatus {
                                    or vpSetAllocator while worlds exist */
   vpStatus_Diverged = 8,        /* reserved: divergence is reported in vpActorStats.diverged */
   vpStatus_VersionMismatch = 9, /* header and library, or a struct's structSize, disagree */
-  vpStatus_Internal = 10        /* a bug in VolPhys: please report the message */
+  vpStatus_Internal = 10,       /* a bug in VolPhys: please report the message */
+  vpStatus_PhaseFailed = 11     /* vpWorldStep only: the step completed what it could, but a phase
+                                   of some actor failed (vpActorStats.failedPhases says which, the
+                                   message and the log say why); the world stays steppable */
 } vpStatus;
 
 /* Message of the last failing call on this thread ("" if none). */
@@ -255,7 +258,10 @@ VP_API vpStatus vpWorldSetFrameBudget(vpWorldId world, float frameBudgetMs);
 /* Advances everything by dt seconds (0 < dt <= 1) under the world's frame budget.
  * OutOfMemory: an actor's step ran out of memory and was undone (that actor is as before the
  * step, a fluid at its last completed step); the other actors stepped, and the world can be
- * stepped and destroyed as usual. */
+ * stepped and destroyed as usual. PhaseFailed: a part of some actor's step failed (a fluid's
+ * fractions, projection, level-set upkeep, velocity extrapolation or viscosity solve); the
+ * step went on without it, the message names the actor and the vpPhase, and
+ * vpActorStats.failedPhases flags it. */
 VP_API vpStatus vpWorldStep(vpWorldId world, float dt);
 
 /* Adds the colliders (and, later, actors) of a JSON scene file to the world; the scene's
@@ -317,6 +323,8 @@ typedef struct vpActorStats {
   float residual;     /* final relative residual of its iterative solve in this frame */
   int32_t priority;   /* the def's priority */
   int32_t floorMissed; /* deformable: 1 if the budget stopped its solve above its targetResidual */
+  uint32_t failedPhases; /* bit (1 << p) set: phase p (vpPhase) hit an error in this frame and the
+                            step went on without it; vpWorldStep then returned PhaseFailed */
 } vpActorStats;
 
 typedef struct vpStepStats {

@@ -27,7 +27,7 @@ int main(void) {
   FIELD(vpActorStats, diverged); FIELD(vpActorStats, phases); FIELD(vpActorStats, simulatedDt);
   FIELD(vpActorStats, interval); FIELD(vpActorStats, completedStep); FIELD(vpActorStats, progress);
   FIELD(vpActorStats, slices); FIELD(vpActorStats, residual); FIELD(vpActorStats, priority);
-  FIELD(vpActorStats, floorMissed);
+  FIELD(vpActorStats, floorMissed); FIELD(vpActorStats, failedPhases);
   SIZE(vpStepStats); FIELD(vpStepStats, structSize); FIELD(vpStepStats, stepIndex); FIELD(vpStepStats, dt);
   FIELD(vpStepStats, totalMs); FIELD(vpStepStats, budgetMs); FIELD(vpStepStats, budgetCut);
   FIELD(vpStepStats, actorCount); FIELD(vpStepStats, colliderCount); FIELD(vpStepStats, rigidSubsteps);
