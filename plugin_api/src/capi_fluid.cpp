@@ -11,16 +11,12 @@ using namespace vp::capi;
 
 namespace {
 
-Status translateRegion(const std::string& field, const vpFluidRegion& r, FluidShape* out) {
-  const int type = rawEnum(r.type);
-  if (type != vpRegionType_Box && type != vpRegionType_Sphere)
-    return fail(Status::InvalidArgument, "%s.type = %d: must be vpRegionType_Box or vpRegionType_Sphere",
-                field.c_str(), type);
-  out->type = static_cast<FluidShape::Type>(type);
+// Values are copied as they are (enums through their bits); validateFluidDesc is the one check.
+void translateRegion(const vpFluidRegion& r, FluidShape* out) {
+  out->type = static_cast<FluidShape::Type>(rawEnum(r.type));
   out->centre = toVec3(r.centre);
   out->halfExtents = toVec3(r.halfExtents);
   out->radius = r.radius;
-  return Status::Ok;
 }
 
 // Arrays of sources: a count without an array is a host bug worth naming.
@@ -33,10 +29,7 @@ Status checkArray(const char* field, const char* countField, const T* items, int
 }
 
 Status translateFluidDef(const vpFluidDef& d, FluidDesc* desc) {
-  const int kind = rawEnum(d.kind);
-  if (kind != vpFluidKind_Smoke && kind != vpFluidKind_Liquid)
-    return fail(Status::InvalidArgument, "kind = %d: must be vpFluidKind_Smoke or vpFluidKind_Liquid", kind);
-  desc->kind = static_cast<FluidKind>(kind);
+  desc->kind = static_cast<FluidKind>(rawEnum(d.kind));
   desc->grid.origin = toVec3(d.origin);
   desc->grid.nx = d.resolution[0];
   desc->grid.ny = d.resolution[1];
@@ -61,16 +54,16 @@ Status translateFluidDef(const vpFluidDef& d, FluidDesc* desc) {
   VP_TRY(checkArray("drains", "drainCount", d.drains, d.drainCount));
   for (int32_t i = 0; i < d.initialLiquidCount; ++i) {
     desc->initialLiquid.emplace_back();
-    VP_TRY(translateRegion("initialLiquid[" + std::to_string(i) + "]", d.initialLiquid[i], &desc->initialLiquid.back()));
+    translateRegion(d.initialLiquid[i], &desc->initialLiquid.back());
   }
   for (int32_t i = 0; i < d.drainCount; ++i) {
     desc->drains.emplace_back();
-    VP_TRY(translateRegion("drains[" + std::to_string(i) + "]", d.drains[i], &desc->drains.back()));
+    translateRegion(d.drains[i], &desc->drains.back());
   }
   for (int32_t i = 0; i < d.emitterCount; ++i) {
     const vpFluidEmitter& e = d.emitters[i];
     FluidEmitter out;
-    VP_TRY(translateRegion("emitters[" + std::to_string(i) + "].region", e.region, &out.shape));
+    translateRegion(e.region, &out.shape);
     out.velocity = toVec3(e.velocity);
     out.densityRate = e.densityRate;
     out.temperature = e.temperature;

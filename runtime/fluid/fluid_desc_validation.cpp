@@ -87,7 +87,7 @@ Status validateFluidControls(const FluidControls& c) {
   for (size_t i = 0; i < c.emitters.size(); ++i) {
     const std::string field = "emitters[" + std::to_string(i) + "]";
     const FluidEmitter& e = c.emitters[i];
-    VP_TRY(validateShape(field + ".shape", e.shape));
+    VP_TRY(validateShape(field + ".region", e.shape));  // named as in vpFluidEmitter
     if (!finite(e.velocity) || e.velocity.norm() > 1e4)
       return fail(Status::InvalidArgument, "%s.velocity = (%g, %g, %g): must be finite, magnitude <= 1e4",
                   field.c_str(), e.velocity.x(), e.velocity.y(), e.velocity.z());

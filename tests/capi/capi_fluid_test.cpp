@@ -99,7 +99,7 @@ TEST(CApiFluid, BadDefinitionsNameTheFieldAndCreateNothing) {
          d.emitters = e;
          d.emitterCount = 1;
        }},
-      {"emitters[0].shape.halfExtents", [](vpFluidDef& d, vpFluidEmitter* e) {
+      {"emitters[0].region.halfExtents", [](vpFluidDef& d, vpFluidEmitter* e) {
          e->region.halfExtents.y = 0.0f;
          d.emitters = e;
          d.emitterCount = 1;

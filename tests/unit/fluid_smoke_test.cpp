@@ -349,7 +349,7 @@ TEST(FluidSmoke, RejectsBadDescriptionsByField) {
       {"cflNumber", [](FluidDesc& d) { d.solver.cflNumber = 0.0; }},
       {"maxSubsteps", [](FluidDesc& d) { d.solver.maxSubsteps = 0; }},
       {"vorticityConfinement", [](FluidDesc& d) { d.smoke.vorticityConfinement = -1.0; }},
-      {"emitters[0].shape.radius", [](FluidDesc& d) {
+      {"emitters[0].region.radius", [](FluidDesc& d) {
          FluidEmitter e;
          e.shape.type = FluidShape::Type::Sphere;
          e.shape.radius = 0.0;

@@ -165,7 +165,7 @@ INSTANTIATE_TEST_SUITE_P(
                  Status::ParseError, "$.fluids[0].sides.+y = \"door\": expected one of"},
         BadScene{R"({"colliders": [{"shape": {"type": "plane"}}],
                      "fluids": [{"emitters": [{"region": {"type": "sphere", "radius": -1}}]}]})",
-                 Status::InvalidArgument, "$.fluids[0]: emitters[0].shape.radius = -1"},
+                 Status::InvalidArgument, "$.fluids[0]: emitters[0].region.radius = -1"},
         BadScene{R"({"colliders": [{"shape": {"type": "plane"}}], "fluids": [{"emitters": [{"velocity": [0, 1, 0]}]}]})",
                  Status::ParseError, "$.fluids[0].emitters[0].region: missing"},
         BadScene{R"({"colliders": [{"shape": {"type": "plane"}}], "fluids": [{"smoke": {"heat": 1}}]})",
