@@ -8,6 +8,9 @@
 // bounding box of its surface, then every triangle is tested (no per-deformable tree yet:
 // O(triangles) per deformable the query reaches). A liquid ray marches the level set in steps
 // of half a cell, then bisects; a box overlap samples the level set at half-cell spacing.
+// A shape wholly inside a deformable touches none of its triangles: it counts by ray parity,
+// which assumes the render surface is closed (the tet boundary is; a host's render mesh may
+// not be, and then only shapes touching its triangles are found).
 #pragma once
 
 #include <cstdint>
