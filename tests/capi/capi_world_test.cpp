@@ -227,3 +227,13 @@ TEST(CApiWorld, BuildInfoAnswersWithoutAGpu) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(CApiWorld, EveryStatusHasItsName) {
+  const char* names[] = {"Ok", "InvalidArgument", "InvalidId", "OutOfMemory", "Unsupported", "IoError",
+                         "ParseError", "Busy", "Diverged", "VersionMismatch", "Internal", "PhaseFailed"};
+  for (int s = vpStatus_Ok; s <= vpStatus_PhaseFailed; ++s) EXPECT_STREQ(vpStatusName(static_cast<vpStatus>(s)), names[s]);
+}
+
+}  // namespace
