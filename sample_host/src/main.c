@@ -231,7 +231,11 @@ static int run(vpWorldId world, const Options* o) {
     DeformSummary deform;
     FluidSummary fluid;
     double t0 = wallMs(), wall;
-    if ((s = vpWorldStep(world, (float)o->dt)) != vpStatus_Ok) {
+    s = vpWorldStep(world, (float)o->dt);
+    if (s == vpStatus_PhaseFailed || s == vpStatus_OutOfMemory) {
+      /* The step completed what it could and the world stays steppable: report and go on. */
+      fprintf(stderr, "volphys_host: frame %d: %s: %s\n", frame, vpStatusName(s), vpGetLastError());
+    } else if (s != vpStatus_Ok) {
       fail("vpWorldStep", s);
       goto done;
     }
