@@ -301,6 +301,7 @@ void World::stepRigidBodies(double dt, const Deadline& frame, StepStats* stats) 
   std::vector<Collider*> kinematics, loaded;
   colliders_.forEach([&](ColliderHandle, Collider& c) {
     if (c.bodyType() == BodyType::Kinematic) kinematics.push_back(&c);
+    if (c.hasHostLoad()) loaded.push_back(&c);
   });
   // The loads of each fluid's last completed step; those of several fluids on one body add
   // up, in the fluids' slot order; a body destroyed since is skipped.
@@ -313,9 +314,6 @@ void World::stepRigidBodies(double dt, const Deadline& frame, StepStats* stats) 
   forEachFluidLoad([&](Collider& c, const PressureLoad&) {
     c.clearFluidLoad();
     loaded.push_back(&c);
-  });
-  colliders_.forEach([&](ColliderHandle, Collider& c) {
-    if (c.hasHostLoad()) loaded.push_back(&c);
   });
   std::sort(loaded.begin(), loaded.end());
   loaded.erase(std::unique(loaded.begin(), loaded.end()), loaded.end());

@@ -152,13 +152,11 @@ void Collider::addHostLoad(const Vec3& force, const Vec3& torque) {
   if (desc_.bodyType != BodyType::Dynamic) return;
   hostForce_ += force;
   hostTorque_ += torque;
-  hasHostLoad_ = true;
   body_->activate(true);
 }
 
 void Collider::clearHostLoad() {
   hostForce_ = hostTorque_ = Vec3::Zero();
-  hasHostLoad_ = false;
 }
 
 void Collider::applyImpulse(const Vec3& linear, const Vec3& angular) {

@@ -38,7 +38,7 @@ class Collider {
   // A host load (force, and torque about the body's origin, its centre of mass) acts on every
   // Bullet sub-step of the next world step, then is cleared; loads given before one step add up.
   void addHostLoad(const Vec3& force, const Vec3& torque);
-  bool hasHostLoad() const { return hasHostLoad_; }
+  bool hasHostLoad() const { return !hostForce_.isZero(0.0) || !hostTorque_.isZero(0.0); }
   void clearHostLoad();
   // An impulse changes the velocity at once: dv = J / m, dw = I^-1 L (L about the origin).
   void applyImpulse(const Vec3& linear, const Vec3& angular);
@@ -92,7 +92,6 @@ class Collider {
   Vec3 appliedFluidForce_ = Vec3::Zero(), appliedFluidTorque_ = Vec3::Zero();
   double fluidAddedMass_ = 0.0;
   Vec3 hostForce_ = Vec3::Zero(), hostTorque_ = Vec3::Zero();
-  bool hasHostLoad_ = false;
   Vec3 trackedVelocity_ = Vec3::Zero(), lastVelocityChange_ = Vec3::Zero();
   Vec3 trackedSpin_ = Vec3::Zero(), lastSpinChange_ = Vec3::Zero();
 };

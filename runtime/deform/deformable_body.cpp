@@ -113,7 +113,6 @@ Status DeformableBody::create(DeformableDesc desc, std::unique_ptr<DeformableBod
   b.restVolume_.resize(static_cast<size_t>(elements));
   b.rotations_.resize(4 * static_cast<size_t>(elements));
   b.mass_.assign(static_cast<size_t>(b.nodeCount_), 0.0);
-  if (degree > 1) b.elementStiffness_.resize(static_cast<size_t>(9 * N * N * elements));
   for (int64_t e = 0; e < elements; ++e) {
     double corners[12], lumped[kBBMaxNodes];
     for (int a = 0; a < 4; ++a)
@@ -123,12 +122,11 @@ Status DeformableBody::create(DeformableDesc desc, std::unique_ptr<DeformableBod
     // Lumped BB mass: every Bernstein function integrates to V / C(n+3, 3), all positive.
     VP_TRY(bbLumpedMass(degree, corners, desc.material.density, lumped));
     for (int a = 0; a < N; ++a) b.mass_[b.elementNodes_[N * e + a]] += lumped[a];
-    if (degree > 1)
-      VP_TRY(bbStiffnessMatrix(degree, corners, b.lambda_, b.mu_, &b.elementStiffness_[9 * N * N * e]));
     const Quat& q = desc.pose.rotation;
     double* r = &b.rotations_[4 * e];
     r[0] = q.w(), r[1] = q.x(), r[2] = q.y(), r[3] = q.z();
   }
+  if (degree > 1) VP_TRY(b.elementStiffnessMatrices(b.lambda_, b.mu_, &b.elementStiffness_));
   // Node -> (element, corner) incidence, in element order, for the gather assembly.
   b.incidence_.build(b.nodeCount_, b.elementNodes_.data(), elements, N);
   b.elementForce_.resize(3 * static_cast<size_t>(N * elements));
@@ -229,20 +227,24 @@ Status DeformableBody::setPositions(const double* positions, int64_t count) {
   return Status::Ok;
 }
 
-Status DeformableBody::setMaterial(const DeformableMaterial& material) {
-  VP_TRY(validateDeformableMaterial(material));
+Status DeformableBody::elementStiffnessMatrices(double lambda, double mu, Array<double>* out) const {
   const int64_t elements = elementCount();
   const int N = nodesPerElement_;
-  Array<double> stiffness;  // computed in full before anything changes
+  out->resize(static_cast<size_t>(9 * N * N * elements));
+  for (int64_t e = 0; e < elements; ++e) {
+    double corners[12];  // the element's vertices are its first four nodes
+    for (int a = 0; a < 4; ++a)
+      for (int k = 0; k < 3; ++k) corners[3 * a + k] = restX_[3 * elementNodes_[N * e + a] + k];
+    VP_TRY(bbStiffnessMatrix(degree_, corners, lambda, mu, &(*out)[9 * N * N * e]));
+  }
+  return Status::Ok;
+}
+
+Status DeformableBody::setMaterial(const DeformableMaterial& material) {
+  VP_TRY(validateDeformableMaterial(material));
   if (degree_ > 1) {
-    stiffness.resize(elementStiffness_.size());
-    for (int64_t e = 0; e < elements; ++e) {
-      double corners[12];
-      for (int a = 0; a < 4; ++a)
-        for (int k = 0; k < 3; ++k) corners[3 * a + k] = restX_[3 * elementNodes_[N * e + a] + k];
-      VP_TRY(bbStiffnessMatrix(degree_, corners, material.lameLambda(), material.lameMu(),
-                               &stiffness[9 * N * N * e]));
-    }
+    Array<double> stiffness;  // computed in full before anything changes
+    VP_TRY(elementStiffnessMatrices(material.lameLambda(), material.lameMu(), &stiffness));
     elementStiffness_ = std::move(stiffness);
   }
   lambda_ = material.lameLambda();

@@ -112,6 +112,8 @@ class DeformableBody {
   const Array<double>& elementGradientPairs() const { return gradientPairs_; }
 
  private:
+  // The degree > 1 element stiffness matrices of the rest shape for Lamé parameters (λ, μ).
+  Status elementStiffnessMatrices(double lambda, double mu, Array<double>* out) const;
   // x and v back to the step's start; rotations to identity.
   void restoreStepStart();
   DeformableBody() = default;
