@@ -73,4 +73,19 @@ void ContactEventTracker::forget(uint32_t index1, uint32_t generation) {
                   touching_.end());
 }
 
+std::vector<uint32_t> ContactEventTracker::saveState() const {
+  std::vector<uint32_t> out;
+  for (const Pair& p : touching_)
+    out.insert(out.end(), {p.deformableIndex1, p.deformableGeneration, p.colliderIndex1, p.colliderGeneration});
+  return out;
+}
+
+void ContactEventTracker::restoreState(const std::vector<uint32_t>& pairs) {
+  touching_.clear();
+  for (size_t i = 0; i + 3 < pairs.size(); i += 4) touching_.push_back(Pair{pairs[i], pairs[i + 1], pairs[i + 2], pairs[i + 3]});
+  std::sort(touching_.begin(), touching_.end());
+  touching_.erase(std::unique(touching_.begin(), touching_.end()), touching_.end());
+  events_.clear();
+}
+
 }  // namespace vp

@@ -30,6 +30,10 @@ class ContactEventTracker {
   void update(uint32_t index1, uint32_t generation, const DeformableBody& body);
   void forget(uint32_t index1, uint32_t generation);
   const std::vector<ContactEvent>& events() const { return events_; }
+  // The pairs touching now, four ids each (deformable index1, generation, collider index1,
+  // generation), for a saved world state; restoreState clears the events.
+  std::vector<uint32_t> saveState() const;
+  void restoreState(const std::vector<uint32_t>& pairs);
 
  private:
   struct Pair {

@@ -528,10 +528,7 @@ void World::stepFluids(double dt, const Deadline& frame, bool floorsHeld, StepSt
     if (budgets[i].minWork > 0 && a.slices > 0 && (frame.expired() || !floorsHeld)) stats->budgetInfeasible = true;
     s.stepMs += a.totalMs;
     if (a.completedStep) {
-      // Frames since the last completed step, the waiting ones included.
-      s.interval = s.stepFrames;
-      s.stepFrames = 0;
-      s.expectedMs = FramePlan::smoothed(s.expectedMs, s.stepMs);
+      noteFluidStepCompleted(s);
       if (a.diverged) log(LogLevel::Warning, "fluid (%u, %u) diverged; restored its last completed step", a.index1, a.generation);
     } else {
       a.simulatedDt = 0.0;
@@ -539,6 +536,13 @@ void World::stepFluids(double dt, const Deadline& frame, bool floorsHeld, StepSt
     a.interval = s.interval;
   }
   stats->actors.insert(stats->actors.end(), actors.begin(), actors.end());
+}
+
+void World::noteFluidStepCompleted(ActorSchedule& s) {
+  // Frames since the last completed step, the waiting ones included.
+  s.interval = std::max(s.stepFrames, 1);
+  s.stepFrames = 0;
+  s.expectedMs = FramePlan::smoothed(s.expectedMs, s.stepMs);
 }
 
 void World::finishStats(const Deadline& frame, StepStats* stats) {

@@ -51,6 +51,17 @@ class World {
   World& operator=(const World&) = delete;
 
   Status step(double dt);
+
+  // Everything that evolves, as bytes (snapshot/state_stream.h has the format; world_state.cpp
+  // the contents). Saving first completes any fluid step in progress (its remaining slices run
+  // here) and rebuilds Bullet's caches from the state (CollisionWorld::rebuild), as a restore
+  // does: stepping after a restore is then bitwise the stepping after the save. A world that
+  // saves can therefore differ in the last bits from one that does not.
+  Status saveState(std::vector<uint8_t>* out);
+  // Reads the whole buffer before it changes anything: a buffer that is truncated, corrupted,
+  // of another format or saved from a world with other actors (ids, kinds, sizes) is refused
+  // with the reason and the world stays as it was.
+  Status restoreState(const uint8_t* data, size_t size);
   const StepStats& lastStats() const { return stats_; }
   // Deformable-collider contacts that began or ended in the last step (contact_events.h).
   const std::vector<ContactEvent>& contactEvents() const { return contactEvents_.events(); }
@@ -95,6 +106,11 @@ class World {
   bool stepDeformables(double dt, const Deadline& frame, StepStats* stats);
   void stepFluids(double dt, const Deadline& frame, bool floorsHeld, StepStats* stats);
   void finishStats(const Deadline& frame, StepStats* stats);
+  // A fluid step that completed: the plan's bookkeeping of its rate and cost.
+  static void noteFluidStepCompleted(ActorSchedule& s);
+  // Runs the rest of every fluid step in progress (for a saved state).
+  Status completeFluidSteps();
+  std::vector<Collider*> collidersInSlotOrder() const;
   // What the fluids of at least `priority` are expected to need this frame.
   double fluidsExpectedMs(int priority);
   // Actors that do not depend on each other in a stage run side by side on the worker pool,

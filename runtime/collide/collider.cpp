@@ -291,3 +291,105 @@ void Collider::endKinematicStep() {
 }
 
 }  // namespace vp
+
+namespace vp {
+
+namespace {
+
+void saveTransform(const btTransform& t, double* out) {
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) out[3 * r + c] = t.getBasis()[r][c];
+  for (int k = 0; k < 3; ++k) out[9 + k] = t.getOrigin()[k];
+}
+
+btTransform loadTransform(const double* in) {
+  btScalar v[12];
+  for (int k = 0; k < 12; ++k) v[k] = static_cast<btScalar>(in[k]);
+  const btMatrix3x3 basis(v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8]);
+  return btTransform(basis, btVector3(v[9], v[10], v[11]));
+}
+
+void saveVector(const btVector3& v, double* out) {
+  for (int k = 0; k < 3; ++k) out[k] = v[k];
+}
+
+btVector3 loadVector(const double* in) { return btVector3(btScalar(in[0]), btScalar(in[1]), btScalar(in[2])); }
+
+}  // namespace
+
+ColliderState Collider::saveState() const {
+  ColliderState s;
+  RigidBodyState& b = s.body;
+  saveTransform(body_->getWorldTransform(), b.transform);
+  saveTransform(body_->getInterpolationWorldTransform(), b.interpolationTransform);
+  saveTransform(motionState_->m_graphicsWorldTrans, b.motionStateTransform);
+  saveVector(body_->getLinearVelocity(), b.linear);
+  saveVector(body_->getAngularVelocity(), b.angular);
+  saveVector(body_->getInterpolationLinearVelocity(), b.interpolationLinear);
+  saveVector(body_->getInterpolationAngularVelocity(), b.interpolationAngular);
+  saveVector(body_->getTotalForce(), b.totalForce);
+  saveVector(body_->getTotalTorque(), b.totalTorque);
+  b.activationState = body_->getActivationState();
+  b.deactivationTime = body_->getDeactivationTime();
+  b.hitFraction = body_->getHitFraction();
+  s.kinematicPose = kinematicPose_;
+  s.kinematicLinear = kinematicLinear_;
+  s.kinematicAngular = kinematicAngular_;
+  s.target = target_;
+  s.targetActive = targetActive_;
+  s.hostForce = hostForce_;
+  s.hostTorque = hostTorque_;
+  s.trackedVelocity = trackedVelocity_;
+  s.lastVelocityChange = lastVelocityChange_;
+  s.trackedSpin = trackedSpin_;
+  s.lastSpinChange = lastSpinChange_;
+  s.hasGeometry = geometry_ != nullptr;
+  if (geometry_) {
+    const ColliderShape& g = geometry_->shape;
+    s.geometryRotation = g.rotation;
+    s.geometryTranslation = g.translation;
+    s.geometryLinear = g.linearVelocity;
+    s.geometryAngular = g.angularVelocity;
+  }
+  return s;
+}
+
+void Collider::restoreState(const ColliderState& s) {
+  const RigidBodyState& b = s.body;
+  body_->setWorldTransform(loadTransform(b.transform));
+  body_->setInterpolationWorldTransform(loadTransform(b.interpolationTransform));
+  motionState_->m_graphicsWorldTrans = loadTransform(b.motionStateTransform);
+  body_->setLinearVelocity(loadVector(b.linear));
+  body_->setAngularVelocity(loadVector(b.angular));
+  body_->setInterpolationLinearVelocity(loadVector(b.interpolationLinear));
+  body_->setInterpolationAngularVelocity(loadVector(b.interpolationAngular));
+  // Bullet clears its forces after every sub-step; a state holds them for completeness.
+  body_->clearForces();
+  body_->applyCentralForce(loadVector(b.totalForce));
+  body_->applyTorque(loadVector(b.totalTorque));
+  body_->updateInertiaTensor();
+  body_->forceActivationState(b.activationState);
+  body_->setDeactivationTime(btScalar(b.deactivationTime));
+  body_->setHitFraction(btScalar(b.hitFraction));
+  kinematicPose_ = s.kinematicPose;
+  kinematicLinear_ = s.kinematicLinear;
+  kinematicAngular_ = s.kinematicAngular;
+  target_ = s.target;
+  targetActive_ = s.targetActive;
+  hostForce_ = s.hostForce;
+  hostTorque_ = s.hostTorque;
+  trackedVelocity_ = s.trackedVelocity;
+  lastVelocityChange_ = s.lastVelocityChange;
+  trackedSpin_ = s.trackedSpin;
+  lastSpinChange_ = s.lastSpinChange;
+  clearFluidLoad();
+  if (geometry_ && s.hasGeometry) {
+    // A fluid step in progress may hold the geometry as it is (see sharedGeometry).
+    if (geometry_.use_count() > 1) geometry_ = std::make_shared<PreparedCollider>(*geometry_);
+    restoreColliderPose(geometry_.get(), s.geometryRotation, s.geometryTranslation);
+    geometry_->shape.linearVelocity = s.geometryLinear;
+    geometry_->shape.angularVelocity = s.geometryAngular;
+  }
+}
+
+}  // namespace vp

@@ -10,6 +10,7 @@
 #include "collide/bullet_shape_builder.h"
 #include "collide/collider_desc.h"
 #include "collide/face_coverage.h"
+#include "snapshot/actor_states.h"
 
 class btRigidBody;
 class btDefaultMotionState;
@@ -72,6 +73,12 @@ class Collider {
   void clearFluidLoad();
   // At the start of every world step: remembers how much the velocity changed in the last one.
   void trackVelocity();
+
+  // What evolves (snapshot/actor_states.h): the Bullet body's motion and sleep state, the
+  // kinematic driving, pending host loads, the tracked velocities and the geometry's pose.
+  // restoreState takes a checked state and cannot fail.
+  ColliderState saveState() const;
+  void restoreState(const ColliderState& state);
 
   // Kinematic driving, called by CollisionWorld around Bullet's sub-steps.
   void beginKinematicStep(double dt);          // turns a target into a velocity for this step

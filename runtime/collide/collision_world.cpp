@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
 
 #include "collide/collider.h"
 #include "core/physical_limits.h"
@@ -154,6 +155,180 @@ CollisionWorld::StepResult CollisionWorld::step(double dt, double maxSubstep, Co
   }
   for (int k = 0; k < count; ++k) kinematics[k]->endKinematicStep();
   return StepResult{substeps, restoreDivergedBodies()};
+}
+
+}  // namespace vp
+
+namespace vp {
+
+static_assert(CollisionWorld::kMaxManifoldPoints == MANIFOLD_CACHE_SIZE);
+
+namespace {
+
+using SavedContactPoint = CollisionWorld::SavedContactPoint;
+
+void toDoubles(const btVector3& v, double* out) {
+  for (int k = 0; k < 3; ++k) out[k] = v[k];
+}
+btVector3 fromDoubles(const double* in) { return btVector3(btScalar(in[0]), btScalar(in[1]), btScalar(in[2])); }
+
+SavedContactPoint savePoint(const btManifoldPoint& p) {
+  SavedContactPoint s{};
+  toDoubles(p.m_localPointA, s.localA);
+  toDoubles(p.m_localPointB, s.localB);
+  toDoubles(p.m_positionWorldOnA, s.worldA);
+  toDoubles(p.m_positionWorldOnB, s.worldB);
+  toDoubles(p.m_normalWorldOnB, s.normalOnB);
+  toDoubles(p.m_lateralFrictionDir1, s.lateralDir1);
+  toDoubles(p.m_lateralFrictionDir2, s.lateralDir2);
+  s.distance = p.m_distance1;
+  s.friction = p.m_combinedFriction;
+  s.rollingFriction = p.m_combinedRollingFriction;
+  s.spinningFriction = p.m_combinedSpinningFriction;
+  s.restitution = p.m_combinedRestitution;
+  s.appliedImpulse = p.m_appliedImpulse;
+  s.previousRhs = p.m_prevRHS;
+  s.lateralImpulse1 = p.m_appliedImpulseLateral1;
+  s.lateralImpulse2 = p.m_appliedImpulseLateral2;
+  s.contactMotion1 = p.m_contactMotion1;
+  s.contactMotion2 = p.m_contactMotion2;
+  s.cfm = p.m_contactCFM;
+  s.erp = p.m_contactERP;
+  s.frictionCfm = p.m_frictionCFM;
+  s.partId0 = p.m_partId0;
+  s.partId1 = p.m_partId1;
+  s.index0 = p.m_index0;
+  s.index1 = p.m_index1;
+  s.flags = p.m_contactPointFlags;
+  s.lifeTime = p.m_lifeTime;
+  return s;
+}
+
+btManifoldPoint loadPoint(const SavedContactPoint& s) {
+  btManifoldPoint p;
+  p.m_localPointA = fromDoubles(s.localA);
+  p.m_localPointB = fromDoubles(s.localB);
+  p.m_positionWorldOnA = fromDoubles(s.worldA);
+  p.m_positionWorldOnB = fromDoubles(s.worldB);
+  p.m_normalWorldOnB = fromDoubles(s.normalOnB);
+  p.m_lateralFrictionDir1 = fromDoubles(s.lateralDir1);
+  p.m_lateralFrictionDir2 = fromDoubles(s.lateralDir2);
+  p.m_distance1 = btScalar(s.distance);
+  p.m_combinedFriction = btScalar(s.friction);
+  p.m_combinedRollingFriction = btScalar(s.rollingFriction);
+  p.m_combinedSpinningFriction = btScalar(s.spinningFriction);
+  p.m_combinedRestitution = btScalar(s.restitution);
+  p.m_appliedImpulse = btScalar(s.appliedImpulse);
+  p.m_prevRHS = btScalar(s.previousRhs);
+  p.m_appliedImpulseLateral1 = btScalar(s.lateralImpulse1);
+  p.m_appliedImpulseLateral2 = btScalar(s.lateralImpulse2);
+  p.m_contactMotion1 = btScalar(s.contactMotion1);
+  p.m_contactMotion2 = btScalar(s.contactMotion2);
+  p.m_contactCFM = btScalar(s.cfm);
+  p.m_contactERP = btScalar(s.erp);
+  p.m_frictionCFM = btScalar(s.frictionCfm);
+  p.m_partId0 = s.partId0;
+  p.m_partId1 = s.partId1;
+  p.m_index0 = s.index0;
+  p.m_index1 = s.index1;
+  p.m_contactPointFlags = s.flags;
+  p.m_lifeTime = s.lifeTime;
+  p.m_userPersistentData = nullptr;
+  return p;
+}
+
+// The same contact seen from the other body: A and B trade places, the normal on B turns
+// round, and the friction impulses (along directions the solver derives from the relative
+// velocity, which turns round too) change sign.
+SavedContactPoint swapped(const SavedContactPoint& p) {
+  SavedContactPoint s = p;
+  std::copy(p.localB, p.localB + 3, s.localA);
+  std::copy(p.localA, p.localA + 3, s.localB);
+  std::copy(p.worldB, p.worldB + 3, s.worldA);
+  std::copy(p.worldA, p.worldA + 3, s.worldB);
+  for (int k = 0; k < 3; ++k) s.normalOnB[k] = -p.normalOnB[k];
+  s.lateralImpulse1 = -p.lateralImpulse1;
+  s.lateralImpulse2 = -p.lateralImpulse2;
+  std::swap(s.partId0, s.partId1);
+  std::swap(s.index0, s.index1);
+  return s;
+}
+
+}  // namespace
+
+std::vector<CollisionWorld::SavedManifold> CollisionWorld::saveContacts(const std::vector<Collider*>& colliders) const {
+  std::unordered_map<const btCollisionObject*, uint32_t> place;
+  for (size_t i = 0; i < colliders.size(); ++i) place[colliders[i]->body()] = static_cast<uint32_t>(i);
+  std::vector<SavedManifold> out;
+  const btDispatcher* dispatcher = dispatcher_.get();
+  for (int m = 0; m < dispatcher->getNumManifolds(); ++m) {
+    const btPersistentManifold* manifold = const_cast<btDispatcher*>(dispatcher)->getManifoldByIndexInternal(m);
+    const int points = std::min(manifold->getNumContacts(), kMaxManifoldPoints);
+    const auto a = place.find(manifold->getBody0()), b = place.find(manifold->getBody1());
+    if (points == 0 || a == place.end() || b == place.end()) continue;
+    SavedManifold saved{};  // the points past pointCount zero too: a state's bytes are all set
+    const bool swap = a->second > b->second;
+    saved.body0 = swap ? b->second : a->second;
+    saved.body1 = swap ? a->second : b->second;
+    saved.pointCount = points;
+    for (int p = 0; p < points; ++p) {
+      const SavedContactPoint point = savePoint(manifold->getContactPoint(p));
+      saved.points[p] = swap ? swapped(point) : point;
+    }
+    out.push_back(saved);
+  }
+  std::stable_sort(out.begin(), out.end(), [](const SavedManifold& x, const SavedManifold& y) {
+    return x.body0 != y.body0 ? x.body0 < y.body0 : x.body1 < y.body1;
+  });
+  return out;
+}
+
+void CollisionWorld::rebuild(const std::vector<Collider*>& colliders, const std::vector<SavedManifold>& contacts) {
+  std::vector<ColliderState> states;
+  states.reserve(colliders.size());
+  for (Collider* c : colliders) states.push_back(c->saveState());
+  for (Collider* c : colliders) remove(*c);
+  auto broadphase = std::make_unique<btDbvtBroadphase>();
+  broadphase->getOverlappingPairCache()->setOverlapFilterCallback(pairFilter_.get());
+  world_->setBroadphase(broadphase.get());
+  broadphase_ = std::move(broadphase);
+  // Adding a body sets some of its state (a static one is put to sleep): the saved state
+  // goes back on after.
+  for (size_t i = 0; i < colliders.size(); ++i) {
+    add(*colliders[i]);
+    colliders[i]->restoreState(states[i]);
+  }
+  // Bullet makes no manifold for a pair of which neither body is awake; a body asleep on
+  // another keeps its contacts, so every body is awake for this pass.
+  for (Collider* c : colliders) c->body()->forceActivationState(ACTIVE_TAG);
+  world_->performDiscreteCollisionDetection();
+  for (size_t i = 0; i < colliders.size(); ++i) {
+    colliders[i]->body()->forceActivationState(states[i].body.activationState);
+    colliders[i]->body()->setDeactivationTime(btScalar(states[i].body.deactivationTime));
+  }
+  std::vector<btPersistentManifold*> manifolds;
+  for (int m = 0; m < dispatcher_->getNumManifolds(); ++m) {
+    btPersistentManifold* manifold = dispatcher_->getManifoldByIndexInternal(m);
+    manifold->clearManifold();
+    manifolds.push_back(manifold);
+  }
+  std::vector<bool> filled(manifolds.size(), false);
+  for (const SavedManifold& saved : contacts) {
+    if (saved.body0 >= colliders.size() || saved.body1 >= colliders.size()) continue;
+    const btCollisionObject* a = colliders[saved.body0]->body();
+    const btCollisionObject* b = colliders[saved.body1]->body();
+    for (size_t m = 0; m < manifolds.size(); ++m) {
+      btPersistentManifold* manifold = manifolds[m];
+      const bool same = manifold->getBody0() == a && manifold->getBody1() == b;
+      const bool swap = manifold->getBody0() == b && manifold->getBody1() == a;
+      if (filled[m] || !(same || swap)) continue;
+      for (int p = 0; p < saved.pointCount; ++p)
+        manifold->getContactPoint(p) = loadPoint(swap ? swapped(saved.points[p]) : saved.points[p]);
+      manifold->setNumContacts(saved.pointCount);
+      filled[m] = true;
+      break;
+    }
+  }
 }
 
 }  // namespace vp

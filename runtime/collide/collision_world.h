@@ -51,6 +51,32 @@ class CollisionWorld {
 
   btDiscreteDynamicsWorld& bullet() { return *world_; }
 
+  // Saved world states (vpWorldSaveState). One contact point Bullet keeps between steps (its
+  // warm start), in Bullet's precision widened to double.
+  struct SavedContactPoint {
+    double localA[3], localB[3], worldA[3], worldB[3], normalOnB[3], lateralDir1[3], lateralDir2[3];
+    double distance, friction, rollingFriction, spinningFriction, restitution, appliedImpulse, previousRhs;
+    double lateralImpulse1, lateralImpulse2, contactMotion1, contactMotion2, cfm, erp, frictionCfm;
+    int32_t partId0, partId1, index0, index1, flags, lifeTime;
+  };
+  static constexpr int kMaxManifoldPoints = 4;  // Bullet's MANIFOLD_CACHE_SIZE
+  struct SavedManifold {
+    uint32_t body0 = 0, body1 = 0;  // places in the collider list; body0 < body1
+    int32_t pointCount = 0;
+    int32_t unused = 0;  // no padding: a state's bytes are all written
+    SavedContactPoint points[kMaxManifoldPoints];
+  };
+  // The manifolds with points, bodies numbered by their place in `colliders` (all of the
+  // world's, in slot order), ordered by those numbers.
+  std::vector<SavedManifold> saveContacts(const std::vector<Collider*>& colliders) const;
+  // Bullet's caches rebuilt from the bodies as they are and `contacts`: the bodies go back in
+  // the order of `colliders` into a new broadphase, one collision pass finds their pairs, and
+  // each manifold gets its saved points (none if it has no saved ones). Bullet keeps history
+  // of its own (the broadphase's tree and its pair list's order, which pairs linger) that no
+  // state can hold; rebuilding it from the state alone is what makes a restored world step
+  // exactly like the saved one, which is rebuilt the same way when it is saved.
+  void rebuild(const std::vector<Collider*>& colliders, const std::vector<SavedManifold>& contacts);
+
  private:
   std::unique_ptr<btDefaultCollisionConfiguration> configuration_;
   std::unique_ptr<btCollisionDispatcher> dispatcher_;

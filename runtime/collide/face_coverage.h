@@ -90,6 +90,10 @@ Status prepareCollider(const ColliderShape& shape, PreparedCollider* out);
 // Moves a prepared collider (mesh: rebuilds world vertices and BVH, O(n log n)).
 Status setColliderPose(PreparedCollider* collider, const Eigen::Quaterniond& rotation,
                        const Eigen::Vector3d& translation);
+// Puts back a pose that setColliderPose set before (a saved world state): the rotation is
+// taken as it is, already normalized, so the collider comes out bitwise as it was.
+void restoreColliderPose(PreparedCollider* collider, const Eigen::Quaterniond& unitRotation,
+                         const Eigen::Vector3d& translation);
 
 // Covered area fraction in [0,1] of `face` by one collider. No allocation.
 double coveredFraction(const PreparedCollider& collider, const AxisFace& face);

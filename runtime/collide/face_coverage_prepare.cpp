@@ -241,4 +241,13 @@ Status setColliderPose(PreparedCollider* c, const Eigen::Quaterniond& rotation,
   return Status::Ok;
 }
 
+void restoreColliderPose(PreparedCollider* c, const Eigen::Quaterniond& unitRotation,
+                         const Eigen::Vector3d& translation) {
+  c->shape.rotation = unitRotation;
+  c->shape.translation = translation;
+  c->rotation = c->shape.rotation.toRotationMatrix();
+  c->translation = translation;
+  updateWorld(c);
+}
+
 }  // namespace vp

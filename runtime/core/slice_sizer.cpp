@@ -30,4 +30,9 @@ void SliceSizer::scale(double factor) {
   samples_ = std::clamp(static_cast<int64_t>(scaled), std::min(kMinSamples, preferred_), preferred_);
 }
 
+void SliceSizer::restore(const State& s) {
+  samples_ = std::clamp(s.samples, std::min(kMinSamples, preferred_), preferred_);
+  longestMs_ = s.longestMs >= 0.0 ? s.longestMs : 0.0;  // NaN too
+}
+
 }  // namespace vp

@@ -33,6 +33,14 @@ class SliceSizer {
   // of work on a slow machine, so a slice's fixed cost stays small.
   static constexpr int64_t kMinSamples = int64_t(1) << 10;
 
+  // What evolves (a saved world state keeps it); restore() clamps it to the sizer's range.
+  struct State {
+    int64_t samples = 0;
+    double longestMs = 0.0;
+  };
+  State state() const { return State{samples_, longestMs_}; }
+  void restore(const State& s);
+
  private:
   void scale(double factor);
   static constexpr double kMaxChange = 2.0;

@@ -42,6 +42,10 @@ class SlicedJob {
   // Slices run since the last reset(); the queue's length now.
   int slicesRun() const { return slicesRun_; }
   int slicesQueued() const { return static_cast<int>(queue_.size()); }
+  // The smoothed costs per kind (what a saved world state keeps); restoreCosts takes a list
+  // of kindCount values (a negative one: never measured).
+  const std::vector<double>& costs() const { return costMs_; }
+  void restoreCosts(const std::vector<double>& costs) { costMs_ = costs; }
   // Empties the queue for a new piece of work (costs are kept).
   void reset() {
     queue_.clear();

@@ -734,4 +734,32 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
   lap(Phase::Embed);
 }
 
+DeformableState DeformableBody::saveState() const {
+  DeformableState s;
+  s.x = x_;
+  s.v = v_;
+  s.externalForce = externalForce_;
+  s.rotations = rotations_;
+  s.lastNormalImpulse = lastNormalImpulse_;
+  s.sliding = sliding_;
+  s.contacts = contacts_;
+  s.renderPositions = renderPositions_;
+  s.renderNormals = renderNormals_;
+  s.schedule = schedule_;
+  return s;
+}
+
+void DeformableBody::restoreState(DeformableState&& s) {
+  x_ = std::move(s.x);
+  v_ = std::move(s.v);
+  externalForce_ = std::move(s.externalForce);
+  rotations_ = std::move(s.rotations);
+  lastNormalImpulse_ = std::move(s.lastNormalImpulse);
+  sliding_ = std::move(s.sliding);
+  contacts_ = std::move(s.contacts);
+  renderPositions_ = std::move(s.renderPositions);
+  renderNormals_ = std::move(s.renderNormals);
+  schedule_ = s.schedule;
+}
+
 }  // namespace vp

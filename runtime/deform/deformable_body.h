@@ -30,6 +30,7 @@
 #include "linalg/block_sparse_matrix.h"
 #include "linalg/conjugate_gradient.h"
 #include "linalg/p_multigrid.h"
+#include "snapshot/actor_states.h"
 #include "step_stats.h"
 
 namespace vp {
@@ -95,6 +96,11 @@ class DeformableBody {
   const SurfaceMesh& renderMeshRest() const { return renderRest_; }
   const Array<Vec3>& renderPositions() const { return renderPositions_; }
   const Array<Vec3>& renderNormals() const { return renderNormals_; }
+
+  // What evolves from step to step (snapshot/actor_states.h); restoreState takes a state
+  // read for this body (its sizes checked) and cannot fail.
+  DeformableState saveState() const;
+  void restoreState(DeformableState&& state);
 
   double kineticEnergy() const;
   // Corotated strain energy Σ V (μ ε:ε + λ/2 tr(ε)²) at the current positions.

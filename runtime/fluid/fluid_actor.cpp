@@ -646,4 +646,67 @@ Phase FluidActor::phaseOf(FluidSlice kind) {
   return Phase::Surface;
 }
 
+FluidState FluidActor::saveState() const {
+  FluidState s;
+  for (int a = 0; a < 3; ++a) {
+    s.velocity[a] = grid_.velocity[a];
+    s.open[a] = fractions_.open[a];
+    s.solidVelocity[a] = fractions_.solidVelocity[a];
+    s.extrapolationMark[a] = extrapolation_.mark[a];
+  }
+  s.smokeDensity = smokeDensity_;
+  s.temperature = temperature_;
+  s.levelSet = phi_;
+  s.pressure = pressure_.pressure;
+  s.cellWeights = cellWeights_;
+  for (const ColliderSnapshot& c : snapshots_)
+    s.fractionColliders.push_back(FluidColliderPose{c.index1, c.generation, c.bounds.lo, c.bounds.hi, c.rotation,
+                                                    c.translation, c.linearVelocity, c.angularVelocity});
+  s.fractionsValid = fractionsValid_;
+  s.speedAtEnd = speedAtEnd_;
+  s.targetVolume = targetVolume_;
+  for (const FluidColliderLoad& l : shown_.loads) s.loads.push_back(FluidColliderLoadState{l.index1, l.generation, l.load});
+  s.stepCount = stepCount_;
+  s.lastStepSlices = lastStepSlices_;
+  for (const SliceSizer& sizer : slabs_) s.slabs.push_back(sizer.state());
+  s.sliceCostsMs = job_.costs();
+  s.work = work_;
+  s.schedule = schedule_;
+  return s;
+}
+
+void FluidActor::restoreState(FluidState&& s) {
+  job_.reset();
+  step_.reset();
+  for (int a = 0; a < 3; ++a) {
+    grid_.velocity[a] = std::move(s.velocity[a]);
+    fractions_.open[a] = std::move(s.open[a]);
+    fractions_.solidVelocity[a] = std::move(s.solidVelocity[a]);
+    extrapolation_.mark[a] = std::move(s.extrapolationMark[a]);
+  }
+  smokeDensity_ = std::move(s.smokeDensity);
+  temperature_ = std::move(s.temperature);
+  phi_ = std::move(s.levelSet);
+  pressure_.pressure = std::move(s.pressure);
+  cellWeights_ = std::move(s.cellWeights);
+  snapshots_.clear();
+  for (const FluidColliderPose& c : s.fractionColliders)
+    snapshots_.push_back(ColliderSnapshot{c.index1, c.generation, Aabb{c.lo, c.hi}, c.rotation, c.translation,
+                                          c.linearVelocity, c.angularVelocity});
+  fractionsValid_ = s.fractionsValid;
+  invalidateDerived();
+  speedAtEnd_ = s.speedAtEnd;
+  targetVolume_ = s.targetVolume;
+  publishFields();
+  shown_.loads.clear();
+  for (const FluidColliderLoadState& l : s.loads) shown_.loads.push_back(FluidColliderLoad{l.index1, l.generation, l.load});
+  stepCount_ = s.stepCount;
+  surfaceStep_ = ~uint64_t(0);
+  lastStepSlices_ = s.lastStepSlices;
+  for (size_t k = 0; k < slabs_.size(); ++k) slabs_[k].restore(s.slabs[k]);
+  job_.restoreCosts(s.sliceCostsMs);
+  work_ = s.work;
+  schedule_ = s.schedule;
+}
+
 }  // namespace vp

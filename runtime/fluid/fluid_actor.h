@@ -63,6 +63,7 @@
 #include "fluid/surface/velocity_extrapolation.h"
 #include "fluid/viscosity.h"
 #include "frame_plan.h"
+#include "snapshot/actor_states.h"
 #include "step_stats.h"
 
 namespace vp {
@@ -145,6 +146,17 @@ class FluidActor {
   const WorkProgress& stepWork() const { return work_; }
   // Slices of the last completed step (0 before the first).
   int lastStepSlices() const { return lastStepSlices_; }
+
+  // What evolves from step to step (snapshot/actor_states.h). saveState needs no step in
+  // progress (the world completes one first); restoreState drops a step in progress and takes
+  // a state read for this fluid (its sizes checked), and cannot fail. What the state derives
+  // (the pressure operator, the open-face masks, the surface mesh) is rebuilt when next needed.
+  FluidState saveState() const;
+  void restoreState(FluidState&& state);
+  // What the fluid derives from its state (the pressure operator, the open-face masks) is
+  // rebuilt when next needed. A restore does this; a save does it too, so that both go on
+  // alike, in time too (a rebuild costs slices under a budget).
+  void invalidateDerived() { fractionsChanged_ = pressureOperatorStale_ = true; }
 
   // What readers see: the last completed step.
   const FluidDesc& desc() const { return desc_; }

@@ -296,7 +296,7 @@ void forEachLiquid(World& world, const QueryFilter& filter, const Visit& visit) 
   for (FluidHandle h : world.fluidHandles()) {
     const FluidActor& fluid = *world.fluid(h);
     if (fluid.desc().kind == FluidKind::Liquid && fluid.desc().filter.meets(filter.filter) &&
-        fluid.levelSet().size() == fluid.grid().cellCount())
+        fluid.levelSet().size() == static_cast<size_t>(fluid.grid().cellCount()))
       visit(h, fluid);
   }
 }

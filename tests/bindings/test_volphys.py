@@ -208,6 +208,40 @@ class Rigid(unittest.TestCase):
 
 
 @unittest.skipIf(np is None, "numpy is not importable")
+class SavedStates(unittest.TestCase):
+    def test_round_trip_and_refusals(self):
+        with volphys.World() as w:
+            w.load_scene(DEFAULT_SCENE)
+            w.set_frame_budget(0)  # the scene's budget would make the steps depend on the clock
+            for _ in range(5):
+                w.step(DT)
+            saved = w.save_state()
+            self.assertEqual(saved[:7], b"VPSTATE")
+            crate = w.find_collider("crate")
+            trajectory = []
+            for _ in range(5):
+                w.step(DT)
+                trajectory.append(crate.pose)
+            w.restore_state(saved)
+            again = []
+            for _ in range(5):
+                w.step(DT)
+                again.append(crate.pose)
+            self.assertEqual(again, trajectory)
+            with self.assertRaises(volphys.ParseError) as e:
+                w.restore_state(saved[:-1])
+            self.assertIn("truncated", str(e.exception))
+            corrupted = bytearray(saved)
+            corrupted[len(saved) // 2] ^= 1
+            with self.assertRaises(volphys.ParseError) as e:
+                w.restore_state(corrupted)
+            self.assertIn("checksum", str(e.exception))
+        with volphys.World() as other:
+            with self.assertRaises(volphys.InvalidArgumentError) as e:
+                other.restore_state(saved)
+            self.assertIn("collider count", str(e.exception))
+
+
 class Deformables(unittest.TestCase):
     def make(self, w, **kw):
         verts, tets = box_tet_mesh(2, 0.4)
@@ -610,7 +644,7 @@ class FramePlanFields(unittest.TestCase):
         self.assertEqual(d.targetResidual, ctypes.c_float(1e-2).value)
         self.assertEqual(d.priority, 0)
         self.assertEqual(volphys._lib.vpDefaultFluidDef().priority, 0)
-        self.assertEqual((T.VP_VERSION_MAJOR, T.VP_VERSION_MINOR), (0, 4))
+        self.assertEqual((T.VP_VERSION_MAJOR, T.VP_VERSION_MINOR), (0, 5))
 
     def test_priorities_and_floor_reach_the_stats(self):
         jelly = self.world.create_deformable(vertices=self.verts, tets=self.tets, target_residual=0.05, priority=5)

@@ -1,6 +1,7 @@
 /* Compiled as strict C99 (-pedantic-errors -Werror): proves the public header is C-clean,
  * and exercises the basic lifecycle through the C ABI only. */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "volphys/volphys.h"
@@ -14,6 +15,8 @@ int main(void) {
   vpTransform pose;
   vpStepStats stats = vpDefaultStepStats();
   int i;
+  size_t stateSize = 0;
+  unsigned char* state;
 
   if (vpCheckVersion() != vpStatus_Ok) return 1;
   if (vpWorldCreate(&def, &world) != vpStatus_Ok) return 2;
@@ -45,6 +48,14 @@ int main(void) {
   ball.bodyType = (vpBodyType)9;
   if (vpColliderCreate(world, &ball, &ballId) != vpStatus_InvalidArgument) return 14;
   if (!strstr(vpGetLastError(), "bodyType = 9")) return 15;
+  /* A snapshot round trip: save, step on, restore; the step index is the saved one. */
+  if (vpWorldSaveState(world, NULL, 0, &stateSize) != vpStatus_Ok) return 16;
+  state = (unsigned char*)malloc(stateSize);
+  if (!state || vpWorldSaveState(world, state, stateSize, &stateSize) != vpStatus_Ok) return 17;
+  if (vpWorldStep(world, 1.0f / 60.0f) != vpStatus_Ok) return 18;
+  if (vpWorldRestoreState(world, state, stateSize) != vpStatus_Ok) return 19;
+  free(state);
+  if (vpWorldGetStepStats(world, &stats) != vpStatus_Ok || stats.stepIndex != 120) return 20;
   if (vpWorldDestroy(world) != vpStatus_Ok) return 10;
   if (vpColliderGetPose(ballId, &pose) != vpStatus_InvalidId) return 11;
   return 0;

@@ -130,7 +130,9 @@ TEST(CApiQuery, RayOnADeformableHitsItsSurfaceAsDrawnBeforeAndAfterItSags) {
     ASSERT_EQ(count, 1);
     EXPECT_EQ(hit.kind, vpHitKind_Deformable);
     EXPECT_EQ(hit.deformable.index1, jelly.id.index1);
-    if (pass == 0) EXPECT_NEAR(hit.distance, 3.0f, 1e-5f);  // the top face, y = 2
+    if (pass == 0) {
+      EXPECT_NEAR(hit.distance, 3.0f, 1e-5f);  // the top face, y = 2
+    }
     EXPECT_NEAR(hit.barycentric.x + hit.barycentric.y + hit.barycentric.z, 1.0f, 1e-5f);
     // The hit lies on the drawn triangle at the current positions.
     int32_t nv = 0, nt = 0;
@@ -158,8 +160,9 @@ TEST(CApiQuery, RayOnADeformableHitsItsSurfaceAsDrawnBeforeAndAfterItSags) {
       if (dx * dx + dy * dy + dz * dz < bestSq) bestSq = dx * dx + dy * dy + dz * dz, best = i;
     }
     EXPECT_EQ(hit.nearestNode, best);
-    if (pass == 0)
+    if (pass == 0) {
       for (int i = 0; i < 30; ++i) ASSERT_VP_OK(vpWorldStep(w.id, 1.0f / 60.0f));  // the free end sags
+    }
   }
   int32_t count = 0;
   const vpQueryHit after = nearest(w.id, down, nullptr, &count);

@@ -121,6 +121,8 @@ namespace VolPhys
         [DllImport(Library)] public static extern Status vpFluidSetParameters(vpFluidId fluid, ref vpFluidParameters parameters);
         [DllImport(Library)] public static extern Status vpFluidGetEmitterCount(vpFluidId fluid, out int count);
         [DllImport(Library)] public static extern Status vpFluidSetEmitter(vpFluidId fluid, int index, int enabled, float densityRate, vpVec3 velocity, float temperature);
+        [DllImport(Library)] public static extern Status vpWorldSaveState(vpWorldId world, [Out] byte[] buffer, UIntPtr capacity, out UIntPtr size);
+        [DllImport(Library)] public static extern Status vpWorldRestoreState(vpWorldId world, byte[] buffer, UIntPtr size);
         [DllImport(Library)] public static extern Status vpWorldGetContactEvents(vpWorldId world, [Out] vpContactEvent[] events, int capacity, out int count);
         [DllImport(Library)] public static extern vpQueryFilter vpDefaultQueryFilter();
         [DllImport(Library)] public static extern Status vpWorldRaycast(vpWorldId world, ref vpRay ray, ref vpQueryFilter filter, out vpQueryHit hit, out int hitCount);

@@ -64,6 +64,37 @@ namespace VolPhys
             return events;
         }
 
+        int stateSize; // the last saved state's size: the next save's first guess
+
+        /// <summary>Everything that evolves, as bytes (vpWorldSaveState: saving completes any
+        /// fluid step in progress and rebuilds Bullet's caches; stepping after RestoreState is
+        /// bitwise the stepping after this call). One save when the size is unchanged.</summary>
+        public byte[] SaveState()
+        {
+            while (true)
+            {
+                var buffer = new byte[stateSize];
+                UIntPtr size;
+                Status status = Native.vpWorldSaveState(Id, stateSize > 0 ? buffer : null, (UIntPtr)stateSize, out size);
+                bool fits = (ulong)size <= (ulong)stateSize;
+                if (status == Status.Ok && fits && stateSize > 0)
+                {
+                    Array.Resize(ref buffer, (int)size);
+                    return buffer;
+                }
+                if ((status != Status.Ok && status != Status.InvalidArgument) || (status != Status.Ok && fits))
+                    VolPhysException.Check(status, "vpWorldSaveState");
+                stateSize = checked((int)(ulong)size);
+            }
+        }
+
+        /// <summary>Puts back a state from SaveState; a truncated, corrupted or foreign one
+        /// throws (the world is unchanged).</summary>
+        public void RestoreState(byte[] state)
+        {
+            VolPhysException.Check(Native.vpWorldRestoreState(Id, state, (UIntPtr)state.Length), "vpWorldRestoreState");
+        }
+
         // Scene queries: filter from Native.vpDefaultQueryFilter() (every kind, every category).
         /// <summary>The nearest hit along the ray; false when nothing is hit.</summary>
         public bool Raycast(vpRay ray, vpQueryFilter filter, out vpQueryHit hit)

@@ -1,7 +1,7 @@
 """Function prototypes for every call in volphys.h, the status check, and the import-time
 check that these ctypes structs have the sizes the loaded library was built with."""
 import ctypes
-from ctypes import POINTER, c_char_p, c_float, c_int, c_int32, c_int64, c_uint32, c_void_p
+from ctypes import POINTER, c_char_p, c_float, c_int, c_int32, c_int64, c_size_t, c_uint32, c_void_p
 
 from . import _types as T
 from ._library import load_library
@@ -107,6 +107,8 @@ _PROTOTYPES = {
     "vpGetBuildInfo": (_S, [_P(T.vpBuildInfo)]),
     "vpDefaultQueryFilter": (T.vpQueryFilter, []),
     "vpWorldGetContactEvents": (_S, [T.vpWorldId, _P(T.vpContactEvent), c_int32, _P(c_int32)]),
+    "vpWorldSaveState": (_S, [T.vpWorldId, c_void_p, c_size_t, _P(c_size_t)]),
+    "vpWorldRestoreState": (_S, [T.vpWorldId, c_void_p, c_size_t]),
     "vpDeformableSetPositions": (_S, [T.vpDeformableId, _P(c_float), c_int32, c_int32]),
     "vpDeformableGetMaterial": (_S, [T.vpDeformableId, _P(T.vpDeformableMaterial)]),
     "vpDeformableSetMaterial": (_S, [T.vpDeformableId, _P(T.vpDeformableMaterial)]),

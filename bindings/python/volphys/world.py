@@ -195,6 +195,29 @@ class World:
                              Collider(self, T.vpColliderId.from_buffer_copy(e.collider)), e.nodeCount, v(e.point),
                              v(e.normal)) for e in events[:count.value]]
 
+    # -------------------------------------------------------------- saved states
+    def save_state(self):
+        """Everything that evolves, as bytes (vpWorldSaveState: saving completes any fluid step
+        in progress and rebuilds Bullet's caches; stepping after restore_state(saved) is bitwise
+        the stepping after this call). One save: the buffer is sized from the last one."""
+        size = ctypes.c_size_t(0)
+        capacity = getattr(self, "_state_size", 0)
+        while True:
+            buffer = ctypes.create_string_buffer(max(capacity, 1))
+            status = lib.vpWorldSaveState(self._id, buffer if capacity else None, capacity, ctypes.byref(size))
+            if status == T.Status.Ok and capacity >= size.value:
+                self._state_size = size.value
+                return buffer.raw[:size.value]
+            if status not in (T.Status.Ok, T.Status.InvalidArgument) or size.value <= capacity:
+                call("vpWorldSaveState", self._id, buffer, capacity, ctypes.byref(size))  # raises
+            capacity = size.value
+
+    def restore_state(self, state):
+        """Puts back a state from save_state(); a truncated, corrupted or foreign one raises
+        (the world is unchanged)."""
+        data = bytes(state)
+        call("vpWorldRestoreState", self._id, data, len(data))
+
     # -------------------------------------------------------------- scene queries
     # kinds: QueryKind bits; collision_filter: (category, mask) the objects must meet. Hits are
     # volphys.queries.Hit tuples; see that module.

@@ -78,7 +78,7 @@ extern "C" {
 /* ---------------------------------------------------------------- version */
 
 #define VP_VERSION_MAJOR 0
-#define VP_VERSION_MINOR 4
+#define VP_VERSION_MINOR 5
 #define VP_VERSION_PATCH 0
 /* Major changes break the ABI; minor ones only add. */
 #define VP_HEADER_VERSION ((VP_VERSION_MAJOR << 16) | (VP_VERSION_MINOR << 8) | VP_VERSION_PATCH)
@@ -754,6 +754,39 @@ typedef struct vpContactEvent {
  * deformables stepped), *outCount = the total. */
 VP_API vpStatus vpWorldGetContactEvents(vpWorldId world, vpContactEvent* outEvents, int32_t capacity,
                                         int32_t* outCount);
+
+/* ---------------------------------------------------------------- saved states */
+
+/* A world's state as bytes, and back: rollback networking, checkpoints, tests. The state is
+ * everything that evolves: rigid bodies (Bullet's motion and sleep state and its contact
+ * points), deformables (positions, velocities, rotations, contact state, pending forces),
+ * fluids (fields, face fractions, the level set's upkeep, pending loads) and the frame plan's
+ * pacing and slice sizing. What the host sets is not in it (actors, shapes, materials, pins,
+ * attachments, filters, fluid controls, gravity, the budget): a state goes back into the world
+ * it came from, or into one built the same way (the same scene or calls), with the same actor
+ * ids; anything else is refused.
+ *
+ * Stepping after vpWorldRestoreState gives bitwise the results of stepping after the
+ * vpWorldSaveState that made the buffer (with the same dt, budget and clock readings). To make
+ * that hold, saving (1) completes any fluid step in progress, running its remaining slices in
+ * the call, which can cost up to a fluid step, and (2) rebuilds Bullet's internal caches from
+ * the state, as a restore does. So a world that saves may differ in the last bits from one
+ * that does not, and its fluids' results may come a frame or more sooner.
+ *
+ * The format is versioned and checksummed, for the same build of VolPhys on the same kind of
+ * machine (byte order, number sizes). */
+
+/* Writes the state into buffer and sets *outSize to its size. buffer NULL with capacity 0
+ * asks only for the size (the call does the work of a save all the same, completing steps in
+ * progress). capacity < the size: vpStatus_InvalidArgument, *outSize set, nothing written. */
+VP_API vpStatus vpWorldSaveState(vpWorldId world, void* buffer, size_t capacity, size_t* outSize);
+/* Puts back a state saved by vpWorldSaveState. The whole buffer is read and checked before
+ * anything changes: a truncated, corrupted (checksum), foreign (another format, or a world
+ * with other actors, ids, kinds or sizes) buffer is refused (vpStatus_ParseError,
+ * vpStatus_VersionMismatch or vpStatus_InvalidArgument, the reason in vpGetLastError()) and
+ * the world is unchanged. A fluid step in progress in the world is dropped. Contact events
+ * and the last step's statistics are cleared; the step index is the saved one. */
+VP_API vpStatus vpWorldRestoreState(vpWorldId world, const void* buffer, size_t size);
 
 /* ---------------------------------------------------------------- scene queries */
 

@@ -98,20 +98,26 @@ static class VolPhysTests
         Check(def.workerCount == 1 && def.frameBudgetMs == 16.0f, "default workers and budget");
     }
 
+    // A static plane at y = 0 and a dynamic ball of radius 0.5 dropped from y = 2.
+    static Collider GroundAndBall(World world)
+    {
+        vpColliderDef ground = Collider.DefaultDef();
+        ground.shape.type = ShapeType.Plane;
+        world.CreateCollider(ground);
+        vpColliderDef ballDef = Collider.DefaultDef();
+        ballDef.bodyType = BodyType.Dynamic;
+        ballDef.shape.radius = 0.5f;
+        ballDef.pose.position.y = 2.0f;
+        return world.CreateCollider(ballDef);
+    }
+
     public static void TestColliderAndDeformableFallAndRest()
     {
         vpWorldDef def = World.DefaultDef();
         def.frameBudgetMs = 0; // physics checks must not depend on machine speed
         using (var world = new World(def))
         {
-            vpColliderDef ground = Collider.DefaultDef();
-            ground.shape.type = ShapeType.Plane;
-            world.CreateCollider(ground);
-            vpColliderDef ballDef = Collider.DefaultDef();
-            ballDef.bodyType = BodyType.Dynamic;
-            ballDef.shape.radius = 0.5f;
-            ballDef.pose.position.y = 2.0f;
-            Collider ball = world.CreateCollider(ballDef);
+            Collider ball = GroundAndBall(world);
 
             float[] vertices;
             int[] tets;
@@ -390,6 +396,34 @@ static class VolPhysTests
             Check(world.OverlapBox(pose, new vpVec3(1, 1, 1), all).Length == 0, "overlap box");
             all.kinds = QueryKind.Deformables;
             Check(!world.Raycast(new vpRay(new vpVec3(-5, 0, 0), new vpVec3(1, 0, 0), 10), all, out hit), "filtered");
+        }
+    }
+
+    public static void TestSavedStateRoundTripAndRefusal()
+    {
+        vpWorldDef def = World.DefaultDef();
+        def.frameBudgetMs = 0;
+        using (var world = new World(def))
+        {
+            Collider ball = GroundAndBall(world);
+            for (int i = 0; i < 10; ++i) world.Step(1.0f / 60.0f);
+            byte[] saved = world.SaveState();
+            Check(saved.Length > 40 && saved[0] == (byte)'V', "state of " + saved.Length + " bytes");
+            for (int i = 0; i < 30; ++i) world.Step(1.0f / 60.0f);
+            float first = ball.Pose.position.y;
+            world.RestoreState(saved);
+            for (int i = 0; i < 30; ++i) world.Step(1.0f / 60.0f);
+            Check(ball.Pose.position.y == first, "the same fall after the restore: " + ball.Pose.position.y + " vs " + first);
+            saved[saved.Length / 2] ^= 1;
+            try
+            {
+                world.RestoreState(saved);
+                Check(false, "a corrupted state was accepted");
+            }
+            catch (VolPhysException e)
+            {
+                Check(e.Status == Status.ParseError && e.Message.Contains("checksum"), e.Message);
+            }
         }
     }
 

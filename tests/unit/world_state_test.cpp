@@ -1,0 +1,154 @@
+// Saved world states (World::saveState / restoreState): stepping after a restore is bitwise
+// the stepping after the save, for rigid stacks (Bullet's contact caches), deformables,
+// fluids (a step in progress at the save included) and the default scene under a budget with
+// a tick clock; into the same world and into a fresh one built from the same scene.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstring>
+#include <memory>
+#include <vector>
+
+#include "../budget/tick_clock.h"
+#include "scene/scene_loader.h"
+#include "world.h"
+
+namespace vp {
+namespace {
+
+constexpr double kDt = 1.0 / 60.0;
+
+// Everything a host can read that the steps change, as doubles.
+std::vector<double> observe(World& world) {
+  std::vector<double> out;
+  for (ColliderHandle h : world.colliderHandles()) {
+    const Collider& c = *world.collider(h);
+    const Pose p = c.pose();
+    const Vec3 v = c.linearVelocity(), w = c.angularVelocity();
+    out.insert(out.end(), {p.position.x(), p.position.y(), p.position.z(), p.rotation.x(), p.rotation.y(),
+                           p.rotation.z(), p.rotation.w(), v.x(), v.y(), v.z(), w.x(), w.y(), w.z(),
+                           double(c.sleeping())});
+  }
+  for (DeformableHandle h : world.deformableHandles()) {
+    const DeformableBody& d = *world.deformable(h);
+    out.insert(out.end(), d.positions().begin(), d.positions().end());
+    out.insert(out.end(), d.velocities().begin(), d.velocities().end());
+    out.push_back(double(d.contacts().size()));
+  }
+  for (FluidHandle h : world.fluidHandles()) {
+    const FluidActor& f = *world.fluid(h);
+    for (int a = 0; a < 3; ++a) out.insert(out.end(), f.grid().velocity[a].begin(), f.grid().velocity[a].end());
+    for (const Array<double>* field : {&f.smokeDensity(), &f.temperature(), &f.levelSet(), &f.pressure()})
+      out.insert(out.end(), field->begin(), field->end());
+    out.push_back(double(f.stepCount()));
+  }
+  return out;
+}
+
+bool bitwiseEqual(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+}
+
+struct SceneWorld {
+  testutil::TickClock clock;
+  std::unique_ptr<World> world;
+  SceneWorld(const char* scene, double budgetMs) {
+    WorldConfig config;
+    config.clock = clock.clock();
+    EXPECT_EQ(World::create(config, &world), Status::Ok);
+    EXPECT_EQ(loadScene(*world, scene), Status::Ok) << lastError();
+    EXPECT_EQ(world->setFrameBudget(budgetMs), Status::Ok);
+  }
+  std::vector<std::vector<double>> run(int steps) {
+    std::vector<std::vector<double>> frames;
+    for (int i = 0; i < steps; ++i) {
+      const Status s = world->step(kDt);
+      EXPECT_TRUE(s == Status::Ok || s == Status::PhaseFailed) << lastError();
+      frames.push_back(observe(*world));
+    }
+    return frames;
+  }
+  bool fluidStepInProgress() const {
+    for (FluidHandle h : world->fluidHandles())
+      if (world->fluid(h)->stepInProgress()) return true;
+    return false;
+  }
+};
+
+// Steps `before`, saves (at the first frame from there on with a fluid step in progress, if
+// one comes within `before` more frames), steps `after` frames; then restores and steps them
+// again, in the same world and in a fresh one from the same scene.
+void checkRoundTrip(const char* scene, double budgetMs, int before, int after, bool saveMidStep = false) {
+  SceneWorld original(scene, budgetMs);
+  original.run(before);
+  for (int i = 0; i < before && !original.fluidStepInProgress(); ++i) original.run(1);
+  EXPECT_EQ(original.fluidStepInProgress(), saveMidStep);
+  std::vector<uint8_t> state;
+  ASSERT_EQ(original.world->saveState(&state), Status::Ok) << lastError();
+  EXPECT_FALSE(original.fluidStepInProgress());
+  const double clockAtSave = original.clock.seconds;
+  const std::vector<double> atSave = observe(*original.world);
+  const std::vector<std::vector<double>> first = original.run(after);
+  EXPECT_FALSE(bitwiseEqual(first.back(), atSave)) << "nothing moved: the test would prove nothing";
+
+  ASSERT_EQ(original.world->restoreState(state.data(), state.size()), Status::Ok) << lastError();
+  EXPECT_TRUE(bitwiseEqual(observe(*original.world), atSave));
+  original.clock.seconds = clockAtSave;
+  const std::vector<std::vector<double>> again = original.run(after);
+
+  SceneWorld fresh(scene, budgetMs);
+  ASSERT_EQ(fresh.world->restoreState(state.data(), state.size()), Status::Ok) << lastError();
+  fresh.clock.seconds = clockAtSave;
+  const std::vector<std::vector<double>> elsewhere = fresh.run(after);
+  for (int i = 0; i < after; ++i) {
+    ASSERT_TRUE(bitwiseEqual(first[i], again[i])) << scene << ": same world, frame " << i << " after the restore";
+    ASSERT_TRUE(bitwiseEqual(first[i], elsewhere[i])) << scene << ": fresh world, frame " << i << " after the restore";
+  }
+}
+
+TEST(WorldState, RigidStackContinuesBitwise) { checkRoundTrip(VP_TEST_DATA_DIR "/scenes/stack.json", 0.0, 90, 60); }
+
+TEST(WorldState, DeformablesContinueBitwise) {
+  checkRoundTrip(VP_TEST_DATA_DIR "/scenes/jelly_bridge.json", 0.0, 30, 30);
+}
+
+TEST(WorldState, FluidsContinueBitwise) { checkRoundTrip(VP_TEST_DATA_DIR "/scenes/fluid_pair.json", 0.0, 20, 20); }
+
+// Under a budget (tick clock: deterministic) fluid steps span frames; the save lands on one.
+TEST(WorldState, DefaultSceneUnderABudgetContinuesBitwise) {
+  checkRoundTrip(VP_TEST_DATA_DIR "/../../sample_host/scenes/default.json", 16.0, 30, 30, true);
+}
+
+TEST(WorldState, SavingTwiceGivesTheSameBuffer) {
+  SceneWorld w(VP_TEST_DATA_DIR "/scenes/stack.json", 0.0);
+  w.run(60);
+  std::vector<uint8_t> a, b;
+  ASSERT_EQ(w.world->saveState(&a), Status::Ok);
+  ASSERT_EQ(w.world->saveState(&b), Status::Ok);
+  EXPECT_EQ(a, b);
+  size_t k = 0;
+
+}
+
+// The rebuild a save does keeps Bullet's contact points (its warm start): a resting stack's
+// manifolds are the same after the save as before it.
+TEST(WorldState, SavingKeepsBulletsContactPoints) {
+  SceneWorld w(VP_TEST_DATA_DIR "/scenes/stack.json", 0.0);
+  w.run(90);
+  std::vector<Collider*> colliders;
+  for (ColliderHandle h : w.world->colliderHandles()) colliders.push_back(w.world->collider(h));
+  const std::vector<CollisionWorld::SavedManifold> before = w.world->collisionWorld().saveContacts(colliders);
+  ASSERT_GE(before.size(), 3u);
+  std::vector<uint8_t> state;
+  ASSERT_EQ(w.world->saveState(&state), Status::Ok);
+  const std::vector<CollisionWorld::SavedManifold> after = w.world->collisionWorld().saveContacts(colliders);
+  ASSERT_EQ(after.size(), before.size());
+  EXPECT_EQ(std::memcmp(after.data(), before.data(), before.size() * sizeof(before[0])), 0);
+  double impulse = 0.0;
+  for (const CollisionWorld::SavedManifold& m : after)
+    for (int p = 0; p < m.pointCount; ++p) impulse += m.points[p].appliedImpulse;
+  EXPECT_GT(impulse, 0.0);  // the warm start is there to keep
+}
+
+}  // namespace
+}  // namespace vp
