@@ -34,6 +34,7 @@ vpFluidParameters toC(const FluidControls& c) {
   out.densityDissipation = static_cast<float>(c.smoke.densityDissipation);
   out.temperatureDissipation = static_cast<float>(c.smoke.temperatureDissipation);
   out.kinematicViscosity = static_cast<float>(c.kinematicViscosity);
+  for (int s = 0; s < 6; ++s) out.sides[s] = static_cast<vpDomainSide>(c.sides[s]);
   return out;
 }
 
@@ -94,6 +95,7 @@ vpStatus vpFluidSetParameters(vpFluidId id, const vpFluidParameters* parameters)
     next.smoke.densityDissipation = p.densityDissipation;
     next.smoke.temperatureDissipation = p.temperatureDissipation;
     next.kinematicViscosity = p.kinematicViscosity;
+    for (int s = 0; s < 6; ++s) next.sides[s] = static_cast<DomainSide>(rawEnum(p.sides[s]));
     return f->setControls(next);
   });
 }

@@ -411,7 +411,8 @@ double FluidActor::progress() const {
 }
 
 FluidControls FluidActor::controls() const {
-  return pendingControls_ ? *pendingControls_ : FluidControls{desc_.smoke, desc_.kinematicViscosity, desc_.emitters};
+  return pendingControls_ ? *pendingControls_
+                          : FluidControls{desc_.smoke, desc_.kinematicViscosity, desc_.emitters, desc_.sides};
 }
 
 Status FluidActor::setControls(const FluidControls& controls) {
@@ -428,6 +429,12 @@ void FluidActor::beginStep(const FluidStepInput& input) {
     desc_.smoke = pendingControls_->smoke;
     desc_.kinematicViscosity = pendingControls_->kinematicViscosity;
     desc_.emitters = pendingControls_->emitters;
+    if (pendingControls_->sides != desc_.sides) {
+      // The projection closes the faces of a side that became a Wall (and opens those of an
+      // Open one); the operator and what is built on the fractions follow the new sides.
+      desc_.sides = grid_.sides = pendingControls_->sides;
+      invalidateDerived();
+    }
     pendingControls_.reset();
   }
   step_ = std::make_unique<StepInProgress>();
@@ -597,6 +604,7 @@ bool FluidActor::editFields(const std::function<void(EditableFields&)>& edit) {
 
 void FluidActor::restorePublished() {
   grid_ = shown_.grid;
+  grid_.sides = desc_.sides;  // a change of sides taken when the step began stays
   smokeDensity_ = shown_.smokeDensity;
   temperature_ = shown_.temperature;
   phi_ = shown_.levelSet;

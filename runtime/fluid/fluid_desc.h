@@ -98,11 +98,14 @@ constexpr double kMaxKinematicViscosity = 10.0;
 Status validateFluidDesc(const FluidDesc& desc);
 
 // What a host may change on a fluid after creation: the forces on the smoke, the viscosity,
-// and its emitters (on/off, rate, velocity, temperature; not their shapes).
+// its emitters (on/off, rate, velocity, temperature; not their shapes) and the domain's side
+// types.
 struct FluidControls {
   SmokeParameters smoke;
   double kinematicViscosity = 0.0;
   std::vector<FluidEmitter> emitters;
+  std::array<DomainSide, 6> sides{DomainSide::Wall, DomainSide::Wall, DomainSide::Wall,
+                                  DomainSide::Wall, DomainSide::Wall, DomainSide::Wall};
 };
 // The one check of these fields, for creation and for changes (messages as for vpFluidDef).
 Status validateFluidControls(const FluidControls& controls);

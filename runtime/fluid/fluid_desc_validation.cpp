@@ -48,12 +48,8 @@ Status validateFluidDesc(const FluidDesc& d) {
   if (cells > kMaxFluidCells)
     return fail(Status::InvalidArgument, "resolution = (%d, %d, %d): %lld cells, more than the %lld allowed", g.nx,
                 g.ny, g.nz, static_cast<long long>(cells), static_cast<long long>(kMaxFluidCells));
-  for (int s = 0; s < 6; ++s)
-    if (d.sides[s] != DomainSide::Wall && d.sides[s] != DomainSide::Open)
-      return fail(Status::InvalidArgument, "sides[%d] = %d: must be 0 (wall) or 1 (open)", s,
-                  static_cast<int>(d.sides[s]));
   VP_TRY(checkDensity("density", d.density));
-  VP_TRY(validateFluidControls(FluidControls{d.smoke, d.kinematicViscosity, d.emitters}));
+  VP_TRY(validateFluidControls(FluidControls{d.smoke, d.kinematicViscosity, d.emitters, d.sides}));
   const FluidSolverSettings& s = d.solver;
   if (s.advection != AdvectionScheme::SemiLagrangian && s.advection != AdvectionScheme::MacCormack)
     return fail(Status::InvalidArgument, "advection = %d: must be 0 (semi-Lagrangian) or 1 (MacCormack)",
@@ -76,6 +72,10 @@ Status validateFluidDesc(const FluidDesc& d) {
 }
 
 Status validateFluidControls(const FluidControls& c) {
+  for (int s = 0; s < 6; ++s)
+    if (c.sides[s] != DomainSide::Wall && c.sides[s] != DomainSide::Open)
+      return fail(Status::InvalidArgument, "sides[%d] = %d: must be 0 (wall) or 1 (open)", s,
+                  static_cast<int>(c.sides[s]));
   VP_TRY(checkRange("kinematicViscosity", c.kinematicViscosity, 0.0, kMaxKinematicViscosity));
   const SmokeParameters& sp = c.smoke;
   VP_TRY(checkRange("ambientTemperature", sp.ambientTemperature, -1e6, 1e6));

@@ -398,6 +398,12 @@ class Fluids(unittest.TestCase):
         with self.assertRaises(volphys.InvalidArgumentError) as e:
             fluid.set_parameters(vorticity_confinement=-1)
         self.assertIn("vorticityConfinement = -1", str(e.exception))
+        self.assertEqual(fluid.parameters.sides, (volphys.DomainSide.Wall,) * 6)
+        fluid.set_parameters(sides=(0, 0, 0, volphys.DomainSide.Open, 0, 0))
+        self.assertEqual(fluid.parameters.sides[3], volphys.DomainSide.Open)
+        with self.assertRaises(volphys.InvalidArgumentError) as e:
+            fluid.set_parameters(sides=(0, 0, 0, 0, 5, 0))
+        self.assertIn("sides[4] = 5", str(e.exception))
 
     def test_smoke_from_an_emitter_fills_fields_shaped_z_y_x(self):
         # A box that is not a cube, so a transposed layout would change the shapes; the

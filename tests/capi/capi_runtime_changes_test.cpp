@@ -229,3 +229,44 @@ TEST(CApiRuntimeChanges, FluidParametersReadBackAndTakeEffectAtTheNextStep) {
 }
 
 }  // namespace
+
+namespace {
+
+// Opening a side lets the smoke out; closing it again stops the loss. Two identical plumes,
+// one of which has its top (+y) opened for a while: the smoke it loses then is what leaves.
+TEST(CApiRuntimeChanges, DomainSidesOpenAndCloseAtTheNextStep) {
+  ScopedWorld w;
+  const vpFluidId walled = addSmoke(w.id, 4.0f), opened = addSmoke(w.id, 4.0f);
+  for (int i = 0; i < 30; ++i) ASSERT_VP_OK(vpWorldStep(w.id, kDt));
+  EXPECT_EQ(amountOf(walled), amountOf(opened));
+  vpFluidParameters p{};
+  p.structSize = sizeof p;
+  ASSERT_VP_OK(vpFluidGetParameters(opened, &p));
+  for (int s = 0; s < 6; ++s) EXPECT_EQ(p.sides[s], vpDomainSide_Wall);
+  p.sides[3] = vpDomainSide_Open;
+  ASSERT_VP_OK(vpFluidSetParameters(opened, &p));
+  vpFluidParameters read{};
+  read.structSize = sizeof read;
+  ASSERT_VP_OK(vpFluidGetParameters(opened, &read));
+  EXPECT_EQ(read.sides[3], vpDomainSide_Open);
+  for (int i = 0; i < 60; ++i) ASSERT_VP_OK(vpWorldStep(w.id, kDt));
+  const float lost = amountOf(walled) - amountOf(opened);
+  EXPECT_GT(lost, 0.05f * amountOf(walled)) << "walled " << amountOf(walled) << ", opened " << amountOf(opened);
+
+  // Closed again: from the next step both keep what the emitter adds alike (no dissipation, a
+  // closed box), so the gap between them stops growing.
+  p.sides[3] = vpDomainSide_Wall;
+  ASSERT_VP_OK(vpFluidSetParameters(opened, &p));
+  ASSERT_VP_OK(vpWorldStep(w.id, kDt));
+  const float gap = amountOf(walled) - amountOf(opened);
+  for (int i = 0; i < 30; ++i) ASSERT_VP_OK(vpWorldStep(w.id, kDt));
+  const float gapLater = amountOf(walled) - amountOf(opened);
+  EXPECT_LT(std::abs(gapLater - gap), 0.05f * gap) << "gap " << gap << " -> " << gapLater;
+
+  vpFluidParameters bad = p;
+  setRawEnum(bad.sides[4], 7);
+  EXPECT_EQ(vpFluidSetParameters(opened, &bad), vpStatus_InvalidArgument);
+  EXPECT_TRUE(lastErrorContains("sides[4] = 7")) << vpGetLastError();
+}
+
+}  // namespace

@@ -193,8 +193,24 @@ namespace VolPhys
         public float friction;
     }
 
+    // The six DomainSide entries of vpFluidDef and vpFluidParameters (fixed int buffers).
+    static unsafe class DomainSides
+    {
+        public static void Set(int* sides, int side, DomainSide value)
+        {
+            if (side < 0 || side > 5) throw new ArgumentOutOfRangeException("side");
+            sides[side] = (int)value;
+        }
+
+        public static DomainSide Get(int* sides, int side)
+        {
+            if (side < 0 || side > 5) throw new ArgumentOutOfRangeException("side");
+            return (DomainSide)sides[side];
+        }
+    }
+
     [StructLayout(LayoutKind.Sequential)]
-    public struct vpFluidParameters
+    public unsafe struct vpFluidParameters
     {
         public uint structSize;
         public float ambientTemperature;
@@ -204,6 +220,19 @@ namespace VolPhys
         public float densityDissipation;
         public float temperatureDissipation;
         public float kinematicViscosity;
+        // DomainSide per side (-x, +x, -y, +y, -z, +z), as in vpFluidDef.
+        public fixed int sides[6];
+
+        /// <summary>side: 0..5 for -x, +x, -y, +y, -z, +z.</summary>
+        public void SetSide(int side, DomainSide value)
+        {
+            fixed (int* s = sides) { DomainSides.Set(s, side, value); }
+        }
+
+        public DomainSide Side(int side)
+        {
+            fixed (int* s = sides) { return DomainSides.Get(s, side); }
+        }
     }
 
     [StructLayout(LayoutKind.Sequential)]
@@ -409,14 +438,12 @@ namespace VolPhys
         /// <summary>side: 0..5 for -x, +x, -y, +y, -z, +z.</summary>
         public void SetSide(int side, DomainSide value)
         {
-            if (side < 0 || side > 5) throw new ArgumentOutOfRangeException("side");
-            fixed (int* s = sides) { s[side] = (int)value; }
+            fixed (int* s = sides) { DomainSides.Set(s, side, value); }
         }
 
         public DomainSide Side(int side)
         {
-            if (side < 0 || side > 5) throw new ArgumentOutOfRangeException("side");
-            fixed (int* s = sides) { return (DomainSide)s[side]; }
+            fixed (int* s = sides) { return DomainSides.Get(s, side); }
         }
     }
 

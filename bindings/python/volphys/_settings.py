@@ -13,7 +13,12 @@ def snake(name):
 def read(function, handle_id, ctype, tuple_type):
     s = ctype(structSize=ctypes.sizeof(ctype))
     call(function, handle_id, ctypes.byref(s))
-    return tuple_type(*(getattr(s, name) for name, _ in ctype._fields_[1:]))
+    return tuple_type(*(_plain(getattr(s, name)) for name, _ in ctype._fields_[1:]))
+
+
+def _plain(value):
+    """A ctypes array field (a fluid's sides) as a tuple, not a view into the struct."""
+    return tuple(value) if isinstance(value, ctypes.Array) else value
 
 
 def change(get_function, set_function, handle_id, ctype, tuple_type, changes):

@@ -294,6 +294,7 @@ class vpFluidParameters(ctypes.Structure):
         ("densityDissipation", c_float),
         ("temperatureDissipation", c_float),
         ("kinematicViscosity", c_float),
+        ("sides", c_enum * 6),  # DomainSide: -x, +x, -y, +y, -z, +z
     ]
 
 

@@ -16,7 +16,8 @@ from .stats import ActorStats
 
 # vpFluidParameters without its structSize.
 FluidParameters = namedtuple("FluidParameters", "ambient_temperature density_buoyancy thermal_buoyancy "
-                             "vorticity_confinement density_dissipation temperature_dissipation kinematic_viscosity")
+                             "vorticity_confinement density_dissipation temperature_dissipation kinematic_viscosity "
+                             "sides")
 
 
 class Fluid(ActorHandle):

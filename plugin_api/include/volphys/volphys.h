@@ -702,9 +702,11 @@ VP_API vpStatus vpFluidGetSurfaceMesh(vpFluidId fluid, float* outPositions, floa
 /* Liquid: volume in m^3 (0 for smoke). Smoke: total smoke (density * m^3; 0 for liquid). */
 VP_API vpStatus vpFluidGetAmount(vpFluidId fluid, float* outAmount);
 
-/* A fluid's forces and viscosity at run time, validated as in vpFluidDef; they act from the
- * next fluid step that begins (a step spanning frames finishes with the values it began with).
- * Get returns the values last set. Set structSize from vpFluidGetParameters or sizeof. */
+/* A fluid's forces, viscosity and domain sides at run time, validated as in vpFluidDef; they
+ * act from the next fluid step that begins (a step spanning frames finishes with the values it
+ * began with). Get returns the values last set. Set structSize from vpFluidGetParameters or
+ * sizeof (an older header's struct, without sides, leaves them as they are). A side that
+ * becomes a wall closes at that step's projection: the fluid stops flowing through it. */
 typedef struct vpFluidParameters {
   uint32_t structSize;
   float ambientTemperature;
@@ -714,6 +716,7 @@ typedef struct vpFluidParameters {
   float densityDissipation;
   float temperatureDissipation;
   float kinematicViscosity;  /* 0 switches the viscosity solve off */
+  vpDomainSide sides[6];     /* -x, +x, -y, +y, -z, +z, as vpFluidDef.sides (since 0.5) */
 } vpFluidParameters;
 VP_API vpStatus vpFluidGetParameters(vpFluidId fluid, vpFluidParameters* outParameters);
 VP_API vpStatus vpFluidSetParameters(vpFluidId fluid, const vpFluidParameters* parameters);

@@ -56,6 +56,7 @@ int main(void) {
   FIELD(vpFluidParameters, densityBuoyancy); FIELD(vpFluidParameters, thermalBuoyancy);
   FIELD(vpFluidParameters, vorticityConfinement); FIELD(vpFluidParameters, densityDissipation);
   FIELD(vpFluidParameters, temperatureDissipation); FIELD(vpFluidParameters, kinematicViscosity);
+  FIELD(vpFluidParameters, sides);
   SIZE(vpContactEvent); FIELD(vpContactEvent, type); FIELD(vpContactEvent, deformable);
   FIELD(vpContactEvent, collider); FIELD(vpContactEvent, nodeCount); FIELD(vpContactEvent, point);
   FIELD(vpContactEvent, normal);
