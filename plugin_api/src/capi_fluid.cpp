@@ -246,7 +246,9 @@ vpStatus vpFluidGetSurfaceMeshSize(vpFluidId id, int32_t* outVertexCount, int32_
     WorldLease w;
     FluidActor* f;
     VP_TRY(resolveFluid(id, &w, &f));
-    const FluidSurface& s = f->surface();
+    const FluidSurface* surface = nullptr;
+    VP_TRY(f->surface(&surface));
+    const FluidSurface& s = *surface;
     if (outVertexCount) *outVertexCount = static_cast<int32_t>(s.positions.size());
     if (outTriangleCount) *outTriangleCount = static_cast<int32_t>(s.triangles.size());
     return Status::Ok;
@@ -259,7 +261,9 @@ vpStatus vpFluidGetSurfaceMesh(vpFluidId id, float* outPositions, float* outNorm
     WorldLease w;
     FluidActor* f;
     VP_TRY(resolveFluid(id, &w, &f));
-    const FluidSurface& s = f->surface();
+    const FluidSurface* surface = nullptr;
+    VP_TRY(f->surface(&surface));
+    const FluidSurface& s = *surface;
     const int32_t nv = static_cast<int32_t>(s.positions.size()), nt = static_cast<int32_t>(s.triangles.size());
     if ((outPositions || outNormals) && vertexCapacity < nv)
       return fail(Status::InvalidArgument, "vertexCapacity = %d: the surface has %d vertices", vertexCapacity, nv);

@@ -68,22 +68,28 @@ double FluidActor::liquidVolume() const {
   return vp::liquidVolume(*tasks_, grid_.spec, shown_.levelSet.data(), weights.empty() ? nullptr : weights.data());
 }
 
-const FluidSurface& FluidActor::surface() {
-  if (surfaceStep_ == stepCount_) return surface_;
+Status FluidActor::surface(const FluidSurface** out) {
+  *out = &surface_;
+  if (surfaceStep_ == stepCount_) return Status::Ok;
   surface_ = FluidSurface{};
-  surfaceStep_ = stepCount_;
-  if (desc_.kind != FluidKind::Liquid) return surface_;
+  if (desc_.kind != FluidKind::Liquid) {
+    surfaceStep_ = stepCount_;
+    return Status::Ok;
+  }
   SurfaceMesh mesh;
   Array<Eigen::Vector3d> normals;
-  if (Status s = extractLiquidSurface(*tasks_, grid_.spec, shown_.levelSet.data(), &mesh, &normals, marchingCubes_); !ok(s)) {
-    log(LogLevel::Error, "fluid '%s': surface extraction failed: %s", desc_.name.c_str(), lastError());
-    return surface_;
+  Status s = extractLiquidSurface(*tasks_, grid_.spec, shown_.levelSet.data(), &mesh, &normals, marchingCubes_);
+  if (ok(s) && injectedFailure_ == Phase::Surface) {
+    injectedFailure_.reset();
+    s = fail(Status::Internal, "failure injected by a test");
   }
+  if (!ok(s)) return addErrorContext(s, "fluid '" + desc_.name + "': surface extraction");
   surface_.positions.assign(mesh.vertices.begin(), mesh.vertices.end());
   surface_.normals = std::move(normals);
   surface_.triangles.reserve(mesh.triangles.size());
   for (const auto& t : mesh.triangles) surface_.triangles.emplace_back(t[0], t[1], t[2]);
-  return surface_;
+  surfaceStep_ = stepCount_;
+  return Status::Ok;
 }
 
 bool FluidActor::phaseOk(Phase phase, const char* what, Status status) {

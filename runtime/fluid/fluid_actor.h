@@ -183,8 +183,10 @@ class FluidActor {
   double totalSmoke() const;
   // Liquid volume in m^3 (0 for smoke).
   double liquidVolume() const;
-  // Built on the first request after a step (empty for smoke).
-  const FluidSurface& surface();
+  // Built on the first request after a step (empty for smoke). A failed extraction returns
+  // its reason (the last error; injectPhaseFailureForTesting(Phase::Surface) makes the next
+  // one fail) and is not kept: the next request tries again.
+  Status surface(const FluidSurface** out);
   uint64_t stepCount() const { return stepCount_; }
   // The working fractions (those of the step in progress, or of the last one).
   const FaceFractionField& fractions() const { return fractions_; }

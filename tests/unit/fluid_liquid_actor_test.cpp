@@ -128,7 +128,9 @@ TEST(FluidLiquid, SloshingTankKeepsItsVolume) {
   std::printf("sloshing: volume %.5f m^3, worst drift over 500 steps %.2e, fastest %.2f m/s\n", v0, worstDrift, fastest);
   EXPECT_GT(fastest, 0.5) << "the dam must break and slosh";
   EXPECT_LT(worstDrift, 0.01);
-  const FluidSurface& surface = actor->surface();
+  const FluidSurface* extracted = nullptr;
+  ASSERT_EQ(actor->surface(&extracted), Status::Ok) << lastError();
+  const FluidSurface& surface = *extracted;
   EXPECT_GT(surface.triangles.size(), 100u);
   EXPECT_EQ(surface.normals.size(), surface.positions.size());
 }
