@@ -85,6 +85,7 @@ Collider::Collider(ColliderDesc desc) : desc_(std::move(desc)), shape_(buildBull
   } else if (dynamic) {
     body_->setLinearVelocity(bt(desc_.linearVelocity));
     body_->setAngularVelocity(bt(desc_.angularVelocity));
+    if (desc_.sleeping) setSleeping(true);
   }
 }
 

@@ -48,6 +48,8 @@ struct ColliderDesc {
   double linearDamping = 0.0;
   double angularDamping = 0.05;
   CollisionFilter filter;  // which rigid bodies, deformables and fluids it meets
+  // Dynamic: starts asleep, at rest, until something wakes it (a touch, a load, the host).
+  bool sleeping = false;
   void* userData = nullptr;
 };
 

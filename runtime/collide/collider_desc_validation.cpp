@@ -153,6 +153,11 @@ Status validateColliderDesc(ColliderDesc& in) {
   VP_TRY(checkAngularVelocity("angularVelocity", desc.angularVelocity));
   if (desc.bodyType == BodyType::Static && (desc.linearVelocity.squaredNorm() > 0 || desc.angularVelocity.squaredNorm() > 0))
     return fail(Status::InvalidArgument, "linearVelocity/angularVelocity: a static body cannot move");
+  if (desc.sleeping && desc.bodyType != BodyType::Dynamic)
+    return fail(Status::InvalidArgument, "sleeping: only a dynamic body sleeps");
+  if (desc.sleeping && (desc.linearVelocity.squaredNorm() > 0 || desc.angularVelocity.squaredNorm() > 0))
+    return fail(Status::InvalidArgument, "sleeping: a body that starts asleep starts at rest (linearVelocity and "
+                "angularVelocity must be 0)");
   VP_TRY(validateBodyProperties(desc.bodyType, bodyPropertiesOf(desc)));
   VP_TRY(validateShape(desc.shape, desc.bodyType));
   if (desc.shape.type == ShapeType::Plane) desc.shape.normal.normalize();

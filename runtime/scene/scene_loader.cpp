@@ -119,7 +119,7 @@ Status parsePose(const JsonObject& obj, Pose* pose) {
 Status parseCollider(const JsonObject& obj, const std::string& baseDirectory, ColliderDesc* desc) {
   VP_TRY(obj.checkKeys({"name", "bodyType", "shape", "position", "rotation", "axisAngle", "linearVelocity",
                         "angularVelocity", "mass", "friction", "restitution", "linearDamping", "angularDamping",
-                        "collisionFilter"}));
+                        "collisionFilter", "sleeping"}));
   VP_TRY(obj.string("name", &desc->name));
   int body = 0;
   VP_TRY(parseEnum(obj, "bodyType", {"static", "kinematic", "dynamic"}, &body));
@@ -136,6 +136,7 @@ Status parseCollider(const JsonObject& obj, const std::string& baseDirectory, Co
   VP_TRY(obj.number("linearDamping", &desc->linearDamping));
   VP_TRY(obj.number("angularDamping", &desc->angularDamping));
   VP_TRY(parseCollisionFilter(obj, &desc->filter));
+  VP_TRY(obj.boolean("sleeping", &desc->sleeping));
   // Validate now (with the JSON path) so that applying the scene cannot fail half-way.
   Status s = validateColliderDesc(*desc);
   if (!ok(s)) return addErrorContext(s, obj.path());

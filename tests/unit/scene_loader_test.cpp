@@ -178,7 +178,11 @@ INSTANTIATE_TEST_SUITE_P(
                  "$.deformables[0].collisionFilter.mask = 1.5: expected an integer"},
         BadScene{R"({"fluids": [{"collisionFilter": {"group": 1}}]})", Status::ParseError,
                  "$.fluids[0].collisionFilter.group: unknown key"},
-        BadScene{R"({"fluids": [{"collisionFilter": 3}]})", Status::ParseError, "$.fluids[0].collisionFilter"}));
+        BadScene{R"({"fluids": [{"collisionFilter": 3}]})", Status::ParseError, "$.fluids[0].collisionFilter"},
+        BadScene{R"({"colliders": [{"shape": {"type": "plane"}, "sleeping": true}]})", Status::InvalidArgument,
+                 "$.colliders[0]: sleeping: only a dynamic body sleeps"},
+        BadScene{R"({"colliders": [{"bodyType": "dynamic", "shape": {"type": "sphere", "radius": 1}, "sleeping": 1}]})",
+                 Status::ParseError, "$.colliders[0].sleeping"}));
 
 TEST(SceneLoader, DeformableWithPinsAndAnAttachment) {
   auto world = makeWorld();
@@ -222,6 +226,31 @@ TEST(SceneLoader, ReadsTheAccuracyFloorAndPriorities) {
   FluidHandle tank;
   ASSERT_TRUE(world->findFluid("tank", &tank));
   EXPECT_EQ(world->fluid(tank)->desc().priority, -7);
+}
+
+// A body that starts asleep hangs where it was put until something wakes it; one left awake
+// falls.
+TEST(SceneLoader, ASleepingBodyStaysPutUntilWoken) {
+  auto world = makeWorld();
+  ASSERT_EQ(loadSceneFromString(*world, R"({"colliders": [
+      {"name": "asleep", "bodyType": "dynamic", "shape": {"type": "sphere", "radius": 0.5}, "position": [0, 5, 0],
+       "sleeping": true},
+      {"name": "awake", "bodyType": "dynamic", "shape": {"type": "sphere", "radius": 0.5}, "position": [3, 5, 0],
+       "sleeping": false}]})", "."),
+            Status::Ok)
+      << lastError();
+  world->setFrameBudget(0.0);
+  ColliderHandle asleep, awake;
+  ASSERT_TRUE(world->findCollider("asleep", &asleep));
+  ASSERT_TRUE(world->findCollider("awake", &awake));
+  EXPECT_TRUE(world->collider(asleep)->sleeping());
+  EXPECT_FALSE(world->collider(awake)->sleeping());
+  for (int i = 0; i < 30; ++i) ASSERT_EQ(world->step(1.0 / 60.0), Status::Ok);
+  EXPECT_EQ(world->collider(asleep)->pose().position.y(), 5.0);
+  EXPECT_LT(world->collider(awake)->pose().position.y(), 4.0);
+  world->collider(asleep)->setSleeping(false);
+  for (int i = 0; i < 30; ++i) ASSERT_EQ(world->step(1.0 / 60.0), Status::Ok);
+  EXPECT_LT(world->collider(asleep)->pose().position.y(), 4.0);
 }
 
 TEST(SceneLoader, ReadsCollisionFiltersAndKeepsTheDefaultsOfKeysLeftOut) {
