@@ -390,6 +390,15 @@ void DeformableBody::updateRenderMesh(TaskSystem& tasks) {
     }
   });
   computeVertexNormals(renderPositions_, renderRest_.triangles, &renderNormals_);
+  ++renderVersion_;
+}
+
+const RefitBvh& DeformableBody::renderSurfaceBvh() const {
+  if (renderBvhVersion_ == renderVersion_) return renderBvh_;
+  if (renderBvh_.empty()) renderBvh_.rebuild(renderPositions_, renderRest_.triangles);
+  else renderBvh_.refit(renderPositions_, renderRest_.triangles);
+  renderBvhVersion_ = renderVersion_;
+  return renderBvh_;
 }
 
 void DeformableBody::updateMultigridFilters(TaskSystem& tasks, double massScale) {
@@ -759,6 +768,7 @@ void DeformableBody::restoreState(DeformableState&& s) {
   contacts_ = std::move(s.contacts);
   renderPositions_ = std::move(s.renderPositions);
   renderNormals_ = std::move(s.renderNormals);
+  ++renderVersion_;
   schedule_ = s.schedule;
 }
 

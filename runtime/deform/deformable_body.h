@@ -26,6 +26,7 @@
 #include "deform/element_incidence.h"
 #include "frame_plan.h"
 #include "geometry/embedding.h"
+#include "geometry/refit_bvh.h"
 #include "linalg/aggregation_multigrid.h"
 #include "linalg/block_sparse_matrix.h"
 #include "linalg/conjugate_gradient.h"
@@ -96,6 +97,10 @@ class DeformableBody {
   const SurfaceMesh& renderMeshRest() const { return renderRest_; }
   const Array<Vec3>& renderPositions() const { return renderPositions_; }
   const Array<Vec3>& renderNormals() const { return renderNormals_; }
+  // The render surface at its current positions as a BVH, for scene queries: built on the
+  // first request, refit on a request after the positions moved (queries hold the world, so
+  // no two requests run at once).
+  const RefitBvh& renderSurfaceBvh() const;
 
   // What evolves from step to step (snapshot/actor_states.h); restoreState takes a state
   // read for this body (its sizes checked) and cannot fail.
@@ -168,6 +173,9 @@ class DeformableBody {
   SurfaceMesh renderRest_;
   Array<EmbeddedPoint> embedding_;
   Array<Vec3> renderPositions_, renderNormals_;
+  uint64_t renderVersion_ = 0;               // counts moves of the render positions
+  mutable RefitBvh renderBvh_;
+  mutable uint64_t renderBvhVersion_ = ~uint64_t(0);  // the version the BVH's boxes are of
   // Per-step scratch kept to avoid allocation in the hot path.
   Array<double> force_, rhs_, vNext_, diagInverse_, backupX_, backupV_;
   enum : uint8_t { kFree = 0, kFixed = 1, kContact = 2 };

@@ -186,12 +186,6 @@ Vec3 reachOf(const OverlapShape& shape, const Mat3& axes) {
   return axes.cwiseAbs() * shape.halfExtents;
 }
 
-Aabb3 surfaceBounds(const DeformableBody& body) {
-  Aabb3 box;
-  for (const Vec3& p : body.renderPositions()) box.add(p);
-  return box;
-}
-
 int32_t nearestNode(const DeformableBody& body, const Vec3& point) {
   const Array<double>& x = body.positions();
   int32_t best = -1;
@@ -214,20 +208,21 @@ void forEachDeformable(World& world, const QueryFilter& filter, const Visit& vis
 
 bool raycastSurface(const DeformableBody& body, const Ray& ray, QueryHit* hit) {
   const Array<Vec3>& x = body.renderPositions();
-  double t0, t1;
-  if (!clipRayToBox(ray, surfaceBounds(body), &t0, &t1)) return false;
   const auto& triangles = body.renderMeshRest().triangles;
   bool found = false;
-  for (size_t t = 0; t < triangles.size(); ++t) {
-    const auto& tri = triangles[t];
+  body.renderSurfaceBvh().visitRay(ray.origin, ray.direction, ray.maxDistance, [&](int32_t t, double limit) {
+    const auto& tri = triangles[static_cast<size_t>(t)];
     TriangleRayHit h;
-    const double limit = found ? hit->distance : ray.maxDistance;
-    if (!rayHitsTriangle(ray.origin, ray.direction, limit, x[tri[0]], x[tri[1]], x[tri[2]], &h)) continue;
+    // Equal distances (a ray through a shared edge) keep the lower triangle id, whatever
+    // order the tree visits them in.
+    if (!rayHitsTriangle(ray.origin, ray.direction, limit, x[tri[0]], x[tri[1]], x[tri[2]], &h)) return limit;
+    if (found && (h.distance > hit->distance || (h.distance == hit->distance && t > hit->triangle))) return limit;
     found = true;
     hit->distance = h.distance;
     hit->barycentric = h.barycentric;
-    hit->triangle = static_cast<int32_t>(t);
-  }
+    hit->triangle = t;
+    return h.distance;
+  });
   if (!found) return false;
   const auto& tri = triangles[static_cast<size_t>(hit->triangle)];
   hit->point = ray.origin + hit->distance * ray.direction;
@@ -240,16 +235,18 @@ bool raycastSurface(const DeformableBody& body, const Ray& ray, QueryHit* hit) {
 // skew directions (a ray through a shared edge counts both triangles and flips one parity).
 bool insideSurface(const DeformableBody& body, const Vec3& point) {
   const Array<Vec3>& x = body.renderPositions();
+  const auto& triangles = body.renderMeshRest().triangles;
   const Vec3 directions[3] = {Vec3(1.0, 0.3137, 0.1712).normalized(), Vec3(-0.2713, 1.0, 0.4391).normalized(),
                               Vec3(0.3571, -0.5227, 1.0).normalized()};
   int insideVotes = 0;
   for (const Vec3& d : directions) {
     int crossings = 0;
-    for (const auto& tri : body.renderMeshRest().triangles) {
+    body.renderSurfaceBvh().visitRay(point, d, std::numeric_limits<double>::infinity(), [&](int32_t t, double limit) {
+      const auto& tri = triangles[static_cast<size_t>(t)];
       TriangleRayHit h;
-      crossings += rayHitsTriangle(point, d, std::numeric_limits<double>::infinity(), x[tri[0]], x[tri[1]],
-                                   x[tri[2]], &h);
-    }
+      crossings += rayHitsTriangle(point, d, limit, x[tri[0]], x[tri[1]], x[tri[2]], &h);
+      return limit;
+    });
     insideVotes += crossings % 2;
   }
   return insideVotes >= 2;
@@ -257,19 +254,24 @@ bool insideSurface(const DeformableBody& body, const Vec3& point) {
 
 bool surfaceOverlaps(const DeformableBody& body, const OverlapShape& shape) {
   const Array<Vec3>& x = body.renderPositions();
-  const Aabb3 box = surfaceBounds(body);
+  const auto& triangles = body.renderMeshRest().triangles;
   const Mat3 axes = shape.rotation.toRotationMatrix();
   const Vec3 reach = reachOf(shape, axes);
-  if (((shape.centre - reach) - box.hi).maxCoeff() > 0.0 || (box.lo - (shape.centre + reach)).maxCoeff() > 0.0)
-    return false;
-  for (const auto& tri : body.renderMeshRest().triangles) {
+  bool touches = false;
+  body.renderSurfaceBvh().visitBox(shape.centre - reach, shape.centre + reach, [&](int32_t t) {
+    if (touches) return;
+    const auto& tri = triangles[static_cast<size_t>(t)];
     const Vec3 &a = x[tri[0]], &b = x[tri[1]], &c = x[tri[2]];
-    const bool touches = shape.type == OverlapShape::Type::Sphere
-                             ? (closestPointOnTriangle(shape.centre, a, b, c) - shape.centre).norm() <= shape.radius
-                             : triangleOverlapsBox(a, b, c, shape.centre, shape.halfExtents, axes);
-    if (touches) return true;
-  }
-  return insideSurface(body, shape.centre);  // a shape wholly inside touches no triangle
+    touches = shape.type == OverlapShape::Type::Sphere
+                  ? (closestPointOnTriangle(shape.centre, a, b, c) - shape.centre).norm() <= shape.radius
+                  : triangleOverlapsBox(a, b, c, shape.centre, shape.halfExtents, axes);
+  });
+  if (touches) return true;
+  // A shape wholly inside touches no triangle; one outside the surface's box is not inside.
+  const RefitBvh& tree = body.renderSurfaceBvh();
+  if (((shape.centre - reach) - tree.hi()).maxCoeff() > 0.0 || (tree.lo() - (shape.centre + reach)).maxCoeff() > 0.0)
+    return false;
+  return insideSurface(body, shape.centre);
 }
 
 template <class Handle>

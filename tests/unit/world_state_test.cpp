@@ -126,8 +126,6 @@ TEST(WorldState, SavingTwiceGivesTheSameBuffer) {
   ASSERT_EQ(w.world->saveState(&a), Status::Ok);
   ASSERT_EQ(w.world->saveState(&b), Status::Ok);
   EXPECT_EQ(a, b);
-  size_t k = 0;
-
 }
 
 // The rebuild a save does keeps Bullet's contact points (its warm start): a resting stack's

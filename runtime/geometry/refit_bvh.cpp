@@ -1,0 +1,85 @@
+#include "geometry/refit_bvh.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace vp {
+
+void RefitBvh::rebuild(const Array<Vec3>& positions, const Array<Triangle>& triangles) {
+  nodes_.clear();
+  order_.resize(triangles.size());
+  Array<Vec3> centroids(triangles.size());
+  for (size_t t = 0; t < triangles.size(); ++t) {
+    order_[t] = static_cast<int32_t>(t);
+    const Triangle& tri = triangles[t];
+    centroids[t] = (positions[tri[0]] + positions[tri[1]] + positions[tri[2]]) / 3.0;
+  }
+  if (triangles.empty()) return;
+  nodes_.reserve(2 * (triangles.size() / kLeafSize + 1));
+  build(centroids, 0, static_cast<int>(triangles.size()), 0);
+  refit(positions, triangles);
+}
+
+int RefitBvh::build(const Array<Vec3>& centroids, int first, int count, int depth) {
+  const int id = static_cast<int>(nodes_.size());
+  nodes_.emplace_back();
+  if (count <= kLeafSize || depth >= kMaxDepth) {
+    nodes_[static_cast<size_t>(id)].first = first;
+    nodes_[static_cast<size_t>(id)].count = count;
+    return id;
+  }
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (int i = first; i < first + count; ++i) {
+    lo = lo.cwiseMin(centroids[static_cast<size_t>(order_[static_cast<size_t>(i)])]);
+    hi = hi.cwiseMax(centroids[static_cast<size_t>(order_[static_cast<size_t>(i)])]);
+  }
+  int axis = 0;
+  (hi - lo).maxCoeff(&axis);
+  const int mid = first + count / 2;
+  std::nth_element(order_.begin() + first, order_.begin() + mid, order_.begin() + first + count,
+                   [&](int32_t a, int32_t b) {
+                     return centroids[static_cast<size_t>(a)][axis] < centroids[static_cast<size_t>(b)][axis];
+                   });
+  const int left = build(centroids, first, mid - first, depth + 1);
+  const int right = build(centroids, mid, first + count - mid, depth + 1);
+  nodes_[static_cast<size_t>(id)].left = left;
+  nodes_[static_cast<size_t>(id)].right = right;
+  return id;
+}
+
+void RefitBvh::refit(const Array<Vec3>& positions, const Array<Triangle>& triangles) {
+  for (size_t k = nodes_.size(); k-- > 0;) {
+    Node& n = nodes_[k];
+    n.lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+    n.hi = -n.lo;
+    if (n.count > 0) {
+      for (int i = n.first; i < n.first + n.count; ++i)
+        for (int32_t v : triangles[static_cast<size_t>(order_[static_cast<size_t>(i)])]) {
+          n.lo = n.lo.cwiseMin(positions[static_cast<size_t>(v)]);
+          n.hi = n.hi.cwiseMax(positions[static_cast<size_t>(v)]);
+        }
+    } else {
+      for (int child : {n.left, n.right}) {
+        n.lo = n.lo.cwiseMin(nodes_[static_cast<size_t>(child)].lo);
+        n.hi = n.hi.cwiseMax(nodes_[static_cast<size_t>(child)].hi);
+      }
+    }
+  }
+}
+
+bool RefitBvh::rayMeetsBox(const Vec3& origin, const Vec3& inverse, double limit, const Vec3& lo, const Vec3& hi) {
+  double enter = 0.0, exit = limit;
+  for (int k = 0; k < 3; ++k) {
+    // inverse[k] is +-inf for a ray parallel to the slab: (lo - o) * inf decides as it should
+    // unless the origin lies on the slab's plane (0 * inf = NaN), where the ray is kept.
+    double a = (lo[k] - origin[k]) * inverse[k], b = (hi[k] - origin[k]) * inverse[k];
+    if (std::isnan(a) || std::isnan(b)) continue;
+    if (a > b) std::swap(a, b);
+    enter = std::max(enter, a);
+    exit = std::min(exit, b);
+    if (enter > exit) return false;
+  }
+  return true;
+}
+
+}  // namespace vp
