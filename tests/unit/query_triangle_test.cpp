@@ -57,7 +57,9 @@ TEST(TriangleQueries, TriangleBoxOverlapAgreesWithPointsOfTheTriangleInTheBox) {
     const bool sat = triangleOverlapsBox(a, b, c, centre, half, axes);
     // A sampled point of the triangle in the box proves the overlap; the converse cannot be
     // sampled (a sliver may fall between samples), but the counts below show both outcomes.
-    if (sampleInside) EXPECT_TRUE(sat) << trial;
+    if (sampleInside) {
+      EXPECT_TRUE(sat) << trial;
+    }
     (sat ? overlapping : separate)++;
   }
   EXPECT_GT(overlapping, 50);  // both outcomes were exercised
