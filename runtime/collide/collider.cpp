@@ -385,9 +385,13 @@ void Collider::restoreState(const ColliderState& s) {
   lastSpinChange_ = s.lastSpinChange;
   clearFluidLoad();
   if (geometry_ && s.hasGeometry) {
+    const ColliderShape& g = geometry_->shape;
+    const bool samePose = g.rotation.coeffs() == s.geometryRotation.coeffs() && g.translation == s.geometryTranslation;
+    if (samePose && g.linearVelocity == s.geometryLinear && g.angularVelocity == s.geometryAngular) return;
     // A fluid step in progress may hold the geometry as it is (see sharedGeometry).
     if (geometry_.use_count() > 1) geometry_ = std::make_shared<PreparedCollider>(*geometry_);
-    restoreColliderPose(geometry_.get(), s.geometryRotation, s.geometryTranslation);
+    // Moving a mesh rebuilds its tree: not when the pose is the one it has (a save's rebuild).
+    if (!samePose) restoreColliderPose(geometry_.get(), s.geometryRotation, s.geometryTranslation);
     geometry_->shape.linearVelocity = s.geometryLinear;
     geometry_->shape.angularVelocity = s.geometryAngular;
   }
