@@ -72,11 +72,13 @@ Status World::saveState(std::vector<uint8_t>* out) {
   w.array(contactEvents_.saveState());
   const std::vector<ColliderHandle> colliderIds = colliderHandles();
   const std::vector<Collider*> colliders = collidersInSlotOrder();
+  std::vector<ColliderState> colliderStates;
   w.value(static_cast<uint64_t>(colliders.size()));
   for (size_t i = 0; i < colliders.size(); ++i) {
     writeId(w, colliderIds[i]);
     w.value(static_cast<int32_t>(colliders[i]->bodyType()));
-    writeColliderState(w, colliders[i]->saveState());
+    colliderStates.push_back(colliders[i]->saveState());
+    writeColliderState(w, colliderStates.back());
   }
   const std::vector<CollisionWorld::SavedManifold> contacts = collision_.saveContacts(colliders);
   w.array(contacts);
@@ -95,7 +97,7 @@ Status World::saveState(std::vector<uint8_t>* out) {
   }
   *out = w.finish();
   // From here the saved world goes on exactly as a restored one will.
-  collision_.rebuild(colliders, contacts);
+  collision_.rebuild(colliders, colliderStates, contacts);
   for (FluidHandle h : fluidIds) fluid(h)->invalidateDerived();
   return Status::Ok;
 }
@@ -152,8 +154,7 @@ Status World::restoreState(const uint8_t* data, size_t size) {
   for (size_t i = 0; i < fluidIds.size(); ++i) fluid(fluidIds[i])->restoreState(std::move(staged.fluids[i]));
   for (size_t i = 0; i < deformableIds.size(); ++i)
     deformable(deformableIds[i])->restoreState(std::move(staged.deformables[i]));
-  for (size_t i = 0; i < colliders.size(); ++i) colliders[i]->restoreState(staged.colliders[i]);
-  collision_.rebuild(colliders, staged.contacts);
+  collision_.rebuild(colliders, staged.colliders, staged.contacts);
   contactEvents_.restoreState(staged.touching);
   stats_ = StepStats{};
   stats_.stepIndex = staged.stepIndex;

@@ -2,6 +2,7 @@
 
 #include <btBulletDynamicsCommon.h>
 
+#include "collide/bullet_doubles.h"
 #include "core/log.h"
 
 namespace vp {
@@ -291,45 +292,19 @@ void Collider::endKinematicStep() {
   target_.reset();
 }
 
-}  // namespace vp
-
-namespace vp {
-
-namespace {
-
-void saveTransform(const btTransform& t, double* out) {
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) out[3 * r + c] = t.getBasis()[r][c];
-  for (int k = 0; k < 3; ++k) out[9 + k] = t.getOrigin()[k];
-}
-
-btTransform loadTransform(const double* in) {
-  btScalar v[12];
-  for (int k = 0; k < 12; ++k) v[k] = static_cast<btScalar>(in[k]);
-  const btMatrix3x3 basis(v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8]);
-  return btTransform(basis, btVector3(v[9], v[10], v[11]));
-}
-
-void saveVector(const btVector3& v, double* out) {
-  for (int k = 0; k < 3; ++k) out[k] = v[k];
-}
-
-btVector3 loadVector(const double* in) { return btVector3(btScalar(in[0]), btScalar(in[1]), btScalar(in[2])); }
-
-}  // namespace
 
 ColliderState Collider::saveState() const {
   ColliderState s;
   RigidBodyState& b = s.body;
-  saveTransform(body_->getWorldTransform(), b.transform);
-  saveTransform(body_->getInterpolationWorldTransform(), b.interpolationTransform);
-  saveTransform(motionState_->m_graphicsWorldTrans, b.motionStateTransform);
-  saveVector(body_->getLinearVelocity(), b.linear);
-  saveVector(body_->getAngularVelocity(), b.angular);
-  saveVector(body_->getInterpolationLinearVelocity(), b.interpolationLinear);
-  saveVector(body_->getInterpolationAngularVelocity(), b.interpolationAngular);
-  saveVector(body_->getTotalForce(), b.totalForce);
-  saveVector(body_->getTotalTorque(), b.totalTorque);
+  toDoubles(body_->getWorldTransform(), b.transform);
+  toDoubles(body_->getInterpolationWorldTransform(), b.interpolationTransform);
+  toDoubles(motionState_->m_graphicsWorldTrans, b.motionStateTransform);
+  toDoubles(body_->getLinearVelocity(), b.linear);
+  toDoubles(body_->getAngularVelocity(), b.angular);
+  toDoubles(body_->getInterpolationLinearVelocity(), b.interpolationLinear);
+  toDoubles(body_->getInterpolationAngularVelocity(), b.interpolationAngular);
+  toDoubles(body_->getTotalForce(), b.totalForce);
+  toDoubles(body_->getTotalTorque(), b.totalTorque);
   b.activationState = body_->getActivationState();
   b.deactivationTime = body_->getDeactivationTime();
   b.hitFraction = body_->getHitFraction();
@@ -357,17 +332,17 @@ ColliderState Collider::saveState() const {
 
 void Collider::restoreState(const ColliderState& s) {
   const RigidBodyState& b = s.body;
-  body_->setWorldTransform(loadTransform(b.transform));
-  body_->setInterpolationWorldTransform(loadTransform(b.interpolationTransform));
-  motionState_->m_graphicsWorldTrans = loadTransform(b.motionStateTransform);
-  body_->setLinearVelocity(loadVector(b.linear));
-  body_->setAngularVelocity(loadVector(b.angular));
-  body_->setInterpolationLinearVelocity(loadVector(b.interpolationLinear));
-  body_->setInterpolationAngularVelocity(loadVector(b.interpolationAngular));
+  body_->setWorldTransform(btTransformFrom(b.transform));
+  body_->setInterpolationWorldTransform(btTransformFrom(b.interpolationTransform));
+  motionState_->m_graphicsWorldTrans = btTransformFrom(b.motionStateTransform);
+  body_->setLinearVelocity(btVectorFrom(b.linear));
+  body_->setAngularVelocity(btVectorFrom(b.angular));
+  body_->setInterpolationLinearVelocity(btVectorFrom(b.interpolationLinear));
+  body_->setInterpolationAngularVelocity(btVectorFrom(b.interpolationAngular));
   // Bullet clears its forces after every sub-step; a state holds them for completeness.
   body_->clearForces();
-  body_->applyCentralForce(loadVector(b.totalForce));
-  body_->applyTorque(loadVector(b.totalTorque));
+  body_->applyCentralForce(btVectorFrom(b.totalForce));
+  body_->applyTorque(btVectorFrom(b.totalTorque));
   body_->updateInertiaTensor();
   body_->forceActivationState(b.activationState);
   body_->setDeactivationTime(btScalar(b.deactivationTime));

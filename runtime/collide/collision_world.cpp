@@ -4,8 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <unordered_map>
+#include <utility>
 
+#include "collide/bullet_doubles.h"
 #include "collide/collider.h"
 #include "core/physical_limits.h"
 
@@ -157,20 +160,12 @@ CollisionWorld::StepResult CollisionWorld::step(double dt, double maxSubstep, Co
   return StepResult{substeps, restoreDivergedBodies()};
 }
 
-}  // namespace vp
-
-namespace vp {
 
 static_assert(CollisionWorld::kMaxManifoldPoints == MANIFOLD_CACHE_SIZE);
 
 namespace {
 
 using SavedContactPoint = CollisionWorld::SavedContactPoint;
-
-void toDoubles(const btVector3& v, double* out) {
-  for (int k = 0; k < 3; ++k) out[k] = v[k];
-}
-btVector3 fromDoubles(const double* in) { return btVector3(btScalar(in[0]), btScalar(in[1]), btScalar(in[2])); }
 
 SavedContactPoint savePoint(const btManifoldPoint& p) {
   SavedContactPoint s{};
@@ -206,13 +201,13 @@ SavedContactPoint savePoint(const btManifoldPoint& p) {
 
 btManifoldPoint loadPoint(const SavedContactPoint& s) {
   btManifoldPoint p;
-  p.m_localPointA = fromDoubles(s.localA);
-  p.m_localPointB = fromDoubles(s.localB);
-  p.m_positionWorldOnA = fromDoubles(s.worldA);
-  p.m_positionWorldOnB = fromDoubles(s.worldB);
-  p.m_normalWorldOnB = fromDoubles(s.normalOnB);
-  p.m_lateralFrictionDir1 = fromDoubles(s.lateralDir1);
-  p.m_lateralFrictionDir2 = fromDoubles(s.lateralDir2);
+  p.m_localPointA = btVectorFrom(s.localA);
+  p.m_localPointB = btVectorFrom(s.localB);
+  p.m_positionWorldOnA = btVectorFrom(s.worldA);
+  p.m_positionWorldOnB = btVectorFrom(s.worldB);
+  p.m_normalWorldOnB = btVectorFrom(s.normalOnB);
+  p.m_lateralFrictionDir1 = btVectorFrom(s.lateralDir1);
+  p.m_lateralFrictionDir2 = btVectorFrom(s.lateralDir2);
   p.m_distance1 = btScalar(s.distance);
   p.m_combinedFriction = btScalar(s.friction);
   p.m_combinedRollingFriction = btScalar(s.rollingFriction);
@@ -283,18 +278,18 @@ std::vector<CollisionWorld::SavedManifold> CollisionWorld::saveContacts(const st
   return out;
 }
 
-void CollisionWorld::rebuild(const std::vector<Collider*>& colliders, const std::vector<SavedManifold>& contacts) {
-  std::vector<ColliderState> states;
-  states.reserve(colliders.size());
-  for (Collider* c : colliders) states.push_back(c->saveState());
+void CollisionWorld::rebuild(const std::vector<Collider*>& colliders, const std::vector<ColliderState>& states,
+                             const std::vector<SavedManifold>& contacts) {
   for (Collider* c : colliders) remove(*c);
   auto broadphase = std::make_unique<btDbvtBroadphase>();
   broadphase->getOverlappingPairCache()->setOverlapFilterCallback(pairFilter_.get());
   world_->setBroadphase(broadphase.get());
   broadphase_ = std::move(broadphase);
-  // Adding a body sets some of its state (a static one is put to sleep): the saved state
-  // goes back on after.
+  // A body enters the broadphase with the box of its pose then (the tree depends on it), and
+  // adding it sets some of its state (a static one is put to sleep): the state goes on before
+  // and again after.
   for (size_t i = 0; i < colliders.size(); ++i) {
+    colliders[i]->restoreState(states[i]);
     add(*colliders[i]);
     colliders[i]->restoreState(states[i]);
   }
@@ -306,28 +301,27 @@ void CollisionWorld::rebuild(const std::vector<Collider*>& colliders, const std:
     colliders[i]->body()->forceActivationState(states[i].body.activationState);
     colliders[i]->body()->setDeactivationTime(btScalar(states[i].body.deactivationTime));
   }
-  std::vector<btPersistentManifold*> manifolds;
-  for (int m = 0; m < dispatcher_->getNumManifolds(); ++m) {
+  // The pass's manifolds by body pair (lower address first), emptied for the saved points.
+  using BodyPair = std::pair<const btCollisionObject*, const btCollisionObject*>;
+  auto pairOf = [](const btCollisionObject* a, const btCollisionObject* b) {
+    return a < b ? BodyPair(a, b) : BodyPair(b, a);
+  };
+  std::map<BodyPair, std::vector<btPersistentManifold*>> unfilled;
+  for (int m = dispatcher_->getNumManifolds(); m-- > 0;) {
     btPersistentManifold* manifold = dispatcher_->getManifoldByIndexInternal(m);
     manifold->clearManifold();
-    manifolds.push_back(manifold);
+    unfilled[pairOf(manifold->getBody0(), manifold->getBody1())].push_back(manifold);  // last first
   }
-  std::vector<bool> filled(manifolds.size(), false);
   for (const SavedManifold& saved : contacts) {
-    if (saved.body0 >= colliders.size() || saved.body1 >= colliders.size()) continue;
     const btCollisionObject* a = colliders[saved.body0]->body();
-    const btCollisionObject* b = colliders[saved.body1]->body();
-    for (size_t m = 0; m < manifolds.size(); ++m) {
-      btPersistentManifold* manifold = manifolds[m];
-      const bool same = manifold->getBody0() == a && manifold->getBody1() == b;
-      const bool swap = manifold->getBody0() == b && manifold->getBody1() == a;
-      if (filled[m] || !(same || swap)) continue;
-      for (int p = 0; p < saved.pointCount; ++p)
-        manifold->getContactPoint(p) = loadPoint(swap ? swapped(saved.points[p]) : saved.points[p]);
-      manifold->setNumContacts(saved.pointCount);
-      filled[m] = true;
-      break;
-    }
+    const auto found = unfilled.find(pairOf(a, colliders[saved.body1]->body()));
+    if (found == unfilled.end() || found->second.empty()) continue;  // the pair no longer meets
+    btPersistentManifold* manifold = found->second.back();  // in the dispatcher's order
+    found->second.pop_back();
+    const bool swap = manifold->getBody0() != a;
+    for (int p = 0; p < saved.pointCount; ++p)
+      manifold->getContactPoint(p) = loadPoint(swap ? swapped(saved.points[p]) : saved.points[p]);
+    manifold->setNumContacts(saved.pointCount);
   }
 }
 

@@ -8,6 +8,7 @@
 
 #include "core/collision_filter.h"
 #include "core/math_types.h"
+#include "snapshot/actor_states.h"
 
 class btDefaultCollisionConfiguration;
 class btCollisionDispatcher;
@@ -69,13 +70,15 @@ class CollisionWorld {
   // The manifolds with points, bodies numbered by their place in `colliders` (all of the
   // world's, in slot order), ordered by those numbers.
   std::vector<SavedManifold> saveContacts(const std::vector<Collider*>& colliders) const;
-  // Bullet's caches rebuilt from the bodies as they are and `contacts`: the bodies go back in
-  // the order of `colliders` into a new broadphase, one collision pass finds their pairs, and
-  // each manifold gets its saved points (none if it has no saved ones). Bullet keeps history
+  // Bullet's caches rebuilt from `states` (one per collider, Collider::saveState's) and
+  // `contacts` (their bodies' places in `colliders`, as a read checks): the bodies go back in the order of
+  // `colliders` into a new broadphase with their states, one collision pass finds their
+  // pairs, and each manifold gets its saved points (none if it has no saved ones). Bullet keeps history
   // of its own (the broadphase's tree and its pair list's order, which pairs linger) that no
   // state can hold; rebuilding it from the state alone is what makes a restored world step
   // exactly like the saved one, which is rebuilt the same way when it is saved.
-  void rebuild(const std::vector<Collider*>& colliders, const std::vector<SavedManifold>& contacts);
+  void rebuild(const std::vector<Collider*>& colliders, const std::vector<ColliderState>& states,
+               const std::vector<SavedManifold>& contacts);
 
  private:
   std::unique_ptr<btDefaultCollisionConfiguration> configuration_;
