@@ -8,10 +8,10 @@ OrbitCamera orbitCameraFraming(const float centre[3], float radius) {
   c.target[1] = centre[1];
   c.target[2] = centre[2];
   c.fovYDegrees = 45.0f;
-  /* Far enough that the sphere fits the vertical field of view, with a margin. */
-  c.distance = 1.15f * radius / sinf(0.5f * c.fovYDegrees * 3.14159265f / 180.0f);
+  /* Far enough that the framing sphere fits the vertical field of view (it bounds the scene loosely). */
+  c.distance = 1.0f * radius / sinf(0.5f * c.fovYDegrees * 3.14159265f / 180.0f);
   c.yaw = 0.6f;
-  c.pitch = 0.35f;
+  c.pitch = 0.6f; /* high enough to see into an open tank over its rim */
   return c;
 }
 

@@ -578,7 +578,7 @@ class Scenes(unittest.TestCase):
         with volphys.World() as w:
             w.load_scene(DEFAULT_SCENE)
             names = ["ground", "tank_west", "tank_east", "tank_north", "tank_south", "paddle", "buoy",
-                     "chimney_ball", "crate", "pill", "can", "gem"]
+                     "chimney_ball", "chimney_blade", "crate", "pill", "can", "gem"]
             self.assertEqual(len(w.colliders()), len(names))
             ball = w.find_collider("crate")
             self.assertIn(ball, w.colliders())
@@ -592,7 +592,7 @@ class Scenes(unittest.TestCase):
             self.assertLess(ball.position[1], y0)
             with self.assertRaises(volphys.InvalidArgumentError):
                 w.find_collider("no-such-collider")
-            self.assertEqual(w.deformables(), [jelly, w.find_deformable("hanging_bar")])
+            self.assertEqual(w.deformables(), [jelly, w.find_deformable("cubic_jelly"), w.find_deformable("hanging_bar")])
             positions, normals, triangles = w.find_collider("crate").shape_mesh()
             self.assertEqual(len(positions), len(normals))
             self.assertEqual(len(triangles), 12)  # a box: two triangles per face
