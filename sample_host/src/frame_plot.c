@@ -1,5 +1,7 @@
 #include "frame_plot.h"
 
+#include "run_summary.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -59,17 +61,29 @@ int framePlotWriteSvg(const FramePlot* p, const char* path) {
   fprintf(f, "<text transform=\"translate(16,%g) rotate(-90)\" text-anchor=\"middle\">ms</text>\n", top + ph / 2);
   fprintf(f, "<rect x=\"%g\" y=\"%g\" width=\"%g\" height=\"%g\" fill=\"none\" stroke=\"black\"/>\n", left, top, pw, ph);
   if (p->count > 0) {
-    fprintf(f, "<polyline fill=\"none\" stroke=\"#c33\" stroke-dasharray=\"6,4\" points=\"");
-    for (i = 0; i < p->count; ++i) fprintf(f, "%.1f,%.1f ", X(i), Y(p->budgetMs[i]));
-    fprintf(f, "\"/>\n<polyline fill=\"none\" stroke=\"#25a\" points=\"");
+    /* Step time under the budget, so the budget line stays on top; budget-cut frames are ticks
+     * along the bottom edge, frames over RUN_SUMMARY_OVER_BUDGET_FACTOR x budget red dots on the step line. */
+    fprintf(f, "<polyline id=\"step_time\" fill=\"none\" stroke=\"#25a\" points=\"");
     for (i = 0; i < p->count; ++i) fprintf(f, "%.1f,%.1f ", X(i), Y(p->stepMs[i]));
+    fprintf(f, "\"/>\n<polyline id=\"over_budget\" fill=\"none\" stroke=\"#e80\" stroke-dasharray=\"2,3\" points=\"");
+    for (i = 0; i < p->count; ++i) fprintf(f, "%.1f,%.1f ", X(i), Y(RUN_SUMMARY_OVER_BUDGET_FACTOR * p->budgetMs[i]));
+    fprintf(f, "\"/>\n<polyline id=\"budget\" fill=\"none\" stroke=\"#e80\" stroke-width=\"2.5\" points=\"");
+    for (i = 0; i < p->count; ++i) fprintf(f, "%.1f,%.1f ", X(i), Y(p->budgetMs[i]));
     fprintf(f, "\"/>\n");
-    for (i = 0; i < p->count; ++i)
-      if (p->cut[i]) fprintf(f, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"2.5\" fill=\"#c33\"/>\n", X(i), Y(p->stepMs[i]));
+    for (i = 0; i < p->count; ++i) {
+      if (p->cut[i])
+        fprintf(f, "<line x1=\"%.1f\" y1=\"%g\" x2=\"%.1f\" y2=\"%g\" stroke=\"#999\"/>\n", X(i), top + ph,
+                X(i), top + ph - 6);
+      if (p->budgetMs[i] > 0 && p->stepMs[i] > RUN_SUMMARY_OVER_BUDGET_FACTOR * p->budgetMs[i])
+        fprintf(f, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"3\" fill=\"#c00\"/>\n", X(i), Y(p->stepMs[i]));
+    }
   }
-  fprintf(f, "<text x=\"%g\" y=\"%g\" fill=\"#25a\">step time</text><text x=\"%g\" y=\"%g\" fill=\"#c33\">"
-             "budget (0 = unlimited); dots: budget-cut frames</text>\n</svg>\n",
-          left + 10, top + 16, left + 90, top + 16);
+  fprintf(f, "<text x=\"%g\" y=\"%g\" fill=\"#25a\">step time</text><text x=\"%g\" y=\"%g\" fill=\"#e80\">"
+             "budget (0 = unlimited), dashed: %gx budget</text><text x=\"%g\" y=\"%g\" fill=\"#c00\">"
+             "dots: frames over %gx budget</text><text x=\"%g\" y=\"%g\" fill=\"#777\">ticks: budget-cut frames"
+             "</text>\n</svg>\n",
+          left + 10, top + 16, left + 90, top + 16, RUN_SUMMARY_OVER_BUDGET_FACTOR, left + 10, top + 32, RUN_SUMMARY_OVER_BUDGET_FACTOR,
+          left + 200, top + 32);
 #undef X
 #undef Y
   return fclose(f) == 0;

@@ -199,9 +199,10 @@ def check_host(exe, out, scene_path=DEFAULT_SCENE):
     for s in shots:
         check_not_blank(os.path.join(out, "snapshots", s))
     svg = ET.parse(os.path.join(out, "frame_times.svg")).getroot()
-    lines = [e for e in svg.iter() if e.tag.endswith("polyline")]
-    if len(lines) != 2 or any(len(e.get("points").split()) != 7 for e in lines):
-        fail("frame_times.svg: expected a budget line and a step-time line of 7 points each")
+    lines = {e.get("id"): e for e in svg.iter() if e.tag.endswith("polyline")}
+    if sorted(lines) != ["budget", "over_budget", "step_time"] or \
+            any(len(e.get("points").split()) != 7 for e in lines.values()):
+        fail("frame_times.svg: expected budget, over-budget and step-time lines of 7 points each, got %s" % sorted(lines))
     print("host outputs OK")
 
 
