@@ -264,6 +264,16 @@ std::vector<Entry> meeting(const std::vector<Filtered<Entry>>& colliders, const 
   return out;
 }
 
+// What deformables may touch: every collider with exact geometry, with its filter.
+std::vector<Filtered<ContactCollider>> deformableContactColliders(const SlotMap<Collider>& colliders) {
+  std::vector<Filtered<ContactCollider>> out;
+  colliders.forEach([&](ColliderHandle h, const Collider& c) {
+    if (c.geometry())
+      out.push_back({c.filter(), ContactCollider{c.geometry(), c.desc().friction, h.index1, h.generation}});
+  });
+  return out;
+}
+
 }  // namespace
 
 bool World::runsConcurrently(int actors) const {
@@ -353,13 +363,34 @@ double World::fluidsExpectedMs(int priority) {
   return ms;
 }
 
+template <class FilteredColliders>
+DeformableStepInput World::deformableStepInput(const DeformableBody& body, const FilteredColliders& colliders) const {
+  DeformableStepInput input;
+  input.gravity = config_.gravity;
+  input.tasks = tasks_.get();
+  input.colliders = meeting(colliders, body.desc().filter);
+  input.collider = [this](uint32_t index1, uint32_t generation) -> const Collider* {
+    return colliders_.get(index1, generation);
+  };
+  return input;
+}
+
+Status World::solveDeformableStatic(DeformableHandle handle, int32_t maxIterations, double tolerance,
+                                    StaticSolveResult* result) {
+  DeformableBody* body = deformable(handle);
+  if (!body) return fail(Status::InvalidId, "deformable: no such deformable in this world");
+  const DeformableStepInput input = deformableStepInput(*body, deformableContactColliders(colliders_));
+  DeformableState saved = body->saveState();
+  try {
+    return solveStaticEquilibrium(*body, input, maxIterations, tolerance, result);
+  } catch (const std::bad_alloc&) {
+    body->restoreState(std::move(saved));
+    return fail(Status::OutOfMemory, "static solve: out of memory (the deformable is unchanged)");
+  }
+}
+
 bool World::stepDeformables(double dt, const Deadline& frame, StepStats* stats) {
-  std::vector<Filtered<ContactCollider>> contactColliders;
-  colliders_.forEach([&](ColliderHandle h, const Collider& c) {
-    if (c.geometry())
-      contactColliders.push_back(
-          {c.filter(), ContactCollider{c.geometry(), c.desc().friction, h.index1, h.generation}});
-  });
+  const std::vector<Filtered<ContactCollider>> contactColliders = deformableContactColliders(colliders_);
   const std::vector<DeformableHandle> handles = deformableHandles();
   std::vector<FramePlan::Deformable> planned;
   std::vector<int> priorities;
@@ -399,16 +430,10 @@ bool World::stepDeformables(double dt, const Deadline& frame, StepStats* stats) 
     deadlines[i] = FramePlan::deformableDeadlines(frame, s, concurrent ? 0.0 : laterFloorsMs[n + 1],
                                                   fluidsExpectedMs(priorities[i]),
                                                   concurrent ? 1 : static_cast<int>(served.size()) - n);
-    DeformableStepInput input;
+    DeformableStepInput input = deformableStepInput(body, contactColliders);
     input.dt = s.pendingDt;
-    input.gravity = config_.gravity;
     input.deadline = deadlines[i].share;
     input.floorDeadline = deadlines[i].floor;
-    input.tasks = tasks_.get();
-    input.colliders = meeting(contactColliders, body.desc().filter);
-    input.collider = [this](uint32_t index1, uint32_t generation) -> const Collider* {
-      return colliders_.get(index1, generation);
-    };
     ActorStats& a = actors[i];
     const double start = frame.elapsedMs();
     try {

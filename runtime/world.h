@@ -15,6 +15,7 @@
 #include "core/task_system.h"
 #include "core/worker_contention.h"
 #include "deform/deformable_body.h"
+#include "deform/static_equilibrium.h"
 #include "fluid/fluid_actor.h"
 #include "frame_plan.h"
 #include "step_stats.h"
@@ -82,6 +83,9 @@ class World {
   std::vector<DeformableHandle> deformableHandles() const;
   size_t deformableCount() const { return deformables_.size(); }
   bool findDeformable(const std::string& name, DeformableHandle* out) const;
+  // The deformable's static equilibrium against the world as it stands (deform/static_equilibrium.h).
+  Status solveDeformableStatic(DeformableHandle handle, int32_t maxIterations, double tolerance,
+                               StaticSolveResult* result);
 
   Status createFluid(FluidDesc desc, FluidHandle* out);
   Status destroyFluid(FluidHandle handle);
@@ -104,6 +108,10 @@ class World {
   void stepRigidBodies(double dt, const Deadline& frame, StepStats* stats);
   // Returns whether every deformable that stepped reached its accuracy floor.
   bool stepDeformables(double dt, const Deadline& frame, StepStats* stats);
+  // A deformable's step input without its time step and deadlines: gravity, the pool, the
+  // colliders its filter meets and the lookup of its attachments' colliders.
+  template <class FilteredColliders>
+  DeformableStepInput deformableStepInput(const DeformableBody& body, const FilteredColliders& colliders) const;
   void stepFluids(double dt, const Deadline& frame, bool floorsHeld, StepStats* stats);
   void finishStats(const Deadline& frame, StepStats* stats);
   // A fluid step that completed: the plan's bookkeeping of its rate and cost.

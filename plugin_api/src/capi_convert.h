@@ -24,6 +24,7 @@ inline CollisionFilter toFilter(const vpCollisionFilter& f) { return CollisionFi
 inline vpCollisionFilter toC(const CollisionFilter& f) { return vpCollisionFilter{f.category, f.mask}; }
 
 static_assert(static_cast<int>(Status::PhaseFailed) == vpStatus_PhaseFailed, "vp::Status and vpStatus must match");
+static_assert(static_cast<int>(Status::NotConverged) == vpStatus_NotConverged, "vp::Status and vpStatus must match");
 inline vpStatus toC(Status s) { return static_cast<vpStatus>(s); }
 
 // A C enum field may hold any int the host wrote; in C++ loading an out-of-range value as the

@@ -282,6 +282,20 @@ vpStatus vpDeformableGetRenderMesh(vpDeformableId id, float* outPositions, float
   });
 }
 
+vpStatus vpDeformableSolveStatic(vpDeformableId id, int32_t maxIterations, float tolerance, int32_t* outIterations,
+                                 float* outResidual) {
+  return guarded(__func__, [&] {
+    WorldLease w;
+    DeformableBody* d;
+    VP_TRY(resolveDeformable(id, &w, &d));
+    StaticSolveResult result;
+    const Status s = w->solveDeformableStatic(handleOf(id), maxIterations, tolerance, &result);
+    if (outIterations) *outIterations = result.iterations;
+    if (outResidual) *outResidual = static_cast<float>(result.residual);
+    return s;
+  });
+}
+
 vpStatus vpDeformableGetStats(vpDeformableId id, vpActorStats* outStats) {
   return guarded(__func__, [&] {
     VP_REQUIRE_POINTER(outStats);

@@ -40,6 +40,7 @@ const char* statusName(Status code) {
     case Status::VersionMismatch: return "VersionMismatch";
     case Status::Internal: return "Internal";
     case Status::PhaseFailed: return "PhaseFailed";
+    case Status::NotConverged: return "NotConverged";
   }
   return "Unknown";
 }

@@ -22,6 +22,7 @@ enum class Status : int {
   VersionMismatch = 9,  // header and library disagree
   Internal = 10,        // a bug: an invariant of VolPhys itself was broken
   PhaseFailed = 11,     // a step completed what it could; a phase of some actor failed (its stats say which)
+  NotConverged = 12,    // an iterative request (a static solve) stopped above its tolerance; nothing changed
 };
 
 // Records a printf-style message as the calling thread's last error and returns `code`.

@@ -215,6 +215,11 @@ Status DeformableBody::setVelocities(const double* velocities, int64_t count) {
   return Status::Ok;
 }
 
+void DeformableBody::heldNodes(Array<uint8_t>* out) const {
+  out->assign(pinned_.begin(), pinned_.end());
+  for (const Attachment& a : attachments_) (*out)[a.node] = 1;
+}
+
 Status DeformableBody::setPositions(const double* positions, int64_t count) {
   if (count != 3 * static_cast<int64_t>(nodeCount_))
     return fail(Status::InvalidArgument, "count = %lld: must be 3 * nodeCount = %d", static_cast<long long>(count),
@@ -548,7 +553,8 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
     for (int k = 0; k < 3; ++k) vNext_[3 * a.node + k] = (target[k] - x_[3 * a.node + k]) / h;
   }
   // Contacts (pinned and attached nodes ignore them): prescribe the normal velocity.
-  findNodeContacts(x_, v_, surfaceNodes_, in.colliders, h, mat.friction, contactMargin_, &contacts_);
+  findNodeContacts(x_, in.contactLookahead ? *in.contactLookahead : v_, surfaceNodes_, in.colliders, h,
+                   mat.friction, contactMargin_, &contacts_);
   contacts_.erase(std::remove_if(contacts_.begin(), contacts_.end(),
                                  [&](const NodeContact& c) { return constrained_[c.node] == kFixed; }),
                   contacts_.end());

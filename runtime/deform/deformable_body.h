@@ -47,6 +47,9 @@ struct DeformableStepInput {
   TaskSystem* tasks = nullptr;
   ColliderLookup collider;  // resolves attachment targets; attachments to vanished colliders are dropped
   std::vector<ContactCollider> colliders;  // what the surface collides with this step
+  // When set (3 per node), contacts are detected along this motion instead of the velocity:
+  // the static solve's pseudo-steps start at rest but must catch what their step will reach.
+  const Array<double>* contactLookahead = nullptr;
 };
 
 class DeformableBody {
@@ -89,6 +92,10 @@ class DeformableBody {
                 const Collider& collider);
   void detachAll(uint32_t colliderIndex1, uint32_t colliderGeneration);
   int64_t attachmentCount() const { return static_cast<int64_t>(attachments_.size()); }
+  // Per node, 1 where the host holds it (pinned or attached), else 0.
+  void heldNodes(Array<uint8_t>* out) const;
+  const Array<int32_t>& surfaceNodes() const { return surfaceNodes_; }
+  double contactMargin() const { return contactMargin_; }
   // Contacts active at the end of the last step (after lift-off releases).
   const Array<NodeContact>& contacts() const { return contacts_; }
 

@@ -31,7 +31,12 @@ struct SceneDeformable {
   DeformableDesc desc;
   std::vector<int32_t> pinnedNodes;
   std::vector<SceneAttachment> attachments;
+  bool startAtRest = false;  // solved to static equilibrium once the scene is in the world
 };
+
+// "startAtRest": a static solve as a host would ask for a pre-roll (deform/static_equilibrium.h).
+constexpr int32_t kStartAtRestIterations = 200;
+constexpr double kStartAtRestTolerance = 1e-4;
 
 struct Scene {
   SceneWorldSettings world;
@@ -216,7 +221,7 @@ Status parseDeformable(const JsonObject& obj, const std::string& baseDirectory, 
                         "ifFileMissing", "position", "rotation", "axisAngle", "linearVelocity", "youngsModulus",
                         "poissonRatio", "density", "massDamping", "stiffnessDamping", "friction", "solverTolerance",
                         "solverMaxIterations", "targetResidual", "priority", "pinBox", "attach",
-                        "collisionFilter"}));
+                        "collisionFilter", "startAtRest"}));
   bool replaced = false;
   VP_TRY(applyFileFallback(obj, baseDirectory, out, &replaced));
   if (replaced) return Status::Ok;
@@ -256,6 +261,7 @@ Status parseDeformable(const JsonObject& obj, const std::string& baseDirectory, 
   VP_TRY(obj.number("targetResidual", &desc.solver.targetResidual));
   VP_TRY(obj.integer("priority", &desc.priority));
   VP_TRY(parseCollisionFilter(obj, &desc.filter));
+  VP_TRY(obj.boolean("startAtRest", &out->startAtRest));
   // Resolve and validate now so that applying the scene cannot fail half-way.
   Status s = resolveDeformableMesh(source, &desc);
   if (!ok(s)) return addErrorContext(s, obj.path());
@@ -391,6 +397,17 @@ Status addSceneActors(World& world, Scene& scene, SceneActors* added) {
   return Status::Ok;
 }
 
+// The deformables that start at rest, solved against the whole scene (its colliders and gravity).
+Status settleAtRest(World& world, const Scene& scene, const SceneActors& added) {
+  for (size_t i = 0; i < scene.deformables.size(); ++i) {
+    if (!scene.deformables[i].startAtRest) continue;
+    const Status s = world.solveDeformableStatic(added.deformables[i], kStartAtRestIterations, kStartAtRestTolerance,
+                                                 nullptr);
+    if (!ok(s)) return addErrorContext(s, "$.deformables[" + std::to_string(i) + "].startAtRest");
+  }
+  return Status::Ok;
+}
+
 }  // namespace
 
 Status loadSceneFromString(World& world, const std::string& text, const std::string& baseDirectory) {
@@ -405,10 +422,14 @@ Status loadSceneFromString(World& world, const std::string& text, const std::str
   VP_TRY(parseScene(root, baseDirectory, &scene));
   VP_TRY(checkAttachmentTargets(scene, world));
 
-  // Apply. Everything was validated; only allocation can fail from here (a status or a thrown
-  // bad_alloc), and then what was added so far is removed again.
+  // Apply. Everything was validated; only allocation and a "startAtRest" solve that does not
+  // converge can fail from here, and then what was added so far is removed again.
   SceneActors added;
+  const Vec3 gravityBefore = world.gravity();
+  const double budgetBefore = world.config().frameBudgetMs;
   auto rollBack = [&](Status s) {
+    world.setGravity(gravityBefore);
+    world.setFrameBudget(budgetBefore);
     for (FluidHandle f : added.fluids) world.destroyFluid(f);
     for (DeformableHandle d : added.deformables) world.destroyDeformable(d);
     for (ColliderHandle c : added.colliders) world.destroyCollider(c);
@@ -424,6 +445,7 @@ Status loadSceneFromString(World& world, const std::string& text, const std::str
   }
   if (scene.world.gravity) world.setGravity(*scene.world.gravity);
   if (scene.world.frameBudgetMs) world.setFrameBudget(*scene.world.frameBudgetMs);
+  if (Status s = settleAtRest(world, scene, added); !ok(s)) return rollBack(s);
   return Status::Ok;
 }
 

@@ -232,8 +232,8 @@ namespace {
 
 TEST(CApiWorld, EveryStatusHasItsName) {
   const char* names[] = {"Ok", "InvalidArgument", "InvalidId", "OutOfMemory", "Unsupported", "IoError",
-                         "ParseError", "Busy", "Diverged", "VersionMismatch", "Internal", "PhaseFailed"};
-  for (int s = vpStatus_Ok; s <= vpStatus_PhaseFailed; ++s) EXPECT_STREQ(vpStatusName(static_cast<vpStatus>(s)), names[s]);
+                         "ParseError", "Busy", "Diverged", "VersionMismatch", "Internal", "PhaseFailed", "NotConverged"};
+  for (int s = vpStatus_Ok; s <= vpStatus_NotConverged; ++s) EXPECT_STREQ(vpStatusName(static_cast<vpStatus>(s)), names[s]);
 }
 
 }  // namespace

@@ -228,6 +228,47 @@ TEST(SceneLoader, ReadsTheAccuracyFloorAndPriorities) {
   EXPECT_EQ(world->fluid(tank)->desc().priority, -7);
 }
 
+// "startAtRest": the jelly is solved onto the ground under the scene's own gravity before the
+// first step; one with nothing under it has no equilibrium, and the load fails as a whole.
+TEST(SceneLoader, StartAtRestSettlesAJellyOnTheGroundOrFailsTheWholeLoad) {
+  auto world = makeWorld();
+  ASSERT_EQ(loadSceneFromString(*world, R"({"world": {"gravity": [0, -5, 0]},
+      "colliders": [{"name": "ground", "shape": {"type": "plane", "normal": [0, 1, 0], "offset": 0}}],
+      "deformables": [{"name": "jelly", "degree": 2, "box": {"cells": [2, 2, 2], "size": [0.4, 0.4, 0.4]},
+                       "position": [0, 0.3, 0], "youngsModulus": 1e5, "startAtRest": true},
+                      {"name": "held", "box": {"cells": [1, 1, 1], "size": [0.4, 0.4, 0.4]},
+                       "position": [2, 1, 0]}]})",
+                                "."),
+            Status::Ok)
+      << lastError();
+  DeformableHandle jelly, held;
+  ASSERT_TRUE(world->findDeformable("jelly", &jelly));
+  ASSERT_TRUE(world->findDeformable("held", &held));
+  const DeformableBody& body = *world->deformable(jelly);
+  double lowest = 1e9;
+  for (int32_t i = 0; i < body.nodeCount(); ++i) lowest = std::min(lowest, body.positions()[3 * i + 1]);
+  EXPECT_GE(lowest, -1e-6);
+  EXPECT_LT(lowest, 0.01);
+  for (double v : body.velocities()) EXPECT_EQ(v, 0.0);
+  // The other one was not asked to: it is where the file put it.
+  EXPECT_DOUBLE_EQ(world->deformable(held)->positions()[1], 0.8);
+
+  auto empty = makeWorld();
+  const Vec3 gravity = empty->gravity();
+  EXPECT_EQ(loadSceneFromString(*empty, R"({"world": {"gravity": [0, -5, 0]},
+      "deformables": [{"box": {"cells": [1, 1, 1], "size": [0.4, 0.4, 0.4]}, "startAtRest": true}]})",
+                                "."),
+            Status::NotConverged);
+  EXPECT_NE(std::string(lastError()).find("$.deformables[0].startAtRest"), std::string::npos) << lastError();
+  EXPECT_EQ(empty->deformableCount(), 0u);
+  EXPECT_EQ(empty->gravity(), gravity);
+  EXPECT_EQ(loadSceneFromString(*empty, R"({"deformables": [{"box": {"cells": [1, 1, 1], "size": [1, 1, 1]},
+                                                              "startAtRest": 1}]})",
+                                "."),
+            Status::ParseError);
+  EXPECT_NE(std::string(lastError()).find("startAtRest"), std::string::npos) << lastError();
+}
+
 // A body that starts asleep hangs where it was put until something wakes it; one left awake
 // falls.
 TEST(SceneLoader, ASleepingBodyStaysPutUntilWoken) {

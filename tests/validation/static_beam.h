@@ -33,12 +33,8 @@ inline TetMesh beamTetMesh(const Beam& beam, int cellsX, int cellsYZ) {
                         Vec3(0, -0.5 * beam.height, -0.5 * beam.width));
 }
 
-// Backward Euler with a 1 s step on this stiff beam is a Newton step of the static problem
-// (h²K dominates M by ~1e8), so a few steps converge to equilibrium. Returns the mean
-// downward displacement of the free end's nodes (for BB elements within 1e-5 of the area
-// average of the field over the end face); cgIterations (may be null) sums the solves.
-// mesh: the beam's box, beamTetMesh or another tetrahedralization of it.
-inline double staticTipDeflection(const Beam& beam, int degree, TetMesh mesh, int* cgIterations) {
+// The beam's material on `mesh`, undamped, with linear solves run to 1e-9.
+inline DeformableDesc beamDeformableDesc(const Beam& beam, int degree, TetMesh mesh) {
   DeformableDesc desc;
   desc.degree = degree;
   desc.mesh = std::move(mesh);
@@ -48,8 +44,17 @@ inline double staticTipDeflection(const Beam& beam, int degree, TetMesh mesh, in
   desc.material.stiffnessDamping = 0.0;
   desc.solver.tolerance = 1e-9;
   desc.solver.maxIterations = 20000;
+  return desc;
+}
+
+// Backward Euler with a 1 s step on this stiff beam is a Newton step of the static problem
+// (h²K dominates M by ~1e8), so a few steps converge to equilibrium. Returns the mean
+// downward displacement of the free end's nodes (for BB elements within 1e-5 of the area
+// average of the field over the end face); cgIterations (may be null) sums the solves.
+// mesh: the beam's box, beamTetMesh or another tetrahedralization of it.
+inline double staticTipDeflection(const Beam& beam, int degree, TetMesh mesh, int* cgIterations) {
   std::unique_ptr<DeformableBody> body;
-  if (!ok(DeformableBody::create(desc, &body))) return NAN;
+  if (!ok(DeformableBody::create(beamDeformableDesc(beam, degree, std::move(mesh)), &body))) return NAN;
   std::vector<int32_t> clamped, tip;
   for (int32_t i = 0; i < body->nodeCount(); ++i) {
     const double x = body->restPositions()[3 * i];

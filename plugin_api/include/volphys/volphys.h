@@ -106,9 +106,11 @@ typedef enum vpStatus {
   vpStatus_Diverged = 8,        /* reserved: divergence is reported in vpActorStats.diverged */
   vpStatus_VersionMismatch = 9, /* header and library, or a struct's structSize, disagree */
   vpStatus_Internal = 10,       /* a bug in VolPhys: please report the message */
-  vpStatus_PhaseFailed = 11     /* vpWorldStep only: the step completed what it could, but a phase
+  vpStatus_PhaseFailed = 11,    /* vpWorldStep only: the step completed what it could, but a phase
                                    of some actor failed (vpActorStats.failedPhases says which, the
                                    message and the log say why); the world stays steppable */
+  vpStatus_NotConverged = 12    /* an iterative request (vpDeformableSolveStatic) stopped above its
+                                   tolerance; the message says how far it got; nothing changed */
 } vpStatus;
 
 /* Message of the last failing call on this thread ("" if none). */
@@ -579,6 +581,19 @@ VP_API vpStatus vpDeformableGetRenderMesh(vpDeformableId deformable, float* outP
                                           int32_t vertexCapacity, int32_t* outTriangles, int32_t triangleCapacity);
 /* Statistics of this actor in the last step (zeros before the first). */
 VP_API vpStatus vpDeformableGetStats(vpDeformableId deformable, vpActorStats* outStats);
+/* Moves the deformable to its static equilibrium and leaves it there at rest (outside a step:
+ * no time passes, nothing else moves): elastic forces balance gravity and the forces applied
+ * for the next step (which stay pending), pinned and attached nodes held, contacts against the
+ * colliders as they stand. Newton steps on the corotational elasticity with the actor's own
+ * linear solver (p-multigrid for degree 2 and 3), globalized by pseudo-time continuation and a
+ * line search on the potential energy; a body that starts above the ground descends onto it.
+ * Converged when the unbalanced force (what pins and contacts cannot carry, friction included)
+ * is at most `tolerance` times the load (gravity and applied forces). maxIterations in
+ * [1, 10000]; tolerance finite in (0, 1) and above the rounding floor of very stiff or thin
+ * bodies (1e-4 is safe, 1e-6 often). NotConverged: the deformable is unchanged and the message
+ * gives the residual reached. outIterations and outResidual (relative) may be NULL. */
+VP_API vpStatus vpDeformableSolveStatic(vpDeformableId deformable, int32_t maxIterations, float tolerance,
+                                        int32_t* outIterations, float* outResidual);
 /* Number of deformables and their ids, in slot order (stable while none is destroyed). */
 VP_API vpStatus vpWorldGetDeformableCount(vpWorldId world, int32_t* outCount);
 VP_API vpStatus vpWorldGetDeformables(vpWorldId world, vpDeformableId* outIds, int32_t capacity, int32_t* outCount);
