@@ -61,7 +61,7 @@ struct FluidSolverSettings {
   // Samples one slice of a grid pass covers at most (fluid_actor.h; under a budget the slabs
   // grow toward it only while slices stay well under the target slice length,
   // core/slice_sizer.h): large enough that the per-slice dispatch and the workers' wait at
-  // each slab's end are negligible in an unbudgeted step of a large grid (README: fluid steps).
+  // each slab's end are negligible in an unbudgeted step of a large grid (docs/benchmarks.md: fluid steps).
   // Not in the C ABI; tests lower it to split small grids.
   int64_t samplesPerSlice = int64_t(1) << 17;
 };

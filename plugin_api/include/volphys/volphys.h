@@ -220,7 +220,7 @@ typedef struct vpWorldDef {
                                   preempted worker never holds up a frame; results are the same
                                   either way. */
   float frameBudgetMs;         /* wall time one vpWorldStep may take; 0 = unlimited; default 16.
-                                  The frame plan (README, "Frame budget"): the Bullet step runs
+                                  The frame plan (docs/choices.md, "Frame budget"): the Bullet step runs
                                   first (not divisible). Deformables then run by priority (higher
                                   first, equal ones in slot order); each solve stops at its share
                                   only once its residual is at or below its targetResidual (the
@@ -311,7 +311,7 @@ typedef struct vpActorStats {
   float totalMs;
   int32_t diverged;   /* the step blew up (non-finite or absurd speeds) and was undone: a
                          deformable or rigid body is back to its state before the step, a
-                         fluid to its last completed step (README, "Divergence guard") */
+                         fluid to its last completed step (docs/choices.md, "Divergence guard") */
   vpPhaseStats phases[VP_MAX_PHASES]; /* indexed by vpPhase */
   float simulatedDt;  /* seconds this step advanced the actor: 0 unless a step completed in it;
                          the frames' dt since its last step when its step spanned frames or
@@ -340,7 +340,7 @@ typedef struct vpStepStats {
   int32_t colliderCount;
   int32_t rigidSubsteps;
   int32_t fluidInterval; /* the largest vpActorStats.interval among the fluids: under a tight
-                            budget a fluid steps every interval frames (1 = every step; README) */
+                            budget a fluid steps every interval frames (1 = every step; docs/choices.md) */
   float overBudgetMs;  /* how far totalMs went past budgetMs; 0 when within it or unlimited */
   int32_t budgetInfeasible; /* 1 if the actors' accuracy floors and minimum rates did not fit the
                                budget: some actor ran at its interval cap */
@@ -813,7 +813,7 @@ VP_API vpStatus vpWorldRestoreState(vpWorldId world, const void* buffer, size_t 
  * the second is Busy). Colliders are tested through Bullet's shapes; a deformable through its
  * render surface at the current positions (what the host draws); a liquid through the zero
  * level set of its last completed step. Smoke is never hit. Each object is reported at most
- * once: for a ray, its nearest hit on it. README, "Scene queries", has the costs. */
+ * once: for a ray, its nearest hit on it. docs/choices.md, "Scene queries", has the costs. */
 typedef enum vpQueryKind {
   vpQueryKind_Colliders = 1,
   vpQueryKind_Deformables = 2,

@@ -24,7 +24,7 @@
 // it stays in double (residuals, search directions, the solution), so the accuracy the CG reaches
 // is unchanged; the preconditioner is a symmetric operator up to float round-off (~1e-7 of its
 // output), which PCG tolerates (its search directions only need to be good, not exact).
-// Measured on BM_PressureSolve (see README): same iteration counts as the double V-cycle.
+// Measured on BM_PressureSolve (docs/benchmarks.md): same iteration counts as the double V-cycle.
 #pragma once
 
 #include <array>
