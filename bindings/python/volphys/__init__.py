@@ -13,6 +13,7 @@ from ._arrays import HAVE_NUMPY
 from ._types import (ActorKind, Advection, BodyType, ContactEventType, DomainSide, FluidField, FluidKind, HitKind,
                      LogLevel, Phase, QueryKind, ShapeType, Status)
 from .queries import Hit
+from .box_mesh import box_tet_mesh
 from .collider import BodyProperties, Collider, Transform
 from ._handle import CollisionFilter
 from .deformable import Deformable, Material
@@ -57,5 +58,5 @@ __all__ = [
     "DomainSide", "FluidField", "VolPhysError", "InvalidArgumentError", "InvalidIdError", "OutOfMemoryError",
     "UnsupportedError", "IoError", "ParseError", "BusyError", "DivergedError", "VersionMismatchError",
     "InternalError", "PhaseFailedError", "library_version", "library_path", "build_info", "status_name", "HAVE_NUMPY",
-    "set_log_callback",
+    "set_log_callback", "box_tet_mesh",
 ]
