@@ -1,7 +1,7 @@
 """volphys: Python bindings (ctypes) over the VolPhys C ABI in libvolphys.so.
 
-The library is found through $VOLPHYS_LIBRARY, a libvolphys.so beside the package, or the
-system library path. Import fails with ImportError if the library's struct layouts differ
+The library is found through $VOLPHYS_LIBRARY, a libvolphys.so* bundled beside the package,
+the prefix CMake installed the package into, or the system library path (volphys/_library.py). Import fails with ImportError if the library's struct layouts differ
 from these bindings. Every failing call raises a VolPhysError subclass carrying the status
 and the library's message. Arrays come back as numpy arrays when numpy is importable.
 """
