@@ -32,7 +32,8 @@ def box_tet_mesh(size, cells, min_corner=(0.0, 0.0, 0.0)):
     split into 6 positively oriented tets. Returns (vertices, tets): (n, 3) float32 in lattice
     order (x fastest) and (6 cx cy cz, 4) int32 numpy arrays (lists of tuples without numpy),
     ready for World.create_deformable(vertices=..., tets=...). Each count in [1, 512], at most
-    2**21 cells; a bad argument raises InvalidArgumentError naming it."""
+    2**21 cells; a value out of range raises InvalidArgumentError naming it, cells that are not
+    int32 integers ValueError."""
     c, extent, corner = _cells(cells), _arrays.vec3(size), _arrays.vec3(min_corner)
     vertex_count, tet_count = c_int32(), c_int32()
     call("vpBoxTetMesh", extent, c, corner, None, 0, None, 0, ctypes.byref(vertex_count), ctypes.byref(tet_count))

@@ -592,7 +592,8 @@ VP_API vpStatus vpWorldFindDeformable(vpWorldId world, const char* name, vpDefor
  * be NULL (with capacity 0), so NULL for both asks only for the counts. *outVertexCount and
  * *outTetCount (either may be NULL) are set on success, and also when a capacity is too small
  * (vpStatus_InvalidArgument, nothing else written). Each cells[k] in [1, 512], at most 2^21
- * cells in all; each side of size a length (see the conventions); both corners positions. */
+ * cells in all; each side of size a length and minCorner and minCorner + size positions (the
+ * ranges in the conventions above). */
 VP_API vpStatus vpBoxTetMesh(vpVec3 size, const int32_t cells[3], vpVec3 minCorner, float* outVertices,
                              int32_t vertexCapacity, int32_t* outTets, int32_t tetCapacity, int32_t* outVertexCount,
                              int32_t* outTetCount);
