@@ -130,24 +130,24 @@ TEST(CApiBoxTetMesh, ArraysMakeADeformable) {
 
 TEST(CApiBoxTetMesh, TooSmallCapacitySetsTheCountsAndWritesNothing) {
   const int32_t cells[3] = {1, 1, 1};
-  std::vector<float> vertices(3 * 8, -7.0f);
-  std::vector<int32_t> tets(4 * 6, -7);
-  int32_t vertexCount = -1, tetCount = -1;
-  EXPECT_EQ(vpBoxTetMesh(vpVec3{1, 1, 1}, cells, vpVec3{0, 0, 0}, vertices.data(), 7, tets.data(), 6, &vertexCount,
-                         &tetCount),
-            vpStatus_InvalidArgument);
-  EXPECT_TRUE(lastErrorContains("vertexCapacity = 7: the box mesh has 8 vertices")) << vpGetLastError();
-  EXPECT_EQ(vertexCount, 8);
-  EXPECT_EQ(tetCount, 6);
-  vertexCount = tetCount = -1;
-  EXPECT_EQ(vpBoxTetMesh(vpVec3{1, 1, 1}, cells, vpVec3{0, 0, 0}, vertices.data(), 8, tets.data(), 5, &vertexCount,
-                         &tetCount),
-            vpStatus_InvalidArgument);
-  EXPECT_TRUE(lastErrorContains("tetCapacity = 5: the box mesh has 6 tets")) << vpGetLastError();
-  EXPECT_EQ(vertexCount, 8);
-  EXPECT_EQ(tetCount, 6);
-  for (float v : vertices) EXPECT_EQ(v, -7.0f);
-  for (int32_t t : tets) EXPECT_EQ(t, -7);
+  struct Case {
+    int32_t vertexCapacity, tetCapacity;
+    const char* message;
+  };
+  for (const Case& c : {Case{7, 6, "vertexCapacity = 7: the box mesh has 8 vertices"},
+                        Case{8, 5, "tetCapacity = 5: the box mesh has 6 tets"}}) {
+    std::vector<float> vertices(3 * 8, -7.0f);
+    std::vector<int32_t> tets(4 * 6, -7);
+    int32_t vertexCount = -1, tetCount = -1;
+    EXPECT_EQ(vpBoxTetMesh(vpVec3{1, 1, 1}, cells, vpVec3{0, 0, 0}, vertices.data(), c.vertexCapacity, tets.data(),
+                           c.tetCapacity, &vertexCount, &tetCount),
+              vpStatus_InvalidArgument);
+    EXPECT_TRUE(lastErrorContains(c.message)) << vpGetLastError();
+    EXPECT_EQ(vertexCount, 8);
+    EXPECT_EQ(tetCount, 6);
+    for (float v : vertices) EXPECT_EQ(v, -7.0f);
+    for (int32_t t : tets) EXPECT_EQ(t, -7);
+  }
 }
 
 TEST(CApiBoxTetMesh, BadArgumentsAreNamedAndChangeNothing) {
