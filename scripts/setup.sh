@@ -8,6 +8,8 @@ packages=(
   libeigen3-dev libbullet-dev libassimp-dev nlohmann-json3-dev
   googletest libgtest-dev libgmock-dev libbenchmark-dev
   python3-numpy
+  # pip install of bindings/python (setuptools as its build backend, no network)
+  python3-pip python3-setuptools python3-wheel
   # sample host: offscreen snapshots (OSMesa), PNG (stb), viewer (GLFW) under Xvfb + Mesa
   libosmesa6-dev libstb-dev libgl-dev libglfw3-dev xvfb xauth libgl1-mesa-dri
   # plots (Python example, output checks) and the C# bindings

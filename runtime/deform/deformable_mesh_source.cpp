@@ -33,14 +33,9 @@ Status resolveDeformableMesh(const DeformableMeshSource& source, DeformableDesc*
     if (!ok(s)) return addErrorContext(s, "surfaceFile");
     if (!render) render = std::move(surface);
   } else {
-    const auto& c = *source.boxCells;
-    for (int k = 0; k < 3; ++k)
-      if (c[k] < 1 || c[k] > 512)
-        return fail(Status::InvalidArgument, "box.cells[%d] = %d: must be in [1, 512]", k, c[k]);
-    for (int k = 0; k < 3; ++k)
-      if (!(source.boxSize[k] > 0.0 && source.boxSize[k] <= 1e4))
-        return fail(Status::InvalidArgument, "box.size[%d] = %g: must be in (0, 1e4]", k, source.boxSize[k]);
-    mesh = makeBoxTetMesh(c, source.boxSize, -0.5 * source.boxSize);  // centred on the origin
+    const Status s = checkBoxTetMeshArgs(*source.boxCells, source.boxSize);
+    if (!ok(s)) return addErrorContext(s, "box");
+    mesh = makeBoxTetMesh(*source.boxCells, source.boxSize, -0.5 * source.boxSize);  // centred on the origin
   }
   if (!source.renderFile.empty()) {
     if (source.renderMesh)

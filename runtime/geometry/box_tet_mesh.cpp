@@ -2,7 +2,22 @@
 
 #include <utility>
 
+#include "core/physical_limits.h"
+
 namespace vp {
+
+Status checkBoxTetMeshArgs(const std::array<int, 3>& cells, const Vec3& size) {
+  for (int k = 0; k < 3; ++k)
+    if (cells[k] < 1 || cells[k] > kMaxBoxCellsPerAxis)
+      return fail(Status::InvalidArgument, "cells[%d] = %d: must be in [1, %d]", k, cells[k], kMaxBoxCellsPerAxis);
+  const int64_t total = int64_t(cells[0]) * cells[1] * cells[2];
+  if (total > kMaxBoxCells)
+    return fail(Status::InvalidArgument, "cells = (%d, %d, %d): %lld cells, at most %lld", cells[0], cells[1], cells[2],
+                static_cast<long long>(total), static_cast<long long>(kMaxBoxCells));
+  static const char* const kSizeFields[3] = {"size.x", "size.y", "size.z"};
+  for (int k = 0; k < 3; ++k) VP_TRY(checkLength(kSizeFields[k], size[k]));
+  return Status::Ok;
+}
 
 TetMesh makeBoxTetMesh(const std::array<int, 3>& cells, const Vec3& size, const Vec3& minCorner) {
   TetMesh mesh;

@@ -8,6 +8,7 @@
 
 #include "core/regular_file.h"
 #include "deform/deformable_mesh_source.h"
+#include "geometry/box_tet_mesh.h"
 #include "scene/json_fields.h"
 #include "scene/scene_fluid.h"
 #include "world.h"
@@ -236,8 +237,9 @@ Status parseDeformable(const JsonObject& obj, const std::string& baseDirectory, 
     Vec3 cells(4, 4, 4);
     VP_TRY(box->vec3("cells", &cells));
     for (int k = 0; k < 3; ++k)
-      if (cells[k] != std::floor(cells[k]) || cells[k] < 1 || cells[k] > 512)
-        return fail(Status::ParseError, "%s.cells: expected 3 integers in [1, 512]", box->path().c_str());
+      if (cells[k] != std::floor(cells[k]) || cells[k] < 1 || cells[k] > kMaxBoxCellsPerAxis)
+        return fail(Status::ParseError, "%s.cells: expected 3 integers in [1, %d]", box->path().c_str(),
+                    kMaxBoxCellsPerAxis);
     source.boxCells = std::array<int, 3>{int(cells[0]), int(cells[1]), int(cells[2])};
     VP_TRY(box->vec3("size", &source.boxSize));
   }

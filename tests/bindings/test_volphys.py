@@ -23,40 +23,9 @@ DEFAULT_SCENE = os.path.join(REPO, "sample_host", "scenes", "default.json")
 DT = 1.0 / 60.0
 
 
-def box_tet_mesh(n, size):
-    """An n^3-cell cube of edge `size` centred at the origin, 6 tets per cell (Kuhn split
-    along the main diagonal, so neighbouring cells share faces). Returns (vertices, tets)
-    as numpy arrays, float32 (v,3) and int32 (t,4)."""
-    h = size / n
-    verts = [((i * h - size / 2), (j * h - size / 2), (k * h - size / 2))
-             for k in range(n + 1) for j in range(n + 1) for i in range(n + 1)]
-
-    def vid(i, j, k):
-        return i + (n + 1) * (j + (n + 1) * k)
-
-    tets = []
-    # Paths from corner (0,0,0) to (1,1,1) stepping one axis at a time: 6 axis orders.
-    orders = [(0, 1, 2), (0, 2, 1), (1, 0, 2), (1, 2, 0), (2, 0, 1), (2, 1, 0)]
-    for k in range(n):
-        for j in range(n):
-            for i in range(n):
-                for order in orders:
-                    c = [i, j, k]
-                    path = [vid(*c)]
-                    for axis in order:
-                        c[axis] += 1
-                        path.append(vid(*c))
-                    a, b, cc, d = path
-                    # Make the signed volume positive so the test does not lean on the
-                    # library's repair of inverted tets.
-                    pa, pb, pc, pd = (verts[x] for x in path)
-                    u = [pb[m] - pa[m] for m in range(3)]
-                    v = [pc[m] - pa[m] for m in range(3)]
-                    w = [pd[m] - pa[m] for m in range(3)]
-                    det = (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0])
-                           + u[2] * (v[0] * w[1] - v[1] * w[0]))
-                    tets.append((a, b, d, cc) if det < 0 else (a, b, cc, d))
-    return np.array(verts, dtype=np.float32), np.array(tets, dtype=np.int32)
+def centred_cube(n, size):
+    """An n^3-cell cube of edge `size` centred at the origin, from the library's mesher."""
+    return volphys.box_tet_mesh((size, size, size), (n, n, n), (-size / 2, -size / 2, -size / 2))
 
 
 class WorldLifecycle(unittest.TestCase):
@@ -244,7 +213,7 @@ class SavedStates(unittest.TestCase):
 
 class Deformables(unittest.TestCase):
     def make(self, w, **kw):
-        verts, tets = box_tet_mesh(2, 0.4)
+        verts, tets = centred_cube(2, 0.4)
         return w.create_deformable(vertices=verts, tets=tets, position=(0, 2, 0), **kw), verts
 
     def test_material_and_teleport(self):
@@ -640,7 +609,7 @@ class FramePlanFields(unittest.TestCase):
 
     def setUp(self):
         self.world = volphys.World(frame_budget_ms=0)
-        self.verts, self.tets = box_tet_mesh(1, 0.4)
+        self.verts, self.tets = centred_cube(1, 0.4)
 
     def tearDown(self):
         self.world.destroy()

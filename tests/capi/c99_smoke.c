@@ -17,6 +17,13 @@ int main(void) {
   int i;
   size_t stateSize = 0;
   unsigned char* state;
+  const int32_t boxCells[3] = {2, 1, 1};
+  vpVec3 boxSize = {0.4f, 0.2f, 0.2f}, boxCorner = {-0.2f, 1.0f, -0.1f};
+  float boxVertices[3 * 12];
+  int32_t boxTets[4 * 12];
+  int32_t boxVertexCount = 0, boxTetCount = 0;
+  vpDeformableDef block = vpDefaultDeformableDef();
+  vpDeformableId blockId;
 
   if (vpCheckVersion() != vpStatus_Ok) return 1;
   if (vpWorldCreate(&def, &world) != vpStatus_Ok) return 2;
@@ -48,6 +55,16 @@ int main(void) {
   ball.bodyType = (vpBodyType)9;
   if (vpColliderCreate(world, &ball, &ballId) != vpStatus_InvalidArgument) return 14;
   if (!strstr(vpGetLastError(), "bodyType = 9")) return 15;
+  /* A deformable from the library's box mesher: counts first, then the arrays. */
+  if (vpBoxTetMesh(boxSize, boxCells, boxCorner, NULL, 0, NULL, 0, &boxVertexCount, &boxTetCount) != vpStatus_Ok ||
+      boxVertexCount != 12 || boxTetCount != 12)
+    return 21;
+  if (vpBoxTetMesh(boxSize, boxCells, boxCorner, boxVertices, 12, boxTets, 12, NULL, NULL) != vpStatus_Ok) return 22;
+  block.vertices = boxVertices;
+  block.vertexCount = boxVertexCount;
+  block.tets = boxTets;
+  block.tetCount = boxTetCount;
+  if (vpDeformableCreate(world, &block, &blockId) != vpStatus_Ok) return 23;
   /* A snapshot round trip: save, step on, restore; the step index is the saved one. */
   if (vpWorldSaveState(world, NULL, 0, &stateSize) != vpStatus_Ok) return 16;
   state = (unsigned char*)malloc(stateSize);

@@ -9,6 +9,21 @@ namespace VolPhys
 
         public static vpDeformableDef DefaultDef() { return Native.vpDefaultDeformableDef(); }
 
+        /// <summary>The library's box mesher (vpBoxTetMesh, the one scene files use for "box"
+        /// deformables): the box [minCorner, minCorner + size] as cellsX x cellsY x cellsZ cubes of
+        /// 6 positively oriented tets. vertices: xyz per vertex, x fastest; tets: 4 indices each.
+        /// Bad arguments raise a VolPhysException naming them.</summary>
+        public static void BoxTetMesh(vpVec3 size, int cellsX, int cellsY, int cellsZ, vpVec3 minCorner,
+                                      out float[] vertices, out int[] tets)
+        {
+            int[] cells = { cellsX, cellsY, cellsZ };
+            int nv, nt;
+            VolPhysException.Check(Native.vpBoxTetMesh(size, cells, minCorner, null, 0, null, 0, out nv, out nt), "vpBoxTetMesh");
+            vertices = new float[3 * nv];
+            tets = new int[4 * nt];
+            VolPhysException.Check(Native.vpBoxTetMesh(size, cells, minCorner, vertices, nv, tets, nt, out nv, out nt), "vpBoxTetMesh");
+        }
+
         public bool IsValid { get { return Native.vpDeformableIsValid(Id) == Status.Ok; } }
 
         /// <summary>Which colliders it meets; a change takes effect from the next step.</summary>

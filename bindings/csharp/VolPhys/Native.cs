@@ -81,6 +81,10 @@ namespace VolPhys
         [DllImport(Library)] public static extern Status vpDeformableGetNodeCount(vpDeformableId deformable, out int count);
         [DllImport(Library)] public static extern Status vpDeformableGetPositions(vpDeformableId deformable, [Out] float[] xyz, int capacity);
         [DllImport(Library)] public static extern Status vpDeformableGetVelocities(vpDeformableId deformable, [Out] float[] xyz, int capacity);
+        // cells: 3 ints; null arrays (with capacity 0) ask only for the counts.
+        [DllImport(Library)] public static extern Status vpBoxTetMesh(vpVec3 size, int[] cells, vpVec3 minCorner, [Out] float[] outVertices,
+                                                                      int vertexCapacity, [Out] int[] outTets, int tetCapacity,
+                                                                      out int outVertexCount, out int outTetCount);
         [DllImport(Library)] public static extern Status vpDeformableSetVelocities(vpDeformableId deformable, float[] xyz, int nodeCount);
         [DllImport(Library)] public static extern Status vpDeformableApplyForce(vpDeformableId deformable, int node, vpVec3 force);
         [DllImport(Library)] public static extern Status vpDeformableApplyImpulse(vpDeformableId deformable, int node, vpVec3 impulse);

@@ -1,7 +1,7 @@
 """volphys: Python bindings (ctypes) over the VolPhys C ABI in libvolphys.so.
 
-The library is found through $VOLPHYS_LIBRARY, a libvolphys.so beside the package, or the
-system library path. Import fails with ImportError if the library's struct layouts differ
+The library is found through $VOLPHYS_LIBRARY, a libvolphys.so* bundled beside the package,
+the prefix CMake installed the package into, or the system library path (volphys/_library.py). Import fails with ImportError if the library's struct layouts differ
 from these bindings. Every failing call raises a VolPhysError subclass carrying the status
 and the library's message. Arrays come back as numpy arrays when numpy is importable.
 """
@@ -13,6 +13,7 @@ from ._arrays import HAVE_NUMPY
 from ._types import (ActorKind, Advection, BodyType, ContactEventType, DomainSide, FluidField, FluidKind, HitKind,
                      LogLevel, Phase, QueryKind, ShapeType, Status)
 from .queries import Hit
+from .box_mesh import box_tet_mesh
 from .collider import BodyProperties, Collider, Transform
 from ._handle import CollisionFilter
 from .deformable import Deformable, Material
@@ -57,5 +58,5 @@ __all__ = [
     "DomainSide", "FluidField", "VolPhysError", "InvalidArgumentError", "InvalidIdError", "OutOfMemoryError",
     "UnsupportedError", "IoError", "ParseError", "BusyError", "DivergedError", "VersionMismatchError",
     "InternalError", "PhaseFailedError", "library_version", "library_path", "build_info", "status_name", "HAVE_NUMPY",
-    "set_log_callback",
+    "set_log_callback", "box_tet_mesh",
 ]

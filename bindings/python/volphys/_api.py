@@ -85,6 +85,8 @@ _PROTOTYPES = {
     "vpDeformableGetRenderMesh": (_S, [T.vpDeformableId, _P(c_float), _P(c_float), c_int32, _P(c_int32), c_int32]),
     "vpDeformableGetStats": (_S, [T.vpDeformableId, _P(T.vpActorStats)]),
     "vpWorldFindDeformable": (_S, [T.vpWorldId, c_char_p, _P(T.vpDeformableId)]),
+    "vpBoxTetMesh": (_S, [T.vpVec3, _P(c_int32), T.vpVec3, _P(c_float), c_int32, _P(c_int32), c_int32, _P(c_int32),
+                          _P(c_int32)]),
     "vpWorldGetDeformableCount": (_S, [T.vpWorldId, _P(c_int32)]),
     "vpWorldGetDeformables": (_S, [T.vpWorldId, _P(T.vpDeformableId), c_int32, _P(c_int32)]),
     "vpDefaultFluidDef": (T.vpFluidDef, []),

@@ -17,7 +17,29 @@ VP_MAX_PHASES = 16
 c_enum = ctypes.c_int
 
 
-class Status(enum.IntEnum):
+class _PrintsName:
+    """Enum members print as Type.Name (IntEnum prints the bare number from Python 3.11 on);
+    they still compare, compute and pass to C as the ints they are, and numeric format specs
+    ("{:d}", "{:x}") still format the number."""
+
+    def __str__(self):
+        return "%s.%s" % (type(self).__name__, self.name)
+
+    def __format__(self, spec):
+        if spec and spec[-1] in "bcdeEfFgGnoxX%":
+            return int.__format__(self, spec)
+        return format(str(self), spec)
+
+
+class NamedIntEnum(_PrintsName, enum.IntEnum):
+    pass
+
+
+class NamedIntFlag(_PrintsName, enum.IntFlag):
+    pass
+
+
+class Status(NamedIntEnum):
     Ok = 0
     InvalidArgument = 1
     InvalidId = 2
@@ -32,7 +54,7 @@ class Status(enum.IntEnum):
     PhaseFailed = 11
 
 
-class LogLevel(enum.IntEnum):
+class LogLevel(NamedIntEnum):
     Debug = 0
     Info = 1
     Warning = 2
@@ -40,7 +62,7 @@ class LogLevel(enum.IntEnum):
     Off = 4
 
 
-class Phase(enum.IntEnum):
+class Phase(NamedIntEnum):
     Rigid = 0
     Corotate = 1
     Assemble = 2
@@ -58,33 +80,33 @@ class Phase(enum.IntEnum):
 PHASE_COUNT = 12
 
 
-class ActorKind(enum.IntEnum):
+class ActorKind(NamedIntEnum):
     Rigid = 0
     Deformable = 1
     Fluid = 2
 
 
-class QueryKind(enum.IntFlag):
+class QueryKind(NamedIntFlag):
     Colliders = 1
     Deformables = 2
     Liquids = 4
     All = 7
 
 
-class HitKind(enum.IntEnum):
+class HitKind(NamedIntEnum):
     NoHit = 0
     Collider = 1
     Deformable = 2
     Liquid = 3
 
 
-class BodyType(enum.IntEnum):
+class BodyType(NamedIntEnum):
     Static = 0
     Kinematic = 1
     Dynamic = 2
 
 
-class ShapeType(enum.IntEnum):
+class ShapeType(NamedIntEnum):
     Sphere = 0
     Box = 1
     Capsule = 2
@@ -94,27 +116,27 @@ class ShapeType(enum.IntEnum):
     TriangleMesh = 6
 
 
-class FluidKind(enum.IntEnum):
+class FluidKind(NamedIntEnum):
     Smoke = 0
     Liquid = 1
 
 
-class Advection(enum.IntEnum):
+class Advection(NamedIntEnum):
     SemiLagrangian = 0
     MacCormack = 1
 
 
-class DomainSide(enum.IntEnum):
+class DomainSide(NamedIntEnum):
     Wall = 0
     Open = 1
 
 
-class RegionType(enum.IntEnum):
+class RegionType(NamedIntEnum):
     Box = 0
     Sphere = 1
 
 
-class FluidField(enum.IntEnum):
+class FluidField(NamedIntEnum):
     SmokeDensity = 0
     Temperature = 1
     LevelSet = 2
@@ -399,7 +421,7 @@ class vpQueryHit(ctypes.Structure):
     ]
 
 
-class ContactEventType(enum.IntEnum):
+class ContactEventType(NamedIntEnum):
     Begin = 0
     End = 1
 

@@ -75,6 +75,13 @@ def _body_type(value):
     return T.BodyType(value)
 
 
+def _default_body_type(shape, scalars):
+    # A plane can only be static; mass=0 is the usual way engines say "does not move".
+    if shape.type == T.ShapeType.Plane or scalars.get("mass") == 0:
+        return T.BodyType.Static  # the library ignores a static body's mass
+    return T.BodyType.Dynamic
+
+
 def _set_scalars(d, table, kwargs):
     """Sets d's fields named by `table` from keywords; collision_filter (a CollisionFilter or a
     (category, mask) pair) is accepted by every def."""
@@ -262,13 +269,16 @@ class World:
         call("vpWorldFindCollider", self._id, name.encode("utf-8"), ctypes.byref(cid))
         return Collider(self, cid)
 
-    def create_collider(self, shape, body_type=T.BodyType.Dynamic, position=None, rotation=None,
+    def create_collider(self, shape, body_type=None, position=None, rotation=None,
                         linear_velocity=None, angular_velocity=None, **scalars):
         """shape: a volphys.Shape (Sphere(...), Box(...), Plane(...), ...). body_type: BodyType
-        or 'static' / 'kinematic' / 'dynamic'. Further keywords: mass, friction, restitution,
+        or 'static' / 'kinematic' / 'dynamic'; when not given, a plane or a body of mass=0 is
+        static and anything else dynamic. Further keywords: mass, friction, restitution,
         linear_damping, angular_damping, collision_filter ((category, mask)). Anything not given
         keeps vpDefaultColliderDef()'s value."""
         d = lib.vpDefaultColliderDef()
+        if body_type is None:
+            body_type = _default_body_type(shape, scalars)
         d.bodyType = int(_body_type(body_type))
         keep = shape._fill(d.shape)
         _set_pose(d, position, rotation)

@@ -599,6 +599,20 @@ VP_API vpStatus vpWorldGetDeformableCount(vpWorldId world, int32_t* outCount);
 VP_API vpStatus vpWorldGetDeformables(vpWorldId world, vpDeformableId* outIds, int32_t capacity, int32_t* outCount);
 VP_API vpStatus vpWorldFindDeformable(vpWorldId world, const char* name, vpDeformableId* outDeformable);
 
+/* A tet mesh of the box [minCorner, minCorner + size] for vpDeformableDef.vertices / tets: the
+ * mesher of scene files' "box" deformables. cells[0] x cells[1] x cells[2] cubes, each split
+ * into 6 positively oriented tets: (cells[0]+1)(cells[1]+1)(cells[2]+1) vertices in lattice
+ * order (x fastest; xyz per vertex into outVertices) and 6 cells[0] cells[1] cells[2] tets (4
+ * vertex indices each into outTets). Capacities are in vertices and tets; an output array may
+ * be NULL (with capacity 0), so NULL for both asks only for the counts. *outVertexCount and
+ * *outTetCount (either may be NULL) are set on success, and also when a capacity is too small
+ * (vpStatus_InvalidArgument, nothing else written). Each cells[k] in [1, 512], at most 2^21
+ * cells in all; each side of size a length and minCorner and minCorner + size positions (the
+ * ranges in the conventions above). */
+VP_API vpStatus vpBoxTetMesh(vpVec3 size, const int32_t cells[3], vpVec3 minCorner, float* outVertices,
+                             int32_t vertexCapacity, int32_t* outTets, int32_t tetCapacity, int32_t* outVertexCount,
+                             int32_t* outTetCount);
+
 /* ---------------------------------------------------------------- fluids */
 
 /* A fluid actor: smoke or liquid on a MAC grid filling an axis-aligned box (the domain).

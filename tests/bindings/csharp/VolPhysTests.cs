@@ -18,25 +18,10 @@ static class VolPhysTests
         if (!condition) throw new Exception("check failed: " + what);
     }
 
-    // A 2x1x1 box of two unit cubes, six tets each (the C ABI tests' mesh).
+    // A 2x1x1 box of two unit cubes, six tets each, from the library's mesher.
     static void BoxMesh(out float[] vertices, out int[] tets)
     {
-        var v = new List<float>();
-        for (int k = 0; k < 2; ++k)
-            for (int j = 0; j < 2; ++j)
-                for (int i = 0; i < 3; ++i) { v.Add(i); v.Add(j); v.Add(k); }
-        Func<int, int, int, int> id = (i, j, k) => i + 3 * (j + 2 * k);
-        int[][] orders = { new[] { 0, 1, 2 }, new[] { 0, 2, 1 }, new[] { 1, 0, 2 }, new[] { 1, 2, 0 }, new[] { 2, 0, 1 }, new[] { 2, 1, 0 } };
-        var t = new List<int>();
-        for (int cube = 0; cube < 2; ++cube)
-            foreach (int[] o in orders)
-            {
-                int[] c = { cube, 0, 0 };
-                t.Add(id(c[0], c[1], c[2]));
-                for (int s = 0; s < 3; ++s) { c[o[s]]++; t.Add(id(c[0], c[1], c[2])); }
-            }
-        vertices = v.ToArray();
-        tets = t.ToArray();
+        Deformable.BoxTetMesh(new vpVec3(2, 1, 1), 2, 1, 1, new vpVec3(0, 0, 0), out vertices, out tets);
     }
 
     public static void TestStructLayoutsMatchTheCCompiler()
@@ -424,6 +409,41 @@ static class VolPhysTests
             {
                 Check(e.Status == Status.ParseError && e.Message.Contains("checksum"), e.Message);
             }
+        }
+    }
+
+    public static void TestBoxTetMeshFillsTheBoxAndNamesBadCells()
+    {
+        float[] v;
+        int[] t;
+        Deformable.BoxTetMesh(new vpVec3(1.5f, 0.8f, 0.6f), 3, 2, 2, new vpVec3(-1, 2, 0.5f), out v, out t);
+        Check(v.Length == 3 * 4 * 3 * 3 && t.Length == 4 * 6 * 3 * 2 * 2, string.Format("sizes {0} {1}", v.Length, t.Length));
+        // Vertex (i, j, k) at i + 4 (j + 3 k): the last one is the far corner.
+        Check(v[0] == -1 && v[1] == 2 && v[2] == 0.5f, "first vertex is minCorner");
+        int last = v.Length - 3;
+        Check(Math.Abs(v[last] - 0.5f) < 1e-6f && Math.Abs(v[last + 1] - 2.8f) < 1e-6f && Math.Abs(v[last + 2] - 1.1f) < 1e-6f,
+              string.Format("last vertex ({0}, {1}, {2})", v[last], v[last + 1], v[last + 2]));
+        double total = 0;
+        for (int i = 0; i < t.Length; i += 4)
+        {
+            double[] e = new double[9];
+            for (int a = 0; a < 3; ++a)
+                for (int k = 0; k < 3; ++k) e[3 * a + k] = (double)v[3 * t[i + a + 1] + k] - v[3 * t[i] + k];
+            double volume = (e[0] * (e[4] * e[8] - e[5] * e[7]) - e[1] * (e[3] * e[8] - e[5] * e[6]) +
+                             e[2] * (e[3] * e[7] - e[4] * e[6])) / 6;
+            Check(volume > 0, "tet " + i / 4 + " positively oriented");
+            total += volume;
+        }
+        double box = 1.5 * 0.8 * 0.6;
+        Check(Math.Abs(total - box) < 1e-6 * box, "volumes sum to the box's: " + total);
+        try
+        {
+            Deformable.BoxTetMesh(new vpVec3(1, 1, 1), 2, 0, 2, new vpVec3(0, 0, 0), out v, out t);
+            Check(false, "cells[1] = 0 was accepted");
+        }
+        catch (VolPhysException e)
+        {
+            Check(e.Status == Status.InvalidArgument && e.Message.Contains("cells[1] = 0"), "message names the cell count: " + e.Message);
         }
     }
 
