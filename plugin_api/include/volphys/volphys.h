@@ -78,7 +78,7 @@ extern "C" {
 /* ---------------------------------------------------------------- version */
 
 #define VP_VERSION_MAJOR 0
-#define VP_VERSION_MINOR 5
+#define VP_VERSION_MINOR 6
 #define VP_VERSION_PATCH 0
 /* Major changes break the ABI; minor ones only add. */
 #define VP_HEADER_VERSION ((VP_VERSION_MAJOR << 16) | (VP_VERSION_MINOR << 8) | VP_VERSION_PATCH)
@@ -484,6 +484,11 @@ VP_API vpStatus vpWorldGetColliderCount(vpWorldId world, int32_t* outCount);
 VP_API vpStatus vpWorldGetColliders(vpWorldId world, vpColliderId* outIds, int32_t capacity, int32_t* outCount);
 /* Scene files may name colliders; finds the first one with that name. */
 VP_API vpStatus vpWorldFindCollider(vpWorldId world, const char* name, vpColliderId* outCollider);
+/* The collider's name from its scene file ("" when it has none) as a NUL-terminated string.
+ * *outLength = the bytes it needs, the terminator included. buffer NULL with capacity 0 asks
+ * only for the length; capacity < that length: vpStatus_InvalidArgument, *outLength set,
+ * nothing written. (vpDeformableGetName and vpFluidGetName work the same way.) */
+VP_API vpStatus vpColliderGetName(vpColliderId collider, char* buffer, int32_t capacity, int32_t* outLength);
 
 /* ---------------------------------------------------------------- deformables */
 
@@ -583,6 +588,8 @@ VP_API vpStatus vpDeformableGetStats(vpDeformableId deformable, vpActorStats* ou
 VP_API vpStatus vpWorldGetDeformableCount(vpWorldId world, int32_t* outCount);
 VP_API vpStatus vpWorldGetDeformables(vpWorldId world, vpDeformableId* outIds, int32_t capacity, int32_t* outCount);
 VP_API vpStatus vpWorldFindDeformable(vpWorldId world, const char* name, vpDeformableId* outDeformable);
+/* The deformable's name from its scene file ("" when it has none), as vpColliderGetName. */
+VP_API vpStatus vpDeformableGetName(vpDeformableId deformable, char* buffer, int32_t capacity, int32_t* outLength);
 
 /* ---------------------------------------------------------------- fluids */
 
@@ -730,6 +737,8 @@ VP_API vpStatus vpFluidGetStats(vpFluidId fluid, vpActorStats* outStats);
 VP_API vpStatus vpWorldGetFluidCount(vpWorldId world, int32_t* outCount);
 VP_API vpStatus vpWorldGetFluids(vpWorldId world, vpFluidId* outIds, int32_t capacity, int32_t* outCount);
 VP_API vpStatus vpWorldFindFluid(vpWorldId world, const char* name, vpFluidId* outFluid);
+/* The fluid's name from its scene file ("" when it has none), as vpColliderGetName. */
+VP_API vpStatus vpFluidGetName(vpFluidId fluid, char* buffer, int32_t capacity, int32_t* outLength);
 
 /* ---------------------------------------------------------------- contact events */
 
