@@ -12,6 +12,9 @@ packages=(
   python3-pip python3-setuptools python3-wheel
   # sample host: offscreen snapshots (OSMesa), PNG (stb), viewer (GLFW) under Xvfb + Mesa
   libosmesa6-dev libstb-dev libgl-dev libglfw3-dev xvfb xauth libgl1-mesa-dri
+  # sample host: smoke and level-set volumes as OpenVDB grids (--export-volumes vdb); OpenVDB's
+  # CMake find module also wants Boost.Iostreams, which Debian's package does not pull in
+  libopenvdb-dev libboost-iostreams-dev
   # plots (Python example, output checks) and the C# bindings
   python3-matplotlib python3-pil mono-mcs mono-runtime
   # the default scene's jelly: /usr/share/assimp/models/Collada/duck.dae (a box without it)

@@ -241,4 +241,14 @@ vpStatus vpWorldFindCollider(vpWorldId id, const char* name, vpColliderId* outCo
   });
 }
 
+vpStatus vpColliderGetName(vpColliderId id, char* buffer, int32_t capacity, int32_t* outLength) {
+  return guarded(__func__, [&] {
+    VP_REQUIRE_POINTER(outLength);
+    WorldLease w;
+    Collider* c;
+    VP_TRY(resolveCollider(id, &w, &c));
+    return copyStringOut(c->desc().name, buffer, capacity, outLength);
+  });
+}
+
 }  // extern "C"

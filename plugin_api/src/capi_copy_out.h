@@ -3,7 +3,9 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <cstring>
+#include <string>
 #include <vector>
 
 #include "core/allocator.h"
@@ -39,6 +41,24 @@ Status copyIdsOut(const std::vector<Handle>& handles, MakeId makeId, Id* outIds,
   const int32_t n = static_cast<int32_t>(handles.size());
   for (int32_t i = 0; i < n && i < capacity; ++i) outIds[i] = makeId(handles[i]);
   *outCount = n < capacity ? n : capacity;
+  return Status::Ok;
+}
+
+// A string with its terminator into a host buffer; *outLength = the bytes it needs. buffer NULL
+// with capacity 0 asks only for the length; a short buffer gets nothing but the length. The
+// ABI's strings end at their first NUL, so a name holding one is cut there.
+inline Status copyStringOut(const std::string& text, char* buffer, int32_t capacity, int32_t* outLength) {
+  if (capacity < 0) return fail(Status::InvalidArgument, "capacity = %d: must be >= 0", capacity);
+  if (!buffer && capacity != 0)
+    return fail(Status::InvalidArgument, "buffer is NULL with capacity = %d (capacity 0 asks for the length)", capacity);
+  const size_t bytes = std::strlen(text.c_str()) + 1;
+  if (bytes > static_cast<size_t>(INT32_MAX)) return fail(Status::Internal, "a name of %zu bytes", bytes);
+  *outLength = static_cast<int32_t>(bytes);
+  if (!buffer) return Status::Ok;
+  if (static_cast<size_t>(capacity) < bytes)
+    return fail(Status::InvalidArgument, "capacity = %d: the name needs %zu bytes with its terminator (*outLength)",
+                capacity, bytes);
+  std::memcpy(buffer, text.c_str(), bytes);
   return Status::Ok;
 }
 

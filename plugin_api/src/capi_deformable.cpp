@@ -326,6 +326,16 @@ vpStatus vpWorldFindDeformable(vpWorldId id, const char* name, vpDeformableId* o
   });
 }
 
+vpStatus vpDeformableGetName(vpDeformableId id, char* buffer, int32_t capacity, int32_t* outLength) {
+  return guarded(__func__, [&] {
+    VP_REQUIRE_POINTER(outLength);
+    WorldLease w;
+    DeformableBody* d;
+    VP_TRY(resolveDeformable(id, &w, &d));
+    return copyStringOut(d->desc().name, buffer, capacity, outLength);
+  });
+}
+
 }  // extern "C"
 
 vpStatus vpWorldGetDeformableCount(vpWorldId id, int32_t* outCount) {

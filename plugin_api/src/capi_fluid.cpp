@@ -340,4 +340,14 @@ vpStatus vpWorldFindFluid(vpWorldId id, const char* name, vpFluidId* out) {
   });
 }
 
+vpStatus vpFluidGetName(vpFluidId id, char* buffer, int32_t capacity, int32_t* outLength) {
+  return guarded(__func__, [&] {
+    VP_REQUIRE_POINTER(outLength);
+    WorldLease w;
+    FluidActor* f;
+    VP_TRY(resolveFluid(id, &w, &f));
+    return copyStringOut(f->desc().name, buffer, capacity, outLength);
+  });
+}
+
 }  // extern "C"

@@ -3,6 +3,7 @@
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 int cliInt(const char* program, const char* flag, const char* text, int lo, int hi, int* out) {
   char* end;
@@ -40,4 +41,17 @@ int cliSize(const char* program, const char* flag, const char* text, int lo, int
   *width = w;
   *height = h;
   return 1;
+}
+
+int cliChoice(const char* program, const char* flag, const char* text, const char* const* choices, int count, int* out) {
+  int i;
+  for (i = 0; i < count; ++i)
+    if (strcmp(text, choices[i]) == 0) {
+      *out = i;
+      return 1;
+    }
+  fprintf(stderr, "%s: %s = '%s': expected one of", program, flag, text);
+  for (i = 0; i < count; ++i) fprintf(stderr, "%s %s", i ? "," : "", choices[i]);
+  fputc('\n', stderr);
+  return 0;
 }

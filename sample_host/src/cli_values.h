@@ -9,5 +9,7 @@ int cliInt(const char* program, const char* flag, const char* text, int lo, int 
 int cliDouble(const char* program, const char* flag, const char* text, double lo, double hi, double* out);
 /* WIDTHxHEIGHT, each in [lo, hi]. */
 int cliSize(const char* program, const char* flag, const char* text, int lo, int hi, int* width, int* height);
+/* One of `count` words; *out = its index. */
+int cliChoice(const char* program, const char* flag, const char* text, const char* const* choices, int count, int* out);
 
 #endif

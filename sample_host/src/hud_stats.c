@@ -7,7 +7,7 @@
 
 static const char* const kKindNames[3] = {"rigid", "deformable", "fluid"};
 
-int hudStatsLines(vpWorldId world, char lines[HUD_MAX_LINES][HUD_LINE_CHARS]) {
+int hudStatsLines(vpWorldId world, const ActorLabels* labels, char lines[HUD_MAX_LINES][HUD_LINE_CHARS]) {
   vpStepStats step = vpDefaultStepStats();
   int n = 0, a;
   if (vpWorldGetStepStats(world, &step) != vpStatus_Ok) return 0;
@@ -18,11 +18,16 @@ int hudStatsLines(vpWorldId world, char lines[HUD_MAX_LINES][HUD_LINE_CHARS]) {
     vpActorStats s = vpDefaultActorStats();
     size_t used;
     int p;
+    const char* label;
     char* line = lines[n++];
     if (vpWorldGetActorStats(world, a, &s) != vpStatus_Ok) break;
-    /* The rigid pseudo-actor has no id; actors are named by kind and slot. */
+    /* The rigid pseudo-actor has no id; an actor the labels do not know is shown by its slot. */
+    label = actorLabelOfStats(labels, &s);
     if (s.kind == vpActorKind_Rigid)
       used = (size_t)snprintf(line, HUD_LINE_CHARS, "bullet %.2f ms:", s.totalMs);
+    else if (label)
+      used = (size_t)snprintf(line, HUD_LINE_CHARS, "%s %s %.2f ms:",
+                              kKindNames[(int)s.kind >= 0 && s.kind < 3 ? s.kind : 0], label, s.totalMs);
     else
       used = (size_t)snprintf(line, HUD_LINE_CHARS, "%s #%u %.2f ms:",
                               kKindNames[(int)s.kind >= 0 && s.kind < 3 ? s.kind : 0], s.index1, s.totalMs);

@@ -1,8 +1,9 @@
 /* VolPhys sample host: loads a scene through the C ABI, steps it headless, prints one line of
  * stats per frame and a summary, and writes its outputs to an output folder: per-frame stats
- * CSV, final collider poses CSV, a frame-time plot (SVG), meshes of the deformables and liquid
- * surfaces (assimp) and PNG snapshots (offscreen OSMesa) every few frames. Talks to VolPhys through nothing but
- * volphys.h; the exporter is a C++ file only because assimp's exporter is C++. */
+ * CSV, a frame-time plot (SVG), and every few frames the collider poses (CSV), meshes of the
+ * deformables and liquid surfaces (assimp), the fluids' volumes (OpenVDB or VTK image data)
+ * and PNG snapshots (offscreen OSMesa). Talks to VolPhys through nothing but volphys.h; the
+ * exporters are C++ files only because assimp's and OpenVDB's interfaces are C++. */
 #define _POSIX_C_SOURCE 200809L
 
 #include <errno.h>
@@ -11,7 +12,9 @@
 #include <string.h>
 #include <time.h>
 
+#include "actor_labels.h"
 #include "cli_values.h"
+#include "csv_columns.h"
 #include "frame_plot.h"
 #include "frame_stats.h"
 #include "host_outputs.h"
@@ -35,18 +38,22 @@ static void usage(FILE* f) {
   fprintf(f,
           "usage: volphys_host [--scene FILE] [--frames N] [--dt SECONDS] [--workers N]\n"
           "                    [--budget MS] [--out DIR] [--quiet]\n"
-          "                    [--export-every N] [--export-format ID] [--snapshot-every N] [--image-size WxH]\n"
-          "Steps the scene headless, prints per-frame stats, writes DIR/stats.csv, DIR/poses.csv,\n"
-          "DIR/frame_times.svg, DIR/meshes/deformableK_fNNNNN.EXT and fluidK_fNNNNN.EXT (liquid surfaces)\n"
-          "every --export-every frames (assimp format id: ply, plyb, obj, stl, ...) and\n"
-          "DIR/snapshots/frame_NNNNN.png every --snapshot-every frames (both also on the last frame;\n"
-          "0 = off).\n"
+          "                    [--export-every N] [--export-format ID] [--export-volumes vdb|vti|none]\n"
+          "                    [--snapshot-every N] [--image-size WxH]\n"
+          "Steps the scene headless, prints per-frame stats, writes DIR/stats.csv, DIR/frame_times.svg;\n"
+          "every --export-every frames DIR/poses.csv rows (collider poses by name), DIR/meshes/NAME_fNNNNN.EXT\n"
+          "(deformables, liquid surfaces; assimp format id: ply, plyb, obj, stl, ...) and with\n"
+          "--export-volumes DIR/volumes/NAME_fNNNNN.vdb or .vti (smoke density and temperature, liquid\n"
+          "level set); DIR/meshes/NAME.EXT once per collider (its local frame); and\n"
+          "DIR/snapshots/frame_NNNNN.png every --snapshot-every frames (all also on the last frame;\n"
+          "0 = off). NAME: the scene's name of the actor, or colliderK, deformableK, fluidK.\n"
           "Defaults: the bundled default scene, 300 frames, dt 1/60, 2 workers, out/sample,\n"
-          "export every 30 frames as ply, snapshot every 60 frames at 640x480.\n");
+          "export every 30 frames as ply, no volumes, snapshot every 60 frames at 640x480.\n");
 }
 
 static int parseOptions(int argc, char** argv, Options* o) {
-  int i;
+  static const char* const kVolumeFormats[3] = {"none", "vdb", "vti"}; /* indexed by VolumeFormat */
+  int i, volumeFormat = VolumeFormat_None;
   o->scene = VP_DEFAULT_SCENE;
   o->outDir = "out/sample";
   o->frames = 300;
@@ -82,6 +89,7 @@ static int parseOptions(int argc, char** argv, Options* o) {
     else if (!strcmp(a, "--budget")) { if (!cliDouble("volphys_host", a, v, 0.0, 1e4, &o->budgetMs)) return 0; }
     else if (!strcmp(a, "--export-every")) { if (!cliInt("volphys_host", a, v, 0, 10000000, &o->outputs.exportEvery)) return 0; }
     else if (!strcmp(a, "--export-format")) o->outputs.exportFormat = v;
+    else if (!strcmp(a, "--export-volumes")) { if (!cliChoice("volphys_host", a, v, kVolumeFormats, 3, &volumeFormat)) return 0; }
     else if (!strcmp(a, "--snapshot-every")) { if (!cliInt("volphys_host", a, v, 0, 10000000, &o->outputs.snapshotEvery)) return 0; }
     else if (!strcmp(a, "--image-size")) {
       if (!cliSize("volphys_host", a, v, 16, 8192, &o->outputs.imageWidth, &o->outputs.imageHeight)) return 0;
@@ -91,6 +99,13 @@ static int parseOptions(int argc, char** argv, Options* o) {
       usage(stderr);
       return 0;
     }
+  }
+  o->outputs.volumeFormat = (VolumeFormat)volumeFormat;
+  o->outputs.dt = o->dt;
+  if (o->outputs.volumeFormat != VolumeFormat_None && o->outputs.exportEvery == 0) {
+    fprintf(stderr, "volphys_host: --export-volumes = '%s' with --export-every = 0: volumes are written on the "
+                    "export frames; give --export-every N > 0 or --export-volumes none\n", kVolumeFormats[volumeFormat]);
+    return 0;
   }
   return 1;
 }
@@ -115,43 +130,22 @@ static int fail(const char* what, vpStatus status) {
   return 1;
 }
 
-static int writePoses(vpWorldId world, const char* outDir) {
-  int32_t count = 0, i;
-  vpColliderId* ids;
-  FILE* f = openOutput(outDir, "poses.csv");
-  if (!f) return 0;
-  vpWorldGetColliderCount(world, &count);
-  ids = (vpColliderId*)calloc((size_t)(count > 0 ? count : 1), sizeof *ids);
-  vpWorldGetColliders(world, ids, count, &count);
-  fprintf(f, "collider,px,py,pz,qx,qy,qz,qw\n");
-  for (i = 0; i < count; ++i) {
-    vpTransform t;
-    if (vpColliderGetPose(ids[i], &t) != vpStatus_Ok) continue;
-    fprintf(f, "%d,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f\n", i, t.position.x, t.position.y, t.position.z,
-            t.rotation.x, t.rotation.y, t.rotation.z, t.rotation.w);
-  }
-  free(ids);
-  fclose(f);
-  return 1;
-}
-
-/* stats.csv: totals by kind, then each actor's own columns, named like the mesh files
- * (deformableK, fluidK): its ms, each of its kind's phases in ms, and its iterative phase's
+/* stats.csv: totals by kind, then each actor's own columns, named by its label like its files
+ * (actor_labels.h): its ms, each of its kind's phases in ms, and its iterative phase's
  * iterations and residual; a fluid also its simulated time (0 unless a step of it completed
  * in that frame); then the frame plan's view of it: its interval, progress, slices and final
  * residual. */
 typedef struct ActorColumns {
   vpActorKind kind;
-  const char* prefix;
   int iterative; /* the phase whose iterations and residual are reported */
   int phases[8];
   int phaseCount;
 } ActorColumns;
 
 static const ActorColumns kActorColumns[] = {
-    {vpActorKind_Deformable, "deformable", vpPhase_Solve,
+    {vpActorKind_Deformable, vpPhase_Solve,
      {vpPhase_Corotate, vpPhase_Assemble, vpPhase_Contacts, vpPhase_Solve, vpPhase_Embed}, 5},
-    {vpActorKind_Fluid, "fluid", vpPhase_Pressure,
+    {vpActorKind_Fluid, vpPhase_Pressure,
      {vpPhase_Advect, vpPhase_Forces, vpPhase_Viscosity, vpPhase_Fractions, vpPhase_Pressure, vpPhase_Surface}, 6},
 };
 
@@ -162,36 +156,31 @@ static const ActorColumns* actorColumns(vpActorKind kind) {
   return NULL;
 }
 
-static void writeStatsHeader(FILE* csv, vpWorldId world, int actorCount) {
-  int a, p, counts[3] = {0, 0, 0};
-  fprintf(csv,
-          "frame,step_ms,wall_ms,budget_ms,budget_cut,rigid_ms,rigid_substeps,colliders,actors,"
-          "deform_ms,deform_solve_ms,deform_iters,deform_max_residual,fluid_ms,fluid_advect_ms,fluid_forces_ms,"
-          "fluid_fractions_ms,fluid_pressure_ms,fluid_pressure_iters,fluid_pressure_max_residual,fluid_surface_ms,"
-          "fluid_interval,diverged");
+static void writeStatsHeader(FILE* csv, vpWorldId world, const ActorLabels* labels, int actorCount) {
+  int a, p;
+  fprintf(csv, "%s", STATS_CSV_TOTAL_COLUMNS);
   for (a = 1; a < actorCount; ++a) {
     vpActorStats s = vpDefaultActorStats();
     const ActorColumns* c;
-    int k;
+    const char* l;
     if (vpWorldGetActorStats(world, a, &s) != vpStatus_Ok || !(c = actorColumns(s.kind))) continue;
-    k = counts[s.kind]++;
-    fprintf(csv, ",%s%d_ms", c->prefix, k);
-    if (s.kind == vpActorKind_Fluid) fprintf(csv, ",%s%d_sim_dt", c->prefix, k);
-    for (p = 0; p < c->phaseCount; ++p) fprintf(csv, ",%s%d_%s_ms", c->prefix, k, phaseName(c->phases[p]));
-    fprintf(csv, ",%s%d_%s_iters,%s%d_%s_residual", c->prefix, k, phaseName(c->iterative), c->prefix, k,
-            phaseName(c->iterative));
-    fprintf(csv, ",%s%d_interval,%s%d_progress,%s%d_slices,%s%d_residual", c->prefix, k, c->prefix, k, c->prefix, k,
-            c->prefix, k);
+    if (!(l = actorLabelOfStats(labels, &s))) continue;
+    fprintf(csv, ",%s_ms", l);
+    if (s.kind == vpActorKind_Fluid) fprintf(csv, ",%s_sim_dt", l);
+    for (p = 0; p < c->phaseCount; ++p) fprintf(csv, ",%s_%s_ms", l, phaseName(c->phases[p]));
+    fprintf(csv, ",%s_%s_iters,%s_%s_residual", l, phaseName(c->iterative), l, phaseName(c->iterative));
+    fprintf(csv, ",%s_interval,%s_progress,%s_slices,%s_residual", l, l, l, l);
   }
   fputc('\n', csv);
 }
 
-static void writeActorColumns(FILE* csv, vpWorldId world, int actorCount) {
+static void writeActorColumns(FILE* csv, vpWorldId world, const ActorLabels* labels, int actorCount) {
   int a, p;
   for (a = 1; a < actorCount; ++a) {
     vpActorStats s = vpDefaultActorStats();
     const ActorColumns* c;
     if (vpWorldGetActorStats(world, a, &s) != vpStatus_Ok || !(c = actorColumns(s.kind))) continue;
+    if (!actorLabelOfStats(labels, &s)) continue;
     fprintf(csv, ",%.4f", s.totalMs);
     if (s.kind == vpActorKind_Fluid) fprintf(csv, ",%.5f", s.simulatedDt);
     for (p = 0; p < c->phaseCount; ++p) fprintf(csv, ",%.4f", s.phases[c->phases[p]].ms);
@@ -202,7 +191,7 @@ static void writeActorColumns(FILE* csv, vpWorldId world, int actorCount) {
 }
 
 /* Steps the loaded world and writes every output; returns the exit code. */
-static int run(vpWorldId world, const Options* o) {
+static int run(vpWorldId world, const ActorLabels* labels, const Options* o) {
   vpStatus s;
   FrameTimes times;
   FramePlot plot;
@@ -221,7 +210,7 @@ static int run(vpWorldId world, const Options* o) {
     fprintf(stderr, "volphys_host: cannot create output folder '%s': %s\n", o->outDir, strerror(errno));
     return 1;
   }
-  if (!hostOutputsInit(&outputs, world, &o->outputs)) goto done;
+  if (!hostOutputsInit(&outputs, world, labels, &o->outputs)) goto done;
   csv = openOutput(o->outDir, "stats.csv");
   if (!csv || !frameTimesInit(&times, o->frames) || !framePlotInit(&plot, o->frames)) goto done;
 
@@ -252,14 +241,14 @@ static int run(vpWorldId world, const Options* o) {
       goto done;
     }
     /* The per-actor columns need the actors, which the first step lists. */
-    if (frame == 0) writeStatsHeader(csv, world, stats.actorCount);
+    if (frame == 0) writeStatsHeader(csv, world, labels, stats.actorCount);
     fprintf(csv, "%d,%.4f,%.4f,%.2f,%d,%.4f,%d,%d,%d,%.4f,%.4f,%d,%.3e,%.4f,%.4f,%.4f,%.4f,%.4f,%d,%.3e,%.4f,%d,%d",
             frame, stats.totalMs, wall, stats.budgetMs, stats.budgetCut, rigid.phases[vpPhase_Rigid].ms,
             stats.rigidSubsteps, stats.colliderCount, stats.actorCount, deform.ms, deform.solveMs, deform.iterations,
             deform.maxResidual, fluid.ms, fluid.advectMs, fluid.forcesMs, fluid.fractionsMs, fluid.pressureMs,
             fluid.pressureIterations, fluid.maxResidual, fluid.surfaceMs, stats.fluidInterval,
             deform.diverged + fluid.diverged);
-    writeActorColumns(csv, world, stats.actorCount);
+    writeActorColumns(csv, world, labels, stats.actorCount);
     if (!o->quiet)
       printf("frame %4d  step %7.3f ms  (budget %5.1f ms%s)  rigid %6.3f ms x%d  deform %7.3f ms, %3d CG its, "
              "res %.1e  fluid %7.3f ms, %3d p its, res %.1e%s\n",
@@ -269,16 +258,17 @@ static int run(vpWorldId world, const Options* o) {
     /* Outside the timed step: writing files is the host's cost, not the simulation's. */
     if (!hostOutputsFrame(&outputs, frame, o->frames)) goto done;
   }
-  if (!writePoses(world, o->outDir)) goto done;
   snprintf(plotPath, sizeof plotPath, "%s/frame_times.svg", o->outDir);
   if (!framePlotWriteSvg(&plot, plotPath)) goto done;
   printf("summary: %d frames, mean %.3f ms, p50 %.3f ms, p95 %.3f ms, max %.3f ms, budget-cut frames %d",
          times.count, frameTimesMean(&times), frameTimesPercentile(&times, 0.5), frameTimesPercentile(&times, 0.95),
          frameTimesPercentile(&times, 1.0), cutFrames);
-  runSummaryPrint(&summary, stdout);
+  runSummaryPrint(&summary, labels, stdout);
   putchar('\n');
-  printf("wrote %s/stats.csv, %s/poses.csv, %s, %d mesh files in %s/meshes, %d snapshots in %s/snapshots\n",
-         o->outDir, o->outDir, plotPath, outputs.meshFiles, o->outDir, outputs.snapshotFiles, o->outDir);
+  printf("wrote %s/stats.csv, %s/poses.csv, %s, %d mesh files in %s/meshes, %d volume files in %s/volumes, "
+         "%d snapshots in %s/snapshots\n",
+         o->outDir, o->outDir, plotPath, outputs.meshFiles, o->outDir, outputs.volumeFiles, o->outDir,
+         outputs.snapshotFiles, o->outDir);
   rc = 0;
 done:
   if (csv) fclose(csv);
@@ -291,6 +281,7 @@ done:
 
 int main(int argc, char** argv) {
   Options o;
+  ActorLabels labels;
   vpWorldDef def;
   vpWorldId world;
   vpStatus s;
@@ -307,8 +298,12 @@ int main(int argc, char** argv) {
     rc = fail("vpWorldLoadScene", s);
   else if (o.budgetMs >= 0.0 && (s = vpWorldSetFrameBudget(world, (float)o.budgetMs)) != vpStatus_Ok)
     rc = fail("vpWorldSetFrameBudget", s);
-  else
-    rc = run(world, &o);
+  else if (!actorLabelsInit(&labels, world))
+    rc = 1;
+  else {
+    rc = run(world, &labels, &o);
+    actorLabelsFree(&labels);
+  }
   vpWorldDestroy(world);
   return rc;
 }

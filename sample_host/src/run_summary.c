@@ -18,6 +18,7 @@ static int startActors(RunSummary* r, vpWorldId world, int actorCount) {
     vpActorStats s = vpDefaultActorStats();
     if (vpWorldGetActorStats(world, a + 1, &s) != vpStatus_Ok) s.kind = vpActorKind_Rigid;
     r->actors[a].kind = s.kind;
+    r->actors[a].index1 = s.index1;
     r->actors[a].minInterval = r->actors[a].maxInterval = -1;
     deformables += s.kind == vpActorKind_Deformable;
   }
@@ -40,16 +41,19 @@ int runSummaryAdd(RunSummary* r, vpWorldId world, const vpStepStats* step) {
   return 1;
 }
 
-void runSummaryPrint(const RunSummary* r, FILE* out) {
-  int a, ordinals[3] = {0, 0, 0};
+void runSummaryPrint(const RunSummary* r, const ActorLabels* labels, FILE* out) {
+  int a;
   fprintf(out, ", over %.1fx budget %d (%.1f%%)", RUN_SUMMARY_OVER_BUDGET_FACTOR, r->overBudgetFrames,
           r->frames ? 100.0 * r->overBudgetFrames / r->frames : 0.0);
   if (r->actorCount > 0) fprintf(out, ", intervals");
   for (a = 0; a < r->actorCount; ++a) {
     const ActorIntervals* i = &r->actors[a];
-    if (i->kind != vpActorKind_Deformable && i->kind != vpActorKind_Fluid) continue;
-    fprintf(out, " %s%d %d-%d", i->kind == vpActorKind_Deformable ? "deformable" : "fluid", ordinals[i->kind]++,
-            i->minInterval, i->maxInterval);
+    vpActorStats s = vpDefaultActorStats();
+    const char* label;
+    s.kind = i->kind;
+    s.index1 = i->index1;
+    if (!(label = actorLabelOfStats(labels, &s))) continue;
+    fprintf(out, " %s %d-%d", label, i->minInterval, i->maxInterval);
   }
   if (r->deformableResiduals.count > 0)
     fprintf(out, ", deformable residual p50 %.1e p95 %.1e", frameTimesPercentile(&r->deformableResiduals, 0.5),

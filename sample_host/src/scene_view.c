@@ -93,99 +93,63 @@ static void colliderColor(vpBodyType type, float out[4]) {
   memcpy(out, colors[(int)type >= 0 && (int)type < 3 ? (int)type : 0], sizeof colors[0]);
 }
 
-static int addColliders(SceneView* v, vpWorldId world) {
-  int32_t count = 0, i;
-  vpColliderId* ids;
-  vpStatus s;
-  if ((s = vpWorldGetColliderCount(world, &count)) != vpStatus_Ok) return report("vpWorldGetColliderCount", s);
-  ids = (vpColliderId*)calloc((size_t)(count > 0 ? count : 1), sizeof *ids);
-  if (!ids) return 0;
-  if ((s = vpWorldGetColliders(world, ids, count, &count)) != vpStatus_Ok) {
-    free(ids);
-    return report("vpWorldGetColliders", s);
-  }
-  for (i = 0; i < count; ++i) {
-    char name[64];
+static int addColliders(SceneView* v, const ActorLabels* labels) {
+  int i;
+  vpStatus s = vpStatus_Ok;
+  for (i = 0; i < labels->colliderCount; ++i) {
+    const vpColliderId id = labels->colliders[i];
     float color[4];
     vpBodyType type = vpBodyType_Static;
     int32_t nv = 0, nt = 0;
     ViewMesh* m;
-    vpColliderGetBodyType(ids[i], &type);
+    vpColliderGetBodyType(id, &type);
     colliderColor(type, color);
-    snprintf(name, sizeof name, "collider%d", (int)i);
-    if ((s = vpColliderGetShapeMeshSize(ids[i], &nv, &nt)) != vpStatus_Ok) break;
-    if (!(m = sceneViewAddMesh(v, name, color, 0)) || !viewMeshReserve(m, nv, nt)) break;
-    v->sources[v->meshCount - 1].collider = ids[i];
+    if ((s = vpColliderGetShapeMeshSize(id, &nv, &nt)) != vpStatus_Ok) break;
+    if (!(m = sceneViewAddMesh(v, labels->colliderLabels[i], color, 0)) || !viewMeshReserve(m, nv, nt)) return 0;
+    v->sources[v->meshCount - 1].collider = id;
     /* Frame what stays put: dynamic bodies start high and fall in, and a plane (the only
      * shape whose mesh is a single quad) is unbounded. */
     m->framed = type != vpBodyType_Dynamic && !(nv == 4 && nt == 2);
-    if ((s = vpColliderGetShapeMesh(ids[i], m->positions, m->normals, nv, m->triangles, nt)) != vpStatus_Ok) break;
+    if ((s = vpColliderGetShapeMesh(id, m->positions, m->normals, nv, m->triangles, nt)) != vpStatus_Ok) break;
     m->vertexCount = nv;
     m->triangleCount = nt;
   }
-  free(ids);
-  if (i < count) return report("collider shape mesh", s);
+  if (s != vpStatus_Ok) return report("collider shape mesh", s);
   return 1;
 }
 
-static int addDeformables(SceneView* v, vpWorldId world) {
+static int addDeformables(SceneView* v, const ActorLabels* labels) {
   static const float jelly[4] = {0.35f, 0.8f, 0.35f, 1.0f};
-  int32_t count = 0, i;
-  vpDeformableId* ids;
-  vpStatus s;
-  if ((s = vpWorldGetDeformableCount(world, &count)) != vpStatus_Ok) return report("vpWorldGetDeformableCount", s);
-  ids = (vpDeformableId*)calloc((size_t)(count > 0 ? count : 1), sizeof *ids);
-  if (!ids) return 0;
-  if ((s = vpWorldGetDeformables(world, ids, count, &count)) != vpStatus_Ok) {
-    free(ids);
-    return report("vpWorldGetDeformables", s);
+  int i;
+  for (i = 0; i < labels->deformableCount; ++i) {
+    if (!sceneViewAddMesh(v, labels->deformableLabels[i], jelly, 1)) return 0;
+    v->sources[v->meshCount - 1].deformable = labels->deformables[i];
   }
-  for (i = 0; i < count; ++i) {
-    char name[64];
-    ViewMesh* m;
-    snprintf(name, sizeof name, "deformable%d", (int)i);
-    if (!(m = sceneViewAddMesh(v, name, jelly, 1))) break;
-    v->sources[v->meshCount - 1].deformable = ids[i];
-  }
-  free(ids);
-  return i == count;
+  return 1;
 }
 
-/* A liquid becomes a surface mesh named fluidK, smoke a point set: K is the fluid's place in
- * the world's list, so file names match the scene's order whatever the kinds. */
-static int addFluids(SceneView* v, vpWorldId world) {
+/* A liquid becomes a surface mesh, smoke a point set, each under the fluid's label. */
+static int addFluids(SceneView* v, const ActorLabels* labels) {
   static const float water[4] = {0.2f, 0.45f, 0.85f, 1.0f};
-  int32_t count = 0, i;
-  vpFluidId* ids;
-  vpStatus s = vpStatus_Ok;
-  if ((s = vpWorldGetFluidCount(world, &count)) != vpStatus_Ok) return report("vpWorldGetFluidCount", s);
-  ids = (vpFluidId*)calloc((size_t)(count > 0 ? count : 1), sizeof *ids);
-  if (!ids) return 0;
-  if ((s = vpWorldGetFluids(world, ids, count, &count)) != vpStatus_Ok) {
-    free(ids);
-    return report("vpWorldGetFluids", s);
-  }
-  for (i = 0; i < count; ++i) {
-    char name[64];
+  int i;
+  vpStatus s;
+  for (i = 0; i < labels->fluidCount; ++i) {
     vpFluidKind kind = vpFluidKind_Smoke;
-    if ((s = vpFluidGetKind(ids[i], &kind)) != vpStatus_Ok) break;
-    snprintf(name, sizeof name, "fluid%d", (int)i);
+    if ((s = vpFluidGetKind(labels->fluids[i], &kind)) != vpStatus_Ok) return report("vpFluidGetKind", s);
     if (kind == vpFluidKind_Liquid) {
-      if (!sceneViewAddMesh(v, name, water, 1)) break;
-      v->sources[v->meshCount - 1].fluid = ids[i];
+      if (!sceneViewAddMesh(v, labels->fluidLabels[i], water, 1)) return 0;
+      v->sources[v->meshCount - 1].fluid = labels->fluids[i];
     } else {
-      if (!sceneViewAddPoints(v, name, 4.0f)) break;
-      v->pointSources[v->pointsCount - 1] = ids[i];
+      if (!sceneViewAddPoints(v, labels->fluidLabels[i], 4.0f)) return 0;
+      v->pointSources[v->pointsCount - 1] = labels->fluids[i];
     }
   }
-  free(ids);
-  if (s != vpStatus_Ok) return report("vpFluidGetKind", s);
-  return i == count;
+  return 1;
 }
 
-int sceneViewInit(SceneView* v, vpWorldId world) {
+int sceneViewInit(SceneView* v, const ActorLabels* labels) {
   memset(v, 0, sizeof *v);
-  return addColliders(v, world) && addDeformables(v, world) && addFluids(v, world) && sceneViewUpdate(v);
+  return addColliders(v, labels) && addDeformables(v, labels) && addFluids(v, labels) && sceneViewUpdate(v);
 }
 
 int sceneViewUpdate(SceneView* v) {

@@ -5,10 +5,11 @@
 #ifndef VP_SAMPLE_SCENE_VIEW_H
 #define VP_SAMPLE_SCENE_VIEW_H
 
+#include "actor_labels.h"
 #include "volphys/volphys.h"
 
 typedef struct ViewMesh {
-  char name[64];          /* file-name safe: used for exports */
+  char name[64];          /* the actor's label (actor_labels.h): file-name safe, used for exports */
   float color[4];
   int exported;           /* written by the mesh exporter (deformables: yes, colliders: no) */
   int framed;             /* counted by sceneViewBounds (not things that fly off or are unbounded) */
@@ -47,9 +48,10 @@ typedef struct SceneView {
   int64_t fieldScratchCount;
 } SceneView;
 
-/* Builds meshes for every collider, deformable and liquid in the world and point sets for
- * every smoke fluid. Returns 0 (with a message on stderr) if the ABI refuses. */
-int sceneViewInit(SceneView* view, vpWorldId world);
+/* Builds meshes for every collider, deformable and liquid the labels list and point sets for
+ * every smoke fluid, named by their labels. Returns 0 (with a message on stderr) if the ABI
+ * refuses. */
+int sceneViewInit(SceneView* view, const ActorLabels* labels);
 /* Reads the current poses, deformed meshes, liquid surfaces and smoke. */
 int sceneViewUpdate(SceneView* view);
 /* Generic slots for other producers; the returned pointer is valid until the next add. Sizes

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "actor_labels.h"
 #include "cli_values.h"
 #include "hud_stats.h"
 #include "orbit_camera.h"
@@ -90,6 +91,7 @@ int main(int argc, char** argv) {
   vpWorldDef def;
   vpWorldId world;
   vpStatus s;
+  ActorLabels labels;
   SceneView view;
   Viewer v;
   GLFWwindow* window;
@@ -128,7 +130,7 @@ int main(int argc, char** argv) {
   if ((s = vpWorldLoadScene(world, scenePath)) != vpStatus_Ok) return fail("vpWorldLoadScene", s);
   if (budget >= 0.0 && (s = vpWorldSetFrameBudget(world, (float)budget)) != vpStatus_Ok)
     return fail("vpWorldSetFrameBudget", s);
-  if (!sceneViewInit(&view, world)) return 1;
+  if (!actorLabelsInit(&labels, world) || !sceneViewInit(&view, &labels)) return 1;
 
   if (!glfwInit()) {
     fprintf(stderr, "volphys_viewer: glfwInit failed (no display? run under xvfb-run)\n");
@@ -164,7 +166,7 @@ int main(int argc, char** argv) {
     last = frames > 0 && steps >= frames;
     glfwGetFramebufferSize(window, &fbWidth, &fbHeight);
     renderScene(&view, &v.camera, fbWidth, fbHeight);
-    n = hudStatsLines(world, lines);
+    n = hudStatsLines(world, &labels, lines);
     snprintf(lines[n++], HUD_LINE_CHARS, "%s[space] pause  [n] step  [drag] orbit  [scroll] zoom  [r] reset  [q] quit",
              v.paused ? "PAUSED  " : "");
     for (i = 0; i < n; ++i) pointers[i] = lines[i];
@@ -180,6 +182,7 @@ int main(int argc, char** argv) {
   glfwDestroyWindow(window);
   glfwTerminate();
   sceneViewFree(&view);
+  actorLabelsFree(&labels);
   vpWorldDestroy(world);
   return 0;
 }

@@ -24,6 +24,8 @@ int main(void) {
   int32_t boxVertexCount = 0, boxTetCount = 0;
   vpDeformableDef block = vpDefaultDeformableDef();
   vpDeformableId blockId;
+  char name[8];
+  int32_t nameLength = 0;
 
   if (vpCheckVersion() != vpStatus_Ok) return 1;
   if (vpWorldCreate(&def, &world) != vpStatus_Ok) return 2;
@@ -73,6 +75,10 @@ int main(void) {
   if (vpWorldRestoreState(world, state, stateSize) != vpStatus_Ok) return 19;
   free(state);
   if (vpWorldGetStepStats(world, &stats) != vpStatus_Ok || stats.stepIndex != 120) return 20;
+  /* Names are copied out with their terminator; an unnamed collider's is "". */
+  if (vpColliderGetName(groundId, NULL, 0, &nameLength) != vpStatus_Ok || nameLength != 1) return 21;
+  if (vpColliderGetName(groundId, name, (int32_t)sizeof name, &nameLength) != vpStatus_Ok || name[0] != '\0')
+    return 22;
   if (vpWorldDestroy(world) != vpStatus_Ok) return 10;
   if (vpColliderGetPose(ballId, &pose) != vpStatus_InvalidId) return 11;
   return 0;

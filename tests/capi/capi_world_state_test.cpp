@@ -93,7 +93,7 @@ TEST(CApiWorldState, SizeProtocolAndBadArguments) {
   EXPECT_TRUE(lastErrorContains("outSize")) << vpGetLastError();
   EXPECT_EQ(vpWorldRestoreState(w.id, nullptr, 8), vpStatus_InvalidArgument);
   EXPECT_TRUE(lastErrorContains("buffer")) << vpGetLastError();
-  const vpWorldId stale{w.id.index1, w.id.generation + 1};
+  const vpWorldId stale{w.id.index1, static_cast<uint16_t>(w.id.generation + 1)};
   EXPECT_EQ(vpWorldSaveState(stale, nullptr, 0, &reported), vpStatus_InvalidId);
   EXPECT_EQ(vpWorldRestoreState(stale, small.data(), small.size()), vpStatus_InvalidId);
 }
@@ -171,7 +171,9 @@ TEST(CApiWorldState, ImpossibleValuesUnderAValidChecksumAreRefused) {
     ++tried;
     const vpStatus s = vpWorldRestoreState(w.id, bad.data(), bad.size());
     refused += s != vpStatus_Ok;
-    if (s == vpStatus_Ok) ASSERT_VP_OK(vpWorldRestoreState(w.id, saved.data(), saved.size()));
+    if (s == vpStatus_Ok) {
+      ASSERT_VP_OK(vpWorldRestoreState(w.id, saved.data(), saved.size()));
+    }
   }
   // Two of these writes make a legal state: over the step index (any value is one), and over
   // the ground's unused padding word and the low bits of its sleep timer (still finite).

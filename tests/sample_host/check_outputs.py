@@ -4,8 +4,9 @@
   check_outputs.py host HOST_EXE OUT_DIR [SCENE]
                                              runs the headless host on SCENE (default: the
                                              bundled default scene) for 7 frames with exports
-                                             and snapshots every 3 frames, checks every file
-                                             against what the scene holds
+                                             (meshes, poses, .vti volumes) and snapshots every
+                                             3 frames, checks every file against what the
+                                             scene holds
   check_outputs.py viewer VIEWER_EXE PNG     runs the viewer for a few frames (the caller
                                              provides the display, e.g. xvfb-run), checks the
                                              screenshot is not blank
@@ -14,7 +15,9 @@ import csv
 import json
 import os
 import re
+import math
 import shutil
+import struct
 import subprocess
 import sys
 import xml.etree.ElementTree as ET
@@ -80,6 +83,13 @@ def read_scene(path):
     return json.loads(re.sub(pattern, lambda m: m.group(1) or "", text, flags=re.S))
 
 
+def labels(scene, kind, key):
+    """The host's labels for a kind of actor: its scene name, or KIND + its place. (The test
+    scenes' names are already file- and CSV-safe and unique; vp_actor_labels_test covers the
+    rest of the rules.)"""
+    return [a.get("name") or "%s%d" % (kind, k) for k, a in enumerate(scene.get(key, []))]
+
+
 def check_fluid_stats(rows):
     """A scene with fluids reports their phases: time in advection every frame, and a pressure
     solve that iterated (a warm-started solve of a fluid at rest may need no iteration in some
@@ -95,20 +105,23 @@ def check_fluid_stats(rows):
 FRAME_PLAN_COLUMNS = ("interval", "progress", "slices", "residual")
 
 
-def check_actor_columns(rows, deformables, fluids):
-    """Every actor has its own columns; without a budget every actor steps every frame, so a
-    fluid's simulated time is the frame's dt (1/60 s, the host's default) and every interval 1;
-    the frame plan's progress is a fraction, its slices a count, its residual not negative."""
-    actors = ["deformable%d" % d for d in range(deformables)] + ["fluid%d" % k for k in range(fluids)]
-    names = ["%s_ms" % a for a in actors] + ["fluid%d_sim_dt" % k for k in range(fluids)]
+def check_actor_columns(rows, header, deformables, fluids):
+    """Every actor has its own columns, named by its label, and no column is there twice;
+    without a budget every actor steps every frame, so a fluid's simulated time is the frame's
+    dt (1/60 s, the host's default) and every interval 1; the frame plan's progress is a
+    fraction, its slices a count, its residual not negative."""
+    if len(set(header)) != len(header):
+        fail("stats.csv repeats columns: %s" % sorted(c for c in set(header) if header.count(c) > 1))
+    actors = deformables + fluids
+    names = ["%s_ms" % a for a in actors] + ["%s_sim_dt" % f for f in fluids]
     names += ["%s_%s" % (a, c) for a in actors for c in FRAME_PLAN_COLUMNS]
     missing = [n for n in names if n not in rows[0]]
     if missing:
-        fail("stats.csv lacks the per-actor columns %s" % missing)
+        fail("stats.csv lacks the per-actor columns %s (has %s)" % (missing, header))
     for row in rows:
-        if any(float(row["deformable%d_ms" % d]) <= 0 for d in range(deformables)):
+        if any(float(row["%s_ms" % d]) <= 0 for d in deformables):
             fail("stats.csv frame %s: a deformable took no time" % row["frame"])
-        if any(abs(float(row["fluid%d_sim_dt" % k]) - 1 / 60) > 1e-5 for k in range(fluids)) \
+        if any(abs(float(row["%s_sim_dt" % f]) - 1 / 60) > 1e-5 for f in fluids) \
                 or row["fluid_interval"] != "1":
             fail("stats.csv frame %s: unbudgeted fluids did not step every frame" % row["frame"])
         for a in actors:
@@ -127,8 +140,7 @@ def check_summary(stdout, frames, deformables, fluids):
     if len(lines) != 1:
         fail("expected one summary line for %d frames in the host's output" % frames)
     summary = lines[0]
-    intervals = "".join(" deformable%d 1-1" % d for d in range(deformables))
-    intervals += "".join(" fluid%d 1-1" % k for k in range(fluids))
+    intervals = "".join(" %s 1-1" % a for a in deformables + fluids)
     expected = ["over 1.1x budget 0 (0.0%)"] + ([", intervals" + intervals] if intervals else [])
     missing = [e for e in expected if e not in summary]
     residuals = re.search(r"deformable residual p50 (\S+) p95 (\S+)$", summary)
@@ -153,46 +165,145 @@ def check_liquid_meshes(out, fluid, names):
             fail("%s: %d vertices outside the domain %s..%s, e.g. %s" % (name, len(outside), lo, hi, outside[0]))
 
 
+def check_poses(out, scene, colliders, frames):
+    """poses.csv: a row per exported frame, seven columns per collider named by its label; a
+    static collider stays where the scene put it (position; rotation given or identity)."""
+    with open(os.path.join(out, "poses.csv")) as f:
+        reader = csv.reader(f)
+        header = next(reader)
+        rows = list(reader)
+    expected = ["frame", "time_s"] + ["%s_%s" % (c, a) for c in colliders
+                                      for a in ("px", "py", "pz", "qx", "qy", "qz", "qw")]
+    if header != expected:
+        fail("poses.csv header %s, expected %s" % (header, expected))
+    if [int(r[0]) for r in rows] != list(frames):
+        fail("poses.csv holds frames %s, expected %s" % ([r[0] for r in rows], list(frames)))
+    for row in rows:
+        if abs(float(row[1]) - (int(row[0]) + 1) / 60) > 1e-5:
+            fail("poses.csv frame %s: time %s, expected (frame + 1) / 60" % (row[0], row[1]))
+        for k, c in enumerate(scene.get("colliders", [])):
+            if c.get("bodyType", "static") != "static" or "rotation" in c or "axisAngle" in c:
+                continue
+            pose = [float(v) for v in row[2 + 7 * k:9 + 7 * k]]
+            want = list(c.get("position", [0, 0, 0])) + [0, 0, 0, 1]
+            if any(abs(a - b) > 1e-5 for a, b in zip(pose, want)):
+                fail("poses.csv frame %s: static %s at %s, the scene puts it at %s" % (row[0], colliders[k], pose, want))
+
+
+def read_vti(path):
+    """A .vti as the host writes it: the XML before the raw appended data (parsed, so it is
+    well-formed), and each CellData array by name, read at its offset (UInt64 byte count, then
+    little-endian Float32 values)."""
+    with open(path, "rb") as f:
+        data = f.read()
+    marker = b'<AppendedData encoding="raw">'
+    at = data.find(marker)
+    if at < 0:
+        fail("%s: no raw appended data" % path)
+    root = ET.fromstring(data[:at].decode("ascii") + "</VTKFile>")
+    if root.get("type") != "ImageData" or root.get("header_type") != "UInt64" \
+            or root.get("byte_order") != "LittleEndian":
+        fail("%s: VTKFile attributes %s" % (path, root.attrib))
+    start = data.index(b"_", at) + 1
+    arrays = {}
+    for a in root.iter("DataArray"):
+        offset = start + int(a.get("offset"))
+        (size,) = struct.unpack_from("<Q", data, offset)
+        arrays[a.get("Name")] = struct.unpack_from("<%df" % (size // 4), data, offset + 8)
+    if root.find("ImageData/Piece/CellData") is None or len(arrays) != len(list(root.iter("DataArray"))):
+        fail("%s: expected the arrays as CellData" % path)
+    return root.find("ImageData"), arrays
+
+
+def check_volumes(out, fluids, names, frames):
+    """volumes/LABEL_fNNNNN.vti for every fluid and exported frame: the image is the fluid's
+    domain in cells, smoke has density (not negative, some where the emitter is) and
+    temperature, a liquid a level set whose inside holds about the scene's initial liquid on
+    the first frame (boxes; what the colliders in it displace is within the tolerance)."""
+    for fluid, name in zip(fluids, names):
+        h = fluid.get("cellSize", 1.0 / 32)
+        n = fluid.get("resolution", [32, 32, 32])
+        origin = fluid.get("origin", [0, 0, 0])
+        liquid = fluid.get("kind", "smoke") == "liquid"
+        for frame in frames:
+            path = os.path.join(out, "volumes", "%s_f%05d.vti" % (name, frame))
+            image, arrays = read_vti(path)
+            extent = [int(v) for v in image.get("WholeExtent").split()]
+            if extent != [0, n[0], 0, n[1], 0, n[2]]:
+                fail("%s: WholeExtent %s for a grid of %s cells" % (path, extent, n))
+            if any(abs(float(v) - o) > 1e-6 for v, o in zip(image.get("Origin").split(), origin)) \
+                    or any(abs(float(v) - h) > 1e-7 for v in image.get("Spacing").split()):
+                fail("%s: Origin %s Spacing %s, the scene has %s and %s" % (path, image.get("Origin"),
+                                                                         image.get("Spacing"), origin, h))
+            expected = ["level_set"] if liquid else ["density", "temperature"]
+            if sorted(arrays) != sorted(expected) or any(len(v) != n[0] * n[1] * n[2] for v in arrays.values()):
+                fail("%s: arrays %s of %s values, expected %s of %d" % (
+                    path, sorted(arrays), [len(v) for v in arrays.values()], expected, n[0] * n[1] * n[2]))
+            if any(not math.isfinite(x) for v in arrays.values() for x in v):
+                fail("%s: values that are not finite" % path)
+            if liquid and frame == frames[0]:
+                inside = sum(h ** 3 for phi in arrays["level_set"] if phi < 0)
+                initial = sum(8 * r["halfExtents"][0] * r["halfExtents"][1] * r["halfExtents"][2]
+                              for r in fluid.get("initialLiquid", []) if r.get("type") == "box")
+                if abs(inside - initial) > 0.25 * initial:
+                    fail("%s: %.4f m^3 inside the level set, the scene starts with %.4f" % (path, inside, initial))
+            elif not liquid and (min(arrays["density"]) < 0 or max(arrays["density"]) <= 0):
+                fail("%s: smoke density in [%g, %g]" % (path, min(arrays["density"]), max(arrays["density"])))
+        print("%s: %d frames of %s, %s" % (name, len(frames), "x".join(map(str, n)), ", ".join(expected)))
+
+
 def check_host(exe, out, scene_path=DEFAULT_SCENE):
     shutil.rmtree(out, ignore_errors=True)
     scene = read_scene(scene_path)
-    deformables = len(scene.get("deformables", []))
+    colliders = labels(scene, "collider", "colliders")
+    deformables = labels(scene, "deformable", "deformables")
     fluids = scene.get("fluids", [])
+    fluid_names = labels(scene, "fluid", "fluids")
     liquids = [k for k, f in enumerate(fluids) if f.get("kind", "smoke") == "liquid"]
     # No frame budget: the motion checked below must not depend on the machine's speed (under
     # ASan on a loaded machine the budget can be spent before the solver runs at all).
     r = subprocess.run([exe, "--scene", scene_path, "--frames", "7", "--budget", "0", "--export-every", "3",
-                        "--snapshot-every", "3", "--quiet", "--out", out],
+                        "--export-volumes", "vti", "--snapshot-every", "3", "--quiet", "--out", out],
                        capture_output=True, text=True, timeout=300)
     print(r.stdout + r.stderr)
     if r.returncode != 0:
         fail("host exited with %d" % r.returncode)
     with open(os.path.join(out, "stats.csv")) as f:
+        header = f.readline().strip().split(",")
+        f.seek(0)
         rows = list(csv.DictReader(f))
     if len(rows) != 7:
         fail("stats.csv has %d rows, expected 7" % len(rows))
-    # Frames 0, 3, 6 (every 3rd, and the last) for every deformable and every liquid (named by
-    # its place among all the scene's fluids; smoke has no surface to export).
+    # Frames 0, 3, 6 (every 3rd, and the last) for every deformable and every liquid (smoke has
+    # no surface to export), each collider's mesh once.
     frames = (0, 3, 6)
-    liquid_files = ["fluid%d_f%05d.ply" % (k, f) for k in liquids for f in frames]
-    expected = ["deformable%d_f%05d.ply" % (d, f) for d in range(deformables) for f in frames] + liquid_files
+    liquid_files = ["%s_f%05d.ply" % (fluid_names[k], f) for k in liquids for f in frames]
+    expected = ["%s_f%05d.ply" % (d, f) for d in deformables for f in frames] + liquid_files
+    expected += ["%s.ply" % c for c in colliders]
     meshes = sorted(os.listdir(os.path.join(out, "meshes")))
     if meshes != sorted(expected):
         fail("meshes/ holds %s, expected %s" % (meshes, expected))
     if deformables:
-        first, nf0 = read_ply(os.path.join(out, "meshes", "deformable0_f00000.ply"))
-        last, nf6 = read_ply(os.path.join(out, "meshes", "deformable0_f00006.ply"))
+        first, nf0 = read_ply(os.path.join(out, "meshes", "%s_f00000.ply" % deformables[0]))
+        last, nf6 = read_ply(os.path.join(out, "meshes", "%s_f00006.ply" % deformables[0]))
         if len(first) != len(last) or nf0 != nf6:
             fail("the render mesh changed its size between frames")
         moved = max(abs(a[1] - b[1]) for a, b in zip(first, last))
         if moved < 1e-3:
             fail("the exported jelly did not move between frames 0 and 6 (max dy %g)" % moved)
     for k in liquids:
-        check_liquid_meshes(out, fluids[k], [n for n in liquid_files if n.startswith("fluid%d_" % k)])
+        check_liquid_meshes(out, fluids[k], [n for n in liquid_files if n.startswith(fluid_names[k] + "_f")])
+    for c in colliders:
+        read_ply(os.path.join(out, "meshes", c + ".ply"))
+    check_poses(out, scene, colliders, frames)
+    volumes = sorted(os.listdir(os.path.join(out, "volumes")))
+    if volumes != sorted("%s_f%05d.vti" % (n, f) for n in fluid_names for f in frames):
+        fail("volumes/ holds %s" % volumes)
+    check_volumes(out, fluids, fluid_names, frames)
     if fluids:
         check_fluid_stats(rows)
-    check_actor_columns(rows, deformables, len(fluids))
-    check_summary(r.stdout, 7, deformables, len(fluids))
+    check_actor_columns(rows, header, deformables, fluid_names)
+    check_summary(r.stdout, 7, deformables, fluid_names)
     shots = sorted(os.listdir(os.path.join(out, "snapshots")))
     if shots != ["frame_00000.png", "frame_00003.png", "frame_00006.png"]:
         fail("snapshots/ holds %s" % shots)

@@ -486,6 +486,11 @@ VP_API vpStatus vpWorldGetColliderCount(vpWorldId world, int32_t* outCount);
 VP_API vpStatus vpWorldGetColliders(vpWorldId world, vpColliderId* outIds, int32_t capacity, int32_t* outCount);
 /* Scene files may name colliders; finds the first one with that name. */
 VP_API vpStatus vpWorldFindCollider(vpWorldId world, const char* name, vpColliderId* outCollider);
+/* The collider's name from its scene file ("" when it has none) as a NUL-terminated string.
+ * *outLength = the bytes it needs, the terminator included. buffer NULL with capacity 0 asks
+ * only for the length; capacity < that length: vpStatus_InvalidArgument, *outLength set,
+ * nothing written. (vpDeformableGetName and vpFluidGetName work the same way.) */
+VP_API vpStatus vpColliderGetName(vpColliderId collider, char* buffer, int32_t capacity, int32_t* outLength);
 
 /* ---------------------------------------------------------------- deformables */
 
@@ -598,6 +603,8 @@ VP_API vpStatus vpDeformableSolveStatic(vpDeformableId deformable, int32_t maxIt
 VP_API vpStatus vpWorldGetDeformableCount(vpWorldId world, int32_t* outCount);
 VP_API vpStatus vpWorldGetDeformables(vpWorldId world, vpDeformableId* outIds, int32_t capacity, int32_t* outCount);
 VP_API vpStatus vpWorldFindDeformable(vpWorldId world, const char* name, vpDeformableId* outDeformable);
+/* The deformable's name from its scene file ("" when it has none), as vpColliderGetName. */
+VP_API vpStatus vpDeformableGetName(vpDeformableId deformable, char* buffer, int32_t capacity, int32_t* outLength);
 
 /* A tet mesh of the box [minCorner, minCorner + size] for vpDeformableDef.vertices / tets: the
  * mesher of scene files' "box" deformables. cells[0] x cells[1] x cells[2] cubes, each split
@@ -759,6 +766,8 @@ VP_API vpStatus vpFluidGetStats(vpFluidId fluid, vpActorStats* outStats);
 VP_API vpStatus vpWorldGetFluidCount(vpWorldId world, int32_t* outCount);
 VP_API vpStatus vpWorldGetFluids(vpWorldId world, vpFluidId* outIds, int32_t capacity, int32_t* outCount);
 VP_API vpStatus vpWorldFindFluid(vpWorldId world, const char* name, vpFluidId* outFluid);
+/* The fluid's name from its scene file ("" when it has none), as vpColliderGetName. */
+VP_API vpStatus vpFluidGetName(vpFluidId fluid, char* buffer, int32_t capacity, int32_t* outLength);
 
 /* ---------------------------------------------------------------- contact events */
 
