@@ -13,6 +13,11 @@ namespace VolPhys
         public static vpShapeDef DefaultShapeDef() { return Native.vpDefaultShapeDef(); }
 
         public bool IsValid { get { return Native.vpColliderIsValid(Id) == Status.Ok; } }
+        /// <summary>The name its scene file gave it ("" when none).</summary>
+        public string Name
+        {
+            get { var id = Id; return ActorName.Read((byte[] b, int c, out int l) => Native.vpColliderGetName(id, b, c, out l), "vpColliderGetName"); }
+        }
 
         /// <summary>Which colliders it meets; a change takes effect from the next step.</summary>
         public vpCollisionFilter CollisionFilter

@@ -71,6 +71,20 @@ namespace VolPhys
                                    "vpDeformableGetRenderMesh");
         }
 
+        /// <summary>The name its scene file gave it ("" when none).</summary>
+        public string Name
+        {
+            get { var id = Id; return ActorName.Read((byte[] b, int c, out int l) => Native.vpDeformableGetName(id, b, c, out l), "vpDeformableGetName"); }
+        }
+
+        /// <summary>Moves the body to its static equilibrium and leaves it at rest there
+        /// (vpDeformableSolveStatic); a VolPhysException with Status.NotConverged leaves it unchanged.</summary>
+        public void SolveStatic(int maxIterations, float tolerance, out int iterations, out float residual)
+        {
+            VolPhysException.Check(Native.vpDeformableSolveStatic(Id, maxIterations, tolerance, out iterations, out residual),
+                                   "vpDeformableSolveStatic");
+        }
+
         public vpActorStats Stats
         {
             get { vpActorStats s = Native.vpDefaultActorStats(); VolPhysException.Check(Native.vpDeformableGetStats(Id, ref s), "vpDeformableGetStats"); return s; }

@@ -11,6 +11,11 @@ namespace VolPhys
         public static vpFluidDef DefaultDef() { return Native.vpDefaultFluidDef(); }
 
         public bool IsValid { get { return Native.vpFluidIsValid(Id) == Status.Ok; } }
+        /// <summary>The name its scene file gave it ("" when none).</summary>
+        public string Name
+        {
+            get { var id = Id; return ActorName.Read((byte[] b, int c, out int l) => Native.vpFluidGetName(id, b, c, out l), "vpFluidGetName"); }
+        }
 
         /// <summary>Which colliders it meets; a change takes effect from the next step.</summary>
         public vpCollisionFilter CollisionFilter

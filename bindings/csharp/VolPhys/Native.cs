@@ -95,6 +95,16 @@ namespace VolPhys
         [DllImport(Library)] public static extern Status vpDeformableGetRenderMesh(vpDeformableId deformable, [Out] float[] positions, [Out] float[] normals,
                                                                                   int vertexCapacity, [Out] int[] triangles, int triangleCapacity);
         [DllImport(Library)] public static extern Status vpDeformableGetStats(vpDeformableId deformable, ref vpActorStats stats);
+        [DllImport(Library)] public static extern Status vpDeformableSolveStatic(vpDeformableId deformable, int maxIterations,
+                                                                                float tolerance, out int outIterations,
+                                                                                out float outResidual);
+        // A NULL buffer with capacity 0 asks the length (with its terminator) only.
+        [DllImport(Library)] public static extern Status vpColliderGetName(vpColliderId collider, [Out] byte[] buffer,
+                                                                          int capacity, out int outLength);
+        [DllImport(Library)] public static extern Status vpDeformableGetName(vpDeformableId deformable, [Out] byte[] buffer,
+                                                                            int capacity, out int outLength);
+        [DllImport(Library)] public static extern Status vpFluidGetName(vpFluidId fluid, [Out] byte[] buffer, int capacity,
+                                                                       out int outLength);
         [DllImport(Library)] public static extern Status vpWorldGetDeformableCount(vpWorldId world, out int count);
         [DllImport(Library)] public static extern Status vpWorldGetDeformables(vpWorldId world, [Out] vpDeformableId[] ids, int capacity, out int count);
         [DllImport(Library)] public static extern Status vpWorldFindDeformable(vpWorldId world, [MarshalAs(UnmanagedType.LPStr)] string name, out vpDeformableId deformable);

@@ -10,7 +10,8 @@ namespace VolPhys
     public enum Status : int
     {
         Ok = 0, InvalidArgument = 1, InvalidId = 2, OutOfMemory = 3, Unsupported = 4, IoError = 5,
-        ParseError = 6, Busy = 7, Diverged = 8, VersionMismatch = 9, Internal = 10, PhaseFailed = 11
+        ParseError = 6, Busy = 7, Diverged = 8, VersionMismatch = 9, Internal = 10, PhaseFailed = 11,
+        NotConverged = 12
     }
 
     public enum LogLevel : int { Debug = 0, Info = 1, Warning = 2, Error = 3, Off = 4 }
@@ -36,7 +37,7 @@ namespace VolPhys
 
     public static class Constants
     {
-        public const int VersionMajor = 0, VersionMinor = 5, VersionPatch = 0;
+        public const int VersionMajor = 0, VersionMinor = 6, VersionPatch = 0;
         public const uint HeaderVersion = (VersionMajor << 16) | (VersionMinor << 8) | VersionPatch;
         public const int MaxPhases = 16;
     }

@@ -20,7 +20,7 @@ from .deformable import Deformable, Material
 from .fluid import Fluid, FluidParameters
 from .fluid_sources import BoxRegion, Emitter, SphereRegion
 from .log import set_log_callback
-from .errors import (BusyError, DivergedError, InternalError, PhaseFailedError, InvalidArgumentError, InvalidIdError, IoError,
+from .errors import (BusyError, DivergedError, InternalError, NotConvergedError, PhaseFailedError, InvalidArgumentError, InvalidIdError, IoError,
                      OutOfMemoryError, ParseError, UnsupportedError, VersionMismatchError, VolPhysError)
 from .shapes import Box, Capsule, ConvexHull, Cylinder, Plane, Shape, Sphere, TriangleMesh
 from .stats import ActorStats, PhaseStats, StepStats
@@ -57,6 +57,6 @@ __all__ = [
     "PhaseStats", "Status", "BodyType", "ShapeType", "ActorKind", "Phase", "LogLevel", "FluidKind", "Advection",
     "DomainSide", "FluidField", "VolPhysError", "InvalidArgumentError", "InvalidIdError", "OutOfMemoryError",
     "UnsupportedError", "IoError", "ParseError", "BusyError", "DivergedError", "VersionMismatchError",
-    "InternalError", "PhaseFailedError", "library_version", "library_path", "build_info", "status_name", "HAVE_NUMPY",
+    "InternalError", "NotConvergedError", "PhaseFailedError", "library_version", "library_path", "build_info", "status_name", "HAVE_NUMPY",
     "set_log_callback", "box_tet_mesh",
 ]

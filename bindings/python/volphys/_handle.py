@@ -24,6 +24,7 @@ class ActorHandle:
     # and set its collision filter.
     _is_valid_function = None
     _destroy_function = None
+    _name_function = None
     _get_filter_function = None
     _set_filter_function = None
 
@@ -56,6 +57,15 @@ class ActorHandle:
 
     def destroy(self):
         call(self._destroy_function, self._id)
+
+    @property
+    def name(self):
+        """The name a scene file gave it ("" when none)."""
+        length = ctypes.c_int32()
+        call(self._name_function, self._id, None, 0, ctypes.byref(length))
+        buffer = ctypes.create_string_buffer(length.value)
+        call(self._name_function, self._id, buffer, length.value, ctypes.byref(length))
+        return buffer.value.decode("utf-8", "replace")
 
     @property
     def collision_filter(self):

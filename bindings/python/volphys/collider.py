@@ -31,6 +31,7 @@ def transform_tuple(t):
 class Collider(ActorHandle):
     _is_valid_function = "vpColliderIsValid"
     _destroy_function = "vpColliderDestroy"
+    _name_function = "vpColliderGetName"
     _get_filter_function = "vpColliderGetCollisionFilter"
     _set_filter_function = "vpColliderSetCollisionFilter"
 

@@ -18,6 +18,7 @@ Material = namedtuple("Material", "youngs_modulus poisson_ratio density mass_dam
 class Deformable(ActorHandle):
     _is_valid_function = "vpDeformableIsValid"
     _destroy_function = "vpDeformableDestroy"
+    _name_function = "vpDeformableGetName"
     _get_filter_function = "vpDeformableGetCollisionFilter"
     _set_filter_function = "vpDeformableSetCollisionFilter"
 
@@ -93,3 +94,13 @@ class Deformable(ActorHandle):
         s = lib.vpDefaultActorStats()
         call("vpDeformableGetStats", self._id, ctypes.byref(s))
         return ActorStats._from_c(s)
+
+    def solve_static(self, max_iterations=100, tolerance=1e-4):
+        """Moves the body to its static equilibrium (gravity, pins, attachments, forces applied
+        for the next step, contacts with the colliders as they stand) and leaves it at rest
+        there. Returns (iterations, relative residual); raises NotConvergedError, with the body
+        unchanged, when it stops above the tolerance."""
+        iterations, residual = ctypes.c_int32(), ctypes.c_float()
+        call("vpDeformableSolveStatic", self._id, int(max_iterations), float(tolerance), ctypes.byref(iterations),
+             ctypes.byref(residual))
+        return iterations.value, residual.value

@@ -58,6 +58,10 @@ class PhaseFailedError(VolPhysError):
     """World.step: a phase of some actor failed; the rest of the step ran (actor_stats say which)."""
 
 
+class NotConvergedError(VolPhysError):
+    """An iterative request (Deformable.solve_static) stopped above its tolerance; nothing changed."""
+
+
 _BY_STATUS = {
     Status.InvalidArgument: InvalidArgumentError,
     Status.InvalidId: InvalidIdError,
@@ -70,6 +74,7 @@ _BY_STATUS = {
     Status.VersionMismatch: VersionMismatchError,
     Status.Internal: InternalError,
     Status.PhaseFailed: PhaseFailedError,
+    Status.NotConverged: NotConvergedError,
 }
 
 

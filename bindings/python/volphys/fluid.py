@@ -23,6 +23,7 @@ FluidParameters = namedtuple("FluidParameters", "ambient_temperature density_buo
 class Fluid(ActorHandle):
     _is_valid_function = "vpFluidIsValid"
     _destroy_function = "vpFluidDestroy"
+    _name_function = "vpFluidGetName"
     _get_filter_function = "vpFluidGetCollisionFilter"
     _set_filter_function = "vpFluidSetCollisionFilter"
 

@@ -447,6 +447,50 @@ static class VolPhysTests
         }
     }
 
+    public static void TestNamesFromASceneAndTheStaticSolve()
+    {
+        string path = System.IO.Path.GetTempFileName();
+        System.IO.File.WriteAllText(path,
+            "{\"colliders\": [{\"name\": \"ground\", \"shape\": {\"type\": \"plane\", \"normal\": [0, 1, 0], \"offset\": 0}}]," +
+            " \"deformables\": [{\"name\": \"jelly\", \"degree\": 2, \"box\": {\"cells\": [2, 2, 2], \"size\": [0.4, 0.4, 0.4]}," +
+            " \"position\": [0, 0.3, 0], \"youngsModulus\": 1e5}]," +
+            " \"fluids\": [{\"name\": \"tank\", \"kind\": \"liquid\", \"origin\": [5, 0, 0], \"resolution\": [4, 4, 4]}]}");
+        try
+        {
+            vpWorldDef def = World.DefaultDef();
+            def.frameBudgetMs = 0;
+            using (var world = new World(def))
+            {
+                world.LoadScene(path);
+                Check(world.FindCollider("ground").Name == "ground", "collider name");
+                Check(world.FindFluid("tank").Name == "tank", "fluid name");
+                Deformable jelly = world.FindDeformable("jelly");
+                Check(jelly.Name == "jelly", "deformable name");
+                int iterations;
+                float residual;
+                try
+                {
+                    jelly.SolveStatic(1, 1e-9f, out iterations, out residual);
+                    Check(false, "one iteration to 1e-9 must not converge");
+                }
+                catch (VolPhysException e)
+                {
+                    Check(e.Status == Status.NotConverged, "NotConverged, got " + e.Status);
+                }
+                jelly.SolveStatic(200, 1e-4f, out iterations, out residual);
+                Check(iterations > 0 && residual <= 1e-4f, string.Format("{0} iterations, residual {1}", iterations, residual));
+                float[] x = jelly.GetPositions();
+                float lowest = float.MaxValue;
+                for (int i = 1; i < x.Length; i += 3) lowest = Math.Min(lowest, x[i]);
+                Check(lowest >= -1e-5f && lowest < 0.01f, "the jelly rests on the ground, lowest node y = " + lowest);
+            }
+        }
+        finally
+        {
+            System.IO.File.Delete(path);
+        }
+    }
+
     public static void TestIdsAfterDestroyRaiseInvalidId()
     {
         var world = new World();
