@@ -10,6 +10,8 @@
 #include <stb/stb_easy_font.h>
 #pragma GCC diagnostic pop
 
+#include "overlay_layout.h"
+
 static void lookAt(const float eye[3], const float target[3]) {
   /* Builds the view matrix directly (no GLU): rows are the camera's right, up, back axes. */
   float f[3], s[3], u[3], n;
@@ -133,9 +135,9 @@ void renderScene(const SceneView* view, const OrbitCamera* camera, int width, in
 
 void renderOverlayText(const char* const* lines, int lineCount, int width, int height) {
   static char quads[60000]; /* stb_easy_font: ~270 bytes per character */
-  /* Larger glyphs where there is room; a snapshot-sized image keeps the long phase lines. */
-  const float scale = width >= 900 ? 1.5f : 1.15f;
+  static OverlayLayout layout;
   int i;
+  overlayLayout(lines, lineCount, width, &layout);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_LIGHTING);
   glMatrixMode(GL_PROJECTION);
@@ -144,12 +146,12 @@ void renderOverlayText(const char* const* lines, int lineCount, int width, int h
   glMatrixMode(GL_MODELVIEW);
   glLoadIdentity();
   glEnableClientState(GL_VERTEX_ARRAY);
-  for (i = 0; i < lineCount; ++i) {
+  for (i = 0; i < layout.lineCount; ++i) {
     int n;
     glPushMatrix();
-    glTranslatef(8.0f, 8.0f + 12.0f * scale * (float)i, 0.0f);
-    glScalef(scale, scale, 1.0f);
-    n = stb_easy_font_print(0, 0, (char*)lines[i], NULL, quads, (int)sizeof quads);
+    glTranslatef(OVERLAY_MARGIN_PX, OVERLAY_MARGIN_PX + 12.0f * layout.scale * (float)i, 0.0f);
+    glScalef(layout.scale, layout.scale, 1.0f);
+    n = stb_easy_font_print(0, 0, layout.lines[i], NULL, quads, (int)sizeof quads);
     glColor3f(0.95f, 0.95f, 0.85f);
     glVertexPointer(2, GL_FLOAT, 16, quads);
     glDrawArrays(GL_QUADS, 0, 4 * n);
