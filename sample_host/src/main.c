@@ -15,6 +15,7 @@
 #include "actor_labels.h"
 #include "cli_values.h"
 #include "csv_columns.h"
+#include "default_scene.h"
 #include "frame_plot.h"
 #include "frame_stats.h"
 #include "host_outputs.h"
@@ -54,7 +55,7 @@ static void usage(FILE* f) {
 static int parseOptions(int argc, char** argv, Options* o) {
   static const char* const kVolumeFormats[3] = {"none", "vdb", "vti"}; /* indexed by VolumeFormat */
   int i, volumeFormat = VolumeFormat_None;
-  o->scene = VP_DEFAULT_SCENE;
+  o->scene = defaultScenePath();
   o->outDir = "out/sample";
   o->frames = 300;
   o->dt = 1.0 / 60.0;

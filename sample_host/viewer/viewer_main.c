@@ -10,6 +10,7 @@
 
 #include "actor_labels.h"
 #include "cli_values.h"
+#include "default_scene.h"
 #include "hud_stats.h"
 #include "orbit_camera.h"
 #include "png_writer.h"
@@ -84,7 +85,7 @@ static void usage(FILE* f) {
 static const char* const kProgram = "volphys_viewer";
 
 int main(int argc, char** argv) {
-  const char* scenePath = VP_DEFAULT_SCENE;
+  const char* scenePath = defaultScenePath();
   const char* shotPath = NULL;
   double dt = 1.0 / 60.0, budget = -1.0;
   int workers = 2, frames = 0, width = 960, height = 640, steps = 0, i;

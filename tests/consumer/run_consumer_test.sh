@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the built VolPhys into a temporary prefix, then builds and runs tests/consumer/main.c
-# against it twice: through find_package(volphys CONFIG) and through pkg-config.
+# against it twice: through find_package(volphys CONFIG) and through pkg-config; and runs the
+# installed sample host where it was built.
 # Usage: run_consumer_test.sh BUILD_DIR SOURCE_DIR [EXTRA_C_FLAGS]
 # (EXTRA_C_FLAGS: a sanitizer build's flags, so the consumer loads the instrumented library.)
 set -euo pipefail
@@ -20,4 +21,13 @@ export PKG_CONFIG_PATH="$libdir/pkgconfig"
 cc -std=c99 -pedantic-errors $flags "$source/tests/consumer/main.c" -o "$work/pkg-consumer" \
   $(pkg-config --cflags --libs volphys)
 LD_LIBRARY_PATH="$libdir" "$work/pkg-consumer"
+
+# The installed sample host finds the installed library (its RPATH) and the installed scenes.
+host="$work/prefix/bin/volphys_host"
+if [ -x "$host" ]; then
+  "$host" --scene "$work/prefix/share/volphys/scenes/default.json" --frames 2 --quiet --snapshot-every 0 \
+    --export-every 0 --out "$work/host-out" > "$work/host.log"
+  grep -q "summary: 2 frames" "$work/host.log"
+  echo "consumer: the installed host ran"
+fi
 echo "consumer: both builds ran against $work/prefix"
