@@ -32,7 +32,7 @@ static double tickStep(double range, int target) {
 }
 
 int framePlotWriteSvg(const FramePlot* p, const char* path) {
-  const double W = 800, H = 400, left = 60, right = 20, top = 30, bottom = 50;
+  const double W = 800, H = 430, left = 60, right = 20, top = 62, bottom = 50;
   const double pw = W - left - right, ph = H - top - bottom;
   double ymax = 1.0, ystep, v;
   int i, xmax = p->count > 1 ? p->count - 1 : 1;
@@ -82,8 +82,8 @@ int framePlotWriteSvg(const FramePlot* p, const char* path) {
              "budget (0 = unlimited), dashed: %gx budget</text><text x=\"%g\" y=\"%g\" fill=\"#c00\">"
              "dots: frames over %gx budget</text><text x=\"%g\" y=\"%g\" fill=\"#777\">ticks: budget-cut frames"
              "</text>\n</svg>\n",
-          left + 10, top + 16, left + 90, top + 16, RUN_SUMMARY_OVER_BUDGET_FACTOR, left + 10, top + 32, RUN_SUMMARY_OVER_BUDGET_FACTOR,
-          left + 200, top + 32);
+          left, top - 26, left + 80, top - 26, RUN_SUMMARY_OVER_BUDGET_FACTOR, left, top - 10, RUN_SUMMARY_OVER_BUDGET_FACTOR,
+          left + 190, top - 10);
 #undef X
 #undef Y
   return fclose(f) == 0;
