@@ -296,6 +296,21 @@ vpStatus vpDeformableSolveStatic(vpDeformableId id, int32_t maxIterations, float
   });
 }
 
+vpStatus vpDeformableGetMeshQuality(vpDeformableId id, float* outMinDihedralDegrees, float* outMaxDihedralDegrees,
+                                    float* outTetVolume, float* outSurfaceVolume) {
+  return guarded(__func__, [&] {
+    WorldLease w;
+    DeformableBody* d;
+    VP_TRY(resolveDeformable(id, &w, &d));
+    const TetMeshQuality& q = d->meshQuality();
+    if (outMinDihedralDegrees) *outMinDihedralDegrees = static_cast<float>(q.minDihedralDegrees);
+    if (outMaxDihedralDegrees) *outMaxDihedralDegrees = static_cast<float>(q.maxDihedralDegrees);
+    if (outTetVolume) *outTetVolume = static_cast<float>(q.tetVolume);
+    if (outSurfaceVolume) *outSurfaceVolume = static_cast<float>(q.surfaceVolume);
+    return Status::Ok;
+  });
+}
+
 vpStatus vpDeformableGetStats(vpDeformableId id, vpActorStats* outStats) {
   return guarded(__func__, [&] {
     VP_REQUIRE_POINTER(outStats);

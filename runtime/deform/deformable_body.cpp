@@ -186,6 +186,7 @@ Status DeformableBody::create(DeformableDesc desc, std::unique_ptr<DeformableBod
   b.renderRest_ = desc.renderMesh ? *desc.renderMesh : boundary;
   Status embedded = embedPoints(mesh, b.renderRest_.vertices, &b.embedding_);
   if (!ok(embedded)) return addErrorContext(embedded, "render mesh");
+  b.meshQuality_ = tetMeshQuality(mesh, b.renderRest_);
   b.desc_ = std::move(desc);
   b.desc_.renderMesh.reset();  // kept once, in renderRest_
   b.updateRenderMesh(*TaskSystem::create(TaskHooks{}, 1));

@@ -26,6 +26,7 @@
 #include "deform/element_incidence.h"
 #include "frame_plan.h"
 #include "geometry/embedding.h"
+#include "geometry/mesh_quality.h"
 #include "geometry/refit_bvh.h"
 #include "linalg/aggregation_multigrid.h"
 #include "linalg/block_sparse_matrix.h"
@@ -108,6 +109,8 @@ class DeformableBody {
   // first request, refit on a request after the positions moved (queries hold the world, so
   // no two requests run at once).
   const RefitBvh& renderSurfaceBvh() const;
+  // The tet mesh's dihedral angles and volume against its render surface's, at creation.
+  const TetMeshQuality& meshQuality() const { return meshQuality_; }
 
   // What evolves from step to step (snapshot/actor_states.h); restoreState takes a state
   // read for this body (its sizes checked) and cannot fail.
@@ -178,6 +181,7 @@ class DeformableBody {
   BlockSparseMatrix<double> matrix_;
   Array<int32_t> scatter_;          // 16 block indices per element
   SurfaceMesh renderRest_;
+  TetMeshQuality meshQuality_;
   Array<EmbeddedPoint> embedding_;
   Array<Vec3> renderPositions_, renderNormals_;
   uint64_t renderVersion_ = 0;               // counts moves of the render positions

@@ -18,6 +18,7 @@
 #include "default_scene.h"
 #include "frame_plot.h"
 #include "frame_stats.h"
+#include "mesh_quality_report.h"
 #include "host_outputs.h"
 #include "phase_names.h"
 #include "run_summary.h"
@@ -216,6 +217,7 @@ static int run(vpWorldId world, const ActorLabels* labels, const Options* o) {
   if (!csv || !frameTimesInit(&times, o->frames) || !framePlotInit(&plot, o->frames)) goto done;
 
   printf("volphys_host: scene %s, %d frames, dt %.5f s, %d workers\n", o->scene, o->frames, o->dt, o->workers);
+  if (!printMeshQuality(stdout, labels)) goto done;
   for (frame = 0; frame < o->frames; ++frame) {
     vpActorStats rigid = vpDefaultActorStats();
     DeformSummary deform;

@@ -1,4 +1,5 @@
-"""Actor names from a scene file and the static solve, through the Python package."""
+"""Actor names from a scene file, the mesh quality report and the static solve, through the
+Python package."""
 import os
 import tempfile
 import unittest
@@ -39,6 +40,15 @@ class NamesAndStaticSolve(unittest.TestCase):
             self.assertGreaterEqual(lowest, -1e-5)
             self.assertLess(lowest, 0.01)
             self.assertTrue(all(v == 0 for p in jelly.velocities() for v in p))
+
+    def test_mesh_quality_of_the_box_jelly(self):
+        with volphys.World() as w:
+            w.load_scene(self.path)
+            q = w.find_deformable("jelly").mesh_quality()
+            self.assertAlmostEqual(q.min_dihedral, 45.0, places=3)
+            self.assertAlmostEqual(q.max_dihedral, 90.0, places=3)
+            self.assertAlmostEqual(q.tet_volume, 0.064, places=5)
+            self.assertAlmostEqual(q.surface_volume, 0.064, places=5)
 
     def test_not_converging_raises_and_changes_nothing(self):
         with volphys.World(frame_budget_ms=0) as w:

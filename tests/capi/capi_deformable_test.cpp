@@ -268,3 +268,25 @@ TEST(CApiDeformable, AnOpenSurfaceFileIsRefusedNamingAnEdge) {
 }
 
 }  // namespace
+
+namespace {
+
+// The box of BoxArrays (2 x 1 x 1, Kuhn-split cubes): dihedral angles 45-90 degrees, and its
+// tets fill exactly what its boundary encloses.
+TEST(CApiDeformable, MeshQualityOfABox) {
+  ScopedWorld w;
+  BoxArrays box;
+  vpDeformableDef def = box.def();
+  vpDeformableId id{};
+  ASSERT_VP_OK(vpDeformableCreate(w.id, &def, &id));
+  float minAngle = 0, maxAngle = 0, tetVolume = 0, surfaceVolume = 0;
+  ASSERT_VP_OK(vpDeformableGetMeshQuality(id, &minAngle, &maxAngle, &tetVolume, &surfaceVolume));
+  EXPECT_NEAR(minAngle, 45.0f, 1e-4f);
+  EXPECT_NEAR(maxAngle, 90.0f, 1e-4f);
+  EXPECT_NEAR(tetVolume, 2.0f, 1e-5f);
+  EXPECT_NEAR(surfaceVolume, 2.0f, 1e-5f);
+  EXPECT_VP_OK(vpDeformableGetMeshQuality(id, nullptr, nullptr, nullptr, nullptr));
+  EXPECT_EQ(vpDeformableGetMeshQuality(vpDeformableId{}, &minAngle, nullptr, nullptr, nullptr), vpStatus_InvalidId);
+}
+
+}  // namespace

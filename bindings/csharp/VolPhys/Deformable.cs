@@ -77,6 +77,16 @@ namespace VolPhys
             get { var id = Id; return ActorName.Read((byte[] b, int c, out int l) => Native.vpDeformableGetName(id, b, c, out l), "vpDeformableGetName"); }
         }
 
+        /// <summary>The simulation mesh's dihedral angle range (degrees) and its tets' volume against
+        /// the volume its render surface encloses (vpDeformableGetMeshQuality).</summary>
+        public void GetMeshQuality(out float minDihedralDegrees, out float maxDihedralDegrees, out float tetVolume,
+                                   out float surfaceVolume)
+        {
+            VolPhysException.Check(Native.vpDeformableGetMeshQuality(Id, out minDihedralDegrees, out maxDihedralDegrees,
+                                                                     out tetVolume, out surfaceVolume),
+                                   "vpDeformableGetMeshQuality");
+        }
+
         /// <summary>Moves the body to its static equilibrium and leaves it at rest there
         /// (vpDeformableSolveStatic); a VolPhysException with Status.NotConverged leaves it unchanged.</summary>
         public void SolveStatic(int maxIterations, float tolerance, out int iterations, out float residual)

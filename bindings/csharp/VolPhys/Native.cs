@@ -95,6 +95,10 @@ namespace VolPhys
         [DllImport(Library)] public static extern Status vpDeformableGetRenderMesh(vpDeformableId deformable, [Out] float[] positions, [Out] float[] normals,
                                                                                   int vertexCapacity, [Out] int[] triangles, int triangleCapacity);
         [DllImport(Library)] public static extern Status vpDeformableGetStats(vpDeformableId deformable, ref vpActorStats stats);
+        [DllImport(Library)] public static extern Status vpDeformableGetMeshQuality(vpDeformableId deformable,
+                                                                                   out float minDihedralDegrees,
+                                                                                   out float maxDihedralDegrees,
+                                                                                   out float tetVolume, out float surfaceVolume);
         [DllImport(Library)] public static extern Status vpDeformableSolveStatic(vpDeformableId deformable, int maxIterations,
                                                                                 float tolerance, out int outIterations,
                                                                                 out float outResidual);

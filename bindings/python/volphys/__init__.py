@@ -16,7 +16,7 @@ from .queries import Hit
 from .box_mesh import box_tet_mesh
 from .collider import BodyProperties, Collider, Transform
 from ._handle import CollisionFilter
-from .deformable import Deformable, Material
+from .deformable import Deformable, Material, MeshQuality
 from .fluid import Fluid, FluidParameters
 from .fluid_sources import BoxRegion, Emitter, SphereRegion
 from .log import set_log_callback
@@ -58,5 +58,5 @@ __all__ = [
     "DomainSide", "FluidField", "VolPhysError", "InvalidArgumentError", "InvalidIdError", "OutOfMemoryError",
     "UnsupportedError", "IoError", "ParseError", "BusyError", "DivergedError", "VersionMismatchError",
     "InternalError", "NotConvergedError", "PhaseFailedError", "library_version", "library_path", "build_info", "status_name", "HAVE_NUMPY",
-    "set_log_callback", "box_tet_mesh",
+    "set_log_callback", "box_tet_mesh", "MeshQuality",
 ]

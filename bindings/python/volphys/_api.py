@@ -84,6 +84,7 @@ _PROTOTYPES = {
     "vpDeformableGetRenderMeshSize": (_S, [T.vpDeformableId, _P(c_int32), _P(c_int32)]),
     "vpDeformableGetRenderMesh": (_S, [T.vpDeformableId, _P(c_float), _P(c_float), c_int32, _P(c_int32), c_int32]),
     "vpDeformableGetStats": (_S, [T.vpDeformableId, _P(T.vpActorStats)]),
+    "vpDeformableGetMeshQuality": (_S, [T.vpDeformableId, _P(c_float), _P(c_float), _P(c_float), _P(c_float)]),
     "vpDeformableSolveStatic": (_S, [T.vpDeformableId, c_int32, c_float, _P(c_int32), _P(c_float)]),
     "vpColliderGetName": (_S, [T.vpColliderId, c_char_p, c_int32, _P(c_int32)]),
     "vpDeformableGetName": (_S, [T.vpDeformableId, c_char_p, c_int32, _P(c_int32)]),

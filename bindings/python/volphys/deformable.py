@@ -13,6 +13,8 @@ from .stats import ActorStats
 
 # vpDeformableMaterial without its structSize.
 Material = namedtuple("Material", "youngs_modulus poisson_ratio density mass_damping stiffness_damping friction")
+# vpDeformableGetMeshQuality: dihedral angles in degrees, volumes in m^3.
+MeshQuality = namedtuple("MeshQuality", "min_dihedral max_dihedral tet_volume surface_volume")
 
 
 class Deformable(ActorHandle):
@@ -94,6 +96,13 @@ class Deformable(ActorHandle):
         s = lib.vpDefaultActorStats()
         call("vpDeformableGetStats", self._id, ctypes.byref(s))
         return ActorStats._from_c(s)
+
+    def mesh_quality(self):
+        """MeshQuality of the simulation mesh: its tets' dihedral angle range and their volume
+        against the volume its render surface encloses."""
+        out = [c_float() for _ in range(4)]
+        call("vpDeformableGetMeshQuality", self._id, *[ctypes.byref(v) for v in out])
+        return MeshQuality(*[v.value for v in out])
 
     def solve_static(self, max_iterations=100, tolerance=1e-4):
         """Moves the body to its static equilibrium (gravity, pins, attachments, forces applied

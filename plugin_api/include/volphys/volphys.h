@@ -586,6 +586,14 @@ VP_API vpStatus vpDeformableGetRenderMesh(vpDeformableId deformable, float* outP
                                           int32_t vertexCapacity, int32_t* outTriangles, int32_t triangleCapacity);
 /* Statistics of this actor in the last step (zeros before the first). */
 VP_API vpStatus vpDeformableGetStats(vpDeformableId deformable, vpActorStats* outStats);
+/* The simulation mesh as created: the smallest and largest dihedral angle of its tets (degrees;
+ * the six angles at a tet's edges), the tets' total volume, and the volume its render surface
+ * encloses (the surface file's mesh, the given render mesh, else the tets' boundary; m^3, in
+ * the scene's scale). A mesher that swells thin parts shows as tetVolume above surfaceVolume.
+ * Any output may be NULL. */
+VP_API vpStatus vpDeformableGetMeshQuality(vpDeformableId deformable, float* outMinDihedralDegrees,
+                                           float* outMaxDihedralDegrees, float* outTetVolume,
+                                           float* outSurfaceVolume);
 /* Moves the deformable to its static equilibrium and leaves it there at rest (outside a step:
  * no time passes, nothing else moves): elastic forces balance gravity and the forces applied
  * for the next step (which stay pending), pinned and attached nodes held, contacts against the

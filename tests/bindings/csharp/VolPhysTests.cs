@@ -466,6 +466,10 @@ static class VolPhysTests
                 Check(world.FindFluid("tank").Name == "tank", "fluid name");
                 Deformable jelly = world.FindDeformable("jelly");
                 Check(jelly.Name == "jelly", "deformable name");
+                float minAngle, maxAngle, tetVolume, surfaceVolume;
+                jelly.GetMeshQuality(out minAngle, out maxAngle, out tetVolume, out surfaceVolume);
+                Check(Math.Abs(minAngle - 45) < 1e-3f && Math.Abs(maxAngle - 90) < 1e-3f, "dihedral angles 45-90");
+                Check(Math.Abs(tetVolume - 0.064f) < 1e-5f && Math.Abs(surfaceVolume - 0.064f) < 1e-5f, "volumes");
                 int iterations;
                 float residual;
                 try
