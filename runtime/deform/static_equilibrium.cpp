@@ -107,7 +107,10 @@ void pseudoStep(DeformableBody& body, const DeformableStepInput& input, const Ar
   DeformableState start = body.saveState();  // with the pending forces
   body.step(input, stats);
   *forcesPending = false;
-  if (stats->diverged || input.colliders.empty() || !penetrates(body, input)) return zeroVelocities(body);
+  if (stats->diverged || input.colliders.empty() || !penetrates(body, input)) {
+    zeroVelocities(body);
+    return;
+  }
   const Array<double> lookahead = body.velocities();
   body.restoreState(std::move(start));
   DeformableStepInput caught = input;
@@ -119,6 +122,31 @@ void pseudoStep(DeformableBody& body, const DeformableStepInput& input, const Ar
 
 void moveTo(DeformableBody& body, const Array<double>& x) {
   body.setPositions(x.data(), static_cast<int64_t>(x.size()));
+}
+
+// Armijo backtracking along the pseudo-step's displacement d, from `start` (evaluated as `at`)
+// to where the step left the body: the slope at the start is −(f + load) · d. Near the solution
+// the potential's changes sink below its rounding, so a falling residual also accepts. Leaves
+// the body at the accepted point (*next, *alpha) and returns true, or returns false.
+bool lineSearch(DeformableBody& body, TaskSystem& tasks, const Forces& forces, const Array<double>& origin,
+                const Array<double>& start, const Evaluation& at, Evaluation* next, double* alpha) {
+  const Array<double> full(body.positions().begin(), body.positions().end());
+  double slope = 0.0;
+  for (size_t i = 0; i < full.size(); ++i) slope -= at.force[i] * (full[i] - start[i]);
+  Array<double> x(start.size());
+  for (int halving = 0; halving <= kLineSearchHalvings; ++halving) {
+    *alpha = std::ldexp(1.0, -halving);
+    if (halving > 0) {
+      for (size_t i = 0; i < x.size(); ++i) x[i] = start[i] + *alpha * (full[i] - start[i]);
+      moveTo(body, x);
+    }
+    *next = evaluate(body, tasks, forces, origin);
+    if (std::isfinite(next->potential) && std::isfinite(next->residual) &&
+        (next->potential <= at.potential + kSufficientDecrease * *alpha * std::min(slope, 0.0) ||
+         next->residual <= (1.0 - kSufficientDecrease * *alpha) * at.residual))
+      return true;
+  }
+  return false;
 }
 
 }  // namespace
@@ -145,7 +173,7 @@ Status solveStaticEquilibrium(DeformableBody& body, const DeformableStepInput& i
   out.residual = relative(at.residual);
   out.converged = out.residual <= tolerance;
   double h = kFirstPseudoStep;
-  Array<double> start, full, x;
+  Array<double> start;
   while (!out.converged && out.iterations < maxIterations && h >= kMinPseudoStep) {
     ++out.iterations;
     start.assign(body.positions().begin(), body.positions().end());
@@ -153,30 +181,9 @@ Status solveStaticEquilibrium(DeformableBody& body, const DeformableStepInput& i
     pseudo.dt = h;
     ActorStats stats;
     pseudoStep(body, pseudo, pending, &forcesPending, &stats);
-    // Armijo backtracking on the potential along the step's displacement d: the slope at the
-    // start is −(f + load) · d.
-    bool accepted = false;
-    double alpha = 1.0;
     Evaluation next;
-    if (!stats.diverged) {
-      full.assign(body.positions().begin(), body.positions().end());
-      double slope = 0.0;
-      for (size_t i = 0; i < full.size(); ++i) slope -= at.force[i] * (full[i] - start[i]);
-      for (int halving = 0; halving <= kLineSearchHalvings && !accepted; ++halving) {
-        alpha = std::ldexp(1.0, -halving);
-        if (halving > 0) {
-          x.resize(start.size());
-          for (size_t i = 0; i < x.size(); ++i) x[i] = start[i] + alpha * (full[i] - start[i]);
-          moveTo(body, x);
-        }
-        next = evaluate(body, tasks, forces, origin);
-        // Near the solution the potential's changes sink below its rounding: a falling
-        // residual then decides.
-        accepted = std::isfinite(next.potential) && std::isfinite(next.residual) &&
-                   (next.potential <= at.potential + kSufficientDecrease * alpha * std::min(slope, 0.0) ||
-                    next.residual <= (1.0 - kSufficientDecrease * alpha) * at.residual);
-      }
-    }
+    double alpha = 0.0;
+    const bool accepted = !stats.diverged && lineSearch(body, tasks, forces, origin, start, at, &next, &alpha);
     if (!accepted) {
       moveTo(body, start);
       at = evaluate(body, tasks, forces, origin);
