@@ -379,14 +379,8 @@ Status World::solveDeformableStatic(DeformableHandle handle, int32_t maxIteratio
                                     StaticSolveResult* result) {
   DeformableBody* body = deformable(handle);
   if (!body) return fail(Status::InvalidId, "deformable: no such deformable in this world");
-  const DeformableStepInput input = deformableStepInput(*body, deformableContactColliders(colliders_));
-  DeformableState saved = body->saveState();
-  try {
-    return solveStaticEquilibrium(*body, input, maxIterations, tolerance, result);
-  } catch (const std::bad_alloc&) {
-    body->restoreState(std::move(saved));
-    return fail(Status::OutOfMemory, "static solve: out of memory (the deformable is unchanged)");
-  }
+  return solveStaticEquilibrium(*body, deformableStepInput(*body, deformableContactColliders(colliders_)),
+                                maxIterations, tolerance, result);
 }
 
 bool World::stepDeformables(double dt, const Deadline& frame, StepStats* stats) {

@@ -96,7 +96,6 @@ class DeformableBody {
   // Per node, 1 where the host holds it (pinned or attached), else 0.
   void heldNodes(Array<uint8_t>* out) const;
   const Array<int32_t>& surfaceNodes() const { return surfaceNodes_; }
-  double contactMargin() const { return contactMargin_; }
   // Contacts active at the end of the last step (after lift-off releases).
   const Array<NodeContact>& contacts() const { return contacts_; }
 

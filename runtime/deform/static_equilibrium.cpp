@@ -149,22 +149,12 @@ bool lineSearch(DeformableBody& body, TaskSystem& tasks, const Forces& forces, c
   return false;
 }
 
-}  // namespace
-
-Status solveStaticEquilibrium(DeformableBody& body, const DeformableStepInput& input, int32_t maxIterations,
-                              double tolerance, StaticSolveResult* result) {
-  if (maxIterations < 1 || maxIterations > kMaxStaticIterations)
-    return fail(Status::InvalidArgument, "maxIterations = %d: must be in [1, %d]", maxIterations,
-                kMaxStaticIterations);
-  if (!std::isfinite(tolerance) || tolerance <= 0.0 || tolerance >= 1.0)
-    return fail(Status::InvalidArgument, "tolerance = %g: must be finite and in (0, 1)", tolerance);
+// The continuation from the body's state at rest; returns how far it got.
+StaticSolveResult continueToRest(DeformableBody& body, const DeformableStepInput& input, const Array<double>& pending,
+                                 const Array<double>& origin, int32_t maxIterations, double tolerance) {
   TaskSystem& tasks = *input.tasks;
-  DeformableState before = body.saveState();
-  const Array<double> pending = before.externalForce;
-  const Array<double> origin = before.x;
   const Forces forces = externalForces(body, input, pending);
   bool forcesPending = true;  // a step consumes the body's pending forces
-
   zeroVelocities(body);
   Evaluation at = evaluate(body, tasks, forces, origin);
   const double reference = forces.scale > 0.0 ? forces.scale : at.residual;
@@ -197,20 +187,37 @@ Status solveStaticEquilibrium(DeformableBody& body, const DeformableStepInput& i
     out.residual = relative(at.residual);
     out.converged = out.residual <= tolerance;
   }
-  if (result) *result = out;
-  if (!out.converged) {
-    const double reached = out.residual;
-    const int32_t taken = out.iterations;
-    body.restoreState(std::move(before));
-    return fail(Status::NotConverged,
-                "static solve: relative residual %g after %d iterations, above tolerance = %g (the deformable "
-                "is unchanged)",
-                reached, taken, tolerance);
-  }
   // At rest where it stands, with the host's forces still pending for the next step.
   if (!forcesPending) reapply(body, pending);
   body.updateRenderMesh(tasks);
-  return Status::Ok;
+  return out;
+}
+
+}  // namespace
+
+Status solveStaticEquilibrium(DeformableBody& body, const DeformableStepInput& input, int32_t maxIterations,
+                              double tolerance, StaticSolveResult* result) {
+  if (maxIterations < 1 || maxIterations > kMaxStaticIterations)
+    return fail(Status::InvalidArgument, "maxIterations = %d: must be in [1, %d]", maxIterations,
+                kMaxStaticIterations);
+  if (!std::isfinite(tolerance) || tolerance <= 0.0 || tolerance >= 1.0)
+    return fail(Status::InvalidArgument, "tolerance = %g: must be finite and in (0, 1)", tolerance);
+  // The state to go back to when the solve does not converge or runs out of memory.
+  DeformableState before = body.saveState();
+  StaticSolveResult out;
+  try {
+    out = continueToRest(body, input, before.externalForce, before.x, maxIterations, tolerance);
+  } catch (const std::bad_alloc&) {
+    body.restoreState(std::move(before));
+    return fail(Status::OutOfMemory, "static solve: out of memory (the deformable is unchanged)");
+  }
+  if (result) *result = out;
+  if (out.converged) return Status::Ok;
+  body.restoreState(std::move(before));
+  return fail(Status::NotConverged,
+              "static solve: relative residual %g after %d iterations, above tolerance = %g (the deformable is "
+              "unchanged)",
+              out.residual, out.iterations, tolerance);
 }
 
 }  // namespace vp

@@ -37,7 +37,8 @@ struct StaticSolveResult {
 // maxIterations in [1, kMaxStaticIterations], tolerance finite in (0, 1). On success the body
 // rests at the equilibrium with zero velocity and its pending forces still pending (the solve
 // is not a step). Not converged within maxIterations: Status::NotConverged, the body back as it
-// was, *result says how far it got. input.dt is ignored; input.deadline should be unlimited.
+// was, *result says how far it got; out of memory: Status::OutOfMemory, the body back as it was.
+// input.dt is ignored; input.deadline should be unlimited.
 constexpr int32_t kMaxStaticIterations = 10000;
 Status solveStaticEquilibrium(DeformableBody& body, const DeformableStepInput& input, int32_t maxIterations,
                               double tolerance, StaticSolveResult* result);
