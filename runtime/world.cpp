@@ -277,6 +277,9 @@ std::vector<Filtered<ContactCollider>> deformableContactColliders(const SlotMap<
 }  // namespace
 
 bool World::runsConcurrently(int actors) const {
+  // An injected clock is read on the stepping thread only, in plan order: its readings, and
+  // so every budget decision, are then the same for any worker count (vpClockFn).
+  if (config_.clock.now) return false;
   const int workers = tasks_->workerCount();
   return workers > 1 && actors > 1 && actors <= workers;
 }

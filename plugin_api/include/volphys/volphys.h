@@ -173,9 +173,12 @@ typedef void* vpEnqueueTaskFn(vpTaskFn* task, int32_t itemCount, int32_t minRang
 typedef void vpFinishTaskFn(void* userTask, void* userContext);
 
 /* Monotonic clock in seconds used for the frame budget. NULL means the system's steady
- * clock. Hosts with their own frame timer (and tests) can inject one. With workerCount > 1
- * it may be called from task threads at the same time (independent actors run side by
- * side), so it must be thread-safe there. */
+ * clock. Hosts with their own frame timer (and tests, replays, lockstep games) can inject
+ * one. An injected clock is only called from the thread inside vpWorldStep, in an order
+ * that does not depend on the worker count: independent actors then run one after another
+ * (each still parallel inside) rather than side by side, so a clock whose readings are
+ * deterministic makes a budgeted run bitwise the same for any worker count. It need not be
+ * thread-safe. */
 typedef double vpClockFn(void* userContext);
 
 /* ---------------------------------------------------------------- ids */
