@@ -631,7 +631,8 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
       }
     });
   };
-  CgSettings settings{desc_.solver.tolerance, desc_.solver.maxIterations};
+  CgSettings settings{desc_.solver.tolerance,
+                      in.solverMaxIterations > 0 ? in.solverMaxIterations : desc_.solver.maxIterations};
   const double floor = desc_.solver.targetResidual;
   CgResult cg = solveConjugateGradient(tasks, system, rhs_.data(), vNext_.data(), settings, in.deadline, cg_, floor,
                                        in.floorDeadline);

@@ -51,6 +51,9 @@ struct DeformableStepInput {
   // When set (3 per node), contacts are detected along this motion instead of the velocity:
   // the static solve's pseudo-steps start at rest but must catch what their step will reach.
   const Array<double>* contactLookahead = nullptr;
+  // When > 0, the solver's iteration cap instead of the desc's (a per-frame cap): the static
+  // solve, outside any frame, lets CG run to its tolerance.
+  int32_t solverMaxIterations = 0;
 };
 
 class DeformableBody {

@@ -62,7 +62,8 @@ struct DeformableSolverSettings {
   // The accuracy floor: the relative residual the frame plan guarantees this solve reaches
   // before fluids get time; in [tolerance, 1].
   double targetResidual = 1e-2;
-  int maxIterations = 200;
+  int maxIterations = 200;  // in [1, kMaxSolverIterations]
+  static constexpr int kMaxSolverIterations = 100000;
   Preconditioner preconditioner = Preconditioner::Auto;
   PMultigridCoarseOperator pMultigridCoarseOperator = PMultigridCoarseOperator::Rediscretized;
 };

@@ -46,8 +46,9 @@ Status validateDeformableDesc(DeformableDesc& in) {
   if (target < in.solver.tolerance)
     return fail(Status::InvalidArgument, "targetResidual = %g: must be >= solverTolerance = %g", target,
                 in.solver.tolerance);
-  if (in.solver.maxIterations < 1 || in.solver.maxIterations > 100000)
-    return fail(Status::InvalidArgument, "solverMaxIterations = %d: must be in [1, 100000]", in.solver.maxIterations);
+  if (in.solver.maxIterations < 1 || in.solver.maxIterations > DeformableSolverSettings::kMaxSolverIterations)
+    return fail(Status::InvalidArgument, "solverMaxIterations = %d: must be in [1, %d]", in.solver.maxIterations,
+                DeformableSolverSettings::kMaxSolverIterations);
   VP_TRY(validateActorPriority(in.priority));
   VP_TRY(checkPose("pose", &in.pose));
   VP_TRY(checkLinearVelocity("linearVelocity", in.linearVelocity));

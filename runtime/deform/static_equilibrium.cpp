@@ -17,6 +17,17 @@ constexpr double kMinPseudoStep = 1e-6;
 constexpr int kLineSearchHalvings = 6;
 constexpr double kSufficientDecrease = 1e-4;
 
+// A pseudo-step's linear solve may take kSolverCapPerUnknown CG iterations per unknown (CG's
+// finite-termination bound, stretched by rounding), at least the desc's cap: as h grows the
+// system becomes K alone, which on slender linear elements needs far more than a frame's cap.
+constexpr int64_t kSolverCapPerUnknown = 10;
+
+int32_t pseudoStepSolverCap(const DeformableBody& body) {
+  const int64_t unknowns = 3 * static_cast<int64_t>(body.nodeCount());
+  const int64_t cap = std::min<int64_t>(kSolverCapPerUnknown * unknowns, DeformableSolverSettings::kMaxSolverIterations);
+  return static_cast<int32_t>(std::max<int64_t>(cap, body.desc().solver.maxIterations));
+}
+
 struct Forces {
   Array<double> load;     // M g + f_ext per node
   Array<uint8_t> held;    // pinned or attached
@@ -169,6 +180,7 @@ StaticSolveResult continueToRest(DeformableBody& body, const DeformableStepInput
     start.assign(body.positions().begin(), body.positions().end());
     DeformableStepInput pseudo = input;
     pseudo.dt = h;
+    pseudo.solverMaxIterations = pseudoStepSolverCap(body);
     ActorStats stats;
     pseudoStep(body, pseudo, pending, &forcesPending, &stats);
     Evaluation next;

@@ -1,6 +1,7 @@
 // BM_SolveStatic/{beam,plate}/{1,2,3}: the static solve (deform/static_equilibrium.h) of a
 // cantilever clamped at x = 0, to a relative residual of 1e-4 with the body's default linear
-// solver settings (CG to 1e-3, so each Newton step is inexact).
+// solver settings (CG to 1e-3, so each Newton step is inexact; its iteration cap is the static
+// solve's, not the per-frame solverMaxIterations).
 // - beam: 4 x 1 x 1 m, 16 x 4 x 4 cubes, E = 1e8 Pa, under its own weight;
 // - plate: 1 x 0.01 x 0.2 m (a hundredth as thick as long), 20 x 1 x 4 cubes, E = 2e9 Pa, a
 //   0.1 N load on its free end and no gravity.

@@ -77,7 +77,8 @@ TEST(StaticSolve, ThinPlateUnderATipLoadConverges) {
   const double P = 0.1;
   const double I = plate.width * plate.height * plate.height * plate.height / 12.0;
   const double theory = P * plate.length * plate.length * plate.length / (3.0 * plate.E * I);
-  for (int degree : {2, 3}) {
+  double tip[4] = {};
+  for (int degree : {1, 2, 3}) {
     // The plate's internal forces are large beside the load (stiff and thin), and their
     // rounding puts a floor of a few 1e-6 under the relative residual: ask for 1e-4.
     // Cubes 5 x 1 x 5 thicknesses in size, one through the thickness.
@@ -86,8 +87,16 @@ TEST(StaticSolve, ThinPlateUnderATipLoadConverges) {
     const Solved s = solveBeam(plate, degree, mesh, 1e-4, 100, P);
     ASSERT_EQ(s.status, Status::Ok) << "degree " << degree << ": " << lastError();
     EXPECT_LT(s.result.iterations, 20) << "degree " << degree;
-    EXPECT_NEAR(s.tip, theory, 0.05 * theory) << "degree " << degree;
+    tip[degree] = s.tip;
+    // One layer of linear tets locks in bending, so only the higher degrees meet the theory.
+    if (degree > 1) {
+      EXPECT_NEAR(s.tip, theory, 0.05 * theory) << "degree " << degree;
+    }
   }
+  // Minimum potential energy: on one mesh the linear space lies inside the cubic one, so the
+  // linear plate is stiffer (its tip deflects less), and both deflect downwards.
+  EXPECT_GT(tip[1], 0.0);
+  EXPECT_LT(tip[1], tip[3]);
 }
 
 // Boundary nodes placed by an affine map and held: the interior settles at the same map.

@@ -601,7 +601,8 @@ VP_API vpStatus vpDeformableGetMeshQuality(vpDeformableId deformable, float* out
  * no time passes, nothing else moves): elastic forces balance gravity and the forces applied
  * for the next step (which stay pending), pinned and attached nodes held, contacts against the
  * colliders as they stand. Newton steps on the corotational elasticity with the actor's own
- * linear solver (p-multigrid for degree 2 and 3), globalized by pseudo-time continuation and a
+ * linear solver (p-multigrid for degree 2 and 3; its tolerance, and an iteration cap of ten per
+ * unknown rather than solverMaxIterations, a per-frame cap), globalized by pseudo-time continuation and a
  * line search on the potential energy; a body that starts above the ground descends onto it.
  * Converged when the unbalanced force (what pins and contacts cannot carry, friction included)
  * is at most `tolerance` times the load (gravity and applied forces). maxIterations in
