@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <map>
 
+#include "core/log.h"
 #include "core/parallel_for.h"
 #include "deform/bb_element_matrices.h"
 #include "deform/bb_evaluation.h"
@@ -160,6 +161,7 @@ Status DeformableBody::create(DeformableDesc desc, std::unique_ptr<DeformableBod
   if (b.useMultigrid_ || b.usePMultigrid_) b.nodeFilters_.assign(9 * static_cast<size_t>(b.nodeCount_), 0.0);
   const size_t n3 = b.restX_.size();
   b.externalForce_.assign(n3, 0.0);
+  for (double m : b.mass_) b.totalMass_ += m;
   b.force_.resize(n3);
   b.rhs_.resize(n3);
   b.vNext_.resize(n3);
@@ -230,6 +232,7 @@ Status DeformableBody::setPositions(const double* positions, int64_t count) {
       return fail(Status::InvalidArgument, "positions[%lld] = %g: must be finite and within 1e6 m",
                   static_cast<long long>(i), positions[i]);
   std::copy(positions, positions + count, x_.begin());
+  elasticEnergyAtX_ = -1.0;
   return Status::Ok;
 }
 
@@ -257,6 +260,8 @@ Status DeformableBody::setMaterial(const DeformableMaterial& material) {
   mu_ = material.lameMu();
   const double densityRatio = material.density / desc_.material.density;
   for (double& m : mass_) m *= densityRatio;
+  totalMass_ *= densityRatio;
+  elasticEnergyAtX_ = -1.0;
   for (DegreeLevelAssembly& level : degreeLevels_) level.scaleMasses(densityRatio);
   desc_.material = material;
   return Status::Ok;
@@ -330,47 +335,48 @@ double DeformableBody::kineticEnergy() const {
   return e;
 }
 
-double DeformableBody::elasticEnergy() const {
-  double energy = 0.0;
+double DeformableBody::elementElasticEnergy(int64_t e) const {
   if (degree_ > 1) {
     // ½ uᵀ K u with u = Rᵀ x − x0 in the element's unrotated frame.
     const int N = nodesPerElement_;
-    for (int64_t e = 0; e < elementCount(); ++e) {
-      double x[3 * kBBMaxNodes], F[9], R[9];
-      for (int a = 0; a < N; ++a)
-        for (int i = 0; i < 3; ++i) x[3 * a + i] = x_[3 * elementNodes_[N * e + a] + i];
-      bbAverageDeformationGradient(degree_, x, &restGradients_[12 * e], F);
-      polarRotationSvd(F, R);
-      Eigen::VectorXd u(3 * N);
-      for (int a = 0; a < N; ++a)
-        for (int i = 0; i < 3; ++i)
-          u[3 * a + i] = R[i] * x[3 * a] + R[3 + i] * x[3 * a + 1] + R[6 + i] * x[3 * a + 2] -
-                         restX_[3 * elementNodes_[N * e + a] + i];
-      const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> Ke(
-          &elementStiffness_[9 * N * N * e], 3 * N, 3 * N);
-      energy += 0.5 * u.dot(Ke * u);
-    }
-    return energy;
-  }
-  for (int64_t e = 0; e < elementCount(); ++e) {
-    double x[12], F[9], R[9];
-    for (int a = 0; a < 4; ++a)
-      for (int i = 0; i < 3; ++i) x[3 * a + i] = x_[3 * elementNodes_[4 * e + a] + i];
-    bbAverageDeformationGradient(1, x, &restGradients_[12 * e], F);  // degree 1 from here on
+    double x[3 * kBBMaxNodes] = {}, F[9], R[9];  // zeroed: GCC cannot see that 3N entries are set
+    for (int a = 0; a < N; ++a)
+      for (int i = 0; i < 3; ++i) x[3 * a + i] = x_[3 * elementNodes_[N * e + a] + i];
+    bbAverageDeformationGradient(degree_, x, &restGradients_[12 * e], F);
     polarRotationSvd(F, R);
-    double eps[9];
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) {
-        double sij = 0.0, sji = 0.0;
-        for (int k = 0; k < 3; ++k) sij += R[3 * k + i] * F[3 * k + j], sji += R[3 * k + j] * F[3 * k + i];
-        eps[3 * i + j] = 0.5 * (sij + sji) - (i == j ? 1.0 : 0.0);
-      }
-    double epsEps = 0.0;
-    for (double v : eps) epsEps += v * v;
-    const double trace = eps[0] + eps[4] + eps[8];
-    energy += restVolume_[e] * (mu_ * epsEps + 0.5 * lambda_ * trace * trace);
+    Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3 * kBBMaxNodes, 1> u(3 * N);
+    for (int a = 0; a < N; ++a)
+      for (int i = 0; i < 3; ++i)
+        u[3 * a + i] = R[i] * x[3 * a] + R[3 + i] * x[3 * a + 1] + R[6 + i] * x[3 * a + 2] -
+                       restX_[3 * elementNodes_[N * e + a] + i];
+    const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> Ke(
+        &elementStiffness_[9 * N * N * e], 3 * N, 3 * N);
+    return 0.5 * u.dot(Ke * u);
   }
-  return energy;
+  double x[12], F[9], R[9];
+  for (int a = 0; a < 4; ++a)
+    for (int i = 0; i < 3; ++i) x[3 * a + i] = x_[3 * elementNodes_[4 * e + a] + i];
+  bbAverageDeformationGradient(1, x, &restGradients_[12 * e], F);
+  polarRotationSvd(F, R);
+  double eps[9];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      double sij = 0.0, sji = 0.0;
+      for (int k = 0; k < 3; ++k) sij += R[3 * k + i] * F[3 * k + j], sji += R[3 * k + j] * F[3 * k + i];
+      eps[3 * i + j] = 0.5 * (sij + sji) - (i == j ? 1.0 : 0.0);
+    }
+  double epsEps = 0.0;
+  for (double v : eps) epsEps += v * v;
+  const double trace = eps[0] + eps[4] + eps[8];
+  return restVolume_[e] * (mu_ * epsEps + 0.5 * lambda_ * trace * trace);
+}
+
+double DeformableBody::elasticEnergy(TaskSystem& tasks) const {
+  return parallelReduce<double>(tasks, elementCount(), 256, [&](int64_t begin, int64_t end) {
+    double sum = 0.0;
+    for (int64_t e = begin; e < end; ++e) sum += elementElasticEnergy(e);
+    return sum;
+  });
 }
 
 void DeformableBody::elasticForces(TaskSystem& tasks, Array<double>* out) {
@@ -506,12 +512,81 @@ void DeformableBody::corotateAndAssembleBB(TaskSystem& tasks, double stiffnessSc
 
 void DeformableBody::restoreStepStart() {
   x_.assign(backupX_.begin(), backupX_.end());
+  elasticEnergyAtX_ = -1.0;
   v_.assign(backupV_.begin(), backupV_.end());
   // Rotations warm starts may be garbage now; restart them from identity.
   for (int64_t e = 0; e < elementCount(); ++e) {
     double* r = &rotations_[4 * e];
     r[0] = 1, r[1] = r[2] = r[3] = 0;
   }
+}
+
+namespace {
+
+// Per-node sums of a solved step (deform/step_energy.h), reduced in chunk order.
+struct NodeWork {
+  double kineticStart = 0.0, kineticEnd = 0.0, gravity = 0.0, applied = 0.0;
+  NodeWork& operator+=(const NodeWork& o) {
+    kineticStart += o.kineticStart, kineticEnd += o.kineticEnd, gravity += o.gravity, applied += o.applied;
+    return *this;
+  }
+};
+
+}  // namespace
+
+StepEnergy DeformableBody::solvedStepEnergy(TaskSystem& tasks, double h, const Vec3& gravity) {
+  if (elasticEnergyAtX_ < 0.0) elasticEnergyAtX_ = elasticEnergy(tasks);
+  const NodeWork w = parallelReduce<NodeWork>(tasks, nodeCount_, 1024, [&](int64_t begin, int64_t end) {
+    NodeWork sum;
+    for (int64_t i = begin; i < end; ++i) {
+      const double* v = &v_[3 * i];
+      const double* vn = &vNext_[3 * i];
+      const double m = mass_[i];
+      double impulse[3] = {0.0, 0.0, 0.0};  // A v' − b: what a pin, attachment or contact applied
+      if (constrained_[i] != kFree) {
+        for (int32_t k = matrix_.rowStart[i]; k < matrix_.rowStart[i + 1]; ++k) {
+          const double* block = &matrix_.values[9 * static_cast<int64_t>(k)];
+          const double* vc = &vNext_[3 * static_cast<int64_t>(matrix_.columns[k])];
+          for (int r = 0; r < 3; ++r) impulse[r] += block[3 * r] * vc[0] + block[3 * r + 1] * vc[1] + block[3 * r + 2] * vc[2];
+        }
+        for (int r = 0; r < 3; ++r) impulse[r] -= rhs_[3 * i + r];
+      }
+      for (int k = 0; k < 3; ++k) {
+        sum.kineticStart += 0.5 * m * v[k] * v[k];
+        sum.kineticEnd += 0.5 * m * vn[k] * vn[k];
+        sum.gravity += h * m * gravity[k] * vn[k];
+        sum.applied += (h * externalForce_[3 * i + k] + impulse[k]) * vn[k];
+      }
+    }
+    return sum;
+  });
+  StepEnergy e;
+  e.kineticStart = w.kineticStart;
+  e.kineticEnd = w.kineticEnd;
+  e.elasticStart = elasticEnergyAtX_;
+  e.gravityWork = w.gravity;
+  e.appliedWork = w.applied;
+  for (size_t c = 0; c < contacts_.size(); ++c) {  // kinetic friction, an impulse on the rhs
+    const double* vn = &vNext_[3 * static_cast<int64_t>(contacts_[c].node)];
+    e.appliedWork += slideFriction_[c].dot(Vec3(vn[0], vn[1], vn[2]));
+  }
+  return e;
+}
+
+bool DeformableBody::stepBlewUp(TaskSystem& tasks, StepEnergy energy, bool solveReachedFloor) {
+  for (double v : v_)
+    if (!std::isfinite(v) || std::abs(v) > kMaxSpeed) return true;
+  energy.elasticEnd = elasticEnergy(tasks);
+  // A solve cut short above its floor is inexact by the budget's choice, not blown up.
+  if (solveReachedFloor && StepEnergyGuard::blewUp(energy, totalMass_)) {
+    log(LogLevel::Warning, "deformable step blew up: its energy rose %g J beyond the %g J its work explains "
+        "(kinetic %g -> %g, elastic %g -> %g); restored", StepEnergyGuard::unexplainedGain(energy),
+        energy.gravityWork + energy.appliedWork, energy.kineticStart, energy.kineticEnd, energy.elasticStart,
+        energy.elasticEnd);
+    return true;
+  }
+  elasticEnergyAtX_ = energy.elasticEnd;
+  return false;
 }
 
 void DeformableBody::abandonStep() {
@@ -698,9 +773,11 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
     slideFriction_.resize(kept);
     lap(Phase::Contacts);
     if (!changed) break;
-    // Out of time: a re-solve would run no iteration, and the multigrid refresh before it is
-    // the costliest part of a pass. The last solve's velocities stand.
-    if (in.deadline.expired()) {
+    // Past the accuracy floor's deadline a re-solve would run no iteration, and the multigrid
+    // refresh before it is the costliest part of a pass: the last solve's velocities stand.
+    // Only that deadline skips it: a released node kept at its collider's velocity glues the
+    // body to a moving collider frame after frame.
+    if (in.floorDeadline.expired()) {
       cg.budgetCut = true;
       break;
     }
@@ -733,19 +810,15 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
   // is a matter of the solver settings, which a lower rate would not change.
   stats->floorMissed = cg.budgetCut && cg.relativeResidual > floor;
 
-  // Integrate, then guard: a non-finite or absurd velocity restores the step's start state.
-  bool diverged = false;
+  // Integrate, then guard: a step that blew up restores the step's start state.
+  const StepEnergy energy = solvedStepEnergy(tasks, h, in.gravity);
   for (int64_t i = 0; i < n3; ++i) {
-    const double v = vNext_[i];
-    if (!std::isfinite(v) || std::abs(v) > kMaxSpeed) {
-      diverged = true;
-      break;
-    }
-    v_[i] = v;
-    x_[i] += h * v;
+    v_[i] = vNext_[i];
+    x_[i] += h * vNext_[i];
   }
+  const bool diverged = stepBlewUp(tasks, energy, !cg.budgetCut || cg.relativeResidual <= floor);
   if (diverged) restoreStepStart();
-  stats->diverged = diverged;
+  stats->diverged = diverged;  // the guard's energy passes are timed with the embedding below
   std::fill(externalForce_.begin(), externalForce_.end(), 0.0);
   updateRenderMesh(tasks);
   lap(Phase::Embed);
@@ -768,6 +841,7 @@ DeformableState DeformableBody::saveState() const {
 
 void DeformableBody::restoreState(DeformableState&& s) {
   x_ = std::move(s.x);
+  elasticEnergyAtX_ = -1.0;
   v_ = std::move(s.v);
   externalForce_ = std::move(s.externalForce);
   rotations_ = std::move(s.rotations);

@@ -20,6 +20,7 @@
 #include "core/slot_map.h"
 #include "core/task_system.h"
 #include "deform/deformable_desc.h"
+#include "deform/step_energy.h"
 #include "deform/bb_rotated_stiffness.h"
 #include "deform/deformable_contacts.h"
 #include "deform/degree_level_assembly.h"
@@ -120,8 +121,10 @@ class DeformableBody {
   void restoreState(DeformableState&& state);
 
   double kineticEnergy() const;
-  // Corotated strain energy Σ V (μ ε:ε + λ/2 tr(ε)²) at the current positions.
-  double elasticEnergy() const;
+  // Corotated strain energy at the current positions: Σ V (μ ε:ε + λ/2 tr(ε)²) for linear
+  // elements, Σ ½ uᵀ K_e u with u = Rᵀ x − x0 for higher degrees (chunked: the same bits for
+  // any worker count).
+  double elasticEnergy(TaskSystem& tasks) const;
   // Elastic forces at the current positions (3 per node), as the step computes them.
   void elasticForces(TaskSystem& tasks, Array<double>* out);
   // The assembled step matrix of the last step (tests inspect its symmetry).
@@ -139,6 +142,13 @@ class DeformableBody {
   Status elementStiffnessMatrices(double lambda, double mu, Array<double>* out) const;
   // x and v back to the step's start; rotations to identity.
   void restoreStepStart();
+  double elementElasticEnergy(int64_t element) const;
+  // The energies and works of the step just solved (vNext_), all but the elastic energy at
+  // its end (deform/step_energy.h).
+  StepEnergy solvedStepEnergy(TaskSystem& tasks, double h, const Vec3& gravity);
+  // The guard after integrating: true when the step blew up (not finite, too fast, or an
+  // energy gain its work does not explain while its solve reached the accuracy floor).
+  bool stepBlewUp(TaskSystem& tasks, StepEnergy energy, bool solveReachedFloor);
   DeformableBody() = default;
   void corotateAndAssemble(TaskSystem& tasks, double stiffnessScale);
   void corotateAndAssembleBB(TaskSystem& tasks, double stiffnessScale);  // degree 2, 3
@@ -163,6 +173,8 @@ class DeformableBody {
   int32_t nodeCount_ = 0;
   double lambda_ = 0.0, mu_ = 0.0;
   Array<double> restX_, x_, v_, mass_, externalForce_;
+  double totalMass_ = 0.0;
+  double elasticEnergyAtX_ = -1.0;  // elasticEnergy() at x_; < 0: not known (x_ or the material changed)
   int degree_ = 1;
   int nodesPerElement_ = 4;
   Array<int32_t> elementNodes_;     // nodesPerElement_ per element, BB local order

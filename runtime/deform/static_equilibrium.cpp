@@ -63,7 +63,7 @@ double residualNorm(const DeformableBody& body, const Forces& forces, Array<doub
 Evaluation evaluate(DeformableBody& body, TaskSystem& tasks, const Forces& forces, const Array<double>& origin) {
   Evaluation e;
   body.elasticForces(tasks, &e.force);
-  e.potential = body.elasticEnergy();
+  e.potential = body.elasticEnergy(tasks);
   const Array<double>& x = body.positions();
   for (size_t i = 0; i < e.force.size(); ++i) {
     e.force[i] += forces.load[i];

@@ -312,7 +312,8 @@ typedef struct vpActorStats {
   vpActorKind kind;
   uint32_t index1;    /* the actor id's index1 (0 for the rigid pseudo-actor) */
   float totalMs;
-  int32_t diverged;   /* the step blew up (non-finite or absurd speeds) and was undone: a
+  int32_t diverged;   /* the step blew up (non-finite or absurd speeds; for a deformable also
+                         an energy rise its work does not explain) and was undone: a
                          deformable or rigid body is back to its state before the step, a
                          fluid to its last completed step (docs/choices.md, "Divergence guard") */
   vpPhaseStats phases[VP_MAX_PHASES]; /* indexed by vpPhase */
