@@ -34,6 +34,11 @@ constexpr double kSlipSpeed = 1e-4;
 // release decisions in practice; a budget-cut step simply stops earlier.
 constexpr int kContactPasses = 4;
 
+// The energies' polar decompositions: tighter than the corotation's, since an energy's error
+// is first order in the rotation's.
+constexpr int kEnergyPolarIterations = 20;
+constexpr double kEnergyPolarTolerance = 1e-10;
+
 // The p-multigrid levels below each degree. Cubic goes through quadratic: see the figures
 // in tests/bench/deform_solve_bench.cpp (3->1 directly leaves too much for the smoother).
 std::vector<int> pMultigridDegrees(int degree) {
@@ -335,6 +340,14 @@ double DeformableBody::kineticEnergy() const {
   return e;
 }
 
+void DeformableBody::energyRotation(int64_t e, const double F[9], double R[9]) const {
+  // Warm-started from the element's last corotation (the energy is evaluated at or near the
+  // positions it was computed at), which costs a fraction of the SVD; the warm start is kept.
+  double quat[4] = {rotations_[4 * e], rotations_[4 * e + 1], rotations_[4 * e + 2], rotations_[4 * e + 3]};
+  if (polarRotationIterative(F, quat, R, kEnergyPolarIterations, kEnergyPolarTolerance) < 0)
+    for (int i = 0; i < 9; ++i) R[i] = (i % 4 == 0) ? 1.0 : 0.0;  // non-finite F: the energy is too
+}
+
 double DeformableBody::elementElasticEnergy(int64_t e) const {
   if (degree_ > 1) {
     // ½ uᵀ K u with u = Rᵀ x − x0 in the element's unrotated frame.
@@ -343,7 +356,7 @@ double DeformableBody::elementElasticEnergy(int64_t e) const {
     for (int a = 0; a < N; ++a)
       for (int i = 0; i < 3; ++i) x[3 * a + i] = x_[3 * elementNodes_[N * e + a] + i];
     bbAverageDeformationGradient(degree_, x, &restGradients_[12 * e], F);
-    polarRotationSvd(F, R);
+    energyRotation(e, F, R);
     Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3 * kBBMaxNodes, 1> u(3 * N);
     for (int a = 0; a < N; ++a)
       for (int i = 0; i < 3; ++i)
@@ -357,7 +370,7 @@ double DeformableBody::elementElasticEnergy(int64_t e) const {
   for (int a = 0; a < 4; ++a)
     for (int i = 0; i < 3; ++i) x[3 * a + i] = x_[3 * elementNodes_[4 * e + a] + i];
   bbAverageDeformationGradient(1, x, &restGradients_[12 * e], F);
-  polarRotationSvd(F, R);
+  energyRotation(e, F, R);
   double eps[9];
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {

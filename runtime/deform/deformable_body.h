@@ -143,6 +143,7 @@ class DeformableBody {
   // x and v back to the step's start; rotations to identity.
   void restoreStepStart();
   double elementElasticEnergy(int64_t element) const;
+  void energyRotation(int64_t element, const double F[9], double R[9]) const;
   // The energies and works of the step just solved (vNext_), all but the elastic energy at
   // its end (deform/step_energy.h).
   StepEnergy solvedStepEnergy(TaskSystem& tasks, double h, const Vec3& gravity);
