@@ -27,9 +27,6 @@ namespace {
 // far below where doubles lose all meaning.
 constexpr double kMaxSpeed = 1e4;
 
-// Below this tangential speed (m/s) a contact counts as not slipping and sticks next step.
-constexpr double kSlipSpeed = 1e-4;
-
 // Contact active-set passes per step: each may re-solve once. Four settle stick/slide/
 // release decisions in practice; a budget-cut step simply stops earlier.
 constexpr int kContactPasses = 4;
@@ -172,10 +169,8 @@ Status DeformableBody::create(DeformableDesc desc, std::unique_ptr<DeformableBod
   b.vNext_.resize(n3);
   b.diagInverse_.resize(9 * static_cast<size_t>(b.nodeCount_));
   b.pinned_.assign(static_cast<size_t>(b.nodeCount_), 0);
-  b.constrained_.assign(static_cast<size_t>(b.nodeCount_), kFree);
-  b.contactNormal_.assign(n3, 0.0);
-  b.sliding_.assign(static_cast<size_t>(b.nodeCount_), 0);
-  b.lastNormalImpulse_.assign(static_cast<size_t>(b.nodeCount_), 0.0);
+  b.held_.resize(b.nodeCount_);
+  b.contacts_.resize(b.nodeCount_);
   // Nodes this close count as touching, so a resting body keeps a stable contact set
   // instead of alternating between "just above" and "landing" every step.
   b.contactMargin_ = 0.02 * meanTetEdgeLength(mesh);
@@ -427,15 +422,7 @@ const RefitBvh& DeformableBody::renderSurfaceBvh() const {
 }
 
 void DeformableBody::updateMultigridFilters(TaskSystem& tasks, double massScale) {
-  parallelFor(tasks, nodeCount_, 1024, [&](int64_t begin, int64_t end) {
-    for (int64_t i = begin; i < end; ++i) {
-      Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> F(&nodeFilters_[9 * i]);
-      if (constrained_[i] == kFixed) F.setZero();
-      else if (constrained_[i] == kContact) F = Mat3::Identity() - Eigen::Map<const Vec3>(&contactNormal_[3 * i]) *
-                                                                    Eigen::Map<const Vec3>(&contactNormal_[3 * i]).transpose();
-      else F.setIdentity();
-    }
-  });
+  held_.projectors(tasks, nodeFilters_.data());
   if (useMultigrid_) return multigrid_.update(tasks, matrix_, x_.data(), nodeFilters_.data());
   // Re-discretized levels: this step's rotations and scalings, from the fine assembly (and
   // afresh for every update, which constrains them in place).
@@ -447,9 +434,10 @@ void DeformableBody::contactImpulses(TaskSystem& tasks, Array<Vec3>* impulses) {
   // (A v' − b) at a constrained node is the impulse the constraint applied there.
   cg_.q.resize(vNext_.size());
   matrix_.multiply(tasks, vNext_.data(), cg_.q.data());
-  impulses->resize(contacts_.size());
-  for (size_t c = 0; c < contacts_.size(); ++c) {
-    const int32_t i = contacts_[c].node;
+  const Array<NodeContact>& contacts = contacts_.contacts();
+  impulses->resize(contacts.size());
+  for (size_t c = 0; c < contacts.size(); ++c) {
+    const int32_t i = contacts[c].node;
     for (int k = 0; k < 3; ++k) (*impulses)[c][k] = cg_.q[3 * i + k] - rhs_[3 * i + k];
   }
 }
@@ -556,7 +544,7 @@ StepEnergy DeformableBody::solvedStepEnergy(TaskSystem& tasks, double h, const V
       const double* vn = &vNext_[3 * i];
       const double m = mass_[i];
       double impulse[3] = {0.0, 0.0, 0.0};  // A v' − b: what a pin, attachment or contact applied
-      if (constrained_[i] != kFree) {
+      if (held_.kind[i] != NodeConstraints::kFree) {
         for (int32_t k = matrix_.rowStart[i]; k < matrix_.rowStart[i + 1]; ++k) {
           const double* block = &matrix_.values[9 * static_cast<int64_t>(k)];
           const double* vc = &vNext_[3 * static_cast<int64_t>(matrix_.columns[k])];
@@ -579,9 +567,10 @@ StepEnergy DeformableBody::solvedStepEnergy(TaskSystem& tasks, double h, const V
   e.elasticStart = elasticEnergyAtX_;
   e.gravityWork = w.gravity;
   e.appliedWork = w.applied;
-  for (size_t c = 0; c < contacts_.size(); ++c) {  // kinetic friction, an impulse on the rhs
-    const double* vn = &vNext_[3 * static_cast<int64_t>(contacts_[c].node)];
-    e.appliedWork += slideFriction_[c].dot(Vec3(vn[0], vn[1], vn[2]));
+  const Array<NodeContact>& contacts = contacts_.contacts();
+  for (size_t c = 0; c < contacts.size(); ++c) {  // kinetic friction, an impulse on the rhs
+    const double* vn = &vNext_[3 * static_cast<int64_t>(contacts[c].node)];
+    e.appliedWork += contacts_.frictionImpulses()[c].dot(Vec3(vn[0], vn[1], vn[2]));
   }
   return e;
 }
@@ -625,11 +614,11 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
 
   // Constraints: pinned nodes keep zero velocity, attached ones the velocity that brings
   // them to their collider-carried target by the end of the step.
-  std::fill(constrained_.begin(), constrained_.end(), kFree);
+  held_.clear();
   vNext_.assign(v_.begin(), v_.end());  // warm start
   for (int32_t i = 0; i < nodeCount_; ++i)
     if (pinned_[i]) {
-      constrained_[i] = kFixed;
+      held_.kind[i] = NodeConstraints::kFixed;
       for (int k = 0; k < 3; ++k) vNext_[3 * i + k] = 0.0;
     }
   attachments_.erase(std::remove_if(attachments_.begin(), attachments_.end(),
@@ -638,34 +627,12 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
   for (const Attachment& a : attachments_) {
     const Pose pose = in.collider(a.index1, a.generation)->pose();
     const Vec3 target = pose.apply(a.localOffset);
-    constrained_[a.node] = kFixed;
+    held_.kind[a.node] = NodeConstraints::kFixed;
     for (int k = 0; k < 3; ++k) vNext_[3 * a.node + k] = (target[k] - x_[3 * a.node + k]) / h;
   }
-  // Contacts (pinned and attached nodes ignore them): prescribe the normal velocity.
-  findNodeContacts(x_, in.contactLookahead ? *in.contactLookahead : v_, surfaceNodes_, in.colliders, h,
-                   mat.friction, contactMargin_, &contacts_);
-  contacts_.erase(std::remove_if(contacts_.begin(), contacts_.end(),
-                                 [&](const NodeContact& c) { return constrained_[c.node] == kFixed; }),
-                  contacts_.end());
-  slideFriction_.clear();
-  // A contact sticks (its whole velocity prescribed: the collider's tangential velocity and
-  // the landing normal speed) unless it slid last step: then only its normal velocity is
-  // prescribed and kinetic friction from its last normal impulse opposes its slip.
-  for (const NodeContact& c : contacts_) {
-    const int32_t i = c.node;
-    const Vec3 vi(v_[3 * i], v_[3 * i + 1], v_[3 * i + 2]);
-    Vec3 slip = vi - c.colliderVelocity;
-    slip -= slip.dot(c.normal) * c.normal;
-    const bool slides = sliding_[i] && slip.norm() > kSlipSpeed && lastNormalImpulse_[i] > 0.0;
-    constrained_[i] = slides ? kContact : kFixed;
-    const Vec3 target = (slides ? vi : c.colliderVelocity) +
-                        (c.normalSpeed - (slides ? vi : c.colliderVelocity).dot(c.normal)) * c.normal;
-    for (int k = 0; k < 3; ++k) {
-      contactNormal_[3 * i + k] = c.normal[k];
-      vNext_[3 * i + k] = target[k];
-    }
-    slideFriction_.push_back(slides ? Vec3(-c.friction * lastNormalImpulse_[i] * slip.normalized()) : Vec3::Zero());
-  }
+  // Contacts (pinned and attached nodes ignore them).
+  contacts_.begin(x_, v_, in.contactLookahead ? *in.contactLookahead : v_, surfaceNodes_, in.colliders, h,
+                  mat.friction, contactMargin_, &held_, &vNext_);
   lap(Phase::Contacts);
 
   corotateAndAssemble(tasks, h * mat.stiffnessDamping + h * h);
@@ -683,8 +650,7 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
       inv = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(diag).inverse();
     }
   });
-  for (size_t c = 0; c < contacts_.size(); ++c)
-    for (int k = 0; k < 3; ++k) rhs_[3 * contacts_[c].node + k] += slideFriction_[c][k];
+  contacts_.addFriction(&rhs_);
   lap(Phase::Assemble);
 
   LinearSystem system;
@@ -705,20 +671,7 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
       }
     });
   };
-  system.filter = [&](double* vec) {
-    parallelFor(tasks, nodeCount_, 1024, [&](int64_t begin, int64_t end) {
-      for (int64_t i = begin; i < end; ++i) {
-        double* vi = vec + 3 * i;
-        if (constrained_[i] == kFixed) {
-          vi[0] = vi[1] = vi[2] = 0.0;
-        } else if (constrained_[i] == kContact) {
-          const double* n = &contactNormal_[3 * i];
-          const double along = vi[0] * n[0] + vi[1] * n[1] + vi[2] * n[2];
-          for (int k = 0; k < 3; ++k) vi[k] -= along * n[k];
-        }
-      }
-    });
-  };
+  system.filter = [&](double* vec) { held_.filter(tasks, vec); };
   CgSettings settings{desc_.solver.tolerance,
                       in.solverMaxIterations > 0 ? in.solverMaxIterations : desc_.solver.maxIterations};
   const double floor = desc_.solver.targetResidual;
@@ -728,62 +681,12 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
   solve.iterations = cg.iterations;
   lap(Phase::Solve);
 
-  // Coulomb's law on the constraint impulses J = A v' − b (one active-set pass keeps the
-  // cost bounded): a contact pulling the node in is released (lift-off); a sticking contact
-  // whose tangential impulse leaves the friction cone |J_t| <= μ J_n slides instead, with
-  // only its normal velocity prescribed and the kinetic friction impulse μ J_n opposing the
-  // slip added to the right-hand side. Then the system is solved again from the iterate.
-  // Active-set passes (a few; each re-solve starts from the last iterate, so it is cheap):
-  // - any contact whose normal impulse pulls the node in is released;
-  // - a sticking contact whose tangential impulse leaves the cone |J_t| <= μ J_n slides,
-  //   with the kinetic friction impulse μ J_n (along the impulse it needed) on the rhs;
-  // - a sliding contact whose slip the friction reversed sticks again (the friction
-  //   impulse would have been more than static friction needed).
-  for (int pass = 0; pass < kContactPasses && !contacts_.empty(); ++pass) {
+  // Coulomb's law on the constraint impulses (deform/contact_active_set.h): a few passes,
+  // each re-solve starting from the last iterate, so it is cheap.
+  for (int pass = 0; pass < kContactPasses && !contacts_.contacts().empty(); ++pass) {
     Array<Vec3> impulses;
     contactImpulses(tasks, &impulses);
-    bool changed = false;
-    size_t kept = 0;
-    for (size_t c = 0; c < contacts_.size(); ++c) {
-      const NodeContact& contact = contacts_[c];
-      const int32_t i = contact.node;
-      Vec3& friction = slideFriction_[c];
-      auto setFriction = [&](const Vec3& f) {
-        for (int k = 0; k < 3; ++k) rhs_[3 * i + k] += f[k] - friction[k];
-        friction = f;
-      };
-      const double jn = impulses[c].dot(contact.normal);
-      if (jn < 0.0) {
-        setFriction(Vec3::Zero());
-        constrained_[i] = kFree;
-        changed = true;
-        continue;
-      }
-      if (constrained_[i] == kFixed) {
-        const Vec3 jt = impulses[c] - jn * contact.normal;
-        if (jt.norm() > contact.friction * jn) {
-          constrained_[i] = kContact;
-          setFriction(contact.friction * jn * jt.normalized());
-          changed = true;
-        }
-      } else {
-        Vec3 slip = Vec3(vNext_[3 * i], vNext_[3 * i + 1], vNext_[3 * i + 2]) - contact.colliderVelocity;
-        slip -= slip.dot(contact.normal) * contact.normal;
-        if (slip.dot(friction) > 0.0) {  // friction now pushes along the slip: it overshot
-          constrained_[i] = kFixed;
-          const Vec3 target = contact.colliderVelocity +
-                              (contact.normalSpeed - contact.colliderVelocity.dot(contact.normal)) * contact.normal;
-          for (int k = 0; k < 3; ++k) vNext_[3 * i + k] = target[k];
-          setFriction(Vec3::Zero());
-          changed = true;
-        }
-      }
-      lastNormalImpulse_[i] = jn;
-      slideFriction_[kept] = friction;
-      contacts_[kept++] = contact;
-    }
-    contacts_.resize(kept);
-    slideFriction_.resize(kept);
+    const bool changed = contacts_.applyCoulomb(impulses, &held_, &vNext_, &rhs_);
     lap(Phase::Contacts);
     if (!changed) break;
     // Past the accuracy floor's deadline a re-solve would run no iteration, and the multigrid
@@ -808,14 +711,7 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
     solve.iterations += cg.iterations;
     lap(Phase::Solve);
   }
-  // Remember which contacts slide into the next step.
-  std::fill(sliding_.begin(), sliding_.end(), 0);
-  for (const NodeContact& c : contacts_) {
-    if (constrained_[c.node] != kContact) continue;
-    Vec3 slip = Vec3(vNext_[3 * c.node], vNext_[3 * c.node + 1], vNext_[3 * c.node + 2]) - c.colliderVelocity;
-    slip -= slip.dot(c.normal) * c.normal;
-    sliding_[c.node] = slip.norm() > kSlipSpeed ? 1 : 0;
-  }
+  contacts_.rememberSliding(vNext_, held_);
   solve.residual = cg.relativeResidual;
   solve.budgetCut = cg.budgetCut;
   stats->residual = cg.relativeResidual;
@@ -843,9 +739,7 @@ DeformableState DeformableBody::saveState() const {
   s.v = v_;
   s.externalForce = externalForce_;
   s.rotations = rotations_;
-  s.lastNormalImpulse = lastNormalImpulse_;
-  s.sliding = sliding_;
-  s.contacts = contacts_;
+  contacts_.saveTo(&s);
   s.renderPositions = renderPositions_;
   s.renderNormals = renderNormals_;
   s.schedule = schedule_;
@@ -858,9 +752,7 @@ void DeformableBody::restoreState(DeformableState&& s) {
   v_ = std::move(s.v);
   externalForce_ = std::move(s.externalForce);
   rotations_ = std::move(s.rotations);
-  lastNormalImpulse_ = std::move(s.lastNormalImpulse);
-  sliding_ = std::move(s.sliding);
-  contacts_ = std::move(s.contacts);
+  contacts_.restoreFrom(&s);
   renderPositions_ = std::move(s.renderPositions);
   renderNormals_ = std::move(s.renderNormals);
   ++renderVersion_;

@@ -22,7 +22,9 @@
 #include "deform/deformable_desc.h"
 #include "deform/step_energy.h"
 #include "deform/bb_rotated_stiffness.h"
+#include "deform/contact_active_set.h"
 #include "deform/deformable_contacts.h"
+#include "deform/node_constraints.h"
 #include "deform/degree_level_assembly.h"
 #include "deform/element_incidence.h"
 #include "frame_plan.h"
@@ -101,7 +103,7 @@ class DeformableBody {
   void heldNodes(Array<uint8_t>* out) const;
   const Array<int32_t>& surfaceNodes() const { return surfaceNodes_; }
   // Contacts active at the end of the last step (after lift-off releases).
-  const Array<NodeContact>& contacts() const { return contacts_; }
+  const Array<NodeContact>& contacts() const { return contacts_.contacts(); }
 
   // The render mesh: the desc's, else the tet mesh's boundary; embedded in the tets and
   // moved with them each step. Positions and normals are in the world frame.
@@ -155,7 +157,7 @@ class DeformableBody {
   void corotateAndAssembleBB(TaskSystem& tasks, double stiffnessScale);  // degree 2, 3
   template <class AddBlock>
   void gatherRows(TaskSystem& tasks, int64_t grain, const AddBlock& addBlock);
-  // The multigrid preconditioners' constraint filters from constrained_, and their setup
+  // The multigrid preconditioners' constraint filters from held_, and their setup
   // redone with them (called whenever the constraint set changes within a step); massScale
   // scales the re-discretized p-multigrid levels' mass as the fine system's.
   void updateMultigridFilters(TaskSystem& tasks, double massScale);
@@ -204,17 +206,10 @@ class DeformableBody {
   mutable uint64_t renderBvhVersion_ = ~uint64_t(0);  // the version the BVH's boxes are of
   // Per-step scratch kept to avoid allocation in the hot path.
   Array<double> force_, rhs_, vNext_, diagInverse_, backupX_, backupV_;
-  enum : uint8_t { kFree = 0, kFixed = 1, kContact = 2 };
-  Array<uint8_t> constrained_;
-  Array<double> contactNormal_;     // 3 per node, valid where constrained_ == kContact
+  NodeConstraints held_;        // what the solve prescribes at each node this step
   Array<int32_t> surfaceNodes_;
-  Array<NodeContact> contacts_;
-  // Contact state carried between steps: a node that slid keeps sliding (kinetic friction
-  // from its last normal impulse) until its slip stops; otherwise contacts start sticking.
-  Array<uint8_t> sliding_;
-  Array<double> lastNormalImpulse_;
+  ContactActiveSet contacts_;
   double contactMargin_ = 0.0;
-  Array<Vec3> slideFriction_;  // kinetic friction impulse of each contact this step
   CgWorkspace cg_;
   bool useMultigrid_ = false;
   AggregationMultigrid multigrid_;
