@@ -36,24 +36,6 @@ constexpr int kContactPasses = 4;
 constexpr int kEnergyPolarIterations = 20;
 constexpr double kEnergyPolarTolerance = 1e-10;
 
-// The p-multigrid levels below each degree. Cubic goes through quadratic: see the figures
-// in tests/bench/deform_solve_bench.cpp (3->1 directly leaves too much for the smoother).
-std::vector<int> pMultigridDegrees(int degree) {
-  if (degree == 3) return {3, 2, 1};
-  return {degree, 1};
-}
-
-// One Chebyshev step per side for quadratic elements: at the step's usual tolerance (1e-3,
-// warm-started) the coarse correction does most of the work and a second step cost more
-// fine-level products than the iterations it saved (BM_DeformQuadraticBeam/13000: 8.5 CG
-// iterations with one step against 7.95 with two, ~10% less CPU per step). Cubic keeps two
-// (BM_DeformSolve: 16 against 27 iterations).
-PMultigridSettings pMultigridSettings(int degree) {
-  PMultigridSettings settings;
-  if (degree == 2) settings.sweeps = 1;
-  return settings;
-}
-
 }  // namespace
 
 Status DeformableBody::create(DeformableDesc desc, std::unique_ptr<DeformableBody>* out) {
@@ -139,35 +121,15 @@ Status DeformableBody::create(DeformableDesc desc, std::unique_ptr<DeformableBod
     b.stiffnessTerms_ = bbStiffnessTerms(degree);
   }
   buildElementPattern(b.nodeCount_, b.elementNodes_.data(), elements, N, &b.matrix_, &b.scatter_);
-  const Preconditioner pc = desc.solver.preconditioner;
-  const bool large = b.nodeCount_ >= kMultigridMinNodes;
-  b.usePMultigrid_ = degree > 1 && (pc == Preconditioner::PMultigrid || (pc == Preconditioner::Auto && large));
-  b.useMultigrid_ = !b.usePMultigrid_ && (pc == Preconditioner::Multigrid || pc == Preconditioner::PMultigrid ||
-                                          (pc == Preconditioner::Auto && large));
-  if (b.useMultigrid_) b.multigrid_.build(b.matrix_);
-  if (b.usePMultigrid_) {
-    DegreeHierarchy hierarchy;
-    VP_TRY(buildDegreeHierarchy(pMultigridDegrees(degree), b.elementNodes_.data(), elements, b.nodeCount_, &hierarchy));
-    std::vector<BlockSparseMatrix<double>*> rediscretized;
-    if (desc.solver.pMultigridCoarseOperator == PMultigridCoarseOperator::Rediscretized) {
-      b.degreeLevels_.resize(hierarchy.levels.size() - 1);
-      for (size_t l = 1; l < hierarchy.levels.size(); ++l) {
-        b.degreeLevels_[l - 1].build(hierarchy.levels[l], degree, b.restVolume_.data(), elements,
-                                     desc.material.density);
-        rediscretized.push_back(&b.degreeLevels_[l - 1].matrix());
-      }
-    }
-    b.pMultigrid_.build(b.matrix_, std::move(hierarchy.prolongations), pMultigridSettings(degree),
-                        std::move(rediscretized));
-  }
-  if (b.useMultigrid_ || b.usePMultigrid_) b.nodeFilters_.assign(9 * static_cast<size_t>(b.nodeCount_), 0.0);
+  StepPreconditioner::Mesh pcMesh{degree, b.elementNodes_.data(), elements, b.nodeCount_, b.restVolume_.data(),
+                                  desc.material.density};
+  VP_TRY(b.preconditioner_.build(desc.solver, pcMesh, b.matrix_));
   const size_t n3 = b.restX_.size();
   b.externalForce_.assign(n3, 0.0);
   for (double m : b.mass_) b.totalMass_ += m;
   b.force_.resize(n3);
   b.rhs_.resize(n3);
   b.vNext_.resize(n3);
-  b.diagInverse_.resize(9 * static_cast<size_t>(b.nodeCount_));
   b.pinned_.assign(static_cast<size_t>(b.nodeCount_), 0);
   b.held_.resize(b.nodeCount_);
   b.contacts_.resize(b.nodeCount_);
@@ -197,7 +159,7 @@ Status DeformableBody::create(DeformableDesc desc, std::unique_ptr<DeformableBod
 }
 
 Preconditioner DeformableBody::preconditioner() const {
-  return usePMultigrid_ ? Preconditioner::PMultigrid : useMultigrid_ ? Preconditioner::Multigrid : Preconditioner::BlockJacobi;
+  return preconditioner_.kind();
 }
 
 Status DeformableBody::checkNode(const char* what, int32_t node) const {
@@ -262,7 +224,7 @@ Status DeformableBody::setMaterial(const DeformableMaterial& material) {
   for (double& m : mass_) m *= densityRatio;
   totalMass_ *= densityRatio;
   elasticEnergyAtX_ = -1.0;
-  for (DegreeLevelAssembly& level : degreeLevels_) level.scaleMasses(densityRatio);
+  preconditioner_.scaleMasses(densityRatio);
   desc_.material = material;
   return Status::Ok;
 }
@@ -421,13 +383,8 @@ const RefitBvh& DeformableBody::renderSurfaceBvh() const {
   return renderBvh_;
 }
 
-void DeformableBody::updateMultigridFilters(TaskSystem& tasks, double massScale) {
-  held_.projectors(tasks, nodeFilters_.data());
-  if (useMultigrid_) return multigrid_.update(tasks, matrix_, x_.data(), nodeFilters_.data());
-  // Re-discretized levels: this step's rotations and scalings, from the fine assembly (and
-  // afresh for every update, which constrains them in place).
-  for (DegreeLevelAssembly& level : degreeLevels_) level.assemble(tasks, gradientPairs_.data(), massScale);
-  pMultigrid_.update(tasks, matrix_, x_.data(), nodeFilters_.data());
+void DeformableBody::refreshPreconditioner(TaskSystem& tasks, double massScale) {
+  preconditioner_.refresh(tasks, matrix_, x_.data(), held_, gradientPairs_.data(), massScale);
 }
 
 void DeformableBody::contactImpulses(TaskSystem& tasks, Array<Vec3>* impulses) {
@@ -646,7 +603,7 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
       for (int k = 0; k < 3; ++k) diag[4 * k] += massScale * m;
       for (int k = 0; k < 3; ++k)
         rhs_[3 * i + k] = m * v_[3 * i + k] + h * (force_[3 * i + k] + m * in.gravity[k] + externalForce_[3 * i + k]);
-      Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> inv(&diagInverse_[9 * i]);
+      Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> inv(preconditioner_.inverseDiagonal(i));
       inv = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(diag).inverse();
     }
   });
@@ -656,21 +613,11 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
   LinearSystem system;
   system.size = n3;
   system.apply = [&](const double* x, double* y) { matrix_.multiply(tasks, x, y); };
-  if (useMultigrid_ || usePMultigrid_) {
-    updateMultigridFilters(tasks, massScale);
+  if (preconditioner_.needsRefresh()) {
+    refreshPreconditioner(tasks, massScale);
     lap(Phase::Assemble);  // the preconditioner's setup is part of building the system
   }
-  system.precondition = [&](const double* r, double* z) {
-    if (useMultigrid_) return multigrid_.apply(tasks, r, z);
-    if (usePMultigrid_) return pMultigrid_.apply(tasks, r, z);
-    parallelFor(tasks, nodeCount_, 1024, [&](int64_t begin, int64_t end) {
-      for (int64_t i = begin; i < end; ++i) {
-        const double* m = &diagInverse_[9 * i];
-        const double* ri = r + 3 * i;
-        for (int k = 0; k < 3; ++k) z[3 * i + k] = m[3 * k] * ri[0] + m[3 * k + 1] * ri[1] + m[3 * k + 2] * ri[2];
-      }
-    });
-  };
+  system.precondition = [&](const double* r, double* z) { preconditioner_.apply(tasks, r, z); };
   system.filter = [&](double* vec) { held_.filter(tasks, vec); };
   CgSettings settings{desc_.solver.tolerance,
                       in.solverMaxIterations > 0 ? in.solverMaxIterations : desc_.solver.maxIterations};
@@ -697,13 +644,11 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
       cg.budgetCut = true;
       break;
     }
-    // The multigrids bake the constraint filters into their smoothers and coarse spaces: with
-    // the filters of the pass before, a released node or a newly sliding contact's tangent
-    // lies in the preconditioner's null space, CG cannot reduce the residual there and the
-    // solve stalls (relative residual ~1 after hundreds of iterations). Block-Jacobi is not
-    // filtered and needs nothing.
-    if (useMultigrid_ || usePMultigrid_) {
-      updateMultigridFilters(tasks, massScale);
+    // With the filters of the pass before, a released node or a newly sliding contact's
+    // tangent lies in a multigrid's null space, CG cannot reduce the residual there and the
+    // solve stalls (relative residual ~1 after hundreds of iterations).
+    if (preconditioner_.needsRefresh()) {
+      refreshPreconditioner(tasks, massScale);
       lap(Phase::Assemble);
     }
     cg = solveConjugateGradient(tasks, system, rhs_.data(), vNext_.data(), settings, in.deadline, cg_, floor,

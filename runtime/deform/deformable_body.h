@@ -25,6 +25,7 @@
 #include "deform/contact_active_set.h"
 #include "deform/deformable_contacts.h"
 #include "deform/node_constraints.h"
+#include "deform/step_preconditioner.h"
 #include "deform/degree_level_assembly.h"
 #include "deform/element_incidence.h"
 #include "frame_plan.h"
@@ -157,10 +158,8 @@ class DeformableBody {
   void corotateAndAssembleBB(TaskSystem& tasks, double stiffnessScale);  // degree 2, 3
   template <class AddBlock>
   void gatherRows(TaskSystem& tasks, int64_t grain, const AddBlock& addBlock);
-  // The multigrid preconditioners' constraint filters from held_, and their setup
-  // redone with them (called whenever the constraint set changes within a step); massScale
-  // scales the re-discretized p-multigrid levels' mass as the fine system's.
-  void updateMultigridFilters(TaskSystem& tasks, double massScale);
+  // After the matrix or the constraints changed (deform/step_preconditioner.h).
+  void refreshPreconditioner(TaskSystem& tasks, double massScale);
   // Constraint impulse of each contact from the solved velocities: A v' − b at its node.
   void contactImpulses(TaskSystem& tasks, Array<Vec3>* impulses);
   Status checkNode(const char* what, int32_t node) const;
@@ -205,18 +204,13 @@ class DeformableBody {
   mutable RefitBvh renderBvh_;
   mutable uint64_t renderBvhVersion_ = ~uint64_t(0);  // the version the BVH's boxes are of
   // Per-step scratch kept to avoid allocation in the hot path.
-  Array<double> force_, rhs_, vNext_, diagInverse_, backupX_, backupV_;
+  Array<double> force_, rhs_, vNext_, backupX_, backupV_;
   NodeConstraints held_;        // what the solve prescribes at each node this step
   Array<int32_t> surfaceNodes_;
   ContactActiveSet contacts_;
   double contactMargin_ = 0.0;
   CgWorkspace cg_;
-  bool useMultigrid_ = false;
-  AggregationMultigrid multigrid_;
-  bool usePMultigrid_ = false;
-  PMultigrid pMultigrid_;
-  std::vector<DegreeLevelAssembly> degreeLevels_;  // p-multigrid's re-discretized levels, if chosen
-  Array<double> nodeFilters_;  // 9 per node: the CG filter as a 3x3 projector, for the multigrids
+  StepPreconditioner preconditioner_;
 };
 
 }  // namespace vp
