@@ -19,6 +19,7 @@
 #include "deform/polar_decomposition.h"
 #include "geometry/tet_mesh_boundary.h"
 #include "deform/linear_tet_corotation.h"
+#include "phase_timer.h"
 
 namespace vp {
 namespace {
@@ -555,22 +556,26 @@ void DeformableBody::abandonStep() {
 }
 
 void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
-  TaskSystem& tasks = *in.tasks;
-  const double h = in.dt;
-  const DeformableMaterial& mat = desc_.material;
-  const int64_t n3 = 3 * static_cast<int64_t>(nodeCount_);
-  const Deadline& clock = in.deadline;
-  double mark = clock.elapsedMs();
-  auto lap = [&](Phase p) {
-    const double now = clock.elapsedMs();
-    stats->phase(p).ms += now - mark;
-    mark = now;
-  };
+  PhaseTimer timer(in.deadline, stats);
   backupX_.assign(x_.begin(), x_.end());
   backupV_.assign(v_.begin(), v_.end());
+  holdNodes(in);
+  timer.lap(Phase::Contacts);
+  corotateAndAssemble(*in.tasks, in.dt * desc_.material.stiffnessDamping + in.dt * in.dt);
+  timer.lap(Phase::Corotate);
+  assembleStepSystem(in);
+  timer.lap(Phase::Assemble);
+  const bool reachedFloor = solveStepSystem(in, timer, stats);
+  integrateAndGuard(in, reachedFloor, stats);  // its energy passes are timed with the embedding
+  std::fill(externalForce_.begin(), externalForce_.end(), 0.0);
+  updateRenderMesh(*in.tasks);
+  timer.lap(Phase::Embed);
+}
 
-  // Constraints: pinned nodes keep zero velocity, attached ones the velocity that brings
-  // them to their collider-carried target by the end of the step.
+void DeformableBody::holdNodes(const DeformableStepInput& in) {
+  // Pinned nodes keep zero velocity, attached ones the velocity that brings them to their
+  // collider-carried target by the end of the step; contacts ignore both.
+  const double h = in.dt;
   held_.clear();
   vNext_.assign(v_.begin(), v_.end());  // warm start
   for (int32_t i = 0; i < nodeCount_; ++i)
@@ -587,20 +592,21 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
     held_.kind[a.node] = NodeConstraints::kFixed;
     for (int k = 0; k < 3; ++k) vNext_[3 * a.node + k] = (target[k] - x_[3 * a.node + k]) / h;
   }
-  // Contacts (pinned and attached nodes ignore them).
   contacts_.begin(x_, v_, in.contactLookahead ? *in.contactLookahead : v_, surfaceNodes_, in.colliders, h,
-                  mat.friction, contactMargin_, &held_, &vNext_);
-  lap(Phase::Contacts);
+                  desc_.material.friction, contactMargin_, &held_, &vNext_);
+}
 
-  corotateAndAssemble(tasks, h * mat.stiffnessDamping + h * h);
-  lap(Phase::Corotate);
+double DeformableBody::massScale(double h) const { return 1.0 + h * desc_.material.massDamping; }
 
-  const double massScale = 1.0 + h * mat.massDamping;
-  parallelFor(tasks, nodeCount_, 1024, [&](int64_t begin, int64_t end) {
+void DeformableBody::assembleStepSystem(const DeformableStepInput& in) {
+  // (M (1 + h α) + (h β + h²) K) v' = M v + h (f + M g + f_ext), the stiffness part assembled.
+  const double h = in.dt;
+  const double scale = massScale(h);
+  parallelFor(*in.tasks, nodeCount_, 1024, [&](int64_t begin, int64_t end) {
     for (int64_t i = begin; i < end; ++i) {
       double* diag = &matrix_.values[9 * static_cast<int64_t>(matrix_.diagonal[i])];
       const double m = mass_[i];
-      for (int k = 0; k < 3; ++k) diag[4 * k] += massScale * m;
+      for (int k = 0; k < 3; ++k) diag[4 * k] += scale * m;
       for (int k = 0; k < 3; ++k)
         rhs_[3 * i + k] = m * v_[3 * i + k] + h * (force_[3 * i + k] + m * in.gravity[k] + externalForce_[3 * i + k]);
       Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> inv(preconditioner_.inverseDiagonal(i));
@@ -608,14 +614,17 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
     }
   });
   contacts_.addFriction(&rhs_);
-  lap(Phase::Assemble);
+}
 
+bool DeformableBody::solveStepSystem(const DeformableStepInput& in, PhaseTimer& timer, ActorStats* stats) {
+  TaskSystem& tasks = *in.tasks;
+  const double scale = massScale(in.dt);
   LinearSystem system;
-  system.size = n3;
+  system.size = 3 * static_cast<int64_t>(nodeCount_);
   system.apply = [&](const double* x, double* y) { matrix_.multiply(tasks, x, y); };
   if (preconditioner_.needsRefresh()) {
-    refreshPreconditioner(tasks, massScale);
-    lap(Phase::Assemble);  // the preconditioner's setup is part of building the system
+    refreshPreconditioner(tasks, scale);
+    timer.lap(Phase::Assemble);  // the preconditioner's setup is part of building the system
   }
   system.precondition = [&](const double* r, double* z) { preconditioner_.apply(tasks, r, z); };
   system.filter = [&](double* vec) { held_.filter(tasks, vec); };
@@ -626,7 +635,7 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
                                        in.floorDeadline);
   PhaseStats& solve = stats->phase(Phase::Solve);
   solve.iterations = cg.iterations;
-  lap(Phase::Solve);
+  timer.lap(Phase::Solve);
 
   // Coulomb's law on the constraint impulses (deform/contact_active_set.h): a few passes,
   // each re-solve starting from the last iterate, so it is cheap.
@@ -634,7 +643,7 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
     Array<Vec3> impulses;
     contactImpulses(tasks, &impulses);
     const bool changed = contacts_.applyCoulomb(impulses, &held_, &vNext_, &rhs_);
-    lap(Phase::Contacts);
+    timer.lap(Phase::Contacts);
     if (!changed) break;
     // Past the accuracy floor's deadline a re-solve would run no iteration, and the multigrid
     // refresh before it is the costliest part of a pass: the last solve's velocities stand.
@@ -648,13 +657,13 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
     // tangent lies in a multigrid's null space, CG cannot reduce the residual there and the
     // solve stalls (relative residual ~1 after hundreds of iterations).
     if (preconditioner_.needsRefresh()) {
-      refreshPreconditioner(tasks, massScale);
-      lap(Phase::Assemble);
+      refreshPreconditioner(tasks, scale);
+      timer.lap(Phase::Assemble);
     }
     cg = solveConjugateGradient(tasks, system, rhs_.data(), vNext_.data(), settings, in.deadline, cg_, floor,
                                 in.floorDeadline);
     solve.iterations += cg.iterations;
-    lap(Phase::Solve);
+    timer.lap(Phase::Solve);
   }
   contacts_.rememberSliding(vNext_, held_);
   solve.residual = cg.relativeResidual;
@@ -663,19 +672,17 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
   // Missed only when time ran out: a solve that stopped at maxIterations above the floor
   // is a matter of the solver settings, which a lower rate would not change.
   stats->floorMissed = cg.budgetCut && cg.relativeResidual > floor;
+  return !cg.budgetCut || cg.relativeResidual <= floor;
+}
 
-  // Integrate, then guard: a step that blew up restores the step's start state.
-  const StepEnergy energy = solvedStepEnergy(tasks, h, in.gravity);
-  for (int64_t i = 0; i < n3; ++i) {
+void DeformableBody::integrateAndGuard(const DeformableStepInput& in, bool solveReachedFloor, ActorStats* stats) {
+  const StepEnergy energy = solvedStepEnergy(*in.tasks, in.dt, in.gravity);
+  for (size_t i = 0; i < x_.size(); ++i) {
     v_[i] = vNext_[i];
-    x_[i] += h * vNext_[i];
+    x_[i] += in.dt * vNext_[i];
   }
-  const bool diverged = stepBlewUp(tasks, energy, !cg.budgetCut || cg.relativeResidual <= floor);
-  if (diverged) restoreStepStart();
-  stats->diverged = diverged;  // the guard's energy passes are timed with the embedding below
-  std::fill(externalForce_.begin(), externalForce_.end(), 0.0);
-  updateRenderMesh(tasks);
-  lap(Phase::Embed);
+  stats->diverged = stepBlewUp(*in.tasks, energy, solveReachedFloor);
+  if (stats->diverged) restoreStepStart();
 }
 
 DeformableState DeformableBody::saveState() const {

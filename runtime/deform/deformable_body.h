@@ -29,6 +29,7 @@
 #include "deform/degree_level_assembly.h"
 #include "deform/element_incidence.h"
 #include "frame_plan.h"
+#include "phase_timer.h"
 #include "geometry/embedding.h"
 #include "geometry/mesh_quality.h"
 #include "geometry/refit_bvh.h"
@@ -158,6 +159,15 @@ class DeformableBody {
   void corotateAndAssembleBB(TaskSystem& tasks, double stiffnessScale);  // degree 2, 3
   template <class AddBlock>
   void gatherRows(TaskSystem& tasks, int64_t grain, const AddBlock& addBlock);
+  // The stages of step(), in order. holdNodes: pins, attachments and contacts prescribe
+  // velocities (held_, vNext_). assembleStepSystem: the mass and the right-hand side on top of
+  // the corotated stiffness. solveStepSystem: CG and the contact passes; returns whether the
+  // solve reached the accuracy floor. integrateAndGuard: x += h v', restored if it blew up.
+  void holdNodes(const DeformableStepInput& in);
+  void assembleStepSystem(const DeformableStepInput& in);
+  bool solveStepSystem(const DeformableStepInput& in, PhaseTimer& timer, ActorStats* stats);
+  void integrateAndGuard(const DeformableStepInput& in, bool solveReachedFloor, ActorStats* stats);
+  double massScale(double h) const;  // 1 + h α: Rayleigh's mass damping on the mass term
   // After the matrix or the constraints changed (deform/step_preconditioner.h).
   void refreshPreconditioner(TaskSystem& tasks, double massScale);
   // Constraint impulse of each contact from the solved velocities: A v' − b at its node.
