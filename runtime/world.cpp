@@ -269,7 +269,8 @@ std::vector<Filtered<ContactCollider>> deformableContactColliders(const SlotMap<
   std::vector<Filtered<ContactCollider>> out;
   colliders.forEach([&](ColliderHandle h, const Collider& c) {
     if (c.geometry())
-      out.push_back({c.filter(), ContactCollider{c.geometry(), c.desc().friction, h.index1, h.generation}});
+      out.push_back({c.filter(), ContactCollider{c.geometry(), c.desc().friction, h.index1, h.generation,
+                                                 c.bodyType() == BodyType::Dynamic}});
   });
   return out;
 }
@@ -378,6 +379,14 @@ DeformableStepInput World::deformableStepInput(const DeformableBody& body, const
   return input;
 }
 
+void World::pushDynamicColliders(const DeformableBody& body) {
+  for (const ContactReaction& r : body.contactReactions()) {
+    Collider* c = colliders_.get(r.colliderIndex1, r.colliderGeneration);
+    if (!c || c->bodyType() != BodyType::Dynamic) continue;
+    c->applyImpulse(r.impulse, (r.point - c->pose().position).cross(r.impulse));
+  }
+}
+
 Status World::solveDeformableStatic(DeformableHandle handle, int32_t maxIterations, double tolerance,
                                     StaticSolveResult* result) {
   DeformableBody* body = deformable(handle);
@@ -452,6 +461,7 @@ bool World::stepDeformables(double dt, const Deadline& frame, StepStats* stats) 
     }
     a.completedStep = true;
     contactEvents_.update(handles[i].index1, handles[i].generation, *deformable(handles[i]));
+    pushDynamicColliders(*deformable(handles[i]));
     a.slices = 1 + a.phase(Phase::Solve).iterations;
     stats->maxSliceMs = std::max(stats->maxSliceMs, longestDeformableSliceMs(a));
     missed[i] = a.floorMissed;

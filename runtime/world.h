@@ -108,6 +108,9 @@ class World {
   void stepRigidBodies(double dt, const Deadline& frame, StepStats* stats);
   // Returns whether every deformable that stepped reached its accuracy floor.
   bool stepDeformables(double dt, const Deadline& frame, StepStats* stats);
+  // Deformables push back: each contact reaction of the body's last step acts on its dynamic
+  // collider as an impulse at once (equal and opposite to the one on the node).
+  void pushDynamicColliders(const DeformableBody& body);
   // A deformable's step input without its time step and deadlines: gravity, the pool, the
   // colliders its filter meets and the lookup of its attachments' colliders.
   template <class FilteredColliders>

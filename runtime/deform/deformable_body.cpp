@@ -666,6 +666,7 @@ bool DeformableBody::solveStepSystem(const DeformableStepInput& in, PhaseTimer& 
     timer.lap(Phase::Solve);
   }
   contacts_.rememberSliding(vNext_, held_);
+  recordReactions(tasks, in.dt, in.colliders);
   solve.residual = cg.relativeResidual;
   solve.budgetCut = cg.budgetCut;
   stats->residual = cg.relativeResidual;
@@ -682,7 +683,31 @@ void DeformableBody::integrateAndGuard(const DeformableStepInput& in, bool solve
     x_[i] += in.dt * vNext_[i];
   }
   stats->diverged = stepBlewUp(*in.tasks, energy, solveReachedFloor);
-  if (stats->diverged) restoreStepStart();
+  if (stats->diverged) {
+    restoreStepStart();
+    reactions_.clear();
+  }
+}
+
+void DeformableBody::recordReactions(TaskSystem& tasks, double h, const std::vector<ContactCollider>& colliders) {
+  reactions_.clear();
+  const Array<NodeContact>& contacts = contacts_.contacts();
+  auto dynamic = [&](const NodeContact& c) {
+    for (const ContactCollider& cc : colliders)
+      if (cc.index1 == c.colliderIndex1 && cc.generation == c.colliderGeneration) return cc.dynamic;
+    return false;
+  };
+  if (std::none_of(contacts.begin(), contacts.end(), dynamic)) return;
+  Array<Vec3> impulses;
+  contactImpulses(tasks, &impulses);
+  for (size_t c = 0; c < contacts.size(); ++c) {
+    if (!dynamic(contacts[c])) continue;
+    const int32_t i = contacts[c].node;
+    // The node where the step leaves it, touching the collider.
+    Vec3 point;
+    for (int k = 0; k < 3; ++k) point[k] = x_[3 * i + k] + h * vNext_[3 * i + k];
+    reactions_.push_back({contacts[c].colliderIndex1, contacts[c].colliderGeneration, point, -impulses[c]});
+  }
 }
 
 DeformableState DeformableBody::saveState() const {

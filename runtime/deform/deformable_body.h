@@ -106,6 +106,8 @@ class DeformableBody {
   const Array<int32_t>& surfaceNodes() const { return surfaceNodes_; }
   // Contacts active at the end of the last step (after lift-off releases).
   const Array<NodeContact>& contacts() const { return contacts_.contacts(); }
+  // What the last step's contacts with dynamic colliders did to them (empty if it diverged).
+  const Array<ContactReaction>& contactReactions() const { return reactions_; }
 
   // The render mesh: the desc's, else the tet mesh's boundary; embedded in the tets and
   // moved with them each step. Positions and normals are in the world frame.
@@ -167,6 +169,7 @@ class DeformableBody {
   void assembleStepSystem(const DeformableStepInput& in);
   bool solveStepSystem(const DeformableStepInput& in, PhaseTimer& timer, ActorStats* stats);
   void integrateAndGuard(const DeformableStepInput& in, bool solveReachedFloor, ActorStats* stats);
+  void recordReactions(TaskSystem& tasks, double h, const std::vector<ContactCollider>& colliders);
   double massScale(double h) const;  // 1 + h α: Rayleigh's mass damping on the mass term
   // After the matrix or the constraints changed (deform/step_preconditioner.h).
   void refreshPreconditioner(TaskSystem& tasks, double massScale);
@@ -218,6 +221,7 @@ class DeformableBody {
   NodeConstraints held_;        // what the solve prescribes at each node this step
   Array<int32_t> surfaceNodes_;
   ContactActiveSet contacts_;
+  Array<ContactReaction> reactions_;
   double contactMargin_ = 0.0;
   CgWorkspace cg_;
   StepPreconditioner preconditioner_;

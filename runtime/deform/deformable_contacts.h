@@ -32,6 +32,15 @@ struct ContactCollider {
   const PreparedCollider* geometry = nullptr;
   double friction = 0.5;
   uint32_t index1 = 0, generation = 0;  // the collider's handle, carried into its contacts
+  bool dynamic = false;                 // pushed back: the step reports its contact reactions
+};
+
+// What one contact of a deformable's step did to a dynamic collider: the impulse (N s) equal
+// and opposite to the constraint impulse on the node, at the node's position.
+struct ContactReaction {
+  uint32_t colliderIndex1 = 0, colliderGeneration = 0;
+  Vec3 point = Vec3::Zero();
+  Vec3 impulse = Vec3::Zero();
 };
 
 struct NodeContact {
