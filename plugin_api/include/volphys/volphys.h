@@ -505,6 +505,17 @@ VP_API vpStatus vpColliderGetName(vpColliderId collider, char* buffer, int32_t c
  * frame; `pose` places them. The render mesh is renderVertices/renderTriangles if given, the
  * surface file's own mesh for surfaceFile, else the boundary of the tet mesh; it is embedded
  * in the tets and follows them. */
+/* How a surfaceFile becomes tets. Stuffing (isosurface stuffing, Labelle & Shewchuk 2007) fills
+ * the surface with tets whose boundary lies on it: the volume is kept (the error shrinks with
+ * the square of the cell size) and every dihedral angle is between 10.7 and 164.8 degrees;
+ * parts thinner than a cell may be lost. Voxel keeps every cube of the grid the surface
+ * touches (6 tets each): it always covers the surface but swells thin parts by up to a cell. */
+typedef enum vpSurfaceMesher {
+  vpSurfaceMesher_Default = 0,  /* Stuffing */
+  vpSurfaceMesher_Stuffing = 1,
+  vpSurfaceMesher_Voxel = 2
+} vpSurfaceMesher;
+
 typedef struct vpDeformableDef {
   uint32_t structSize;
   int32_t degree;               /* element degree: 1 linear, 2 quadratic, 3 cubic (Bernstein–Bézier) */
@@ -513,10 +524,11 @@ typedef struct vpDeformableDef {
   const int32_t* tets;          /* 4 node indices per tet, tetCount of them (copied) */
   int32_t tetCount;
   const char* tetFile;          /* Gmsh .msh (2.2 / 4.1 ASCII), TetGen .node/.ele, legacy VTK */
-  const char* surfaceFile;      /* closed surface, any format assimp reads: voxel-tetrahedralized;
-                                   one that is not closed (after welding equal positions) is
-                                   InvalidArgument naming an open edge */
-  int32_t voxelResolution;      /* for surfaceFile: cells along the longest axis; default 12 */
+  const char* surfaceFile;      /* closed surface, any format assimp reads: tetrahedralized by
+                                   surfaceMesher; one that is not closed (after welding equal
+                                   positions) is InvalidArgument naming an open edge */
+  int32_t voxelResolution;      /* for surfaceFile, either mesher: lattice cells along the
+                                   longest axis of the surface's bounding box, 1..256; default 12 */
   const float* renderVertices;  /* optional explicit render mesh (copied) */
   int32_t renderVertexCount;
   const int32_t* renderTriangles;
@@ -538,6 +550,7 @@ typedef struct vpDeformableDef {
   int32_t priority;             /* -1000000..1000000: higher is served first when the frame budget
                                    is short (deformables and fluids share the scale); default 0 */
   vpCollisionFilter filter;     /* the colliders it contacts */
+  int32_t surfaceMesher;        /* for surfaceFile: a vpSurfaceMesher; default vpSurfaceMesher_Default */
 } vpDeformableDef;
 
 VP_API vpDeformableDef vpDefaultDeformableDef(void);
