@@ -497,6 +497,19 @@ VP_API vpStatus vpColliderGetName(vpColliderId collider, char* buffer, int32_t c
 
 /* ---------------------------------------------------------------- deformables */
 
+/* How a surfaceFile becomes tets. Stuffing (isosurface stuffing, Labelle & Shewchuk 2007) fills
+ * the surface with tets whose boundary lies on it: the volume is kept (the error shrinks with
+ * the square of the cell size), and the paper proves its dihedral angles within 10.7 to 164.8
+ * degrees (this implementation's warp order is its own: docs/choices.md;
+ * vpDeformableGetMeshQuality reports a mesh's range); parts thinner than about two cells lose
+ * volume or vanish. Voxel keeps every cube of the grid the surface touches (6 tets each):
+ * it always covers the surface but swells thin parts by up to a cell. */
+typedef enum vpSurfaceMesher {
+  vpSurfaceMesher_Default = 0,  /* Stuffing */
+  vpSurfaceMesher_Stuffing = 1,
+  vpSurfaceMesher_Voxel = 2
+} vpSurfaceMesher;
+
 /* A deformable volume: corotational linear elasticity on a tetrahedral mesh, implicit
  * (backward Euler), solved by preconditioned CG within the frame budget. Nodes are the mesh
  * vertices (same indices) followed, for degree > 1, by the shared edge and face control
@@ -505,17 +518,6 @@ VP_API vpStatus vpColliderGetName(vpColliderId collider, char* buffer, int32_t c
  * frame; `pose` places them. The render mesh is renderVertices/renderTriangles if given, the
  * surface file's own mesh for surfaceFile, else the boundary of the tet mesh; it is embedded
  * in the tets and follows them. */
-/* How a surfaceFile becomes tets. Stuffing (isosurface stuffing, Labelle & Shewchuk 2007) fills
- * the surface with tets whose boundary lies on it: the volume is kept (the error shrinks with
- * the square of the cell size) and every dihedral angle is between 10.7 and 164.8 degrees;
- * parts thinner than a cell may be lost. Voxel keeps every cube of the grid the surface
- * touches (6 tets each): it always covers the surface but swells thin parts by up to a cell. */
-typedef enum vpSurfaceMesher {
-  vpSurfaceMesher_Default = 0,  /* Stuffing */
-  vpSurfaceMesher_Stuffing = 1,
-  vpSurfaceMesher_Voxel = 2
-} vpSurfaceMesher;
-
 typedef struct vpDeformableDef {
   uint32_t structSize;
   int32_t degree;               /* element degree: 1 linear, 2 quadratic, 3 cubic (Bernstein–Bézier) */
