@@ -10,6 +10,11 @@
 using namespace vp;
 using namespace vp::capi;
 
+static_assert(static_cast<int>(SurfaceMesher::Default) == vpSurfaceMesher_Default &&
+                  static_cast<int>(SurfaceMesher::Stuffing) == vpSurfaceMesher_Stuffing &&
+                  static_cast<int>(SurfaceMesher::Voxel) == vpSurfaceMesher_Voxel,
+              "vp::SurfaceMesher and vpSurfaceMesher must match");
+
 namespace {
 
 Status copyPoints(const char* field, const float* xyz, int32_t count, Array<Vec3>* out) {
@@ -36,6 +41,7 @@ Status translateMeshSource(const vpDeformableDef& d, DeformableMeshSource* src) 
   if (d.tetFile) src->tetFile = d.tetFile;
   if (d.surfaceFile) src->surfaceFile = d.surfaceFile;
   src->voxelResolution = d.voxelResolution;
+  src->surfaceMesher = static_cast<SurfaceMesher>(d.surfaceMesher);  // resolveDeformableMesh checks the range
   if (d.renderVertices || d.renderTriangles) {
     if (!d.renderVertices || !d.renderTriangles)
       return fail(Status::InvalidArgument, "renderVertices/renderTriangles: both arrays are needed");
@@ -88,6 +94,7 @@ vpDeformableDef vpDefaultDeformableDef(void) {
   d.targetResidual = static_cast<float>(defaults.solver.targetResidual);
   d.priority = defaults.priority;
   d.filter = toC(defaults.filter);
+  d.surfaceMesher = static_cast<int32_t>(DeformableMeshSource{}.surfaceMesher);
   return d;
 }
 

@@ -1,6 +1,6 @@
 // Everything needed to create a deformable volume actor: the simulation mesh, the material,
 // damping and solver settings. The C ABI and scene files both fill this in; the mesh is
-// already loaded (arrays, tet files or a voxelized surface) by then.
+// already loaded (arrays, tet files or a tetrahedralized surface) by then.
 #pragma once
 
 #include <optional>
@@ -43,10 +43,10 @@ enum class Preconditioner : int {
 
 // Below this many nodes the multigrid's setup costs more than the CG iterations it saves. A
 // body in contact pays the setup again after every contact pass that changes its constraints:
-// the default scene's duck jelly (711 nodes, linear) took 10.6 ms per frame with aggregation
-// multigrid (90 CG iterations) and 7.7 ms with block-Jacobi (234), median of 120 frames each,
-// run one after the other on the loaded 2-core machine; hence 1000 rather than the 400 that a
-// contact-free beam suggested.
+// the default scene's duck jelly, then voxelized (711 nodes, linear), took 10.6 ms per frame
+// with aggregation multigrid (90 CG iterations) and 7.7 ms with block-Jacobi (234), median of
+// 120 frames each, run one after the other on the loaded 2-core machine; hence 1000 rather
+// than the 400 that a contact-free beam suggested.
 constexpr int kMultigridMinNodes = 1000;
 
 // How p-multigrid gets its coarse operators. Re-discretized is the default: 0-4% more CG

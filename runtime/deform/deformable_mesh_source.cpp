@@ -2,13 +2,36 @@
 
 #include "geometry/box_tet_mesh.h"
 #include "geometry/closed_surface.h"
+#include "geometry/isosurface_stuffing.h"
 #include "geometry/tet_mesh_boundary.h"
 #include "geometry/tet_mesh_file.h"
 #include "geometry/voxel_tetrahedralizer.h"
 
 namespace vp {
+namespace {
+
+Status checkSurfaceMesher(SurfaceMesher mesher) {
+  const int value = static_cast<int>(mesher);
+  if (value < static_cast<int>(SurfaceMesher::Default) || value > static_cast<int>(SurfaceMesher::Voxel))
+    return fail(Status::InvalidArgument, "surfaceMesher = %d: must be 0 (default), 1 (stuffing) or 2 (voxel)", value);
+  return Status::Ok;
+}
+
+Status tetrahedralizeSurface(const SurfaceMesh& surface, const DeformableMeshSource& source, TetMesh* mesh) {
+  if (source.surfaceMesher == SurfaceMesher::Voxel) return tetrahedralizeVoxels(surface, source.voxelResolution, mesh);
+  VP_TRY(tetrahedralizeByStuffing(surface, source.voxelResolution, mesh));
+  if (mesh->tets.empty())
+    return fail(Status::InvalidArgument,
+                "surfaceMesher = stuffing: no lattice vertex at voxelResolution = %d is inside the surface (thinner "
+                "than a cell); raise voxelResolution or use the voxel mesher",
+                source.voxelResolution);
+  return Status::Ok;
+}
+
+}  // namespace
 
 Status resolveDeformableMesh(const DeformableMeshSource& source, DeformableDesc* desc) {
+  VP_TRY(checkSurfaceMesher(source.surfaceMesher));
   const int sources = int(source.tets.has_value()) + int(!source.tetFile.empty()) + int(!source.surfaceFile.empty()) +
                       int(source.boxCells.has_value());
   if (sources != 1)
@@ -29,7 +52,7 @@ Status resolveDeformableMesh(const DeformableMeshSource& source, DeformableDesc*
     if (!ok(s)) return addErrorContext(s, "surfaceFile");
     s = checkClosedSurface(surface.vertices, surface.triangles, "surface");
     if (!ok(s)) return addErrorContext(s, "surfaceFile '" + source.surfaceFile + "'");
-    s = tetrahedralizeVoxels(surface, source.voxelResolution, &mesh);
+    s = tetrahedralizeSurface(surface, source, &mesh);
     if (!ok(s)) return addErrorContext(s, "surfaceFile");
     if (!render) render = std::move(surface);
   } else {

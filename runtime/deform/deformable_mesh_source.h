@@ -1,7 +1,7 @@
 // Where a deformable's meshes come from: arrays, a tet file, a closed surface file that is
-// voxel-tetrahedralized, or a built-in box. Resolves the source into DeformableDesc.mesh and
-// DeformableDesc.renderMesh (an explicit render mesh, the voxelized surface itself, or by
-// default the tet mesh's boundary).
+// tetrahedralized (isosurface stuffing by default, or voxels), or a built-in box. Resolves the
+// source into DeformableDesc.mesh and DeformableDesc.renderMesh (an explicit render mesh, the
+// surface itself, or by default the tet mesh's boundary).
 #pragma once
 
 #include <array>
@@ -12,18 +12,27 @@
 
 namespace vp {
 
+// How a surface file becomes tets; the values are vpSurfaceMesher's.
+enum class SurfaceMesher : int {
+  Default = 0,   // Stuffing
+  Stuffing = 1,  // geometry/isosurface_stuffing.h: keeps the volume, bounded dihedral angles
+  Voxel = 2,     // geometry/voxel_tetrahedralizer.h: covers the surface, swells thin parts
+};
+
 struct DeformableMeshSource {
   std::optional<TetMesh> tets;             // arrays
   std::string tetFile;                     // .msh / .node / .ele / .vtk
-  std::string surfaceFile;                 // closed surface -> voxel tets, kept as render mesh
-  int voxelResolution = 12;
+  std::string surfaceFile;                 // closed surface -> tets, kept as render mesh
+  int voxelResolution = 12;                // either mesher: cells along the longest axis
+  SurfaceMesher surfaceMesher = SurfaceMesher::Default;
   std::optional<std::array<int, 3>> boxCells;  // built-in box: cells and size
   Vec3 boxSize{1.0, 1.0, 1.0};
   std::optional<SurfaceMesh> renderMesh;   // explicit render mesh (arrays or renderFile)
   std::string renderFile;
 };
 
-// Messages name the vpDeformableDef / scene fields (tetFile, surfaceFile, ...).
+// Messages name the vpDeformableDef / scene fields (tetFile, surfaceFile, ...). A surfaceMesher
+// outside the enum is InvalidArgument whatever the source.
 Status resolveDeformableMesh(const DeformableMeshSource& source, DeformableDesc* desc);
 
 }  // namespace vp

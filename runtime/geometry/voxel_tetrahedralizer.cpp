@@ -1,5 +1,8 @@
 #include "geometry/voxel_tetrahedralizer.h"
 
+#include "geometry/row_parity_inside.h"
+#include "geometry/surface_grid.h"
+
 #include <algorithm>
 #include <cmath>
 #include <new>
@@ -8,48 +11,6 @@
 
 namespace vp {
 namespace {
-
-constexpr int kMaxResolution = 1024;
-constexpr int64_t kMaxCells = int64_t(1) << 24;
-
-// ---- inside test ----------------------------------------------------------------------
-//
-// Why ray parity along grid rows and not the generalized winding number: the GWN is the
-// better answer for broken meshes, but it costs O(cells x triangles) (a 64^3 grid against a
-// 100K-triangle render mesh is 2.6e10 solid angles). Casting one ray per grid row through
-// the cell centres costs O(rows + triangles + crossings), and on a closed surface it is
-// exact when the 2D point-in-triangle test is made consistent: the ray through a shared
-// edge or vertex is exactly where naive parity breaks (and grid-aligned inputs hit edges
-// all the time). We decide such ties by symbolic perturbation of the ray, and evaluate each
-// edge with its endpoints in a canonical order, so the two triangles that share an edge
-// see bit-identical values of opposite sign: exactly one of them claims the ray. A row with
-// an odd number of crossings can then only come from a surface with a hole, which we
-// report instead of guessing.
-
-using Vec2 = Eigen::Vector2d;
-
-// Sign of the orientation of q relative to the directed edge a->b, with q perturbed by
-// (eps, eps^2) when it lies exactly on the line; 0 only when a == b.
-int perturbedEdgeSign(const Vec2& a, const Vec2& b, const Vec2& q, double* value) {
-  const bool flip = std::make_pair(a.x(), a.y()) > std::make_pair(b.x(), b.y());
-  const Vec2& p0 = flip ? b : a;
-  const Vec2& p1 = flip ? a : b;
-  double e = (p1.x() - p0.x()) * (q.y() - p0.y()) - (p1.y() - p0.y()) * (q.x() - p0.x());
-  if (flip) e = -e;
-  *value = e;
-  if (e > 0) return 1;
-  if (e < 0) return -1;
-  // d/d(eps) of the orientation for q + (eps, eps^2): -(b.y - a.y) first, then (b.x - a.x).
-  if (b.y() != a.y()) return b.y() < a.y() ? 1 : -1;
-  if (b.x() != a.x()) return b.x() > a.x() ? 1 : -1;
-  return 0;
-}
-
-struct Crossing {
-  int64_t row;
-  double x;
-  bool operator<(const Crossing& o) const { return row != o.row ? row < o.row : x < o.x; }
-};
 
 // ---- surface cells ----------------------------------------------------------------------
 
@@ -96,116 +57,29 @@ std::array<std::array<int, 4>, 6> cubeTets() {
   return tets;
 }
 
-Status checkSurface(const SurfaceMesh& surface, int resolution) {
-  if (resolution < 1 || resolution > kMaxResolution)
-    return fail(Status::InvalidArgument, "tetrahedralizeVoxels: resolution %d is outside [1, %d]", resolution,
-                kMaxResolution);
-  if (surface.triangles.empty() || surface.vertices.empty())
-    return fail(Status::InvalidArgument, "tetrahedralizeVoxels: the surface has %zu vertices and %zu triangles",
-                surface.vertices.size(), surface.triangles.size());
-  for (size_t v = 0; v < surface.vertices.size(); ++v)
-    if (!surface.vertices[v].allFinite())
-      return fail(Status::InvalidArgument, "tetrahedralizeVoxels: surface vertex %zu has a non-finite coordinate", v);
-  const int64_t n = static_cast<int64_t>(surface.vertices.size());
-  for (size_t t = 0; t < surface.triangles.size(); ++t)
-    for (int k = 0; k < 3; ++k)
-      if (surface.triangles[t][k] < 0 || surface.triangles[t][k] >= n)
-        return fail(Status::InvalidArgument, "tetrahedralizeVoxels: triangle %zu corner %d is vertex %d, outside [0, %lld)",
-                    t, k, surface.triangles[t][k], static_cast<long long>(n));
-  return Status::Ok;
-}
-
 Status build(const SurfaceMesh& surface, int resolution, TetMesh* out, VoxelGrid* gridOut) {
-  VP_TRY(checkSurface(surface, resolution));
-
-  // Bounding box of the vertices the triangles use.
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = Eigen::Vector3d::Constant(-INFINITY);
-  for (const auto& tri : surface.triangles)
-    for (int32_t v : tri) {
-      lo = lo.cwiseMin(surface.vertices[v]);
-      hi = hi.cwiseMax(surface.vertices[v]);
-    }
-  const Eigen::Vector3d extent = hi - lo;
-  const double longest = extent.maxCoeff();
-  if (!(longest > 0.0))
-    return fail(Status::InvalidArgument, "tetrahedralizeVoxels: the surface's bounding box is a single point");
-
   VoxelGrid grid;
-  grid.cellSize = longest / resolution;
+  VP_TRY(makeSurfaceGrid(surface, resolution, "tetrahedralizeVoxels", &grid));
   const double h = grid.cellSize;
-  for (int k = 0; k < 3; ++k) {
-    // The 1e-9 keeps an extent that is an exact multiple of h (up to round-off) from
-    // getting an extra, empty layer; the grid is centred on the box, so the few 1e-9 h
-    // it may then miss on each side are covered by clamping surface cells into the grid.
-    const double n = std::ceil(extent[k] / h - 1e-9);
-    grid.cells[k] = std::max(1, static_cast<int32_t>(std::min<double>(n, kMaxResolution)));
-    grid.origin[k] = 0.5 * (lo[k] + hi[k]) - 0.5 * grid.cells[k] * h;
-  }
   const int64_t nx = grid.cells[0], ny = grid.cells[1], nz = grid.cells[2];
-  if (nx * ny * nz > kMaxCells)
-    return fail(Status::InvalidArgument, "tetrahedralizeVoxels: resolution %d gives %lld cells, more than %lld",
-                resolution, static_cast<long long>(nx * ny * nz), static_cast<long long>(kMaxCells));
   auto cellIndex = [&](int64_t i, int64_t j, int64_t k) { return (k * ny + j) * nx + i; };
   auto clampCell = [&](double coordinate, int axis) {
     const double c = std::floor((coordinate - grid.origin[axis]) / h);
     return static_cast<int64_t>(std::clamp(c, 0.0, static_cast<double>(grid.cells[axis] - 1)));
   };
 
-  // 1. Crossings of the rays through cell centres along +x, one ray per (j, k) row.
-  std::vector<Crossing> crossings;
-  for (const auto& tri : surface.triangles) {
-    const Eigen::Vector3d& a = surface.vertices[tri[0]];
-    const Eigen::Vector3d& b = surface.vertices[tri[1]];
-    const Eigen::Vector3d& c = surface.vertices[tri[2]];
-    const Vec2 p[3] = {{a.y(), a.z()}, {b.y(), b.z()}, {c.y(), c.z()}};
-    // Rows whose centre lies in the triangle's yz bounding box (closed on both sides).
-    const double ylo = std::min({a.y(), b.y(), c.y()}), yhi = std::max({a.y(), b.y(), c.y()});
-    const double zlo = std::min({a.z(), b.z(), c.z()}), zhi = std::max({a.z(), b.z(), c.z()});
-    const int64_t j0 = std::max<int64_t>(0, static_cast<int64_t>(std::ceil((ylo - grid.origin.y()) / h - 0.5)));
-    const int64_t j1 = std::min<int64_t>(ny - 1, static_cast<int64_t>(std::floor((yhi - grid.origin.y()) / h - 0.5)));
-    const int64_t k0 = std::max<int64_t>(0, static_cast<int64_t>(std::ceil((zlo - grid.origin.z()) / h - 0.5)));
-    const int64_t k1 = std::min<int64_t>(nz - 1, static_cast<int64_t>(std::floor((zhi - grid.origin.z()) / h - 0.5)));
-    for (int64_t k = k0; k <= k1; ++k) {
-      for (int64_t j = j0; j <= j1; ++j) {
-        const Vec2 q(grid.origin.y() + (j + 0.5) * h, grid.origin.z() + (k + 0.5) * h);
-        double e[3];
-        const int s0 = perturbedEdgeSign(p[1], p[2], q, &e[0]);  // opposite vertex 0
-        const int s1 = perturbedEdgeSign(p[2], p[0], q, &e[1]);
-        const int s2 = perturbedEdgeSign(p[0], p[1], q, &e[2]);
-        if (s0 == 0 || s0 != s1 || s1 != s2) continue;
-        const double sum = e[0] + e[1] + e[2];
-        // On a sliver the weights may be 0/0; any x within the triangle's range will do
-        // for parity, the cells there are surface cells anyway.
-        const double x = sum != 0.0 ? (e[0] * a.x() + e[1] * b.x() + e[2] * c.x()) / sum : (a.x() + b.x() + c.x()) / 3;
-        crossings.push_back({k * ny + j, x});
-      }
-    }
-  }
-  std::sort(crossings.begin(), crossings.end());
+  // 1. Cells whose centre is inside (ray parity along the rows of cell centres).
+  SampleGrid centres;
+  centres.origin = grid.origin;
+  centres.spacing = h;
+  centres.offset = 0.5;
+  centres.count = {{nx, ny, nz}};
+  Array<uint8_t> kept;
+  VP_TRY(insideByRowParity(surface, centres, "tetrahedralizeVoxels", &kept));
 
-  // 2. Cells whose centre has an odd number of crossings before it are inside.
-  Array<uint8_t> kept(static_cast<size_t>(nx * ny * nz), 0);
-  for (size_t begin = 0; begin < crossings.size();) {
-    size_t end = begin;
-    while (end < crossings.size() && crossings[end].row == crossings[begin].row) ++end;
-    const int64_t row = crossings[begin].row;
-    if ((end - begin) % 2 != 0)
-      return fail(Status::InvalidArgument,
-                  "tetrahedralizeVoxels: the surface is not closed: the ray along x at y = %g, z = %g crosses it %zu "
-                  "times (an odd number)",
-                  grid.origin.y() + (row % ny + 0.5) * h, grid.origin.z() + (row / ny + 0.5) * h, end - begin);
-    size_t next = begin;
-    for (int64_t i = 0; i < nx; ++i) {
-      const double x = grid.origin.x() + (i + 0.5) * h;
-      while (next < end && crossings[next].x < x) ++next;
-      if ((next - begin) % 2 == 1) kept[static_cast<size_t>(row * nx + i)] = 1;
-    }
-    begin = end;
-  }
-
-  // 3. Cells the surface passes through. The box is grown by a relative 1e-8 so that a
+  // 2. Cells the surface passes through. The box is grown by a relative 1e-8 so that a
   // triangle exactly on a cell face, or outside the grid by the <= 0.5e-9 h the grid may
-  // miss (see above), still marks the cell despite round-off: covering the surface
+  // miss (surface_grid.h), still marks the cell despite round-off: covering the surface
   // matters more than one extra cell.
   const Eigen::Vector3d half = Eigen::Vector3d::Constant(0.5 * h * (1.0 + 1e-8));
   for (const auto& tri : surface.triangles) {
@@ -228,7 +102,7 @@ Status build(const SurfaceMesh& surface, int resolution, TetMesh* out, VoxelGrid
         }
   }
 
-  // 4. Shared lattice vertices, numbered in lattice order.
+  // 3. Shared lattice vertices, numbered in lattice order.
   const int64_t vx = nx + 1, vy = ny + 1, vz = nz + 1;
   auto latticeIndex = [&](int64_t i, int64_t j, int64_t k) { return (k * vy + j) * vx + i; };
   Array<int32_t> vertexOf(static_cast<size_t>(vx * vy * vz), -1);
@@ -253,7 +127,7 @@ Status build(const SurfaceMesh& surface, int resolution, TetMesh* out, VoxelGrid
         mesh.vertices.push_back(grid.origin + h * Eigen::Vector3d(double(i), double(j), double(k)));
       }
 
-  // 5. Six tets per kept cube.
+  // 4. Six tets per kept cube.
   static const std::array<std::array<int, 4>, 6> kCubeTets = cubeTets();
   mesh.tets.reserve(static_cast<size_t>(6 * keptCount));
   for (int64_t k = 0; k < nz; ++k)

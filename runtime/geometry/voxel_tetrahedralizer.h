@@ -4,6 +4,7 @@
 #pragma once
 
 #include "core/status.h"
+#include "geometry/surface_grid.h"
 #include "geometry/surface_mesh.h"
 #include "geometry/tet_mesh.h"
 
@@ -14,17 +15,15 @@
 
 namespace vp {
 
-struct VoxelGrid {
-  Eigen::Vector3d origin = Eigen::Vector3d::Zero();  // min corner of cell (0, 0, 0)
-  double cellSize = 0.0;
-  std::array<int32_t, 3> cells{{0, 0, 0}};
+struct VoxelGrid : SurfaceGrid {
   int64_t keptCells = 0;     // = number of tets / 6
   int64_t surfaceCells = 0;  // kept because the surface passes through them
 };
 
 // `resolution`: number of cells along the longest axis of the surface's bounding box
-// (1..1024; at most 2^24 cells in all). A cell is kept if its centre is inside the surface
-// or the surface passes through it, so the union of the tets contains the whole solid.
+// (surface_grid.h: 1..1024; at most 2^24 cells in all). A cell is kept if its centre is
+// inside the surface or the surface passes through it, so the union of the tets contains the
+// whole solid.
 // Every cube is split into the same 6 tets around its (0,0,0)-(1,1,1) diagonal; the split
 // is the same for every cube, so faces shared by neighbouring cubes are split the same way
 // and the mesh is conforming. Vertices are shared between cubes, all tets are positively

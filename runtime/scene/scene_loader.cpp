@@ -173,8 +173,8 @@ std::string resolvePath(const std::string& path, const std::string& baseDirector
 }
 
 // The keys that say where a deformable's mesh comes from; "ifFileMissing" may replace them.
-const std::initializer_list<const char*> kMeshSourceKeys = {"box", "tetFile", "surfaceFile", "voxelResolution",
-                                                            "renderFile", "scale"};
+const std::initializer_list<const char*> kMeshSourceKeys = {
+    "box", "tetFile", "surfaceFile", "voxelResolution", "surfaceMesher", "renderFile", "scale"};
 
 Status parseDeformable(const JsonObject& obj, const std::string& baseDirectory, SceneDeformable* out);
 
@@ -217,8 +217,17 @@ Status applyScale(const JsonObject& obj, DeformableDesc* desc) {
   return Status::Ok;
 }
 
+// "surfaceMesher": "stuffing" | "voxel"; absent: the default (stuffing).
+Status parseSurfaceMesher(const JsonObject& obj, SurfaceMesher* out) {
+  int position = -1;
+  VP_TRY(parseEnum(obj, "surfaceMesher", {"stuffing", "voxel"}, &position));
+  if (position >= 0) *out = position == 0 ? SurfaceMesher::Stuffing : SurfaceMesher::Voxel;
+  return Status::Ok;
+}
+
 Status parseDeformable(const JsonObject& obj, const std::string& baseDirectory, SceneDeformable* out) {
-  VP_TRY(obj.checkKeys({"name", "degree", "box", "tetFile", "surfaceFile", "voxelResolution", "renderFile", "scale",
+  VP_TRY(obj.checkKeys({"name", "degree", "box", "tetFile", "surfaceFile", "voxelResolution", "surfaceMesher",
+                        "renderFile", "scale",
                         "ifFileMissing", "position", "rotation", "axisAngle", "linearVelocity", "youngsModulus",
                         "poissonRatio", "density", "massDamping", "stiffnessDamping", "friction", "solverTolerance",
                         "solverMaxIterations", "targetResidual", "priority", "pinBox", "attach",
@@ -246,6 +255,7 @@ Status parseDeformable(const JsonObject& obj, const std::string& baseDirectory, 
   VP_TRY(obj.string("tetFile", &source.tetFile));
   VP_TRY(obj.string("surfaceFile", &source.surfaceFile));
   VP_TRY(obj.integer("voxelResolution", &source.voxelResolution));
+  VP_TRY(parseSurfaceMesher(obj, &source.surfaceMesher));
   VP_TRY(obj.string("renderFile", &source.renderFile));
   source.tetFile = resolvePath(source.tetFile, baseDirectory);
   source.surfaceFile = resolvePath(source.surfaceFile, baseDirectory);

@@ -237,6 +237,7 @@ TEST(CApiDeformable, FromATetFileAndFromASurfaceFile) {
   def = vpDefaultDeformableDef();
   def.surfaceFile = obj.c_str();
   def.voxelResolution = 4;
+  def.surfaceMesher = vpSurfaceMesher_Voxel;
   vpDeformableId fromSurface;
   ASSERT_VP_OK(vpDeformableCreate(w.id, &def, &fromSurface));
   int32_t nodes = 0, rv = 0, rt = 0;
@@ -287,6 +288,93 @@ TEST(CApiDeformable, MeshQualityOfABox) {
   EXPECT_NEAR(surfaceVolume, 2.0f, 1e-5f);
   EXPECT_VP_OK(vpDeformableGetMeshQuality(id, nullptr, nullptr, nullptr, nullptr));
   EXPECT_EQ(vpDeformableGetMeshQuality(vpDeformableId{}, &minAngle, nullptr, nullptr, nullptr), vpStatus_InvalidId);
+}
+
+}  // namespace
+
+namespace {
+
+// A closed UV sphere of radius 0.5 (rings x segments quads, triangles at the poles) as OBJ.
+std::string writeSphereObj(const std::string& name) {
+  const std::string path = ::testing::TempDir() + "/" + name;
+  std::ofstream f(path);
+  const int rings = 24, segments = 48;
+  f << "v 0 0.5 0\n";
+  for (int r = 1; r < rings; ++r)
+    for (int s = 0; s < segments; ++s) {
+      const double theta = M_PI * r / rings, phi = 2.0 * M_PI * s / segments;
+      f << "v " << 0.5 * std::sin(theta) * std::cos(phi) << " " << 0.5 * std::cos(theta) << " "
+        << -0.5 * std::sin(theta) * std::sin(phi) << "\n";
+    }
+  f << "v 0 -0.5 0\n";
+  auto at = [&](int r, int s) { return 2 + (r - 1) * segments + (s % segments); };  // 1-based
+  const int bottom = 2 + (rings - 1) * segments;
+  for (int s = 0; s < segments; ++s) {
+    f << "f 1 " << at(1, s) << " " << at(1, s + 1) << "\n";
+    for (int r = 1; r + 1 < rings; ++r)
+      f << "f " << at(r, s) << " " << at(r + 1, s) << " " << at(r + 1, s + 1) << " " << at(r, s + 1) << "\n";
+    f << "f " << at(rings - 1, s) << " " << bottom << " " << at(rings - 1, s + 1) << "\n";
+  }
+  return path;
+}
+
+struct Quality {
+  float minAngle = 0, maxAngle = 0, tetVolume = 0, surfaceVolume = 0;
+};
+
+Quality createAndMeasure(vpWorldId world, const char* file, int32_t mesher, int32_t* nodes) {
+  vpDeformableDef def = vpDefaultDeformableDef();
+  def.surfaceFile = file;
+  def.surfaceMesher = mesher;
+  vpDeformableId id{};
+  Quality q;
+  EXPECT_VP_OK(vpDeformableCreate(world, &def, &id));
+  EXPECT_VP_OK(vpDeformableGetNodeCount(id, nodes));
+  EXPECT_VP_OK(vpDeformableGetMeshQuality(id, &q.minAngle, &q.maxAngle, &q.tetVolume, &q.surfaceVolume));
+  return q;
+}
+
+// The default mesher is isosurface stuffing: at the default resolution the sphere's tets keep its
+// volume within 3% and their dihedral angles within the paper's bounds. The voxel mesher keeps
+// every cell the surface touches, so its tets hold more than the sphere.
+TEST(CApiDeformable, SurfaceFileWithEachMesher) {
+  EXPECT_EQ(vpDefaultDeformableDef().surfaceMesher, vpSurfaceMesher_Default);
+  ScopedWorld w;
+  const std::string obj = writeSphereObj("vp_uv_sphere.obj");
+  int32_t defaultNodes = 0, stuffedNodes = 0, voxelNodes = 0;
+  const Quality byDefault = createAndMeasure(w.id, obj.c_str(), vpSurfaceMesher_Default, &defaultNodes);
+  const Quality stuffed = createAndMeasure(w.id, obj.c_str(), vpSurfaceMesher_Stuffing, &stuffedNodes);
+  const Quality voxel = createAndMeasure(w.id, obj.c_str(), vpSurfaceMesher_Voxel, &voxelNodes);
+  EXPECT_EQ(defaultNodes, stuffedNodes);
+  EXPECT_EQ(byDefault.tetVolume, stuffed.tetVolume);
+  EXPECT_LT(std::fabs(stuffed.tetVolume - stuffed.surfaceVolume), 0.03f * stuffed.surfaceVolume);
+  EXPECT_GT(stuffed.minAngle, 10.7f);
+  EXPECT_LT(stuffed.maxAngle, 164.8f);
+  EXPECT_GT(voxel.tetVolume, 1.2f * voxel.surfaceVolume);
+  EXPECT_NEAR(voxel.minAngle, 45.0f, 1e-3f);
+  EXPECT_NEAR(voxel.maxAngle, 90.0f, 1e-3f);
+  EXPECT_EQ(voxel.surfaceVolume, stuffed.surfaceVolume);
+}
+
+TEST(CApiDeformable, AnUnknownSurfaceMesherIsRefusedNamingTheValue) {
+  ScopedWorld w;
+  const std::string obj = writeSphereObj("vp_uv_sphere_bad_mesher.obj");
+  BoxArrays box;
+  for (int32_t bad : {-1, 3, 1 << 30}) {
+    vpDeformableDef def = vpDefaultDeformableDef();
+    def.surfaceFile = obj.c_str();
+    def.surfaceMesher = bad;
+    vpDeformableId id{};
+    EXPECT_EQ(vpDeformableCreate(w.id, &def, &id), vpStatus_InvalidArgument);
+    EXPECT_TRUE(lastErrorContains("surfaceMesher = " + std::to_string(bad))) << vpGetLastError();
+    def = box.def();  // whatever the mesh source
+    def.surfaceMesher = bad;
+    EXPECT_EQ(vpDeformableCreate(w.id, &def, &id), vpStatus_InvalidArgument);
+    EXPECT_TRUE(lastErrorContains("surfaceMesher = " + std::to_string(bad))) << vpGetLastError();
+  }
+  int32_t count = -1;
+  ASSERT_VP_OK(vpWorldGetDeformableCount(w.id, &count));
+  EXPECT_EQ(count, 0);
 }
 
 }  // namespace

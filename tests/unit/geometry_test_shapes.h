@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <utility>
@@ -66,6 +67,59 @@ inline double enclosedVolume(const SurfaceMesh& s) {
   for (const auto& t : s.triangles)
     v += s.vertices[t[0]].dot(s.vertices[t[1]].cross(s.vertices[t[2]])) / 6.0;
   return v;
+}
+
+// Reverses every triangle when the surface is inward (negative enclosed volume).
+inline void orientOutward(SurfaceMesh* s) {
+  if (test::enclosedVolume(*s) < 0.0)
+    for (auto& t : s->triangles) std::swap(t[1], t[2]);
+}
+
+// The torus around the z axis with tube centre radius `major` and tube radius `minor`, as a
+// `around` x `across` grid of quadrilaterals, each split in two.
+inline SurfaceMesh torus(double major, double minor, int around, int across) {
+  SurfaceMesh s;
+  for (int i = 0; i < around; ++i)
+    for (int j = 0; j < across; ++j) {
+      const double u = 2.0 * M_PI * i / around, v = 2.0 * M_PI * j / across;
+      const double ring = major + minor * std::cos(v);
+      s.vertices.emplace_back(ring * std::cos(u), ring * std::sin(u), minor * std::sin(v));
+    }
+  auto id = [&](int i, int j) { return static_cast<int32_t>((i % around) * across + (j % across)); };
+  for (int i = 0; i < around; ++i)
+    for (int j = 0; j < across; ++j) {
+      s.triangles.push_back({{id(i, j), id(i + 1, j), id(i + 1, j + 1)}});
+      s.triangles.push_back({{id(i, j), id(i + 1, j + 1), id(i, j + 1)}});
+    }
+  orientOutward(&s);
+  return s;
+}
+
+// Distance from the origin, along the unit direction d, to where the ray leaves the capsule
+// of radius `w` around the segment from the origin to length * axis (axis a unit vector).
+inline double capsuleExit(const Eigen::Vector3d& d, const Eigen::Vector3d& axis, double length, double w) {
+  const double c = d.dot(axis), s = std::sqrt(std::max(0.0, 1.0 - c * c));
+  if (c <= 0.0) return w;                      // backwards: the cap around the origin
+  if (w * c <= length * s) return w / s;        // through the side
+  return length * c + std::sqrt(w * w - length * length * s * s);  // through the far cap
+}
+
+// A star: a ball of radius `core` with six arms, capsules of radius `arm` reaching `reach`
+// from the centre along the axes of a tilted frame (so that the arms cross lattice rows
+// obliquely). The union is star-shaped about the origin, so it is the icosphere of `levels`
+// with each vertex moved out to the union's boundary along its direction.
+inline SurfaceMesh star(int levels, double core, double arm, double reach) {
+  SurfaceMesh s = icosphere(levels, 1.0);
+  const Eigen::Matrix3d tilt =
+      (Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitX()))
+          .toRotationMatrix();
+  for (auto& p : s.vertices) {
+    double r = core;
+    for (int k = 0; k < 3; ++k)
+      for (double sign : {-1.0, 1.0}) r = std::max(r, capsuleExit(p, sign * tilt.col(k), reach - arm, arm));
+    p *= r;
+  }
+  return s;
 }
 
 }  // namespace vp::test

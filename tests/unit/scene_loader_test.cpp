@@ -352,6 +352,35 @@ TEST(SceneLoader, DeformableScaleAppliesToTheSurfaceFile) {
   EXPECT_NEAR(extentX(*world->deformable(h)), 0.5, 1e-9);
 }
 
+// "surfaceMesher": "stuffing" (the default) or "voxel"; voxelResolution applies to either.
+TEST(SceneLoader, SurfaceMesherChoosesHowTheSurfaceFileBecomesTets) {
+  const test::TempDir dir;
+  auto load = [&](const std::string& name, const std::string& keys, TetMesh* mesh) {
+    auto world = makeWorld();
+    const std::string path =
+        writeCubeScene(dir, name, R"("surfaceFile": "unit_cube.obj", "voxelResolution": 4)" + keys);
+    const Status s = loadScene(*world, path);
+    DeformableHandle h;
+    if (ok(s) && world->findDeformable("jelly", &h)) *mesh = world->deformable(h)->desc().mesh;
+    return s;
+  };
+  TetMesh voxel, stuffed, byDefault;
+  ASSERT_EQ(load("voxel.json", R"(, "surfaceMesher": "voxel")", &voxel), Status::Ok) << lastError();
+  ASSERT_EQ(load("stuffing.json", R"(, "surfaceMesher": "stuffing")", &stuffed), Status::Ok) << lastError();
+  ASSERT_EQ(load("default.json", "", &byDefault), Status::Ok) << lastError();
+  EXPECT_EQ(voxel.vertices.size(), 125u);  // the 4 x 4 x 4 cells' corners
+  EXPECT_EQ(voxel.tets.size(), 6u * 64u);
+  EXPECT_EQ(byDefault.tets, stuffed.tets);
+  EXPECT_NE(stuffed.tets.size(), voxel.tets.size());
+  EXPECT_NEAR(totalVolume(stuffed), 1.0, 1e-12);
+  TetMesh unused;
+  EXPECT_EQ(load("octree.json", R"(, "surfaceMesher": "octree")", &unused), Status::ParseError);
+  EXPECT_NE(std::string(lastError()).find(
+                R"($.deformables[0].surfaceMesher = "octree": expected one of: stuffing, voxel)"),
+            std::string::npos)
+      << lastError();
+}
+
 TEST(SceneLoader, IfFileMissingStandsInOnlyWhenTheFileIsAbsent) {
   const test::TempDir dir;
   const char* fallback = R"("ifFileMissing": {"box": {"cells": [2, 1, 1], "size": [3, 1, 1]}}, "density": 500)";

@@ -26,6 +26,7 @@ namespace VolPhys
     public enum BodyType : int { Static = 0, Kinematic = 1, Dynamic = 2 }
     public enum ShapeType : int { Sphere = 0, Box = 1, Capsule = 2, Cylinder = 3, Plane = 4, ConvexHull = 5, TriangleMesh = 6 }
 
+    public enum SurfaceMesher : int { Default = 0, Stuffing = 1, Voxel = 2 }
     public enum FluidKind : int { Smoke = 0, Liquid = 1 }
     public enum Advection : int { SemiLagrangian = 0, MacCormack = 1 }
     public enum DomainSide : int { Wall = 0, Open = 1 }
@@ -358,6 +359,8 @@ namespace VolPhys
         public int priority;
         /// <summary>The colliders it contacts.</summary>
         public vpCollisionFilter filter;
+        /// <summary>How surfaceFile becomes tets (isosurface stuffing by default, or voxels).</summary>
+        public SurfaceMesher surfaceMesher;
     }
 
     /// <summary>A region in world coordinates: a box (centre, halfExtents) or a sphere (centre, radius).</summary>

@@ -117,6 +117,12 @@ class ShapeType(NamedIntEnum):
     TriangleMesh = 6
 
 
+class SurfaceMesher(NamedIntEnum):
+    Default = 0  # Stuffing
+    Stuffing = 1
+    Voxel = 2
+
+
 class FluidKind(NamedIntEnum):
     Smoke = 0
     Liquid = 1
@@ -350,6 +356,7 @@ class vpDeformableDef(ctypes.Structure):
         ("targetResidual", c_float),
         ("priority", c_int32),
         ("filter", vpCollisionFilter),
+        ("surfaceMesher", c_int32),  # SurfaceMesher
     ]
 
 

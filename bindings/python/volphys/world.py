@@ -300,8 +300,10 @@ class World:
 
     def create_deformable(self, vertices=None, tets=None, tet_file=None, surface_file=None,
                           render_vertices=None, render_triangles=None, position=None, rotation=None,
-                          linear_velocity=None, **scalars):
+                          linear_velocity=None, surface_mesher=None, **scalars):
         """Exactly one mesh source: vertices (n,3) + tets (m,4), tet_file, or surface_file.
+        surface_mesher: SurfaceMesher or 'stuffing' (the default) / 'voxel', how surface_file
+        becomes tets; voxel_resolution: cells along its longest axis, for either mesher.
         Further keywords: degree, voxel_resolution, youngs_modulus, poisson_ratio, density,
         mass_damping, stiffness_damping, friction, solver_tolerance, solver_max_iterations,
         target_residual (the accuracy floor of the implicit solve, in [solver_tolerance, 1]),
@@ -332,6 +334,8 @@ class World:
         _set_pose(d, position, rotation)
         if linear_velocity is not None:
             d.linearVelocity = _arrays.vec3(linear_velocity)
+        if surface_mesher is not None:
+            d.surfaceMesher = _enum_value(T.SurfaceMesher, surface_mesher, "surface_mesher")
         _set_scalars(d, _DEFORMABLE_SCALARS, scalars)
         did = T.vpDeformableId()
         call("vpDeformableCreate", self._id, ctypes.byref(d), ctypes.byref(did))

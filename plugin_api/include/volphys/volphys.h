@@ -498,6 +498,19 @@ VP_API vpStatus vpColliderGetName(vpColliderId collider, char* buffer, int32_t c
 
 /* ---------------------------------------------------------------- deformables */
 
+/* How a surfaceFile becomes tets. Stuffing (isosurface stuffing, Labelle & Shewchuk 2007) fills
+ * the surface with tets whose boundary lies on it: the volume is kept (the error shrinks with
+ * the square of the cell size), and the paper proves its dihedral angles within 10.7 to 164.8
+ * degrees (this implementation's warp order is its own: docs/choices.md;
+ * vpDeformableGetMeshQuality reports a mesh's range); parts thinner than about two cells lose
+ * volume or vanish. Voxel keeps every cube of the grid the surface touches (6 tets each):
+ * it always covers the surface but swells thin parts by up to a cell. */
+typedef enum vpSurfaceMesher {
+  vpSurfaceMesher_Default = 0,  /* Stuffing */
+  vpSurfaceMesher_Stuffing = 1,
+  vpSurfaceMesher_Voxel = 2
+} vpSurfaceMesher;
+
 /* A deformable volume: corotational linear elasticity on a tetrahedral mesh, implicit
  * (backward Euler), solved by preconditioned CG within the frame budget. Nodes are the mesh
  * vertices (same indices) followed, for degree > 1, by the shared edge and face control
@@ -514,10 +527,11 @@ typedef struct vpDeformableDef {
   const int32_t* tets;          /* 4 node indices per tet, tetCount of them (copied) */
   int32_t tetCount;
   const char* tetFile;          /* Gmsh .msh (2.2 / 4.1 ASCII), TetGen .node/.ele, legacy VTK */
-  const char* surfaceFile;      /* closed surface, any format assimp reads: voxel-tetrahedralized;
-                                   one that is not closed (after welding equal positions) is
-                                   InvalidArgument naming an open edge */
-  int32_t voxelResolution;      /* for surfaceFile: cells along the longest axis; default 12 */
+  const char* surfaceFile;      /* closed surface, any format assimp reads: tetrahedralized by
+                                   surfaceMesher; one that is not closed (after welding equal
+                                   positions) is InvalidArgument naming an open edge */
+  int32_t voxelResolution;      /* for surfaceFile, either mesher: lattice cells along the
+                                   longest axis of the surface's bounding box, 1..256; default 12 */
   const float* renderVertices;  /* optional explicit render mesh (copied) */
   int32_t renderVertexCount;
   const int32_t* renderTriangles;
@@ -539,6 +553,7 @@ typedef struct vpDeformableDef {
   int32_t priority;             /* -1000000..1000000: higher is served first when the frame budget
                                    is short (deformables and fluids share the scale); default 0 */
   vpCollisionFilter filter;     /* the colliders it contacts */
+  int32_t surfaceMesher;        /* for surfaceFile: a vpSurfaceMesher; default vpSurfaceMesher_Default */
 } vpDeformableDef;
 
 VP_API vpDeformableDef vpDefaultDeformableDef(void);

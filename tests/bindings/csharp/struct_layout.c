@@ -73,7 +73,7 @@ int main(void) {
   FIELD(vpDeformableDef, massDamping); FIELD(vpDeformableDef, stiffnessDamping); FIELD(vpDeformableDef, friction);
   FIELD(vpDeformableDef, solverTolerance); FIELD(vpDeformableDef, solverMaxIterations);
   FIELD(vpDeformableDef, userData); FIELD(vpDeformableDef, targetResidual); FIELD(vpDeformableDef, priority);
-  FIELD(vpDeformableDef, filter);
+  FIELD(vpDeformableDef, filter); FIELD(vpDeformableDef, surfaceMesher);
   SIZE(vpFluidId); FIELD(vpFluidId, index1); FIELD(vpFluidId, generation); FIELD(vpFluidId, world);
   SIZE(vpFluidRegion); FIELD(vpFluidRegion, type); FIELD(vpFluidRegion, centre); FIELD(vpFluidRegion, halfExtents);
   FIELD(vpFluidRegion, radius);
