@@ -38,7 +38,7 @@ namespace VolPhys
 
     public static class Constants
     {
-        public const int VersionMajor = 0, VersionMinor = 6, VersionPatch = 0;
+        public const int VersionMajor = 0, VersionMinor = 7, VersionPatch = 0;
         public const uint HeaderVersion = (VersionMajor << 16) | (VersionMinor << 8) | VersionPatch;
         public const int MaxPhases = 16;
     }
