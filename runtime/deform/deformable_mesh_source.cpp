@@ -45,8 +45,9 @@ Status resolveDeformableMesh(const DeformableMeshSource& source, DeformableDesc*
     Status s = readTetMeshFile(source.tetFile, &mesh);
     if (!ok(s)) return addErrorContext(s, "tetFile");
   } else if (!source.surfaceFile.empty()) {
-    if (source.voxelResolution < 1 || source.voxelResolution > 256)
-      return fail(Status::InvalidArgument, "voxelResolution = %d: must be in [1, 256]", source.voxelResolution);
+    if (source.voxelResolution < 1 || source.voxelResolution > DeformableMeshSource::kMaxVoxelResolution)
+      return fail(Status::InvalidArgument, "voxelResolution = %d: must be in [1, %d]", source.voxelResolution,
+                  DeformableMeshSource::kMaxVoxelResolution);
     SurfaceMesh surface;
     Status s = loadSurfaceMesh(source.surfaceFile, &surface);
     if (!ok(s)) return addErrorContext(s, "surfaceFile");

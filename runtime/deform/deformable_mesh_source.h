@@ -24,6 +24,10 @@ struct DeformableMeshSource {
   std::string tetFile;                     // .msh / .node / .ele / .vtk
   std::string surfaceFile;                 // closed surface -> tets, kept as render mesh
   int voxelResolution = 12;                // either mesher: cells along the longest axis
+  // The finest surface lattice a deformable may ask for: the tets of a finer one take longer
+  // to build (and memory by the gigabyte) than a frame could ever step; a finer simulation
+  // mesh comes in as a tetFile.
+  static constexpr int kMaxVoxelResolution = 48;
   SurfaceMesher surfaceMesher = SurfaceMesher::Default;
   std::optional<std::array<int, 3>> boxCells;  // built-in box: cells and size
   Vec3 boxSize{1.0, 1.0, 1.0};

@@ -378,3 +378,30 @@ TEST(CApiDeformable, AnUnknownSurfaceMesherIsRefusedNamingTheValue) {
 }
 
 }  // namespace
+
+// The surface lattice is bounded: a resolution whose tets no frame could step (and whose build
+// took minutes and gigabytes) is refused naming the field, for either mesher.
+TEST(CApiDeformable, ASurfaceResolutionAboveTheBoundIsRefusedNamingIt) {
+  ScopedWorld w;
+  const std::string obj = ::testing::TempDir() + "/vp_bound_cube.obj";
+  {
+    std::ofstream f(obj);
+    f << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+         "f 1 4 3\nf 1 3 2\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 4 8 7\nf 4 7 3\nf 1 5 8\nf 1 8 4\nf 2 3 7\nf 2 7 6\n";
+  }
+  for (int32_t mesher : {vpSurfaceMesher_Stuffing, vpSurfaceMesher_Voxel}) {
+    vpDeformableDef def = vpDefaultDeformableDef();
+    def.surfaceFile = obj.c_str();
+    def.surfaceMesher = mesher;
+    def.voxelResolution = 49;
+    vpDeformableId id;
+    EXPECT_EQ(vpDeformableCreate(w.id, &def, &id), vpStatus_InvalidArgument);
+    EXPECT_TRUE(lastErrorContains("voxelResolution = 49: must be in [1, 48]")) << vpGetLastError();
+    def.voxelResolution = 0;
+    EXPECT_EQ(vpDeformableCreate(w.id, &def, &id), vpStatus_InvalidArgument);
+    EXPECT_TRUE(lastErrorContains("voxelResolution = 0")) << vpGetLastError();
+  }
+  int32_t count = -1;
+  ASSERT_VP_OK(vpWorldGetDeformableCount(w.id, &count));
+  EXPECT_EQ(count, 0);
+}

@@ -531,7 +531,8 @@ typedef struct vpDeformableDef {
                                    surfaceMesher; one that is not closed (after welding equal
                                    positions) is InvalidArgument naming an open edge */
   int32_t voxelResolution;      /* for surfaceFile, either mesher: lattice cells along the
-                                   longest axis of the surface's bounding box, 1..256; default 12 */
+                                   longest axis of the surface's bounding box, 1..48 (finer
+                                   meshes come as tetFile); default 12 */
   const float* renderVertices;  /* optional explicit render mesh (copied) */
   int32_t renderVertexCount;
   const int32_t* renderTriangles;
