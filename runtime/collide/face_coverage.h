@@ -81,6 +81,12 @@ struct PreparedCollider {
   Array<Eigen::Vector3d> worldVertices;
   Array<Eigen::Vector3i> triangles;
   TriangleBvh bvh;
+
+  // A deforming surface (a deformable's boundary, setDeformingSurface): one world velocity
+  // per vertex, and a count of its moves, so that a reader can tell it moved without
+  // comparing vertices. Empty and 0 for a rigid shape.
+  Array<Eigen::Vector3d> vertexVelocities;
+  uint64_t surfaceMoves = 0;
 };
 
 // Validates `shape` (finite numbers, positive sizes, hull non-degenerate and at most
@@ -94,6 +100,22 @@ Status setColliderPose(PreparedCollider* collider, const Eigen::Quaterniond& rot
 // taken as it is, already normalized, so the collider comes out bitwise as it was.
 void restoreColliderPose(PreparedCollider* collider, const Eigen::Quaterniond& unitRotation,
                          const Eigen::Vector3d& translation);
+
+// A closed triangle mesh that deforms (a deformable's boundary): prepares it from its
+// vertices (world frame, identity pose) and velocities, or moves a prepared one to new ones
+// (same count; rebuilds the BVH). The mesh's validity (closed, not flat) is checked by the
+// prepare only: a deformable's boundary keeps its topology.
+Status prepareDeformingSurface(const Array<Eigen::Vector3d>& vertices, const Array<Eigen::Vector3i>& triangles,
+                               PreparedCollider* out);
+void setDeformingSurface(PreparedCollider* collider, const Array<Eigen::Vector3d>& vertices,
+                         const Array<Eigen::Vector3d>& velocities);
+
+// The velocity of the solid's material at (or, for a deforming surface, nearest to) x:
+// rigid v + w x (x - c); a deforming surface's vertex velocities interpolated at the
+// surface point closest to x.
+Eigen::Vector3d solidVelocityAt(const PreparedCollider& collider, const Eigen::Vector3d& x);
+// A bound on the speed of any of the solid's points (the fluid's sub-step rule).
+double solidSpeedBound(const PreparedCollider& collider);
 
 // Covered area fraction in [0,1] of `face` by one collider. No allocation.
 double coveredFraction(const PreparedCollider& collider, const AxisFace& face);
