@@ -82,6 +82,13 @@ double coveredFraction(const ColliderShape& shape, const AxisFace& face) {
   return coveredFraction(c, face);
 }
 
+bool solidContains(const PreparedCollider& c, const Eigen::Vector3d& x) {
+  if (c.shape.kind != ShapeKind::TriangleMesh) return signedDistanceBound(c, x) < 0.0;
+  const Aabb& b = c.bounds;
+  if ((x.array() < b.lo.array()).any() || (x.array() > b.hi.array()).any()) return false;
+  return detail::meshContains(c, x);
+}
+
 Eigen::Vector3d solidVelocityAt(const PreparedCollider& c, const Eigen::Vector3d& x) {
   if (c.vertexVelocities.empty())
     return c.shape.linearVelocity + c.shape.angularVelocity.cross(x - c.translation);

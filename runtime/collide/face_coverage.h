@@ -126,9 +126,12 @@ double coveredFraction(const ColliderShape& shape, const AxisFace& face);
 
 // Covered fraction of the union of several colliders on one face. One collider touching the
 // face (after conservative rejects) -> its exact path; any collider covering the whole face
-// -> 1; up to four convex polyhedra and at most one sphere -> exact (inclusion-exclusion of
-// clipped polygons); otherwise a quadtree over the face on the union's signed distance (min
-// over colliders), refined until its rigorous error bound is below kCoverageTolerance.
+// -> 1; deforming surfaces -> their coverages added to the union of the rest (a deformable's
+// contacts keep solids out of it, so the parts do not overlap; where they do, by a contact's
+// penetration, the sum counts that sliver twice); up to four convex polyhedra and at most one
+// sphere -> exact (inclusion-exclusion of clipped polygons); otherwise a quadtree over the
+// face on the union's signed distance (min over colliders), refined until its rigorous error
+// bound is below kCoverageTolerance.
 double coveredFractionUnion(const PreparedCollider* const* colliders, int count,
                             const AxisFace& face);
 
@@ -136,6 +139,10 @@ double coveredFractionUnion(const PreparedCollider* const* colliders, int count,
 // for sphere, box, capsule, cylinder, plane; max of face planes for a hull (exact inside,
 // a lower bound outside); for a mesh, exact unsigned distance with a ray-parity sign.
 double signedDistanceBound(const PreparedCollider& collider, const Eigen::Vector3d& x);
+
+// Whether x lies inside the solid (for a mesh, by ray parity alone: cheaper than the
+// signed distance when only the sign is wanted).
+bool solidContains(const PreparedCollider& collider, const Eigen::Vector3d& x);
 
 // Conservative classification of a face against one collider:
 // -1: fully outside (covered 0), +1: fully inside (covered 1), 0: needs exact work.

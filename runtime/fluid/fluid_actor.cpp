@@ -677,6 +677,12 @@ Phase FluidActor::phaseOf(FluidSlice kind) {
   return Phase::Surface;
 }
 
+void FluidActor::invalidateDerived() {
+  fractionsChanged_ = pressureOperatorStale_ = true;
+  for (ColliderSnapshot& c : snapshots_)
+    if (c.generation & kDeformableSolidBit) c.surfaceMoves = kUnknownMoves;
+}
+
 FluidState FluidActor::saveState() const {
   FluidState s;
   for (int a = 0; a < 3; ++a) {
@@ -724,7 +730,8 @@ void FluidActor::restoreState(FluidState&& s) {
   snapshots_.clear();
   for (const FluidColliderPose& c : s.fractionColliders)
     snapshots_.push_back(ColliderSnapshot{c.index1, c.generation, Aabb{c.lo, c.hi}, c.rotation, c.translation,
-                                          c.linearVelocity, c.angularVelocity, kUnknownMoves});
+                                          c.linearVelocity, c.angularVelocity,
+                                          (c.generation & kDeformableSolidBit) ? kUnknownMoves : 0});
   fractionsValid_ = s.fractionsValid;
   invalidateDerived();
   speedAtEnd_ = s.speedAtEnd;

@@ -163,7 +163,8 @@ class FluidActor {
   // What the fluid derives from its state (the pressure operator, the open-face masks) is
   // rebuilt when next needed. A restore does this; a save does it too, so that both go on
   // alike, in time too (a rebuild costs slices under a budget).
-  void invalidateDerived() { fractionsChanged_ = pressureOperatorStale_ = true; }
+  // A deformable's surface is taken as moved since (its count of moves is not in the state).
+  void invalidateDerived();
 
   // What readers see: the last completed step.
   const FluidDesc& desc() const { return desc_; }
@@ -240,7 +241,7 @@ class FluidActor {
     Aabb bounds;
     Eigen::Quaterniond rotation;
     Eigen::Vector3d translation, linearVelocity, angularVelocity;
-    uint64_t surfaceMoves;  // a deforming surface's; kUnknownMoves after a restore
+    uint64_t surfaceMoves;  // a deforming surface's (0 for a collider); kUnknownMoves after a save or restore
   };
   static constexpr uint64_t kUnknownMoves = ~uint64_t(0);
   // The loads of the sub-step just projected on the input's dynamic solids, added to the step's means.

@@ -26,9 +26,9 @@ void setGhostAirValues(const MacGrid& grid, const CutCellPoisson& op, const doub
           for (int dir = -1; dir <= 1; dir += 2) {
             Eigen::Vector3i nb = c;
             nb[a] += dir;
-            if (nb[a] < 0 || nb[a] >= n[a]) continue;
+            if (nb[a] < 0 || nb[a] >= n[a] || !local.contains(nb)) continue;
             const size_t g = grid.cellIndex(nb.x(), nb.y(), nb.z());
-            if (!op.isFluid(g) || !(phi[g] < 0.0) || !(phiAir >= 0.0)) continue;
+            if (!op.isFluid(g) || local.layer[local.index(nb)] != 0 || !(phi[g] < 0.0) || !(phiAir >= 0.0)) continue;
             sum += pressure[g] * phiAir / phi[g];
             ++count;
           }
@@ -48,7 +48,8 @@ bool solidCell(const MacGrid& grid, const FaceFractionField& fractions, const Ei
 }
 
 void extendIntoSolid(const MacGrid& grid, const FaceFractionField& fractions, const CutCellPoisson& op,
-                     const double* pressure, const double* liquidPhi, LocalPressure& local) {
+                     const double* pressure, const double* liquidPhi, const PreparedCollider* body,
+                     LocalPressure& local) {
   const int64_t count = int64_t(local.dims.x()) * local.dims.y() * local.dims.z();
   local.value.assign(static_cast<size_t>(count), 0.0);
   local.layer.assign(static_cast<size_t>(count), 0);
@@ -60,9 +61,10 @@ void extendIntoSolid(const MacGrid& grid, const FaceFractionField& fractions, co
         const Eigen::Vector3i c = local.lo + Eigen::Vector3i(i, j, k);
         const int64_t l = local.index(c);
         const size_t g = grid.cellIndex(c.x(), c.y(), c.z());
-        if (op.isFluid(g)) {
+        const bool inBody = body != nullptr && solidContains(*body, grid.cellCentre(c.x(), c.y(), c.z()));
+        if (op.isFluid(g) && !inBody) {
           local.value[l] = pressure[g];
-        } else if (solidCell(grid, fractions, c)) {
+        } else if (inBody || solidCell(grid, fractions, c)) {
           local.layer[l] = -1;
           unknown.push_back(l);
         } else {
@@ -104,7 +106,8 @@ void extendIntoSolid(const MacGrid& grid, const FaceFractionField& fractions, co
 }  // namespace
 
 bool localPressureAround(const MacGrid& grid, const FaceFractionField& fractions, const CutCellPoisson& op,
-                         const double* pressure, const double* liquidPhi, const Aabb& bounds, LocalPressure* out) {
+                         const double* pressure, const double* liquidPhi, const Aabb& bounds,
+                         const PreparedCollider* body, LocalPressure* out) {
   const MacGridSpec& s = grid.spec;
   const Eigen::Vector3i n(s.nx, s.ny, s.nz);
   LocalPressure local;
@@ -118,7 +121,7 @@ bool localPressureAround(const MacGrid& grid, const FaceFractionField& fractions
     if (local.lo[a] > hi[a]) return false;
   }
   local.dims = hi - local.lo + Eigen::Vector3i::Ones();
-  extendIntoSolid(grid, fractions, op, pressure, liquidPhi, local);
+  extendIntoSolid(grid, fractions, op, pressure, liquidPhi, body, local);
   *out = std::move(local);
   return true;
 }

@@ -36,8 +36,12 @@ struct LocalPressure {
 
 // Fills `out` over the cells around `bounds`; false (out unchanged) when they miss the grid.
 // `liquidPhi` (cell-centred, null for smoke or for air at p = 0) gives air cells their ghost
-// values.
+// values. Given `body`, the cells whose centres lie inside it are extended too, fluid or not:
+// a cut cell whose fluid is a sliver beside the body has a pressure of no use at its centre
+// (the solve leaves it free to take extreme values), and reading it there would put that
+// value on the body's surface.
 bool localPressureAround(const MacGrid& grid, const FaceFractionField& fractions, const CutCellPoisson& op,
-                         const double* pressure, const double* liquidPhi, const Aabb& bounds, LocalPressure* out);
+                         const double* pressure, const double* liquidPhi, const Aabb& bounds,
+                         const PreparedCollider* body, LocalPressure* out);
 
 }  // namespace vp

@@ -33,7 +33,7 @@ PressureLoad pressureLoadOnCollider(const MacGrid& grid, const FaceFractionField
   PressureLoad load;
   const MacGridSpec& s = grid.spec;
   LocalPressure local;
-  if (!localPressureAround(grid, fractions, op, pressure, nullptr, collider.bounds, &local)) return load;
+  if (!localPressureAround(grid, fractions, op, pressure, nullptr, collider.bounds, nullptr, &local)) return load;
   const Eigen::Vector3i hi = local.lo + local.dims - Eigen::Vector3i::Ones();
   const double area = s.h * s.h;
   double wetVolume = 0.0;  // each axis' faces cover the volume once: a third from each

@@ -46,7 +46,7 @@ void surfacePressureLoad(const MacGrid& grid, const FaceFractionField& fractions
   out->vertexForces.assign(x.size(), Vec3::Zero());
   out->total = PressureLoad{};
   LocalPressure local;
-  if (!localPressureAround(grid, fractions, op, pressure, liquidPhi, surface.bounds, &local)) return;
+  if (!localPressureAround(grid, fractions, op, pressure, liquidPhi, surface.bounds, &surface, &local)) return;
   const MacGridSpec& s = grid.spec;
   const Eigen::Vector3i hi = local.lo + local.dims - Eigen::Vector3i::Ones();
   const Eigen::Vector3i gridHi(s.nx - 1, s.ny - 1, s.nz - 1);
