@@ -45,6 +45,9 @@ World::World(const WorldConfig& config)
   fluids_.setGenerationLimit(kHandleGenerationLimit);
 }
 
+static_assert(World::kHandleGenerationLimit <= kDeformableSolidBit,
+              "a deformable's generation with kDeformableSolidBit set must not be a collider's");
+
 Status World::create(const WorldConfig& config, std::unique_ptr<World>* out) {
   VP_TRY(validateWorldConfig(config));
   const uint64_t refusals = hostAllocationRefusals();
@@ -247,13 +250,6 @@ double longestDeformableSliceMs(const ActorStats& a) {
   return longest;
 }
 
-// A collider as an actor's stage sees it, with the collider's filter.
-template <class Entry>
-struct Filtered {
-  CollisionFilter filter;
-  Entry entry;
-};
-
 // The colliders an actor with `filter` meets, in the list's order.
 template <class Entry>
 std::vector<Entry> meeting(const std::vector<Filtered<Entry>>& colliders, const CollisionFilter& filter) {
@@ -438,6 +434,8 @@ bool World::stepDeformables(double dt, const Deadline& frame, StepStats* stats) 
                                                   concurrent ? 1 : static_cast<int>(served.size()) - n);
     DeformableStepInput input = deformableStepInput(body, contactColliders);
     input.dt = s.pendingDt;
+    setFluidLoads(handles[i], body);
+    body.applyFluidLoads(input.dt, config_.gravity);
     input.deadline = deadlines[i].share;
     input.floorDeadline = deadlines[i].floor;
     ActorStats& a = actors[i];
@@ -484,14 +482,42 @@ bool World::stepDeformables(double dt, const Deadline& frame, StepStats* stats) 
   return std::find(missed.begin(), missed.end(), true) == missed.end();
 }
 
+std::vector<Filtered<FluidCollider>> World::fluidSolids() {
+  std::vector<Filtered<FluidCollider>> solids;
+  if (fluids_.size() == 0) return solids;
+  colliders_.forEach([&](ColliderHandle h, const Collider& c) {
+    if (c.geometry())
+      solids.push_back({c.filter(), FluidCollider{h.index1, h.generation, c.geometry(), c.sharedGeometry(),
+                                                  c.bodyType() == BodyType::Dynamic}});
+  });
+  std::vector<Aabb> domains;
+  fluids_.forEach([&](FluidHandle, const FluidActor& f) {
+    const MacGridSpec& g = f.grid().spec;
+    domains.push_back(Aabb{g.origin, g.origin + g.h * Vec3(g.nx, g.ny, g.nz)});
+  });
+  // A deformable far from every fluid is left out rather than kept up to date for nothing.
+  deformables_.forEach([&](DeformableHandle h, DeformableBody& body) {
+    const Aabb bounds = body.bounds();
+    if (std::none_of(domains.begin(), domains.end(), [&](const Aabb& d) { return d.overlaps(bounds); })) return;
+    std::shared_ptr<const PreparedCollider> surface = body.fluidSurface();
+    solids.push_back({body.desc().filter, FluidCollider{h.index1, h.generation | kDeformableSolidBit, surface.get(),
+                                                        surface, true}});
+  });
+  return solids;
+}
+
+void World::setFluidLoads(DeformableHandle handle, DeformableBody& body) const {
+  FluidImmersion& immersion = body.immersion();
+  immersion.clearLoads();
+  fluids_.forEach([&](FluidHandle, const FluidActor& fluid) {
+    for (const FluidColliderLoad& l : fluid.loads())
+      if (l.index1 == handle.index1 && l.generation == (handle.generation | kDeformableSolidBit))
+        immersion.addLoad(l.vertexForces, l.load.addedMass);
+  });
+}
+
 void World::stepFluids(double dt, const Deadline& frame, bool floorsHeld, StepStats* stats) {
-  std::vector<Filtered<FluidCollider>> colliders;
-  if (fluids_.size() > 0)
-    colliders_.forEach([&](ColliderHandle h, const Collider& c) {
-      if (c.geometry())
-        colliders.push_back({c.filter(), FluidCollider{h.index1, h.generation, c.geometry(), c.sharedGeometry(),
-                                                       c.bodyType() == BodyType::Dynamic}});
-    });
+  const std::vector<Filtered<FluidCollider>> colliders = fluidSolids();
   const std::vector<FluidHandle> handles = fluidHandles();
   std::vector<int> priorities;
   for (FluidHandle h : handles) priorities.push_back(fluid(h)->desc().priority);

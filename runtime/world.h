@@ -37,6 +37,13 @@ Status validateWorldConfig(const WorldConfig& config);
 Status validateFrameBudget(double frameBudgetMs);
 Status validateGravity(const Vec3& gravity);
 
+// A solid as an actor's stage sees it, with the filter it meets actors by.
+template <class Entry>
+struct Filtered {
+  CollisionFilter filter;
+  Entry entry;
+};
+
 using ColliderHandle = SlotMap<Collider>::Handle;
 using DeformableHandle = SlotMap<DeformableBody>::Handle;
 using FluidHandle = SlotMap<FluidActor>::Handle;
@@ -116,6 +123,11 @@ class World {
   template <class FilteredColliders>
   DeformableStepInput deformableStepInput(const DeformableBody& body, const FilteredColliders& colliders) const;
   void stepFluids(double dt, const Deadline& frame, bool floorsHeld, StepStats* stats);
+  // What the fluids see as solids: the colliders with exact geometry and the surfaces of the
+  // deformables that reach into some fluid's domain (deform/fluid_immersion.h).
+  std::vector<Filtered<FluidCollider>> fluidSolids();
+  // The fluids' loads on a deformable, from their last completed steps, set before its step.
+  void setFluidLoads(DeformableHandle handle, DeformableBody& body) const;
   void finishStats(const Deadline& frame, StepStats* stats);
   // A fluid step that completed: the plan's bookkeeping of its rate and cost.
   static void noteFluidStepCompleted(ActorSchedule& s);

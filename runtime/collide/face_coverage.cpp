@@ -1,6 +1,7 @@
 // Dispatch of face coverage per shape kind, the conservative reject test and the signed
 // distance bounds shared by the reject test and the union path.
 #include "collide/face_coverage_detail.h"
+#include "geometry/closest_point_on_triangle.h"
 
 #include <limits>
 
@@ -79,6 +80,32 @@ double coveredFraction(const ColliderShape& shape, const AxisFace& face) {
   PreparedCollider c;
   if (!ok(prepareCollider(shape, &c))) return std::numeric_limits<double>::quiet_NaN();
   return coveredFraction(c, face);
+}
+
+bool solidContains(const PreparedCollider& c, const Eigen::Vector3d& x) {
+  if (c.shape.kind != ShapeKind::TriangleMesh) return signedDistanceBound(c, x) < 0.0;
+  const Aabb& b = c.bounds;
+  if ((x.array() < b.lo.array()).any() || (x.array() > b.hi.array()).any()) return false;
+  return detail::meshContains(c, x);
+}
+
+Eigen::Vector3d solidVelocityAt(const PreparedCollider& c, const Eigen::Vector3d& x) {
+  if (c.vertexVelocities.empty())
+    return c.shape.linearVelocity + c.shape.angularVelocity.cross(x - c.translation);
+  int triangle = -1;
+  Eigen::Vector3d q;
+  detail::meshClosestPoint(c, x, &triangle, &q);
+  if (triangle < 0) return Eigen::Vector3d::Zero();
+  const Eigen::Vector3i& t = c.triangles[triangle];
+  const Eigen::Vector3d w = barycentricWeights(q, c.worldVertices[t[0]], c.worldVertices[t[1]], c.worldVertices[t[2]]);
+  return w[0] * c.vertexVelocities[t[0]] + w[1] * c.vertexVelocities[t[1]] + w[2] * c.vertexVelocities[t[2]];
+}
+
+double solidSpeedBound(const PreparedCollider& c) {
+  if (c.vertexVelocities.empty()) return c.shape.linearVelocity.norm() + c.shape.angularVelocity.norm() * c.boundRadius;
+  double fastest = 0.0;
+  for (const Eigen::Vector3d& v : c.vertexVelocities) fastest = std::max(fastest, v.squaredNorm());
+  return std::sqrt(fastest);
 }
 
 }  // namespace vp

@@ -81,6 +81,12 @@ struct PreparedCollider {
   Array<Eigen::Vector3d> worldVertices;
   Array<Eigen::Vector3i> triangles;
   TriangleBvh bvh;
+
+  // A deforming surface (a deformable's boundary, setDeformingSurface): one world velocity
+  // per vertex, and a count of its moves, so that a reader can tell it moved without
+  // comparing vertices. Empty and 0 for a rigid shape.
+  Array<Eigen::Vector3d> vertexVelocities;
+  uint64_t surfaceMoves = 0;
 };
 
 // Validates `shape` (finite numbers, positive sizes, hull non-degenerate and at most
@@ -95,6 +101,22 @@ Status setColliderPose(PreparedCollider* collider, const Eigen::Quaterniond& rot
 void restoreColliderPose(PreparedCollider* collider, const Eigen::Quaterniond& unitRotation,
                          const Eigen::Vector3d& translation);
 
+// A closed triangle mesh that deforms (a deformable's boundary): prepares it from its
+// vertices (world frame, identity pose) and velocities, or moves a prepared one to new ones
+// (same count; rebuilds the BVH). The mesh's validity (closed, not flat) is checked by the
+// prepare only: a deformable's boundary keeps its topology.
+Status prepareDeformingSurface(const Array<Eigen::Vector3d>& vertices, const Array<Eigen::Vector3i>& triangles,
+                               PreparedCollider* out);
+void setDeformingSurface(PreparedCollider* collider, const Array<Eigen::Vector3d>& vertices,
+                         const Array<Eigen::Vector3d>& velocities);
+
+// The velocity of the solid's material at (or, for a deforming surface, nearest to) x:
+// rigid v + w x (x - c); a deforming surface's vertex velocities interpolated at the
+// surface point closest to x.
+Eigen::Vector3d solidVelocityAt(const PreparedCollider& collider, const Eigen::Vector3d& x);
+// A bound on the speed of any of the solid's points (the fluid's sub-step rule).
+double solidSpeedBound(const PreparedCollider& collider);
+
 // Covered area fraction in [0,1] of `face` by one collider. No allocation.
 double coveredFraction(const PreparedCollider& collider, const AxisFace& face);
 
@@ -104,9 +126,12 @@ double coveredFraction(const ColliderShape& shape, const AxisFace& face);
 
 // Covered fraction of the union of several colliders on one face. One collider touching the
 // face (after conservative rejects) -> its exact path; any collider covering the whole face
-// -> 1; up to four convex polyhedra and at most one sphere -> exact (inclusion-exclusion of
-// clipped polygons); otherwise a quadtree over the face on the union's signed distance (min
-// over colliders), refined until its rigorous error bound is below kCoverageTolerance.
+// -> 1; deforming surfaces -> their coverages added to the union of the rest (a deformable's
+// contacts keep solids out of it, so the parts do not overlap; where they do, by a contact's
+// penetration, the sum counts that sliver twice); up to four convex polyhedra and at most one
+// sphere -> exact (inclusion-exclusion of clipped polygons); otherwise a quadtree over the
+// face on the union's signed distance (min over colliders), refined until its rigorous error
+// bound is below kCoverageTolerance.
 double coveredFractionUnion(const PreparedCollider* const* colliders, int count,
                             const AxisFace& face);
 
@@ -114,6 +139,10 @@ double coveredFractionUnion(const PreparedCollider* const* colliders, int count,
 // for sphere, box, capsule, cylinder, plane; max of face planes for a hull (exact inside,
 // a lower bound outside); for a mesh, exact unsigned distance with a ray-parity sign.
 double signedDistanceBound(const PreparedCollider& collider, const Eigen::Vector3d& x);
+
+// Whether x lies inside the solid (for a mesh, by ray parity alone: cheaper than the
+// signed distance when only the sign is wanted).
+bool solidContains(const PreparedCollider& collider, const Eigen::Vector3d& x);
 
 // Conservative classification of a face against one collider:
 // -1: fully outside (covered 0), +1: fully inside (covered 1), 0: needs exact work.

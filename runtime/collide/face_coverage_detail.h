@@ -145,6 +145,8 @@ void bvhQueryBox(const TriangleBvh& bvh, const Eigen::Vector3d& lo, const Eigen:
 
 // Unsigned distance from x to the mesh (BVH nearest search).
 double meshUnsignedDistance(const PreparedCollider& c, const Eigen::Vector3d& x);
+// The mesh's point nearest to x: its triangle (index into c.triangles) and the point.
+void meshClosestPoint(const PreparedCollider& c, const Eigen::Vector3d& x, int* triangle, Eigen::Vector3d* point);
 // True when x is inside the closed mesh (ray parity along a fixed skew direction).
 bool meshContains(const PreparedCollider& c, const Eigen::Vector3d& x);
 

@@ -250,4 +250,26 @@ void restoreColliderPose(PreparedCollider* c, const Eigen::Quaterniond& unitRota
   updateWorld(c);
 }
 
+Status prepareDeformingSurface(const Array<Eigen::Vector3d>& vertices, const Array<Eigen::Vector3i>& triangles,
+                               PreparedCollider* out) {
+  if (out == nullptr) return fail(Status::InvalidArgument, "prepareDeformingSurface: out is null");
+  ColliderShape shape;
+  shape.kind = ShapeKind::TriangleMesh;
+  shape.meshVertices = vertices;
+  shape.meshTriangles = triangles;
+  PreparedCollider c;
+  VP_TRY(prepareCollider(shape, &c));
+  c.vertexVelocities.assign(vertices.size(), Eigen::Vector3d::Zero());
+  *out = std::move(c);
+  return Status::Ok;
+}
+
+void setDeformingSurface(PreparedCollider* c, const Array<Eigen::Vector3d>& vertices,
+                         const Array<Eigen::Vector3d>& velocities) {
+  c->shape.meshVertices = vertices;
+  c->vertexVelocities = velocities;
+  ++c->surfaceMoves;
+  updateWorld(c);
+}
+
 }  // namespace vp

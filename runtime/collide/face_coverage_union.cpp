@@ -127,6 +127,20 @@ double coveredFractionUnion(const PreparedCollider* const* colliders, int count,
   }
   if (n == 0) return 0.0;
   if (n == 1) return coveredFraction(*colliders[active[0]], face);
+  // Deforming surfaces (deformables) are kept out of the other solids by their contacts, so
+  // their covered parts of a face do not overlap the others': their coverages add. Only the
+  // rigid solids, which may overlap each other, go through the union below.
+  double deforming = 0.0;
+  int rigid = 0;
+  for (int i = 0; i < n; ++i) {
+    if (colliders[active[i]]->vertexVelocities.empty()) active[rigid++] = active[i];
+    else deforming += coveredFraction(*colliders[active[i]], face);
+  }
+  if (rigid < n) {
+    const PreparedCollider* rigidOnes[kMaxActive];
+    for (int i = 0; i < rigid; ++i) rigidOnes[i] = colliders[active[i]];
+    return std::min(1.0, deforming + (rigid > 0 ? coveredFractionUnion(rigidOnes, rigid, face) : 0.0));
+  }
   const detail::FaceFrame frame = detail::makeFrame(face);
   if (exactUnionApplies(colliders, active, n))
     return std::min(1.0, std::max(0.0, exactUnionArea(colliders, active, n, frame) / frame.area()));

@@ -65,9 +65,11 @@ void buildTriangleBvh(const Array<Eigen::Vector3d>& v,
   if (!t.empty()) buildNode(v, t, centroid, bvh, 0, static_cast<int>(t.size()), 0);
 }
 
-double meshUnsignedDistance(const PreparedCollider& c, const Eigen::Vector3d& x) {
+void meshClosestPoint(const PreparedCollider& c, const Eigen::Vector3d& x, int* triangle, Eigen::Vector3d* point) {
   const TriangleBvh& bvh = c.bvh;
   double best2 = std::numeric_limits<double>::infinity();
+  int bestTriangle = -1;
+  Eigen::Vector3d bestPoint = x;
   int stack[64];
   int top = 0;
   stack[top++] = 0;
@@ -76,10 +78,12 @@ double meshUnsignedDistance(const PreparedCollider& c, const Eigen::Vector3d& x)
     if (boxDistance2(x, nd.lo, nd.hi) >= best2) continue;
     if (nd.count > 0) {
       for (int i = 0; i < nd.count; ++i) {
-        const Eigen::Vector3i& t = c.triangles[bvh.order[nd.first + i]];
+        const int id = bvh.order[nd.first + i];
+        const Eigen::Vector3i& t = c.triangles[id];
         const Eigen::Vector3d q = closestPointOnTriangle(x, c.worldVertices[t[0]],
                                                     c.worldVertices[t[1]], c.worldVertices[t[2]]);
-        best2 = std::min(best2, (q - x).squaredNorm());
+        const double d2 = (q - x).squaredNorm();
+        if (d2 < best2) best2 = d2, bestTriangle = id, bestPoint = q;
       }
     } else {
       // Visit the nearer child first (pushed last).
@@ -90,7 +94,15 @@ double meshUnsignedDistance(const PreparedCollider& c, const Eigen::Vector3d& x)
       stack[top++] = leftNear ? nd.left : nd.right;
     }
   }
-  return std::sqrt(best2);
+  *triangle = bestTriangle;
+  *point = bestPoint;
+}
+
+double meshUnsignedDistance(const PreparedCollider& c, const Eigen::Vector3d& x) {
+  int triangle = -1;
+  Eigen::Vector3d q;
+  meshClosestPoint(c, x, &triangle, &q);
+  return triangle < 0 ? std::numeric_limits<double>::infinity() : (q - x).norm();
 }
 
 bool meshContains(const PreparedCollider& c, const Eigen::Vector3d& x) {

@@ -1,5 +1,7 @@
 #include "deform/deformable_body.h"
 
+#include <limits>
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
@@ -149,6 +151,10 @@ Status DeformableBody::create(DeformableDesc desc, std::unique_ptr<DeformableBod
     }
   }
   b.renderRest_ = desc.renderMesh ? *desc.renderMesh : boundary;
+  // The boundary's vertices are the first surface nodes, in the boundary's order.
+  const Array<int32_t> boundaryNodes(b.surfaceNodes_.begin(), b.surfaceNodes_.begin() + boundary.vertices.size());
+  Status immersed = b.immersion_.build(boundary, boundaryNodes, b.x_);
+  if (!ok(immersed)) return addErrorContext(immersed, "boundary surface");
   Status embedded = embedPoints(mesh, b.renderRest_.vertices, &b.embedding_);
   if (!ok(embedded)) return addErrorContext(embedded, "render mesh");
   b.meshQuality_ = tetMeshQuality(mesh, b.renderRest_);
@@ -228,6 +234,26 @@ Status DeformableBody::setMaterial(const DeformableMaterial& material) {
   preconditioner_.scaleMasses(densityRatio);
   desc_.material = material;
   return Status::Ok;
+}
+
+Aabb DeformableBody::bounds() const {
+  Aabb b;
+  b.lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+  b.hi = -b.lo;
+  for (size_t i = 0; i + 2 < x_.size(); i += 3) {
+    const Vec3 p(x_[i], x_[i + 1], x_[i + 2]);
+    b.lo = b.lo.cwiseMin(p);
+    b.hi = b.hi.cwiseMax(p);
+  }
+  return b;
+}
+
+void DeformableBody::applyFluidLoads(double h, const Vec3& gravity) {
+  immersion_.trackVelocity(x_, v_, mass_);
+  if (!immersion_.loaded()) return;
+  Array<uint8_t> touching(static_cast<size_t>(nodeCount_), 0);
+  for (const NodeContact& c : contacts_.contacts()) touching[c.node] = 1;
+  immersion_.addNodeForces(x_, mass_, h, gravity, touching, &externalForce_);
 }
 
 Status DeformableBody::applyForce(int32_t node, const Vec3& force) {
@@ -720,6 +746,7 @@ DeformableState DeformableBody::saveState() const {
   s.renderPositions = renderPositions_;
   s.renderNormals = renderNormals_;
   s.schedule = schedule_;
+  s.immersionTracking = immersion_.tracking();
   return s;
 }
 
@@ -734,6 +761,7 @@ void DeformableBody::restoreState(DeformableState&& s) {
   renderNormals_ = std::move(s.renderNormals);
   ++renderVersion_;
   schedule_ = s.schedule;
+  immersion_.restoreTracking(s.immersionTracking);
 }
 
 }  // namespace vp

@@ -28,6 +28,7 @@
 #include "deform/step_preconditioner.h"
 #include "deform/degree_level_assembly.h"
 #include "deform/element_incidence.h"
+#include "deform/fluid_immersion.h"
 #include "frame_plan.h"
 #include "phase_timer.h"
 #include "geometry/embedding.h"
@@ -79,6 +80,7 @@ class DeformableBody {
   int degree() const { return degree_; }
   int nodesPerElement() const { return nodesPerElement_; }
   const Array<double>& positions() const { return x_; }  // 3 per node, world frame
+  Aabb bounds() const;  // of the nodes
   const Array<double>& velocities() const { return v_; }
   const Array<double>& nodeMasses() const { return mass_; }
   const Array<double>& restPositions() const { return restX_; }  // local frame
@@ -108,6 +110,12 @@ class DeformableBody {
   const Array<NodeContact>& contacts() const { return contacts_.contacts(); }
   // What the last step's contacts with dynamic colliders did to them (empty if it diverged).
   const Array<ContactReaction>& contactReactions() const { return reactions_; }
+  // The body in the fluids (deform/fluid_immersion.h): its surface as they see it now, and
+  // their loads, which the world sets before each step of the body.
+  std::shared_ptr<const PreparedCollider> fluidSurface() { return immersion_.surface(x_, v_); }
+  FluidImmersion& immersion() { return immersion_; }
+  // Before a step of h: the fluids' loads set in immersion() act on the nodes during it.
+  void applyFluidLoads(double h, const Vec3& gravity);
 
   // The render mesh: the desc's, else the tet mesh's boundary; embedded in the tets and
   // moved with them each step. Positions and normals are in the world frame.
@@ -222,6 +230,7 @@ class DeformableBody {
   Array<int32_t> surfaceNodes_;
   ContactActiveSet contacts_;
   Array<ContactReaction> reactions_;
+  FluidImmersion immersion_;
   double contactMargin_ = 0.0;
   CgWorkspace cg_;
   StepPreconditioner preconditioner_;

@@ -1,5 +1,6 @@
 // Fluid actor step (see fluid_actor.h).
 #include "fluid/fluid_actor.h"
+#include "fluid/solids/surface_pressure_load.h"
 
 #include <algorithm>
 #include <cmath>
@@ -283,7 +284,7 @@ Status FluidActor::addFractionUpdatePasses(SlabPasses& passes) {
     geometry.push_back(c.geometry);
     const ColliderShape& s = c.geometry->shape;
     now.push_back(ColliderSnapshot{c.index1, c.generation, c.geometry->bounds, s.rotation, s.translation,
-                                   s.linearVelocity, s.angularVelocity});
+                                   s.linearVelocity, s.angularVelocity, c.geometry->surfaceMoves});
   }
   const int count = static_cast<int>(geometry.size());
   const Aabb domain = domainBounds();
@@ -304,7 +305,8 @@ Status FluidActor::addFractionUpdatePasses(SlabPasses& passes) {
       const ColliderSnapshot& a = snapshots_[i];
       const ColliderSnapshot& b = now[i];
       const bool moved = a.translation != b.translation || a.rotation.coeffs() != b.rotation.coeffs() ||
-                         a.linearVelocity != b.linearVelocity || a.angularVelocity != b.angularVelocity;
+                         a.linearVelocity != b.linearVelocity || a.angularVelocity != b.angularVelocity ||
+                         a.surfaceMoves != b.surfaceMoves;
       // A body moving elsewhere in the world changes no face here (and must not make the
       // pressure operator look stale).
       if (!moved || !(a.bounds.overlaps(domain) || b.bounds.overlaps(domain))) continue;
@@ -487,11 +489,11 @@ void FluidActor::planSubsteps() {
   st.speed = speedAtEnd_;
   for (const FluidCollider& c : st.input.colliders)
     if (c.geometry != nullptr && c.geometry->bounds.overlaps(domainBounds()))
-      st.speed = std::max(st.speed, c.geometry->shape.linearVelocity.norm() +
-                                        c.geometry->shape.angularVelocity.norm() * c.geometry->boundRadius);
+      st.speed = std::max(st.speed, solidSpeedBound(*c.geometry));
   st.substeps = clampIndex(std::ceil(st.speed * st.input.dt / (solver.cflNumber * grid_.spec.h)), 1, solver.maxSubsteps);
   st.h = st.input.dt / st.substeps;
   st.loadSum.assign(st.input.colliders.size(), PressureLoad{});
+  st.vertexForceSum.assign(st.input.colliders.size(), Array<Vec3>{});
   for (int sub = 0; sub < st.substeps; ++sub) queueSubstep(sub);
   job_.thenOnce(static_cast<int>(FluidSlice::Publish), [this] { publish(); });
 }
@@ -557,17 +559,32 @@ bool FluidActor::finishProjectionSlice() {
   PhaseStats& phase = st.stats->phase(Phase::Pressure);
   phase.residual = std::max(phase.residual, ps.relativeResidual);
   st.stats->residual = std::max(st.stats->residual, ps.relativeResidual);
-  if (!desc_.twoWayCoupling) return true;
+  if (desc_.twoWayCoupling) addSubstepLoads();
+  return true;
+}
+
+void FluidActor::addSubstepLoads() {
+  StepInProgress& st = *step_;
   for (size_t c = 0; c < st.input.colliders.size(); ++c) {
     const FluidCollider& fc = st.input.colliders[c];
     if (!fc.dynamic || fc.geometry == nullptr) continue;
-    const PressureLoad l = pressureLoadOnCollider(grid_, fractions_, pressure_.poisson, pressure_.pressure.data(),
-                                                  desc_.density, *fc.geometry, fc.geometry->shape.translation);
+    PressureLoad l;
+    if (fc.geometry->vertexVelocities.empty()) {
+      l = pressureLoadOnCollider(grid_, fractions_, pressure_.poisson, pressure_.pressure.data(), desc_.density,
+                                 *fc.geometry, fc.geometry->shape.translation);
+    } else {
+      SurfacePressureLoad surface;
+      surfacePressureLoad(grid_, fractions_, pressure_.poisson, pressure_.pressure.data(), liquidPhi(), desc_.density,
+                          *fc.geometry, &surface);
+      Array<Vec3>& sum = st.vertexForceSum[c];
+      if (sum.empty()) sum.assign(surface.vertexForces.size(), Vec3::Zero());
+      for (size_t v = 0; v < sum.size(); ++v) sum[v] += surface.vertexForces[v] / st.substeps;
+      l = surface.total;
+    }
     st.loadSum[c].force += l.force / st.substeps;
     st.loadSum[c].torque += l.torque / st.substeps;
     st.loadSum[c].addedMass += l.addedMass / st.substeps;
   }
-  return true;
 }
 
 void FluidActor::publish() {
@@ -592,8 +609,8 @@ void FluidActor::publish() {
       // reaction, which an extrapolation amplifies).
       for (size_t c = 0; c < st.input.colliders.size(); ++c)
         if (st.input.colliders[c].dynamic)
-          shown_.loads.push_back(
-              FluidColliderLoad{st.input.colliders[c].index1, st.input.colliders[c].generation, st.loadSum[c]});
+          shown_.loads.push_back(FluidColliderLoad{st.input.colliders[c].index1, st.input.colliders[c].generation,
+                                                   st.loadSum[c], std::move(st.vertexForceSum[c])});
     }
   }
   publishFields();
@@ -660,6 +677,12 @@ Phase FluidActor::phaseOf(FluidSlice kind) {
   return Phase::Surface;
 }
 
+void FluidActor::invalidateDerived() {
+  fractionsChanged_ = pressureOperatorStale_ = true;
+  for (ColliderSnapshot& c : snapshots_)
+    if (c.generation & kDeformableSolidBit) c.surfaceMoves = kUnknownMoves;
+}
+
 FluidState FluidActor::saveState() const {
   FluidState s;
   for (int a = 0; a < 3; ++a) {
@@ -679,7 +702,8 @@ FluidState FluidActor::saveState() const {
   s.fractionsValid = fractionsValid_;
   s.speedAtEnd = speedAtEnd_;
   s.targetVolume = targetVolume_;
-  for (const FluidColliderLoad& l : shown_.loads) s.loads.push_back(FluidColliderLoadState{l.index1, l.generation, l.load});
+  for (const FluidColliderLoad& l : shown_.loads)
+    s.loads.push_back(FluidColliderLoadState{l.index1, l.generation, l.load, l.vertexForces});
   s.stepCount = stepCount_;
   s.lastStepSlices = lastStepSlices_;
   for (const SliceSizer& sizer : slabs_) s.slabs.push_back(sizer.state());
@@ -706,14 +730,16 @@ void FluidActor::restoreState(FluidState&& s) {
   snapshots_.clear();
   for (const FluidColliderPose& c : s.fractionColliders)
     snapshots_.push_back(ColliderSnapshot{c.index1, c.generation, Aabb{c.lo, c.hi}, c.rotation, c.translation,
-                                          c.linearVelocity, c.angularVelocity});
+                                          c.linearVelocity, c.angularVelocity,
+                                          (c.generation & kDeformableSolidBit) ? kUnknownMoves : 0});
   fractionsValid_ = s.fractionsValid;
   invalidateDerived();
   speedAtEnd_ = s.speedAtEnd;
   targetVolume_ = s.targetVolume;
   publishFields();
   shown_.loads.clear();
-  for (const FluidColliderLoadState& l : s.loads) shown_.loads.push_back(FluidColliderLoad{l.index1, l.generation, l.load});
+  for (FluidColliderLoadState& l : s.loads)
+    shown_.loads.push_back(FluidColliderLoad{l.index1, l.generation, l.load, std::move(l.vertexForces)});
   stepCount_ = s.stepCount;
   surfaceStep_ = ~uint64_t(0);
   lastStepSlices_ = s.lastStepSlices;

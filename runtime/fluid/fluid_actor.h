@@ -23,7 +23,8 @@
 //   Forces     buoyancy + vorticity confinement + dissipation (smoke) or gravity (liquid)
 //   Pressure   cut-cell projection: setup in slabs, one slice per CG iteration (to the
 //              tolerance or pressureMaxIterations, never cut by time), velocity update in
-//              slabs, loads
+//              slabs, loads (on a dynamic collider its force and torque, pressure_forces.h;
+//              on a deformable's surface the force on each vertex, surface_pressure_load.h)
 // Passes over the grid (fractions, advection, level-set upkeep, extrapolation, the
 // projection's setup and update) run in slabs, one slab per slice, of at most
 // solver.samplesPerSlice samples; under a budget, of a number of samples that starts small
@@ -68,8 +69,13 @@
 
 namespace vp {
 
+// A fluid's solids are the world's colliders and the deformables' surfaces (deforming
+// surfaces, collide/face_coverage.h). A deformable's handle is told from a collider's by this
+// bit of its generation (handles of either kind keep their generations below it).
+constexpr uint32_t kDeformableSolidBit = 1u << 30;
+
 struct FluidCollider {
-  uint32_t index1 = 0, generation = 0;  // identifies the collider across steps
+  uint32_t index1 = 0, generation = 0;  // identifies the solid across steps
   const PreparedCollider* geometry = nullptr;
   // Keeps `geometry` as it was while a step spanning several frames uses it (the collider
   // copies its geometry before moving it while it is shared); null when the caller keeps the
@@ -87,7 +93,8 @@ struct FluidStepInput {
 
 struct FluidColliderLoad {
   uint32_t index1 = 0, generation = 0;
-  PressureLoad load;  // torque about the collider's origin
+  PressureLoad load;  // torque about the collider's origin (a deformable's: about the world origin)
+  Array<Vec3> vertexForces;  // a deformable surface's: the force on each of its vertices
 };
 
 // The liquid's free surface, oriented out of the liquid.
@@ -156,7 +163,8 @@ class FluidActor {
   // What the fluid derives from its state (the pressure operator, the open-face masks) is
   // rebuilt when next needed. A restore does this; a save does it too, so that both go on
   // alike, in time too (a rebuild costs slices under a budget).
-  void invalidateDerived() { fractionsChanged_ = pressureOperatorStale_ = true; }
+  // A deformable's surface is taken as moved since (its count of moves is not in the state).
+  void invalidateDerived();
 
   // What readers see: the last completed step.
   const FluidDesc& desc() const { return desc_; }
@@ -233,7 +241,11 @@ class FluidActor {
     Aabb bounds;
     Eigen::Quaterniond rotation;
     Eigen::Vector3d translation, linearVelocity, angularVelocity;
+    uint64_t surfaceMoves;  // a deforming surface's (0 for a collider); kUnknownMoves after a save or restore
   };
+  static constexpr uint64_t kUnknownMoves = ~uint64_t(0);
+  // The loads of the sub-step just projected on the input's dynamic solids, added to the step's means.
+  void addSubstepLoads();
   // The liquid's level-set upkeep in progress (one sub-step's).
   struct LevelSetUpkeep {
     enum Stage { Extend, Extending, Redistancing, Correcting } stage = Extend;
@@ -248,6 +260,7 @@ class FluidActor {
     int substeps = 1;
     double h = 0.0;      // sub-step
     std::vector<PressureLoad> loadSum;  // per input collider
+    std::vector<Array<Vec3>> vertexForceSum;  // per input collider (deforming surfaces only)
     std::vector<const PreparedCollider*> fractionColliders;  // the input's, with geometry
     SlabPasses fractionUpdate;
     VelocityAdvectionSlices velocityAdvection;

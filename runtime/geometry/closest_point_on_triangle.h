@@ -10,4 +10,9 @@ namespace vp {
 Eigen::Vector3d closestPointOnTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                        const Eigen::Vector3d& c);
 
+// Barycentric weights (of a, b, c) of a point q of the triangle, clamped to [0, 1] and summing
+// to 1; a degenerate triangle gives the weights of its nearest vertex.
+Eigen::Vector3d barycentricWeights(const Eigen::Vector3d& q, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                   const Eigen::Vector3d& c);
+
 }  // namespace vp

@@ -128,6 +128,17 @@ void readVecs(StateReader& in, Array<Vec3>* a, uint64_t expected, const char* wh
   }
 }
 
+// A count the reader cannot check (bounded by the buffer only), then the vectors.
+void readVecsOfAnyCount(StateReader& in, Array<Vec3>* a, const char* what) {
+  const uint64_t n = in.value<uint64_t>();
+  if (!in.ok() || !in.has(n, 3 * sizeof(double))) return;
+  a->resize(static_cast<size_t>(n));
+  if (n > 0) {
+    in.doubles(a->data()->data(), 3 * a->size());
+    in.requireFinite(what, a->data()->data(), 3 * a->size());
+  }
+}
+
 // Arrays a step sizes on first use: empty, or of their full size.
 template <class A>
 void readEmptyOrFull(StateReader& in, A* a, uint64_t full, const char* what) {
@@ -153,6 +164,8 @@ void writeDeformableState(StateWriter& out, const DeformableState& s) {
   writeVecs(out, s.renderPositions);
   writeVecs(out, s.renderNormals);
   writeSchedule(out, s.schedule);
+  const FluidImmersion::Tracking& t = s.immersionTracking;
+  for (const Vec3* v : {&t.velocity, &t.velocityChange, &t.spin, &t.spinChange}) writeVec(out, *v);
 }
 
 void readDeformableState(StateReader& in, const DeformableBody& body, DeformableState* s) {
@@ -185,6 +198,8 @@ void readDeformableState(StateReader& in, const DeformableBody& body, Deformable
   readVecs(in, &s->renderPositions, render, "deformable's render vertex count");
   readVecs(in, &s->renderNormals, render, "deformable's render normal count");
   readSchedule(in, &s->schedule);
+  FluidImmersion::Tracking& t = s->immersionTracking;
+  for (Vec3* v : {&t.velocity, &t.velocityChange, &t.spin, &t.spinChange}) *v = readVec(in, "a deformable's tracked motion");
 }
 
 void writeFluidState(StateWriter& out, const FluidState& s) {
@@ -213,6 +228,7 @@ void writeFluidState(StateWriter& out, const FluidState& s) {
     writeVec(out, l.load.force);
     writeVec(out, l.load.torque);
     out.value(l.load.addedMass);
+    writeVecs(out, l.vertexForces);
   }
   out.value(s.stepCount);
   out.value(s.lastStepSlices);
@@ -267,6 +283,8 @@ void readFluidState(StateReader& in, const FluidActor& fluid, FluidState* s) {
       l.load.torque = readVec(in, "a fluid load");
       l.load.addedMass = in.value<double>();
       in.requireFinite("a fluid load", &l.load.addedMass, 1);
+      // Checked against the deformable's surface when the world applies it.
+      readVecsOfAnyCount(in, &l.vertexForces, "a fluid load's vertex forces");
     }
   }
   s->stepCount = in.value<uint64_t>();

@@ -8,6 +8,8 @@
 // completed before its state is taken), so one copy of each field is enough.
 #pragma once
 
+#include "deform/fluid_immersion.h"
+
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -55,6 +57,7 @@ struct DeformableState {
   Array<NodeContact> contacts;
   Array<Vec3> renderPositions, renderNormals;
   ActorSchedule schedule;
+  FluidImmersion::Tracking immersionTracking;  // for the fluids' loads
 };
 
 struct FluidColliderPose {
@@ -67,6 +70,7 @@ struct FluidColliderPose {
 struct FluidColliderLoadState {
   uint32_t index1 = 0, generation = 0;
   PressureLoad load;
+  Array<Vec3> vertexForces;  // a deformable surface's
 };
 
 struct FluidState {

@@ -33,8 +33,9 @@ Status checkArgs(const PreparedCollider* const* colliders, int count,
 // Normal velocity of one collider over its covered part of `face` (covered fraction `a`).
 double colliderNormalVelocity(const PreparedCollider& c, const AxisFace& face, double a) {
   const ColliderShape& s = c.shape;
+  const bool varies = s.angularVelocity.squaredNorm() > 0.0 || !c.vertexVelocities.empty();
   Eigen::Vector3d x = face.centre;
-  if (s.angularVelocity.squaredNorm() > 0.0 && a < 1.0) {
+  if (varies && a < 1.0) {
     const int a1 = (face.axis + 1) % 3, a2 = (face.axis + 2) % 3;
     double wsum = 0.0;
     Eigen::Vector3d acc = Eigen::Vector3d::Zero();
@@ -49,8 +50,7 @@ double colliderNormalVelocity(const PreparedCollider& c, const AxisFace& face, d
     }
     if (wsum > 0.0) x = acc / wsum;
   }
-  const Eigen::Vector3d v = s.linearVelocity + s.angularVelocity.cross(x - c.translation);
-  return v[face.axis];
+  return solidVelocityAt(c, x)[face.axis];
 }
 
 void recomputeFace(const PreparedCollider* const* colliders, int count, int axis, int i, int j,

@@ -17,7 +17,11 @@
 //                     value at the covered part's centroid; that centroid is approximated from
 //                     the coverage of the face's four quadrants (exact for faces covered
 //                     uniformly per quadrant; error <= |w| h / 2), and skipped (any point is
-//                     exact) when w = 0. Faces covered by several colliders average the
+//                     exact) when w = 0. A deforming surface (a deformable's boundary) has
+//                     its vertex velocities interpolated at the surface point nearest that
+//                     centroid (collide/face_coverage.h, solidVelocityAt): exact for a body
+//                     moving rigidly by translation, an approximation of the velocity inside
+//                     it otherwise. Faces covered by several colliders average the
 //                     colliders' values weighted by their individual coverage.
 #pragma once
 

@@ -1,0 +1,44 @@
+// Pressure tractions of a fluid on a deforming closed surface (a deformable's boundary,
+// collide/face_coverage.h's deforming surface), as forces on its vertices.
+//
+// f_v = -sum over the triangles T at v of  integral over T of  p(x) n phi_v(x) dA,
+// with phi_v the triangle's linear hat function of v, n the outward normal, and p the
+// pressure extended into the solid and the liquid's air (extended_pressure.h) read by
+// trilinear interpolation of the cell values; p = 0 where the liquid's level set, also
+// interpolated, says air. The integral is the midpoint rule on a uniform subdivision of each
+// triangle into pieces of edge at most half a cell (kMaxSubdivision per edge at most): a
+// linear pressure (hydrostatic) is integrated exactly away from the waterline, so a body at
+// rest under the liquid gets its buoyancy rho g V; the waterline's kink costs a part of
+// (piece size / body size).
+//
+// Why the surface form here, when rigid bodies take the pressure gradient over the faces they
+// cover (pressure_forces.h): a deformable needs the load where it acts, on its surface, or the
+// buoyancy would pull its inside up instead of pushing its bottom. The ghost values keep the
+// waterline where the level set has it, which the cell-centre air pressure alone would move
+// by up to half a cell.
+#pragma once
+
+#include "collide/face_coverage.h"
+#include "core/allocator.h"
+#include "fluid/mac_grid.h"
+#include "fluid/pressure/cut_cell_poisson.h"
+#include "fluid/solids/face_fraction_field.h"
+#include "fluid/solids/pressure_forces.h"
+
+namespace vp {
+
+struct SurfacePressureLoad {
+  Array<Vec3> vertexForces;  // one per surface vertex (N)
+  // The total force; torque about the origin; and the added mass: the fluid's density times
+  // the body's volume times the wetted share of its surface (the area below the liquid).
+  PressureLoad total;
+};
+
+constexpr int kMaxSubdivision = 8;
+
+// `surface` must be a deforming surface (vertexVelocities set); liquidPhi null for smoke.
+void surfacePressureLoad(const MacGrid& grid, const FaceFractionField& fractions, const CutCellPoisson& op,
+                         const double* pressure, const double* liquidPhi, double density,
+                         const PreparedCollider& surface, SurfacePressureLoad* out);
+
+}  // namespace vp

@@ -1,0 +1,252 @@
+// Deformables in fluids, two-way: the fluid sees a deformable's surface as a moving solid
+// (exact fractions, the surface's velocity), and its pressure acts on the surface's nodes.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "fluid/solids/face_fraction_field.h"
+#include "geometry/box_tet_mesh.h"
+#include "liquid_tank_world.h"
+#include "world.h"
+
+namespace vp {
+namespace {
+
+using testutil::meanSurfaceHeight;
+using testutil::worldWithOpenTank;
+
+// A jelly block of 0.3 x 0.2 x 0.3 m (flat: a half-density cube upright would roll over),
+// lowest face at `bottom`, centred over (0.5, 0.5) in x and z.
+DeformableDesc jellyBlock(double density, double bottom) {
+  DeformableDesc d;
+  d.mesh = makeBoxTetMesh({3, 2, 3}, Vec3(0.3, 0.2, 0.3), Vec3(0.35, bottom, 0.35));
+  d.material.youngsModulus = 2e5;
+  d.material.poissonRatio = 0.3;
+  d.material.density = density;
+  d.solver.tolerance = 1e-6;
+  d.solver.maxIterations = 500;
+  return d;
+}
+
+struct JellyMotion {
+  Vec3 centre = Vec3::Zero(), velocity = Vec3::Zero();
+  double bottom = 0.0, top = 0.0;
+};
+
+JellyMotion motionOf(const DeformableBody& body) {
+  JellyMotion m;
+  double mass = 0.0;
+  m.bottom = 1e30, m.top = -1e30;
+  for (int32_t i = 0; i < body.nodeCount(); ++i) {
+    const double mi = body.nodeMasses()[i];
+    const Vec3 x(body.positions()[3 * i], body.positions()[3 * i + 1], body.positions()[3 * i + 2]);
+    const Vec3 v(body.velocities()[3 * i], body.velocities()[3 * i + 1], body.velocities()[3 * i + 2]);
+    m.centre += mi * x;
+    m.velocity += mi * v;
+    mass += mi;
+    m.bottom = std::min(m.bottom, x.y());
+    m.top = std::max(m.top, x.y());
+  }
+  m.centre /= mass;
+  m.velocity /= mass;
+  return m;
+}
+
+// The fluid sees the deformable's surface exactly as a rigid mesh of the same triangles: at
+// rest, the same fractions, face for face.
+TEST(DeformableInFluid, ASurfaceAtRestGivesTheFractionsOfTheSameRigidMesh) {
+  std::unique_ptr<DeformableBody> body;
+  DeformableDesc d = jellyBlock(500.0, 0.33);
+  ASSERT_EQ(DeformableBody::create(d, &body), Status::Ok) << lastError();
+  const std::shared_ptr<const PreparedCollider> surface = body->fluidSurface();
+  ColliderShape rigid;
+  rigid.kind = ShapeKind::TriangleMesh;
+  rigid.meshVertices = surface->shape.meshVertices;
+  rigid.meshTriangles = surface->shape.meshTriangles;
+  PreparedCollider prepared;
+  ASSERT_EQ(prepareCollider(rigid, &prepared), Status::Ok) << lastError();
+  MacGridSpec grid;
+  grid.h = 1.0 / 24;
+  grid.nx = grid.ny = grid.nz = 24;
+  FaceFractionField a, b;
+  ASSERT_EQ(initFaceFractionField(grid, &a), Status::Ok);
+  ASSERT_EQ(initFaceFractionField(grid, &b), Status::Ok);
+  const PreparedCollider* deforming = surface.get();
+  const PreparedCollider* fixed = &prepared;
+  ASSERT_EQ(computeFaceFractions(&deforming, 1, &a), Status::Ok);
+  ASSERT_EQ(computeFaceFractions(&fixed, 1, &b), Status::Ok);
+  int cut = 0;
+  for (int axis = 0; axis < 3; ++axis)
+    for (size_t f = 0; f < a.open[axis].size(); ++f) {
+      ASSERT_NEAR(a.open[axis][f], b.open[axis][f], 1e-9);
+      ASSERT_EQ(a.solidVelocity[axis][f], 0.0);
+      cut += a.open[axis][f] < 1.0;
+    }
+  EXPECT_GT(cut, 100);  // the block covers faces
+}
+
+// A surface moving by translation carries its velocity onto the faces it covers.
+TEST(DeformableInFluid, ATranslatingSurfaceGivesItsVelocityToTheFacesItCovers) {
+  std::unique_ptr<DeformableBody> body;
+  DeformableDesc d = jellyBlock(500.0, 0.33);
+  d.linearVelocity = Vec3(0.0, -0.7, 0.2);
+  ASSERT_EQ(DeformableBody::create(d, &body), Status::Ok) << lastError();
+  const std::shared_ptr<const PreparedCollider> surface = body->fluidSurface();
+  MacGridSpec grid;
+  grid.h = 1.0 / 24;
+  grid.nx = grid.ny = grid.nz = 24;
+  FaceFractionField field;
+  ASSERT_EQ(initFaceFractionField(grid, &field), Status::Ok);
+  const PreparedCollider* deforming = surface.get();
+  ASSERT_EQ(computeFaceFractions(&deforming, 1, &field), Status::Ok);
+  for (int axis = 0; axis < 3; ++axis)
+    for (size_t f = 0; f < field.open[axis].size(); ++f)
+      if (field.open[axis][f] < 1.0) ASSERT_NEAR(field.solidVelocity[axis][f], d.linearVelocity[axis], 1e-12);
+}
+
+// Smoke flows around a deformable held still as around the rigid mesh of its surface.
+TEST(DeformableInFluid, SmokeAroundAStillDeformableIsSmokeAroundTheSameRigidMesh) {
+  auto run = [](bool deformable) {
+    WorldConfig config;
+    config.workerCount = 2;
+    config.frameBudgetMs = 0.0;
+    config.gravity = Vec3::Zero();
+    std::unique_ptr<World> world;
+    EXPECT_EQ(World::create(config, &world), Status::Ok);
+    DeformableDesc jelly = jellyBlock(500.0, 0.3);
+    std::unique_ptr<DeformableBody> probe;
+    EXPECT_EQ(DeformableBody::create(jelly, &probe), Status::Ok);
+    if (deformable) {
+      DeformableHandle h;
+      EXPECT_EQ(world->createDeformable(jelly, &h), Status::Ok) << lastError();
+      // Held still: the smoke's pressure would otherwise push it.
+      DeformableBody& body = *world->deformable(h);
+      std::vector<int32_t> all(static_cast<size_t>(body.nodeCount()));
+      for (int32_t i = 0; i < body.nodeCount(); ++i) all[i] = i;
+      EXPECT_EQ(body.setPinned(all.data(), body.nodeCount(), true), Status::Ok);
+    } else {
+      ColliderDesc c;
+      c.bodyType = BodyType::Static;
+      c.shape.type = ShapeType::TriangleMesh;
+      const PreparedCollider& s = *probe->fluidSurface();
+      c.shape.points.assign(s.shape.meshVertices.begin(), s.shape.meshVertices.end());
+      for (const Eigen::Vector3i& t : s.shape.meshTriangles) c.shape.triangles.push_back({t[0], t[1], t[2]});
+      ColliderHandle h;
+      EXPECT_EQ(world->createCollider(c, &h), Status::Ok) << lastError();
+    }
+    FluidDesc smoke;
+    smoke.kind = FluidKind::Smoke;
+    smoke.grid.h = 1.0 / 20;
+    smoke.grid.nx = smoke.grid.ny = smoke.grid.nz = 20;
+    smoke.sides[3] = DomainSide::Open;
+    FluidEmitter source;
+    source.shape.type = FluidShape::Type::Sphere;
+    source.shape.radius = 0.1;
+    source.shape.centre = Vec3(0.5, 0.12, 0.5);
+    source.velocity = Vec3(0.0, 1.0, 0.0);
+    smoke.emitters.push_back(source);
+    FluidHandle f;
+    EXPECT_EQ(world->createFluid(smoke, &f), Status::Ok) << lastError();
+    for (int s = 0; s < 30; ++s) EXPECT_EQ(world->step(1.0 / 60.0), Status::Ok);
+    return std::make_pair(Array<double>(world->fluid(f)->smokeDensity()), world->fluid(f)->fractions().open[1]);
+  };
+  const auto [smokeA, openA] = run(true);
+  const auto [smokeB, openB] = run(false);
+  ASSERT_EQ(openA.size(), openB.size());
+  double worstOpen = 0.0, worstSmoke = 0.0, most = 0.0;
+  for (size_t i = 0; i < openA.size(); ++i) worstOpen = std::max(worstOpen, std::abs(openA[i] - openB[i]));
+  for (size_t i = 0; i < smokeA.size(); ++i) {
+    worstSmoke = std::max(worstSmoke, std::abs(smokeA[i] - smokeB[i]));
+    most = std::max(most, smokeB[i]);
+  }
+  EXPECT_LE(worstOpen, 1e-9);
+  EXPECT_GT(most, 0.1);  // the smoke reached the block
+  EXPECT_LE(worstSmoke, 1e-9 * most);
+}
+
+struct Immersion {
+  double submerged = 0.0;        // mean over the last 2 s: fraction of the block's height below the surface
+  double lastSecondSpeed = 0.0;  // the block's largest centre-of-mass speed over the last second
+  double bottom = 0.0;           // the block's lowest node at the end
+  double levelRise = 0.0;        // mean surface height at the end minus at the start
+  double volume = 0.0;           // the block's volume (rest)
+  double worstVolumeDrift = 0.0;  // of the liquid, relative
+};
+
+// A jelly block dropped with its bottom at the surface of a viscous liquid (see the rigid
+// box's test in fluid_liquid_actor_test.cpp for why the viscosity is high) in a 1 m tank
+// filled to 0.5 m, over a static ground just under the tank's floor (kGroundGap: a ground
+// whose top lay on the floor would cover the floor's faces, and the liquid would count the
+// bottom cells as partly solid and rise by a sixth of a cell).
+constexpr double kGroundGap = 1e-3;
+
+Immersion dropJelly(double density, int steps) {
+  const int n = 24;
+  const double h = 1.0 / n, fill = 0.5;
+  Immersion out;
+  FluidHandle fluid;
+  std::unique_ptr<World> world = worldWithOpenTank(n, fill, 1e-6, &fluid, 0.05);
+  if (!world) return out;
+  ColliderDesc ground;
+  ground.bodyType = BodyType::Static;
+  ground.shape.type = ShapeType::Box;
+  ground.shape.halfExtents = Vec3(2.0, 0.5, 2.0);
+  ground.pose.position = Vec3(0.5, -0.5 - kGroundGap, 0.5);
+  ColliderHandle groundHandle;
+  EXPECT_EQ(world->createCollider(ground, &groundHandle), Status::Ok) << lastError();
+  DeformableHandle jelly;
+  EXPECT_EQ(world->createDeformable(jellyBlock(density, fill), &jelly), Status::Ok) << lastError();
+  const DeformableBody& body = *world->deformable(jelly);
+  out.volume = 0.3 * 0.2 * 0.3;  // at rest; the part in the tank is what displaces the liquid
+  const double startLevel = meanSurfaceHeight(*world->fluid(fluid), Vec3(0.5, 0.0, 0.5), 0.15, 2 * h);
+  const double startVolume = world->fluid(fluid)->liquidVolume();
+  const int averaged = 120;
+  double submergedSum = 0.0;
+  for (int s = 0; s < steps; ++s) {
+    EXPECT_EQ(world->step(1.0 / 60.0), Status::Ok);
+    const JellyMotion m = motionOf(body);
+    const double level = meanSurfaceHeight(*world->fluid(fluid), m.centre, 0.15, 2 * h);
+    if (s >= steps - averaged) submergedSum += std::clamp((level - m.bottom) / (m.top - m.bottom), 0.0, 1.0);
+    if (s >= steps - 60) out.lastSecondSpeed = std::max(out.lastSecondSpeed, m.velocity.norm());
+    out.worstVolumeDrift =
+        std::max(out.worstVolumeDrift, std::abs(world->fluid(fluid)->liquidVolume() - startVolume) / startVolume);
+    if (s == steps - 1) {
+      out.bottom = m.bottom;
+      out.levelRise = level - startLevel;
+    }
+  }
+  out.submerged = submergedSum / averaged;
+  return out;
+}
+
+// Half the liquid's density: it floats half submerged, and the viscous liquid brings it to rest.
+TEST(DeformableInFluid, AHalfDensityJellyFloatsHalfSubmergedAndComesToRest) {
+  const Immersion r = dropJelly(500.0, 480);
+  std::printf("jelly of density 500: submerged fraction %.3f (mean of the last 2 s), speed over the last second "
+              "<= %.3g m/s, liquid volume drift %.2e\n",
+              r.submerged, r.lastSecondSpeed, r.worstVolumeDrift);
+  EXPECT_NEAR(r.submerged, 0.5, 0.05);
+  EXPECT_LT(r.lastSecondSpeed, 1e-2);
+  EXPECT_LT(r.worstVolumeDrift, 0.01);
+}
+
+// Twice the liquid's density: it sinks to the floor and rests there, and the liquid's level
+// rises by the block's volume over the tank's area.
+TEST(DeformableInFluid, ATwiceDenseJellySinksToTheFloorRestsAndRaisesTheLevel) {
+  const Immersion r = dropJelly(2000.0, 360);
+  const double inTank = r.volume * (0.2 - std::max(0.0, -r.bottom)) / 0.2;
+  const double expectedRise = inTank / (1.0 * 1.0);
+  std::printf("jelly of density 2000: bottom at %.4f m, speed over the last second <= %.3g m/s, level rise %.4f m "
+              "(volume / area %.4f m), liquid volume drift %.2e\n",
+              r.bottom, r.lastSecondSpeed, r.levelRise, expectedRise, r.worstVolumeDrift);
+  EXPECT_LT(r.bottom, 0.01);
+  EXPECT_GT(r.bottom, -kGroundGap - 0.01);
+  EXPECT_LT(r.lastSecondSpeed, 1e-2);
+  EXPECT_NEAR(r.levelRise, expectedRise, 0.05 * expectedRise);
+  EXPECT_LT(r.worstVolumeDrift, 0.01);
+}
+
+}  // namespace
+}  // namespace vp
