@@ -434,8 +434,10 @@ bool World::stepDeformables(double dt, const Deadline& frame, StepStats* stats) 
                                                   concurrent ? 1 : static_cast<int>(served.size()) - n);
     DeformableStepInput input = deformableStepInput(body, contactColliders);
     input.dt = s.pendingDt;
-    setFluidLoads(handles[i], body);
-    body.applyFluidLoads(input.dt, config_.gravity);
+    if (fluids_.size() > 0) {  // a world without fluids pays nothing for them
+      setFluidLoads(handles[i], body);
+      body.applyFluidLoads(input.dt, config_.gravity);
+    }
     input.deadline = deadlines[i].share;
     input.floorDeadline = deadlines[i].floor;
     ActorStats& a = actors[i];
@@ -491,10 +493,7 @@ std::vector<Filtered<FluidCollider>> World::fluidSolids() {
                                                   c.bodyType() == BodyType::Dynamic}});
   });
   std::vector<Aabb> domains;
-  fluids_.forEach([&](FluidHandle, const FluidActor& f) {
-    const MacGridSpec& g = f.grid().spec;
-    domains.push_back(Aabb{g.origin, g.origin + g.h * Vec3(g.nx, g.ny, g.nz)});
-  });
+  fluids_.forEach([&](FluidHandle, const FluidActor& f) { domains.push_back(f.domainBounds()); });
   // A deformable far from every fluid is left out rather than kept up to date for nothing.
   deformables_.forEach([&](DeformableHandle h, DeformableBody& body) {
     const Aabb bounds = body.bounds();

@@ -180,6 +180,7 @@ class FluidActor {
   // The longest slice run by the last advance().
   double maxSliceMs() const { return maxSliceMs_; }
   const MacGrid& grid() const { return shown_.grid; }
+  Aabb domainBounds() const;  // the box the grid spans
   const Array<double>& smokeDensity() const { return shown_.smokeDensity; }
   const Array<double>& temperature() const { return shown_.temperature; }
   const Array<double>& levelSet() const { return shown_.levelSet; }
@@ -233,7 +234,6 @@ class FluidActor {
 
   Status addFractionUpdatePasses(SlabPasses& passes);
   double maxSpeed(TaskSystem& tasks) const;
-  Aabb domainBounds() const;
   const double* liquidPhi() const { return desc_.kind == FluidKind::Liquid ? phi_.data() : nullptr; }
 
   struct ColliderSnapshot {

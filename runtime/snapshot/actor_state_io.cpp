@@ -117,9 +117,8 @@ void writeVecs(StateWriter& out, const Array<Vec3>& a) {
   if (!a.empty()) out.doubles(a.data()->data(), 3 * a.size());
 }
 
-void readVecs(StateReader& in, Array<Vec3>* a, uint64_t expected, const char* what) {
-  const uint64_t n = in.value<uint64_t>();
-  in.expect(what, n, expected);
+// `n` vectors, bounded by the buffer and finite.
+void readVecElements(StateReader& in, Array<Vec3>* a, uint64_t n, const char* what) {
   if (!in.ok() || !in.has(n, 3 * sizeof(double))) return;
   a->resize(static_cast<size_t>(n));
   if (n > 0) {
@@ -128,15 +127,15 @@ void readVecs(StateReader& in, Array<Vec3>* a, uint64_t expected, const char* wh
   }
 }
 
+void readVecs(StateReader& in, Array<Vec3>* a, uint64_t expected, const char* what) {
+  const uint64_t n = in.value<uint64_t>();
+  in.expect(what, n, expected);
+  readVecElements(in, a, n, what);
+}
+
 // A count the reader cannot check (bounded by the buffer only), then the vectors.
 void readVecsOfAnyCount(StateReader& in, Array<Vec3>* a, const char* what) {
-  const uint64_t n = in.value<uint64_t>();
-  if (!in.ok() || !in.has(n, 3 * sizeof(double))) return;
-  a->resize(static_cast<size_t>(n));
-  if (n > 0) {
-    in.doubles(a->data()->data(), 3 * a->size());
-    in.requireFinite(what, a->data()->data(), 3 * a->size());
-  }
+  readVecElements(in, a, in.value<uint64_t>(), what);
 }
 
 // Arrays a step sizes on first use: empty, or of their full size.
