@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/parallel_for.h"
+#include "gpu_kernels/block_row_kernels.h"
 
 namespace vp {
 
@@ -22,19 +23,8 @@ void BlockSparseMatrix<Scalar>::setZero() {
 template <class Scalar>
 void BlockSparseMatrix<Scalar>::multiply(TaskSystem& tasks, const double* x, double* y) const {
   parallelFor(tasks, blockRows, 512, [&](int64_t rowBegin, int64_t rowEnd) {
-    for (int64_t r = rowBegin; r < rowEnd; ++r) {
-      double y0 = 0, y1 = 0, y2 = 0;
-      for (int32_t k = rowStart[r]; k < rowStart[r + 1]; ++k) {
-        const Scalar* a = values.data() + 9 * static_cast<int64_t>(k);
-        const double* xc = x + 3 * static_cast<int64_t>(columns[k]);
-        y0 += a[0] * xc[0] + a[1] * xc[1] + a[2] * xc[2];
-        y1 += a[3] * xc[0] + a[4] * xc[1] + a[5] * xc[2];
-        y2 += a[6] * xc[0] + a[7] * xc[1] + a[8] * xc[2];
-      }
-      y[3 * r] = y0;
-      y[3 * r + 1] = y1;
-      y[3 * r + 2] = y2;
-    }
+    for (int64_t r = rowBegin; r < rowEnd; ++r)
+      kernels::bcsrRowProduct(r, rowStart.data(), columns.data(), values.data(), x, y);
   });
 }
 

@@ -1,0 +1,456 @@
+#include <cuda_runtime.h>
+
+#include <cmath>
+#include <cub/block/block_reduce.cuh>
+#include <utility>
+#include <vector>
+
+#include "gpu_kernels/device_block_system.h"
+#include "gpu_kernels/vector_kernels.h"
+
+namespace vp::gpu {
+namespace {
+
+using kernels::BinBcsrView;
+
+// Three warps per bin (one per row of the 3x3 blocks), kBinsPerBlock bins per thread block,
+// so the three components of a block row are always in one thread block.
+constexpr int kBinsPerBlock = 2;
+constexpr int kThreads = 3 * kernels::kBinRows * kBinsPerBlock;
+using BlockReduce = cub::BlockReduce<double, kThreads>;
+
+template <class T>
+class DeviceArray {
+ public:
+  DeviceArray() = default;
+  ~DeviceArray() { cudaFree(data_); }
+  DeviceArray(const DeviceArray&) = delete;
+  DeviceArray& operator=(const DeviceArray&) = delete;
+  cudaError_t allocate(size_t n) {
+    size_ = n;
+    return cudaMalloc(&data_, (n ? n : 1) * sizeof(T));
+  }
+  cudaError_t upload(const T* host, size_t n) {
+    cudaError_t e = allocate(n);
+    if (e != cudaSuccess || n == 0) return e;
+    return cudaMemcpy(data_, host, n * sizeof(T), cudaMemcpyHostToDevice);
+  }
+  T* get() const { return data_; }
+  size_t size() const { return size_; }
+
+ private:
+  T* data_ = nullptr;
+  size_t size_ = 0;
+};
+
+// The fused CG's scalars. Each lives in a ring indexed by the iteration, so that the kernel
+// that clears a slot for a later iteration never races a reader of the current one.
+struct CgScalars {
+  double pq[2];  // p . A p of iteration it: pq[it % 2]
+  double rz[3];  // r . z before iteration it: rz[it % 3]
+  double rr[2];  // r . r after iteration it: rr[it % 2]
+  double bb;     // |filtered b|^2
+  double initialRR;
+  double finalRR;
+  int stoppedAt;  // iterations done when the solve stopped; -1 while running
+};
+
+// Thread 0 of the block adds the block's sum of `value` to *target.
+__device__ void addBlockSum(double value, double* target) {
+  __shared__ typename BlockReduce::TempStorage storage;
+  const double sum = BlockReduce(storage).Sum(value);
+  if (threadIdx.x == 0) atomicAdd(target, sum);
+  __syncthreads();  // the storage is reused by the caller's next sum
+}
+
+// The scalar row a thread owns.
+struct DofThread {
+  int32_t row;
+  int component;
+  int64_t dof;
+  bool valid;
+};
+
+__device__ DofThread dofThread(int32_t rows) {
+  const int warp = threadIdx.x / kernels::kBinRows, lane = threadIdx.x % kernels::kBinRows;
+  const int32_t bin = blockIdx.x * kBinsPerBlock + warp / 3;
+  DofThread t;
+  t.row = bin * kernels::kBinRows + lane;
+  t.component = warp % 3;
+  t.dof = 3 * static_cast<int64_t>(t.row) + t.component;
+  t.valid = t.row < rows;
+  return t;
+}
+
+__global__ void binMultiplyKernel(BinBcsrView<double> m, const double* x, double* y) {
+  const DofThread t = dofThread(m.rows);
+  if (t.valid) y[t.dof] = kernels::binBcsrComponentProduct(t.row, t.component, m, x);
+}
+
+__global__ void bcsrMultiplyKernel(int rows, const int32_t* rowStart, const int32_t* columns, const double* values,
+                                   const double* x, double* y) {
+  const int row = blockIdx.x * blockDim.x + threadIdx.x;
+  if (row < rows) kernels::bcsrRowProduct(row, rowStart, columns, values, x, y);
+}
+
+// r = F (b - A x), z = F D^-1 r, p = z; sums r.z, r.r and |F b|^2.
+__global__ void cgStartKernel(BinBcsrView<double> m, const double* inverseDiagonal, const double* freeDofs,
+                              const double* b, const double* x, double* r, double* z, double* p, CgScalars* s) {
+  const DofThread t = dofThread(m.rows);
+  double bb = 0;
+  if (t.valid) {
+    const double f = freeDofs[t.dof];
+    r[t.dof] = f * (b[t.dof] - kernels::binBcsrComponentProduct(t.row, t.component, m, x));
+    bb = f * b[t.dof] * b[t.dof];
+  }
+  __syncthreads();  // the block row's r, for its preconditioned z
+  double rz = 0, rr = 0;
+  if (t.valid) {
+    z[t.dof] = p[t.dof] = freeDofs[t.dof] * kernels::blockJacobiComponent(t.row, t.component, inverseDiagonal, r);
+    rz = r[t.dof] * z[t.dof];
+    rr = r[t.dof] * r[t.dof];
+  }
+  addBlockSum(rz, &s->rz[0]);
+  addBlockSum(rr, &s->initialRR);
+  addBlockSum(bb, &s->bb);
+}
+
+// Fused launch 1: q = F A p, with p . q.
+__global__ void cgApplyKernel(int it, BinBcsrView<double> m, const double* freeDofs, const double* p, double* q,
+                              CgScalars* s) {
+  if (s->stoppedAt >= 0) return;
+  const DofThread t = dofThread(m.rows);
+  double pq = 0;
+  if (t.valid) {
+    q[t.dof] = freeDofs[t.dof] * kernels::binBcsrComponentProduct(t.row, t.component, m, p);
+    pq = p[t.dof] * q[t.dof];
+  }
+  addBlockSum(pq, &s->pq[it % 2]);
+}
+
+// Fused launch 2: x += a p, r -= a q, z = F D^-1 r, with r.z and r.r.
+__global__ void cgUpdateKernel(int it, int rows, const double* inverseDiagonal, const double* freeDofs, const double* p,
+                               const double* q, double* x, double* r, double* z, CgScalars* s) {
+  if (s->stoppedAt >= 0) return;
+  const double pq = s->pq[it % 2];
+  const double alpha = pq > 0 ? s->rz[it % 3] / pq : 0.0;
+  const DofThread t = dofThread(rows);
+  if (t.valid) {
+    kernels::axpyItem<double>(t.dof, alpha, p, x);
+    kernels::axpyItem<double>(t.dof, -alpha, q, r);
+  }
+  __syncthreads();  // the block row's r, for its preconditioned z
+  double rz = 0, rr = 0;
+  if (t.valid) {
+    z[t.dof] = freeDofs[t.dof] * kernels::blockJacobiComponent(t.row, t.component, inverseDiagonal, r);
+    rz = r[t.dof] * z[t.dof];
+    rr = r[t.dof] * r[t.dof];
+  }
+  addBlockSum(rz, &s->rz[(it + 1) % 3]);
+  addBlockSum(rr, &s->rr[it % 2]);
+}
+
+// Fused launch 3: stop, or p = z + beta p; clears the slots the next iteration sums into.
+__global__ void cgDirectionKernel(int it, int rows, double toleranceSquared, int maxIterations, const double* z,
+                                  double* p, CgScalars* s) {
+  if (s->stoppedAt >= 0) return;
+  const double rr = s->rr[it % 2];
+  const bool breakdown = !(s->pq[it % 2] > 0);
+  const bool done = breakdown || rr <= toleranceSquared * s->bb || it + 1 >= maxIterations;
+  const bool first = blockIdx.x == 0 && threadIdx.x == 0;
+  if (done) {
+    if (first) {
+      s->finalRR = rr;
+      s->stoppedAt = it + 1;
+    }
+    return;
+  }
+  const double beta = s->rz[(it + 1) % 3] / s->rz[it % 3];
+  const DofThread t = dofThread(rows);
+  if (t.valid) kernels::xpbyItem<double>(t.dof, z, beta, p);
+  if (first) {
+    s->rz[(it + 2) % 3] = 0;
+    s->pq[(it + 1) % 2] = 0;
+    s->rr[(it + 1) % 2] = 0;
+  }
+}
+
+// The unfused form's pieces.
+__global__ void maskedMultiplyKernel(BinBcsrView<double> m, const double* freeDofs, const double* x, double* y) {
+  const DofThread t = dofThread(m.rows);
+  if (t.valid) y[t.dof] = freeDofs[t.dof] * kernels::binBcsrComponentProduct(t.row, t.component, m, x);
+}
+
+__global__ void dotKernel(int64_t n, const double* a, const double* b, double* target) {
+  const int64_t i = blockIdx.x * int64_t(blockDim.x) + threadIdx.x;
+  addBlockSum(i < n ? a[i] * b[i] : 0.0, target);
+}
+
+__global__ void axpyKernel(int64_t n, double a, const double* x, double* y) {
+  const int64_t i = blockIdx.x * int64_t(blockDim.x) + threadIdx.x;
+  if (i < n) kernels::axpyItem(i, a, x, y);
+}
+
+__global__ void xpbyKernel(int64_t n, const double* x, double b, double* y) {
+  const int64_t i = blockIdx.x * int64_t(blockDim.x) + threadIdx.x;
+  if (i < n) kernels::xpbyItem(i, x, b, y);
+}
+
+__global__ void preconditionKernel(int rows, const double* inverseDiagonal, const double* freeDofs, const double* r,
+                                   double* z) {
+  const DofThread t = dofThread(rows);
+  if (t.valid) z[t.dof] = freeDofs[t.dof] * kernels::blockJacobiComponent(t.row, t.component, inverseDiagonal, r);
+}
+
+unsigned blocksFor(int64_t n) { return static_cast<unsigned>((n + kThreads - 1) / kThreads); }
+
+// Thread blocks for the scalar rows of `rows` block rows (whole bins, kBinsPerBlock a block).
+unsigned blocksForRows(int32_t rows) {
+  const int32_t bins = (rows + kernels::kBinRows - 1) / kernels::kBinRows;
+  return static_cast<unsigned>((bins + kBinsPerBlock - 1) / kBinsPerBlock);
+}
+
+bool failed(cudaError_t e, std::string* error) {
+  if (e == cudaSuccess) e = cudaGetLastError();
+  if (e == cudaSuccess) return false;
+  if (error) *error = cudaGetErrorString(e);
+  cudaGetLastError();  // clear a sticky-free error so later calls can report their own
+  return true;
+}
+
+class EventTimer {
+ public:
+  EventTimer() {
+    cudaEventCreate(&start_);
+    cudaEventCreate(&stop_);
+  }
+  ~EventTimer() {
+    cudaEventDestroy(start_);
+    cudaEventDestroy(stop_);
+  }
+  void start() { cudaEventRecord(start_); }
+  double stopMs() {
+    cudaEventRecord(stop_);
+    cudaEventSynchronize(stop_);
+    float ms = 0;
+    cudaEventElapsedTime(&ms, start_, stop_);
+    return ms;
+  }
+
+ private:
+  cudaEvent_t start_{}, stop_{};
+};
+
+}  // namespace
+
+struct DeviceBlockSystem::Impl {
+  BinBcsrView<double> matrix;  // device pointers
+  int32_t rows = 0;
+  int64_t bcsrBlocks = 0;
+  DeviceArray<int32_t> binSlotStart, columns, diagonalPosition, bcsrRowStart, bcsrColumns;
+  DeviceArray<double> values, diagonal, inverseDiagonal, freeDofs, bcsrValues;
+  DeviceArray<double> b, x, r, z, p, q;
+  DeviceArray<CgScalars> scalars;
+
+  int64_t dofs() const { return 3 * static_cast<int64_t>(rows); }
+
+  bool upload(const HostBlockSystem& host, std::string* error) {
+    const kernels::BinBcsrView<double>& m = host.matrix;
+    rows = m.rows;
+    const size_t lanes = static_cast<size_t>(host.slots) * kernels::kBinRows;
+    const size_t diagonalEntries = static_cast<size_t>(m.bins) * 9 * kernels::kBinRows;
+    std::vector<double> allFree;
+    const double* freeDofsHost = host.freeDofs;
+    if (!freeDofsHost) {
+      allFree.assign(static_cast<size_t>(dofs()), 1.0);
+      freeDofsHost = allFree.data();
+    }
+    if (failed(binSlotStart.upload(m.binSlotStart, static_cast<size_t>(m.bins) + 1), error) ||
+        failed(columns.upload(m.columns, lanes), error) || failed(values.upload(m.values, 9 * lanes), error) ||
+        failed(diagonal.upload(m.diagonal, diagonalEntries), error) ||
+        failed(diagonalPosition.upload(m.diagonalPosition, static_cast<size_t>(rows)), error) ||
+        failed(inverseDiagonal.upload(host.inverseDiagonal, diagonalEntries), error) ||
+        failed(freeDofs.upload(freeDofsHost, static_cast<size_t>(dofs())), error))
+      return false;
+    for (DeviceArray<double>* v : {&b, &x, &r, &z, &p, &q})
+      if (failed(v->allocate(static_cast<size_t>(dofs())), error)) return false;
+    if (failed(scalars.allocate(1), error)) return false;
+    if (host.bcsrRowStart) {
+      bcsrBlocks = host.bcsrRowStart[rows];
+      if (failed(bcsrRowStart.upload(host.bcsrRowStart, static_cast<size_t>(rows) + 1), error) ||
+          failed(bcsrColumns.upload(host.bcsrColumns, static_cast<size_t>(bcsrBlocks)), error) ||
+          failed(bcsrValues.upload(host.bcsrValues, 9 * static_cast<size_t>(bcsrBlocks)), error))
+        return false;
+    }
+    matrix = m;
+    matrix.binSlotStart = binSlotStart.get();
+    matrix.columns = columns.get();
+    matrix.values = values.get();
+    matrix.diagonal = diagonal.get();
+    matrix.diagonalPosition = diagonalPosition.get();
+    return true;
+  }
+
+  void launchMultiply(bool bcsr, const double* in, double* out) {
+    if (bcsr)
+      bcsrMultiplyKernel<<<blocksFor(rows), kThreads>>>(rows, bcsrRowStart.get(), bcsrColumns.get(), bcsrValues.get(),
+                                                        in, out);
+    else
+      binMultiplyKernel<<<blocksForRows(rows), kThreads>>>(matrix, in, out);
+  }
+
+  CgScalars readScalars() {
+    CgScalars s{};
+    cudaMemcpy(&s, scalars.get(), sizeof s, cudaMemcpyDeviceToHost);
+    return s;
+  }
+
+  // r, z, p and the scalars for a solve from the current x; the initial |r|^2 and |F b|^2.
+  void start() {
+    CgScalars zero{};
+    zero.stoppedAt = -1;
+    cudaMemcpy(scalars.get(), &zero, sizeof zero, cudaMemcpyHostToDevice);
+    cgStartKernel<<<blocksForRows(rows), kThreads>>>(matrix, inverseDiagonal.get(), freeDofs.get(), b.get(), x.get(),
+                                                 r.get(), z.get(), p.get(), scalars.get());
+  }
+
+  void iterateFused(double toleranceSquared, int maxIterations, DeviceCgResult* result) {
+    const unsigned blocks = blocksForRows(rows);
+    int stoppedAt = -1;
+    for (int it = 0; it < maxIterations && stoppedAt < 0; ++it) {
+      cgApplyKernel<<<blocks, kThreads>>>(it, matrix, freeDofs.get(), p.get(), q.get(), scalars.get());
+      cgUpdateKernel<<<blocks, kThreads>>>(it, rows, inverseDiagonal.get(), freeDofs.get(), p.get(), q.get(), x.get(),
+                                           r.get(), z.get(), scalars.get());
+      cgDirectionKernel<<<blocks, kThreads>>>(it, rows, toleranceSquared, maxIterations, z.get(), p.get(),
+                                              scalars.get());
+      result->launches += 3;
+      if ((it + 1) % kStopCheckInterval == 0 || it + 1 == maxIterations)
+        cudaMemcpy(&stoppedAt, &scalars.get()->stoppedAt, sizeof stoppedAt, cudaMemcpyDeviceToHost);
+    }
+  }
+
+  void iterateUnfused(double toleranceSquared, int maxIterations, DeviceCgResult* result, double bb, double rz) {
+    const unsigned blocks = blocksForRows(rows), dofBlocks = blocksFor(dofs());
+    double* sums = &scalars.get()->pq[0];  // two scratch sums on the device
+    for (int it = 0; it < maxIterations; ++it) {
+      maskedMultiplyKernel<<<blocks, kThreads>>>(matrix, freeDofs.get(), p.get(), q.get());
+      cudaMemset(sums, 0, 2 * sizeof(double));
+      dotKernel<<<dofBlocks, kThreads>>>(dofs(), p.get(), q.get(), sums);
+      double pq = 0;
+      cudaMemcpy(&pq, sums, sizeof pq, cudaMemcpyDeviceToHost);
+      if (!(pq > 0)) break;
+      const double alpha = rz / pq;
+      axpyKernel<<<dofBlocks, kThreads>>>(dofs(), alpha, p.get(), x.get());
+      axpyKernel<<<dofBlocks, kThreads>>>(dofs(), -alpha, q.get(), r.get());
+      preconditionKernel<<<blocks, kThreads>>>(rows, inverseDiagonal.get(), freeDofs.get(), r.get(), z.get());
+      cudaMemset(sums, 0, 2 * sizeof(double));
+      dotKernel<<<dofBlocks, kThreads>>>(dofs(), r.get(), z.get(), sums);
+      dotKernel<<<dofBlocks, kThreads>>>(dofs(), r.get(), r.get(), sums + 1);
+      double next[2];
+      cudaMemcpy(next, sums, sizeof next, cudaMemcpyDeviceToHost);
+      result->launches += 7;
+      result->iterations = it + 1;
+      result->relativeResidual = bb > 0 ? std::sqrt(next[1] / bb) : 0.0;
+      if (next[1] <= toleranceSquared * bb) break;
+      xpbyKernel<<<dofBlocks, kThreads>>>(dofs(), z.get(), next[0] / rz, p.get());
+      result->launches += 1;
+      rz = next[0];
+    }
+  }
+};
+
+DeviceBlockSystem::DeviceBlockSystem(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+DeviceBlockSystem::~DeviceBlockSystem() = default;
+
+std::unique_ptr<DeviceBlockSystem> DeviceBlockSystem::create(const HostBlockSystem& host, std::string* error) {
+  int count = 0;
+  if (cudaGetDeviceCount(&count) != cudaSuccess || count == 0) {
+    cudaGetLastError();
+    if (error) *error = "no CUDA device";
+    return nullptr;
+  }
+  auto impl = std::make_unique<Impl>();
+  if (!impl->upload(host, error)) return nullptr;
+  return std::unique_ptr<DeviceBlockSystem>(new DeviceBlockSystem(std::move(impl)));
+}
+
+int32_t DeviceBlockSystem::rows() const { return impl_->rows; }
+
+bool DeviceBlockSystem::multiply(const double* x, double* y, bool bcsr, std::string* error) {
+  Impl& d = *impl_;
+  if (bcsr && !d.bcsrRowStart.get()) {
+    if (error) *error = "created without its BCSR copy";
+    return false;
+  }
+  const size_t bytes = static_cast<size_t>(d.dofs()) * sizeof(double);
+  if (failed(cudaMemcpy(d.x.get(), x, bytes, cudaMemcpyHostToDevice), error)) return false;
+  d.launchMultiply(bcsr, d.x.get(), d.q.get());
+  return !failed(cudaMemcpy(y, d.q.get(), bytes, cudaMemcpyDeviceToHost), error);
+}
+
+bool DeviceBlockSystem::timeMultiply(int repeats, bool bcsr, double* msPerProduct, std::string* error) {
+  Impl& d = *impl_;
+  if (bcsr && !d.bcsrRowStart.get()) {
+    if (error) *error = "created without its BCSR copy";
+    return false;
+  }
+  if (failed(cudaMemset(d.x.get(), 0, static_cast<size_t>(d.dofs()) * sizeof(double)), error)) return false;
+  d.launchMultiply(bcsr, d.x.get(), d.q.get());  // warm-up
+  EventTimer timer;
+  timer.start();
+  for (int i = 0; i < repeats; ++i) d.launchMultiply(bcsr, d.x.get(), d.q.get());
+  const double ms = timer.stopMs();
+  if (failed(cudaSuccess, error)) return false;
+  *msPerProduct = ms / (repeats > 0 ? repeats : 1);
+  return true;
+}
+
+bool DeviceBlockSystem::solve(const double* b, double* x, double relativeTolerance, int maxIterations,
+                              DeviceCgForm form, DeviceCgResult* result, std::string* error) {
+  Impl& d = *impl_;
+  *result = DeviceCgResult{};
+  const size_t bytes = static_cast<size_t>(d.dofs()) * sizeof(double);
+  if (failed(cudaMemcpy(d.b.get(), b, bytes, cudaMemcpyHostToDevice), error) ||
+      failed(cudaMemcpy(d.x.get(), x, bytes, cudaMemcpyHostToDevice), error))
+    return false;
+  d.start();
+  const CgScalars initial = d.readScalars();
+  if (failed(cudaSuccess, error)) return false;
+  const double toleranceSquared = relativeTolerance * relativeTolerance;
+  result->relativeResidual = initial.bb > 0 ? std::sqrt(initial.initialRR / initial.bb) : 0.0;
+  if (initial.initialRR <= toleranceSquared * initial.bb || maxIterations <= 0) {
+    result->converged = initial.initialRR <= toleranceSquared * initial.bb;
+    return !failed(cudaMemcpy(x, d.x.get(), bytes, cudaMemcpyDeviceToHost), error);
+  }
+  EventTimer timer;
+  timer.start();
+  if (form == DeviceCgForm::Fused) {
+    d.iterateFused(toleranceSquared, maxIterations, result);
+  } else {
+    d.iterateUnfused(toleranceSquared, maxIterations, result, initial.bb, initial.rz[0]);
+  }
+  result->deviceMs = timer.stopMs();
+  if (failed(cudaSuccess, error)) return false;
+  if (form == DeviceCgForm::Fused) {
+    const CgScalars s = d.readScalars();
+    result->iterations = s.stoppedAt;
+    result->relativeResidual = initial.bb > 0 ? std::sqrt(s.finalRR / initial.bb) : 0.0;
+  }
+  result->converged = result->relativeResidual <= relativeTolerance;
+  return !failed(cudaMemcpy(x, d.x.get(), bytes, cudaMemcpyDeviceToHost), error);
+}
+
+DeviceBcsr DeviceBlockSystem::bcsr() const {
+  DeviceBcsr out;
+  out.rows = impl_->rows;
+  if (!impl_->bcsrRowStart.get()) return out;
+  out.blocks = impl_->bcsrBlocks;
+  out.rowStart = impl_->bcsrRowStart.get();
+  out.columns = impl_->bcsrColumns.get();
+  out.values = impl_->bcsrValues.get();
+  out.x = impl_->x.get();
+  out.y = impl_->q.get();
+  return out;
+}
+
+}  // namespace vp::gpu
