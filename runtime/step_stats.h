@@ -43,6 +43,7 @@ struct ActorStats {
   double residual = 0.0;       // final relative residual of its iterative solve in this frame
   int priority = 0;            // its desc's priority: higher is served first when the budget is short
   bool floorMissed = false;    // deformable: the budget stopped its solve above its targetResidual
+  bool onDevice = false;       // deformable: its implicit solve ran on the CUDA device
   std::array<PhaseStats, kPhaseCount> phases{};
 
   PhaseStats& phase(Phase p) { return phases[static_cast<int>(p)]; }

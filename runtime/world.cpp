@@ -10,6 +10,7 @@
 #include "core/log.h"
 #include "core/parallel_for.h"
 #include "core/run_delay.h"
+#include "gpu_kernels/device_query.h"
 
 namespace vp {
 
@@ -35,11 +36,20 @@ Status validateWorldConfig(const WorldConfig& c) {
     return fail(Status::InvalidArgument, "rigidMaxSubstep = %g: must be in [1e-5, 1] seconds", c.rigidMaxSubstep);
   if ((c.tasks.enqueue == nullptr) != (c.tasks.finish == nullptr))
     return fail(Status::InvalidArgument, "enqueueTask and finishTask: set both or neither");
+  const int device = static_cast<int>(c.device);
+  if (device < static_cast<int>(ComputeDevice::Auto) || device > static_cast<int>(ComputeDevice::Cuda))
+    return fail(Status::InvalidArgument, "device = %d: must be a vpDevice (0 Auto, 1 Cpu, 2 Cuda)", device);
+  if (c.device == ComputeDevice::Cuda && gpu::cudaDeviceCount() == 0)
+    return fail(Status::Unsupported, "device = 2 (Cuda): no usable CUDA device (this build %s the CUDA path)",
+                gpu::cudaCompiled() ? "has" : "lacks");
   return Status::Ok;
 }
 
 World::World(const WorldConfig& config)
-    : config_(config), tasks_(TaskSystem::create(config.tasks, config.workerCount)), collision_(config.gravity) {
+    : config_(config),
+      tasks_(TaskSystem::create(config.tasks, config.workerCount)),
+      collision_(config.gravity),
+      deformablesOnDevice_(config.device != ComputeDevice::Cpu && gpu::cudaDeviceCount() > 0) {
   colliders_.setGenerationLimit(kHandleGenerationLimit);
   deformables_.setGenerationLimit(kHandleGenerationLimit);
   fluids_.setGenerationLimit(kHandleGenerationLimit);
@@ -101,6 +111,8 @@ Status World::destroyCollider(ColliderHandle handle) {
 Status World::createDeformable(DeformableDesc desc, DeformableHandle* out) {
   std::unique_ptr<DeformableBody> body;
   VP_TRY(DeformableBody::create(std::move(desc), &body));
+  if (deformablesOnDevice_ && !ok(body->setSolveOnDevice(true)))
+    log(LogLevel::Warning, "deformable '%s' solves on the CPU: %s", body->desc().name.c_str(), lastError());
   *out = deformables_.insert(std::move(body));
   return Status::Ok;
 }

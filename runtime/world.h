@@ -22,6 +22,9 @@
 
 namespace vp {
 
+// Where the deformables' implicit solves run (vpDevice; deform/device_step_solve.h).
+enum class ComputeDevice : int { Auto = 0, Cpu = 1, Cuda = 2 };
+
 struct WorldConfig {
   Vec3 gravity{0.0, -9.81, 0.0};
   int workerCount = 1;
@@ -30,6 +33,7 @@ struct WorldConfig {
   TaskHooks tasks;
   Clock clock;
   void* userData = nullptr;
+  ComputeDevice device = ComputeDevice::Cpu;
 };
 
 // Messages name the vpWorldDef field.
@@ -151,6 +155,7 @@ class World {
   std::unique_ptr<TaskSystem> tasks_;
   WorkerContention contention_;
   CollisionWorld collision_;
+  const bool deformablesOnDevice_;  // config_.device resolved: new deformables solve on the CUDA device
   SlotMap<Collider> colliders_;
   SlotMap<DeformableBody> deformables_;
   SlotMap<FluidActor> fluids_;

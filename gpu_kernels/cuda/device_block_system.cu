@@ -5,6 +5,7 @@
 #include <utility>
 #include <vector>
 
+#include "gpu_kernels/constraint_kernels.h"
 #include "gpu_kernels/device_block_system.h"
 #include "gpu_kernels/vector_kernels.h"
 
@@ -93,43 +94,69 @@ __global__ void bcsrMultiplyKernel(int rows, const int32_t* rowStart, const int3
   if (row < rows) kernels::bcsrRowProduct(row, rowStart, columns, values, x, y);
 }
 
-// r = F (b - A x), z = F D^-1 r, p = z; sums r.z, r.r and |F b|^2.
-__global__ void cgStartKernel(BinBcsrView<double> m, const double* inverseDiagonal, const double* freeDofs,
-                              const double* b, const double* x, double* r, double* z, double* p, CgScalars* s) {
+// The node constraints, for threads that own one component each.
+struct Constraints {
+  const uint8_t* kind;
+  const double* normal;
+
+  // Writes `value` to v at t's component and returns it filtered (also written to v). Every
+  // thread of the block must call it: the row's other components come from other warps.
+  __device__ double filterInBlock(const DofThread& t, double value, double* v) const {
+    if (t.valid) v[t.dof] = value;
+    __syncthreads();
+    double filtered = 0;
+    if (t.valid) {
+      const double* row = v + 3 * static_cast<int64_t>(t.row);
+      filtered = kernels::filteredComponent(kind[t.row], normal + 3 * static_cast<int64_t>(t.row), row[0], row[1],
+                                            row[2], t.component);
+    }
+    __syncthreads();
+    if (t.valid) v[t.dof] = filtered;
+    return filtered;
+  }
+};
+
+// z = F D^-1 r at t's component, once r is complete for t's block row.
+__device__ double preconditionInBlock(const DofThread& t, const double* inverseDiagonal, const Constraints& c,
+                                      const double* r, double* z) {
+  __syncthreads();  // the block row's r
+  const double value = t.valid ? kernels::blockJacobiComponent(t.row, t.component, inverseDiagonal, r) : 0.0;
+  return c.filterInBlock(t, value, z);
+}
+
+// r = F (b - A x), z = F D^-1 r, p = z; sums r.z, r.r and |F b|^2 (F b is left in p until
+// p is written).
+__global__ void cgStartKernel(BinBcsrView<double> m, const double* inverseDiagonal, Constraints c, const double* b,
+                              const double* x, double* r, double* z, double* p, CgScalars* s) {
   const DofThread t = dofThread(m.rows);
-  double bb = 0;
-  if (t.valid) {
-    const double f = freeDofs[t.dof];
-    r[t.dof] = f * (b[t.dof] - kernels::binBcsrComponentProduct(t.row, t.component, m, x));
-    bb = f * b[t.dof] * b[t.dof];
-  }
-  __syncthreads();  // the block row's r, for its preconditioned z
-  double rz = 0, rr = 0;
-  if (t.valid) {
-    z[t.dof] = p[t.dof] = freeDofs[t.dof] * kernels::blockJacobiComponent(t.row, t.component, inverseDiagonal, r);
-    rz = r[t.dof] * z[t.dof];
-    rr = r[t.dof] * r[t.dof];
-  }
-  addBlockSum(rz, &s->rz[0]);
-  addBlockSum(rr, &s->initialRR);
-  addBlockSum(bb, &s->bb);
+  const double fb = c.filterInBlock(t, t.valid ? b[t.dof] : 0.0, p);
+  const double ax = t.valid ? kernels::binBcsrComponentProduct(t.row, t.component, m, x) : 0.0;
+  const double rc = c.filterInBlock(t, t.valid ? b[t.dof] - ax : 0.0, r);
+  const double zc = preconditionInBlock(t, inverseDiagonal, c, r, z);
+  if (t.valid) p[t.dof] = zc;
+  addBlockSum(rc * zc, &s->rz[0]);
+  addBlockSum(rc * rc, &s->initialRR);
+  addBlockSum(fb * fb, &s->bb);
+}
+
+// x -= F x: what the CPU's CG returns when nothing drives the system.
+__global__ void removeFreePartKernel(int rows, Constraints c, double* x, double* scratch) {
+  const DofThread t = dofThread(rows);
+  const double fx = c.filterInBlock(t, t.valid ? x[t.dof] : 0.0, scratch);
+  if (t.valid) x[t.dof] -= fx;
 }
 
 // Fused launch 1: q = F A p, with p . q.
-__global__ void cgApplyKernel(int it, BinBcsrView<double> m, const double* freeDofs, const double* p, double* q,
-                              CgScalars* s) {
+__global__ void cgApplyKernel(int it, BinBcsrView<double> m, Constraints c, const double* p, double* q, CgScalars* s) {
   if (s->stoppedAt >= 0) return;
   const DofThread t = dofThread(m.rows);
-  double pq = 0;
-  if (t.valid) {
-    q[t.dof] = freeDofs[t.dof] * kernels::binBcsrComponentProduct(t.row, t.component, m, p);
-    pq = p[t.dof] * q[t.dof];
-  }
-  addBlockSum(pq, &s->pq[it % 2]);
+  const double ap = t.valid ? kernels::binBcsrComponentProduct(t.row, t.component, m, p) : 0.0;
+  const double qc = c.filterInBlock(t, ap, q);
+  addBlockSum(t.valid ? p[t.dof] * qc : 0.0, &s->pq[it % 2]);
 }
 
 // Fused launch 2: x += a p, r -= a q, z = F D^-1 r, with r.z and r.r.
-__global__ void cgUpdateKernel(int it, int rows, const double* inverseDiagonal, const double* freeDofs, const double* p,
+__global__ void cgUpdateKernel(int it, int rows, const double* inverseDiagonal, Constraints c, const double* p,
                                const double* q, double* x, double* r, double* z, CgScalars* s) {
   if (s->stoppedAt >= 0) return;
   const double pq = s->pq[it % 2];
@@ -139,15 +166,10 @@ __global__ void cgUpdateKernel(int it, int rows, const double* inverseDiagonal, 
     kernels::axpyItem<double>(t.dof, alpha, p, x);
     kernels::axpyItem<double>(t.dof, -alpha, q, r);
   }
-  __syncthreads();  // the block row's r, for its preconditioned z
-  double rz = 0, rr = 0;
-  if (t.valid) {
-    z[t.dof] = freeDofs[t.dof] * kernels::blockJacobiComponent(t.row, t.component, inverseDiagonal, r);
-    rz = r[t.dof] * z[t.dof];
-    rr = r[t.dof] * r[t.dof];
-  }
-  addBlockSum(rz, &s->rz[(it + 1) % 3]);
-  addBlockSum(rr, &s->rr[it % 2]);
+  const double zc = preconditionInBlock(t, inverseDiagonal, c, r, z);
+  const double rc = t.valid ? r[t.dof] : 0.0;
+  addBlockSum(rc * zc, &s->rz[(it + 1) % 3]);
+  addBlockSum(rc * rc, &s->rr[it % 2]);
 }
 
 // Fused launch 3: stop, or p = z + beta p; clears the slots the next iteration sums into.
@@ -160,8 +182,8 @@ __global__ void cgDirectionKernel(int it, int rows, double toleranceSquared, int
   const bool first = blockIdx.x == 0 && threadIdx.x == 0;
   if (done) {
     if (first) {
-      s->finalRR = rr;
-      s->stoppedAt = it + 1;
+      s->finalRR = rr;  // after a breakdown alpha was 0: the residual of the iteration before
+      s->stoppedAt = breakdown ? it : it + 1;
     }
     return;
   }
@@ -176,9 +198,9 @@ __global__ void cgDirectionKernel(int it, int rows, double toleranceSquared, int
 }
 
 // The unfused form's pieces.
-__global__ void maskedMultiplyKernel(BinBcsrView<double> m, const double* freeDofs, const double* x, double* y) {
+__global__ void filteredMultiplyKernel(BinBcsrView<double> m, Constraints c, const double* x, double* y) {
   const DofThread t = dofThread(m.rows);
-  if (t.valid) y[t.dof] = freeDofs[t.dof] * kernels::binBcsrComponentProduct(t.row, t.component, m, x);
+  c.filterInBlock(t, t.valid ? kernels::binBcsrComponentProduct(t.row, t.component, m, x) : 0.0, y);
 }
 
 __global__ void dotKernel(int64_t n, const double* a, const double* b, double* target) {
@@ -196,10 +218,8 @@ __global__ void xpbyKernel(int64_t n, const double* x, double b, double* y) {
   if (i < n) kernels::xpbyItem(i, x, b, y);
 }
 
-__global__ void preconditionKernel(int rows, const double* inverseDiagonal, const double* freeDofs, const double* r,
-                                   double* z) {
-  const DofThread t = dofThread(rows);
-  if (t.valid) z[t.dof] = freeDofs[t.dof] * kernels::blockJacobiComponent(t.row, t.component, inverseDiagonal, r);
+__global__ void preconditionKernel(int rows, const double* inverseDiagonal, Constraints c, const double* r, double* z) {
+  preconditionInBlock(dofThread(rows), inverseDiagonal, c, r, z);
 }
 
 unsigned blocksFor(int64_t n) { return static_cast<unsigned>((n + kThreads - 1) / kThreads); }
@@ -248,29 +268,28 @@ struct DeviceBlockSystem::Impl {
   int32_t rows = 0;
   int64_t bcsrBlocks = 0;
   DeviceArray<int32_t> binSlotStart, columns, diagonalPosition, bcsrRowStart, bcsrColumns;
-  DeviceArray<double> values, diagonal, inverseDiagonal, freeDofs, bcsrValues;
+  DeviceArray<double> values, diagonal, inverseDiagonal, nodeNormal, bcsrValues;
+  DeviceArray<uint8_t> nodeKind;
   DeviceArray<double> b, x, r, z, p, q;
   DeviceArray<CgScalars> scalars;
 
   int64_t dofs() const { return 3 * static_cast<int64_t>(rows); }
+  size_t laneEntries() const { return values.size(); }
+  Constraints constraints() const { return Constraints{nodeKind.get(), nodeNormal.get()}; }
 
   bool upload(const HostBlockSystem& host, std::string* error) {
     const kernels::BinBcsrView<double>& m = host.matrix;
     rows = m.rows;
     const size_t lanes = static_cast<size_t>(host.slots) * kernels::kBinRows;
     const size_t diagonalEntries = static_cast<size_t>(m.bins) * 9 * kernels::kBinRows;
-    std::vector<double> allFree;
-    const double* freeDofsHost = host.freeDofs;
-    if (!freeDofsHost) {
-      allFree.assign(static_cast<size_t>(dofs()), 1.0);
-      freeDofsHost = allFree.data();
-    }
     if (failed(binSlotStart.upload(m.binSlotStart, static_cast<size_t>(m.bins) + 1), error) ||
         failed(columns.upload(m.columns, lanes), error) || failed(values.upload(m.values, 9 * lanes), error) ||
         failed(diagonal.upload(m.diagonal, diagonalEntries), error) ||
         failed(diagonalPosition.upload(m.diagonalPosition, static_cast<size_t>(rows)), error) ||
         failed(inverseDiagonal.upload(host.inverseDiagonal, diagonalEntries), error) ||
-        failed(freeDofs.upload(freeDofsHost, static_cast<size_t>(dofs())), error))
+        failed(nodeKind.allocate(static_cast<size_t>(rows)), error) ||
+        failed(nodeNormal.allocate(static_cast<size_t>(dofs())), error) ||
+        !uploadConstraints(host.nodeKind, host.nodeNormal, error))
       return false;
     for (DeviceArray<double>* v : {&b, &x, &r, &z, &p, &q})
       if (failed(v->allocate(static_cast<size_t>(dofs())), error)) return false;
@@ -289,6 +308,14 @@ struct DeviceBlockSystem::Impl {
     matrix.diagonal = diagonal.get();
     matrix.diagonalPosition = diagonalPosition.get();
     return true;
+  }
+
+  bool uploadConstraints(const uint8_t* kind, const double* normal, std::string* error) {
+    if (!kind) return !failed(cudaMemset(nodeKind.get(), kernels::kNodeFree, static_cast<size_t>(rows)), error);
+    return !failed(cudaMemcpy(nodeKind.get(), kind, static_cast<size_t>(rows), cudaMemcpyHostToDevice), error) &&
+           !failed(cudaMemcpy(nodeNormal.get(), normal, static_cast<size_t>(dofs()) * sizeof(double),
+                              cudaMemcpyHostToDevice),
+                   error);
   }
 
   void launchMultiply(bool bcsr, const double* in, double* out) {
@@ -310,30 +337,46 @@ struct DeviceBlockSystem::Impl {
     CgScalars zero{};
     zero.stoppedAt = -1;
     cudaMemcpy(scalars.get(), &zero, sizeof zero, cudaMemcpyHostToDevice);
-    cgStartKernel<<<blocksForRows(rows), kThreads>>>(matrix, inverseDiagonal.get(), freeDofs.get(), b.get(), x.get(),
-                                                 r.get(), z.get(), p.get(), scalars.get());
+    cgStartKernel<<<blocksForRows(rows), kThreads>>>(matrix, inverseDiagonal.get(), constraints(), b.get(), x.get(),
+                                                     r.get(), z.get(), p.get(), scalars.get());
   }
 
-  void iterateFused(double toleranceSquared, int maxIterations, DeviceCgResult* result) {
+  // The host's look every kStopCheckInterval iterations: the device's stop, or the caller's.
+  bool stopChecked(int iterations, double bb, const DeviceCgControl& control, DeviceCgResult* result) {
+    const CgScalars s = readScalars();
+    if (s.stoppedAt >= 0) return true;
+    const double relative = bb > 0 ? std::sqrt(s.rr[(iterations - 1) % 2] / bb) : 0.0;
+    if (!control.stop || !control.stop(control.context, iterations, relative)) return false;
+    result->stoppedByCaller = true;
+    CgScalars stopped = s;
+    stopped.stoppedAt = iterations;
+    stopped.finalRR = s.rr[(iterations - 1) % 2];
+    cudaMemcpy(scalars.get(), &stopped, sizeof stopped, cudaMemcpyHostToDevice);
+    return true;
+  }
+
+  void iterateFused(double toleranceSquared, int maxIterations, double bb, const DeviceCgControl& control,
+                    DeviceCgResult* result) {
     const unsigned blocks = blocksForRows(rows);
-    int stoppedAt = -1;
-    for (int it = 0; it < maxIterations && stoppedAt < 0; ++it) {
-      cgApplyKernel<<<blocks, kThreads>>>(it, matrix, freeDofs.get(), p.get(), q.get(), scalars.get());
-      cgUpdateKernel<<<blocks, kThreads>>>(it, rows, inverseDiagonal.get(), freeDofs.get(), p.get(), q.get(), x.get(),
+    for (int it = 0; it < maxIterations; ++it) {
+      cgApplyKernel<<<blocks, kThreads>>>(it, matrix, constraints(), p.get(), q.get(), scalars.get());
+      cgUpdateKernel<<<blocks, kThreads>>>(it, rows, inverseDiagonal.get(), constraints(), p.get(), q.get(), x.get(),
                                            r.get(), z.get(), scalars.get());
       cgDirectionKernel<<<blocks, kThreads>>>(it, rows, toleranceSquared, maxIterations, z.get(), p.get(),
                                               scalars.get());
       result->launches += 3;
-      if ((it + 1) % kStopCheckInterval == 0 || it + 1 == maxIterations)
-        cudaMemcpy(&stoppedAt, &scalars.get()->stoppedAt, sizeof stoppedAt, cudaMemcpyDeviceToHost);
+      if (((it + 1) % kStopCheckInterval == 0 || it + 1 == maxIterations) &&
+          stopChecked(it + 1, bb, control, result))
+        return;
     }
   }
 
-  void iterateUnfused(double toleranceSquared, int maxIterations, DeviceCgResult* result, double bb, double rz) {
+  void iterateUnfused(double toleranceSquared, int maxIterations, double bb, double rz,
+                      const DeviceCgControl& control, DeviceCgResult* result) {
     const unsigned blocks = blocksForRows(rows), dofBlocks = blocksFor(dofs());
     double* sums = &scalars.get()->pq[0];  // two scratch sums on the device
     for (int it = 0; it < maxIterations; ++it) {
-      maskedMultiplyKernel<<<blocks, kThreads>>>(matrix, freeDofs.get(), p.get(), q.get());
+      filteredMultiplyKernel<<<blocks, kThreads>>>(matrix, constraints(), p.get(), q.get());
       cudaMemset(sums, 0, 2 * sizeof(double));
       dotKernel<<<dofBlocks, kThreads>>>(dofs(), p.get(), q.get(), sums);
       double pq = 0;
@@ -342,7 +385,7 @@ struct DeviceBlockSystem::Impl {
       const double alpha = rz / pq;
       axpyKernel<<<dofBlocks, kThreads>>>(dofs(), alpha, p.get(), x.get());
       axpyKernel<<<dofBlocks, kThreads>>>(dofs(), -alpha, q.get(), r.get());
-      preconditionKernel<<<blocks, kThreads>>>(rows, inverseDiagonal.get(), freeDofs.get(), r.get(), z.get());
+      preconditionKernel<<<blocks, kThreads>>>(rows, inverseDiagonal.get(), constraints(), r.get(), z.get());
       cudaMemset(sums, 0, 2 * sizeof(double));
       dotKernel<<<dofBlocks, kThreads>>>(dofs(), r.get(), z.get(), sums);
       dotKernel<<<dofBlocks, kThreads>>>(dofs(), r.get(), r.get(), sums + 1);
@@ -352,6 +395,11 @@ struct DeviceBlockSystem::Impl {
       result->iterations = it + 1;
       result->relativeResidual = bb > 0 ? std::sqrt(next[1] / bb) : 0.0;
       if (next[1] <= toleranceSquared * bb) break;
+      if ((it + 1) % kStopCheckInterval == 0 && control.stop &&
+          control.stop(control.context, it + 1, result->relativeResidual)) {
+        result->stoppedByCaller = true;
+        break;
+      }
       xpbyKernel<<<dofBlocks, kThreads>>>(dofs(), z.get(), next[0] / rz, p.get());
       result->launches += 1;
       rz = next[0];
@@ -405,8 +453,24 @@ bool DeviceBlockSystem::timeMultiply(int repeats, bool bcsr, double* msPerProduc
   return true;
 }
 
+bool DeviceBlockSystem::setValues(const double* values, const double* diagonal, const double* inverseDiagonal,
+                                  std::string* error) {
+  Impl& d = *impl_;
+  return !failed(cudaMemcpy(d.values.get(), values, d.values.size() * sizeof(double), cudaMemcpyHostToDevice), error) &&
+         !failed(cudaMemcpy(d.diagonal.get(), diagonal, d.diagonal.size() * sizeof(double), cudaMemcpyHostToDevice),
+                 error) &&
+         !failed(cudaMemcpy(d.inverseDiagonal.get(), inverseDiagonal, d.inverseDiagonal.size() * sizeof(double),
+                            cudaMemcpyHostToDevice),
+                 error);
+}
+
+bool DeviceBlockSystem::setConstraints(const uint8_t* nodeKind, const double* nodeNormal, std::string* error) {
+  return impl_->uploadConstraints(nodeKind, nodeNormal, error);
+}
+
 bool DeviceBlockSystem::solve(const double* b, double* x, double relativeTolerance, int maxIterations,
-                              DeviceCgForm form, DeviceCgResult* result, std::string* error) {
+                              DeviceCgForm form, DeviceCgResult* result, std::string* error,
+                              const DeviceCgControl& control) {
   Impl& d = *impl_;
   *result = DeviceCgResult{};
   const size_t bytes = static_cast<size_t>(d.dofs()) * sizeof(double);
@@ -417,26 +481,27 @@ bool DeviceBlockSystem::solve(const double* b, double* x, double relativeToleran
   const CgScalars initial = d.readScalars();
   if (failed(cudaSuccess, error)) return false;
   const double toleranceSquared = relativeTolerance * relativeTolerance;
-  result->relativeResidual = initial.bb > 0 ? std::sqrt(initial.initialRR / initial.bb) : 0.0;
-  if (initial.initialRR <= toleranceSquared * initial.bb || maxIterations <= 0) {
+  if (initial.bb == 0) {
+    removeFreePartKernel<<<blocksForRows(d.rows), kThreads>>>(d.rows, d.constraints(), d.x.get(), d.z.get());
+    result->converged = true;
+  } else if (initial.initialRR <= toleranceSquared * initial.bb || maxIterations <= 0) {
+    result->relativeResidual = std::sqrt(initial.initialRR / initial.bb);
     result->converged = initial.initialRR <= toleranceSquared * initial.bb;
-    return !failed(cudaMemcpy(x, d.x.get(), bytes, cudaMemcpyDeviceToHost), error);
-  }
-  EventTimer timer;
-  timer.start();
-  if (form == DeviceCgForm::Fused) {
-    d.iterateFused(toleranceSquared, maxIterations, result);
   } else {
-    d.iterateUnfused(toleranceSquared, maxIterations, result, initial.bb, initial.rz[0]);
+    EventTimer timer;
+    timer.start();
+    if (form == DeviceCgForm::Fused) {
+      d.iterateFused(toleranceSquared, maxIterations, initial.bb, control, result);
+      const CgScalars s = d.readScalars();
+      result->iterations = s.stoppedAt;
+      result->relativeResidual = std::sqrt(s.finalRR / initial.bb);
+    } else {
+      d.iterateUnfused(toleranceSquared, maxIterations, initial.bb, initial.rz[0], control, result);
+    }
+    result->deviceMs = timer.stopMs();
+    result->converged = result->relativeResidual <= relativeTolerance;
   }
-  result->deviceMs = timer.stopMs();
   if (failed(cudaSuccess, error)) return false;
-  if (form == DeviceCgForm::Fused) {
-    const CgScalars s = d.readScalars();
-    result->iterations = s.stoppedAt;
-    result->relativeResidual = initial.bb > 0 ? std::sqrt(s.finalRR / initial.bb) : 0.0;
-  }
-  result->converged = result->relativeResidual <= relativeTolerance;
   return !failed(cudaMemcpy(x, d.x.get(), bytes, cudaMemcpyDeviceToHost), error);
 }
 

@@ -30,13 +30,13 @@ struct FieldOffsets;
 
 VP_OFFSETS(vpWorldDef, VP_AT(gravity), VP_AT(workerCount), VP_AT(frameBudgetMs), VP_AT(rigidMaxSubstep),
            VP_AT(enqueueTask), VP_AT(finishTask), VP_AT(userTaskContext), VP_AT(clock), VP_AT(clockContext),
-           VP_AT(userData));
+           VP_AT(userData), VP_AT(device));
 VP_OFFSETS(vpStepStats, VP_AT(stepIndex), VP_AT(dt), VP_AT(totalMs), VP_AT(budgetMs), VP_AT(budgetCut),
            VP_AT(actorCount), VP_AT(colliderCount), VP_AT(rigidSubsteps), VP_AT(fluidInterval),
            VP_AT(overBudgetMs), VP_AT(budgetInfeasible), VP_AT(maxSliceMs));
 VP_OFFSETS(vpActorStats, VP_AT(kind), VP_AT(index1), VP_AT(totalMs), VP_AT(diverged), VP_AT(phases),
            VP_AT(simulatedDt), VP_AT(interval), VP_AT(completedStep), VP_AT(progress), VP_AT(slices),
-           VP_AT(residual), VP_AT(priority), VP_AT(floorMissed), VP_AT(failedPhases));
+           VP_AT(residual), VP_AT(priority), VP_AT(floorMissed), VP_AT(failedPhases), VP_AT(device));
 VP_OFFSETS(vpShapeDef, VP_AT(type), VP_AT(radius), VP_AT(halfHeight), VP_AT(halfExtents), VP_AT(normal),
            VP_AT(offset), VP_AT(points), VP_AT(pointCount), VP_AT(indices), VP_AT(triangleCount), VP_AT(meshFile),
            VP_AT(meshScale));

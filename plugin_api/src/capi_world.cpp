@@ -19,6 +19,7 @@ vpWorldDef vpDefaultWorldDef(void) {
   def.workerCount = 1;
   def.frameBudgetMs = 16.0f;
   def.rigidMaxSubstep = 1.0f / 120.0f;
+  def.device = vpDevice_Cpu;
   return def;
 }
 
@@ -41,6 +42,7 @@ vpStatus vpWorldCreate(const vpWorldDef* def, vpWorldId* outWorld) {
     config.clock.now = d.clock;
     config.clock.context = d.clockContext;
     config.userData = d.userData;
+    config.device = static_cast<ComputeDevice>(d.device);  // validateWorldConfig checks the range
     std::unique_ptr<World> world;
     VP_TRY(World::create(config, &world));
     return registerWorld(std::move(world), outWorld);

@@ -176,6 +176,7 @@ void fillActorStats(const ActorStats& in, vpActorStats* out) {
   out->residual = static_cast<float>(in.residual);
   out->priority = in.priority;
   out->floorMissed = in.floorMissed ? 1 : 0;
+  out->device = in.onDevice ? vpDevice_Cuda : vpDevice_Cpu;
   static_assert(kPhaseCount == vpPhase_Count && kPhaseCount <= VP_MAX_PHASES, "phase tables must match");
   for (int p = 0; p < kPhaseCount; ++p) {
     const PhaseStats& ph = in.phases[p];

@@ -640,6 +640,7 @@ void DeformableBody::assembleStepSystem(const DeformableStepInput& in) {
     }
   });
   contacts_.addFriction(&rhs_);
+  if (deviceSolve_) deviceSolve_->matrixChanged();
 }
 
 bool DeformableBody::solveStepSystem(const DeformableStepInput& in, PhaseTimer& timer, ActorStats* stats) {
@@ -648,7 +649,7 @@ bool DeformableBody::solveStepSystem(const DeformableStepInput& in, PhaseTimer& 
   LinearSystem system;
   system.size = 3 * static_cast<int64_t>(nodeCount_);
   system.apply = [&](const double* x, double* y) { matrix_.multiply(tasks, x, y); };
-  if (preconditioner_.needsRefresh()) {
+  if (preconditioner_.needsRefresh() && !deviceSolve_) {
     refreshPreconditioner(tasks, scale);
     timer.lap(Phase::Assemble);  // the preconditioner's setup is part of building the system
   }
@@ -657,8 +658,7 @@ bool DeformableBody::solveStepSystem(const DeformableStepInput& in, PhaseTimer& 
   CgSettings settings{desc_.solver.tolerance,
                       in.solverMaxIterations > 0 ? in.solverMaxIterations : desc_.solver.maxIterations};
   const double floor = desc_.solver.targetResidual;
-  CgResult cg = solveConjugateGradient(tasks, system, rhs_.data(), vNext_.data(), settings, in.deadline, cg_, floor,
-                                       in.floorDeadline);
+  CgResult cg = solveLinearSystem(in, system, settings, scale);
   PhaseStats& solve = stats->phase(Phase::Solve);
   solve.iterations = cg.iterations;
   timer.lap(Phase::Solve);
@@ -682,24 +682,50 @@ bool DeformableBody::solveStepSystem(const DeformableStepInput& in, PhaseTimer& 
     // With the filters of the pass before, a released node or a newly sliding contact's
     // tangent lies in a multigrid's null space, CG cannot reduce the residual there and the
     // solve stalls (relative residual ~1 after hundreds of iterations).
-    if (preconditioner_.needsRefresh()) {
+    if (preconditioner_.needsRefresh() && !deviceSolve_) {
       refreshPreconditioner(tasks, scale);
       timer.lap(Phase::Assemble);
     }
-    cg = solveConjugateGradient(tasks, system, rhs_.data(), vNext_.data(), settings, in.deadline, cg_, floor,
-                                in.floorDeadline);
+    cg = solveLinearSystem(in, system, settings, scale);
     solve.iterations += cg.iterations;
     timer.lap(Phase::Solve);
   }
   contacts_.rememberSliding(vNext_, held_);
   recordReactions(tasks, in.dt, in.colliders);
   solve.residual = cg.relativeResidual;
+  stats->onDevice = deviceSolve_ != nullptr;
   solve.budgetCut = cg.budgetCut;
   stats->residual = cg.relativeResidual;
   // Missed only when time ran out: a solve that stopped at maxIterations above the floor
   // is a matter of the solver settings, which a lower rate would not change.
   stats->floorMissed = cg.budgetCut && cg.relativeResidual > floor;
   return !cg.budgetCut || cg.relativeResidual <= floor;
+}
+
+CgResult DeformableBody::solveLinearSystem(const DeformableStepInput& in, const LinearSystem& system,
+                                          const CgSettings& settings, double massScale) {
+  const double floor = desc_.solver.targetResidual;
+  if (deviceSolve_) {
+    CgResult result;
+    if (ok(deviceSolve_->solve(matrix_, preconditioner_.inverseDiagonal(0), held_, rhs_.data(), vNext_.data(),
+                               settings, in.deadline, floor, in.floorDeadline, &result)))
+      return result;
+    log(LogLevel::Warning, "deformable '%s': %s; its solves run on the CPU from now on", desc_.name.c_str(),
+        lastError());
+    deviceSolve_.reset();
+    if (preconditioner_.needsRefresh()) refreshPreconditioner(*in.tasks, massScale);
+  }
+  return solveConjugateGradient(*in.tasks, system, rhs_.data(), vNext_.data(), settings, in.deadline, cg_, floor,
+                                in.floorDeadline);
+}
+
+Status DeformableBody::setSolveOnDevice(bool onDevice) {
+  if (!onDevice) {
+    deviceSolve_.reset();
+    return Status::Ok;
+  }
+  if (deviceSolve_) return Status::Ok;
+  return DeviceStepSolve::create(matrix_, &deviceSolve_);
 }
 
 void DeformableBody::integrateAndGuard(const DeformableStepInput& in, bool solveReachedFloor, ActorStats* stats) {

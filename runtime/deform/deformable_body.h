@@ -24,6 +24,7 @@
 #include "deform/bb_rotated_stiffness.h"
 #include "deform/contact_active_set.h"
 #include "deform/deformable_contacts.h"
+#include "deform/device_step_solve.h"
 #include "deform/node_constraints.h"
 #include "deform/step_preconditioner.h"
 #include "deform/degree_level_assembly.h"
@@ -141,6 +142,11 @@ class DeformableBody {
   double elasticEnergy(TaskSystem& tasks) const;
   // Elastic forces at the current positions (3 per node), as the step computes them.
   void elasticForces(TaskSystem& tasks, Array<double>* out);
+  // From the next step, the implicit solve runs on the CUDA device (true) or on the CPU. Fails,
+  // leaving the solve on the CPU, where no device can be used; a device failure during a step
+  // moves the solve back to the CPU for good (logged).
+  Status setSolveOnDevice(bool onDevice);
+  bool solvesOnDevice() const { return deviceSolve_ != nullptr; }
   // The assembled step matrix of the last step (tests inspect its symmetry).
   const BlockSparseMatrix<double>& stepMatrix() const { return matrix_; }
   // Which preconditioner the solve uses (Auto resolved).
@@ -179,6 +185,9 @@ class DeformableBody {
   void integrateAndGuard(const DeformableStepInput& in, bool solveReachedFloor, ActorStats* stats);
   void recordReactions(TaskSystem& tasks, double h, const std::vector<ContactCollider>& colliders);
   double massScale(double h) const;  // 1 + h α: Rayleigh's mass damping on the mass term
+  // One CG solve of the step system from vNext_, on the device when it has one.
+  CgResult solveLinearSystem(const DeformableStepInput& in, const LinearSystem& system, const CgSettings& settings,
+                             double massScale);
   // After the matrix or the constraints changed (deform/step_preconditioner.h).
   void refreshPreconditioner(TaskSystem& tasks, double massScale);
   // Constraint impulse of each contact from the solved velocities: A v' − b at its node.
@@ -234,6 +243,7 @@ class DeformableBody {
   double contactMargin_ = 0.0;
   CgWorkspace cg_;
   StepPreconditioner preconditioner_;
+  std::unique_ptr<DeviceStepSolve> deviceSolve_;  // set: the solve runs on the CUDA device
 };
 
 }  // namespace vp

@@ -5,6 +5,7 @@
 
 #include "core/math_types.h"
 #include "core/parallel_for.h"
+#include "gpu_kernels/constraint_kernels.h"
 
 namespace vp {
 
@@ -17,16 +18,7 @@ void NodeConstraints::clear() { std::fill(kind.begin(), kind.end(), kFree); }
 
 void NodeConstraints::filter(TaskSystem& tasks, double* vec) const {
   parallelFor(tasks, static_cast<int64_t>(kind.size()), 1024, [&](int64_t begin, int64_t end) {
-    for (int64_t i = begin; i < end; ++i) {
-      double* vi = vec + 3 * i;
-      if (kind[i] == kFixed) {
-        vi[0] = vi[1] = vi[2] = 0.0;
-      } else if (kind[i] == kContact) {
-        const double* n = &normal[3 * i];
-        const double along = vi[0] * n[0] + vi[1] * n[1] + vi[2] * n[2];
-        for (int k = 0; k < 3; ++k) vi[k] -= along * n[k];
-      }
-    }
+    for (int64_t i = begin; i < end; ++i) kernels::filterNode(i, kind.data(), normal.data(), vec);
   });
 }
 

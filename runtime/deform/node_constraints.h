@@ -8,11 +8,18 @@
 
 #include "core/allocator.h"
 #include "core/task_system.h"
+#include "gpu_kernels/constraint_kernels.h"
 
 namespace vp {
 
 struct NodeConstraints {
-  enum Kind : uint8_t { kFree = 0, kFixed = 1, kContact = 2 };
+  // kernels::NodeConstraintKind's values (gpu_kernels/constraint_kernels.h), whose projection
+  // filter() runs.
+  enum Kind : uint8_t {
+    kFree = kernels::kNodeFree,
+    kFixed = kernels::kNodeFixed,
+    kContact = kernels::kNodeContact,
+  };
 
   Array<uint8_t> kind;   // per node
   Array<double> normal;  // 3 per node, read where kind == kContact

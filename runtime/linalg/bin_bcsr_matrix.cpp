@@ -113,6 +113,14 @@ void binnedInverseDiagonal(const BlockSparseMatrix<double>& source, Array<Scalar
   }
 }
 
+template <class Scalar>
+void binnedBlocks(const double* blocks, int32_t rows, Array<Scalar>* out) {
+  const int32_t bins = (rows + kBinRows - 1) / kBinRows;
+  out->assign(static_cast<size_t>(bins) * 9 * kBinRows, Scalar(0));
+  for (int32_t r = 0; r < rows; ++r)
+    copyBlockLaneMinor(blocks + 9 * static_cast<size_t>(r), &(*out)[kernels::laneBlockOffset(r / kBinRows, r % kBinRows)]);
+}
+
 template struct BinBcsrMatrix<float>;
 template struct BinBcsrMatrix<double>;
 template void buildBinBcsr(const BlockSparseMatrix<double>&, BinBcsrMatrix<double>*);
@@ -123,5 +131,7 @@ template void refreshBinBcsrValues(const BlockSparseMatrix<double>&, BinBcsrMatr
 template void refreshBinBcsrValues(const BlockSparseMatrix<float>&, BinBcsrMatrix<float>*);
 template void binnedInverseDiagonal(const BlockSparseMatrix<double>&, Array<float>*);
 template void binnedInverseDiagonal(const BlockSparseMatrix<double>&, Array<double>*);
+template void binnedBlocks(const double*, int32_t, Array<float>*);
+template void binnedBlocks(const double*, int32_t, Array<double>*);
 
 }  // namespace vp

@@ -46,4 +46,9 @@ void refreshBinBcsrValues(const BlockSparseMatrix<SourceScalar>& source, BinBcsr
 template <class Scalar>
 void binnedInverseDiagonal(const BlockSparseMatrix<double>& source, Array<Scalar>* out);
 
+// One 3x3 block per row (9 per row, row-major: the CPU's block-Jacobi inverses) laid out
+// lane-minor like BinBcsrMatrix::diagonal.
+template <class Scalar>
+void binnedBlocks(const double* blocks, int32_t rows, Array<Scalar>* out);
+
 }  // namespace vp

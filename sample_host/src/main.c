@@ -31,6 +31,7 @@ typedef struct Options {
   int frames;
   double dt;
   int workers;
+  int device; /* a vpDevice */
   double budgetMs; /* < 0: keep the scene's */
   int quiet;
   HostOutputsConfig outputs;
@@ -39,7 +40,7 @@ typedef struct Options {
 static void usage(FILE* f) {
   fprintf(f,
           "usage: volphys_host [--scene FILE] [--frames N] [--dt SECONDS] [--workers N]\n"
-          "                    [--budget MS] [--out DIR] [--quiet]\n"
+          "                    [--budget MS] [--device cpu|auto|cuda] [--out DIR] [--quiet]\n"
           "                    [--export-every N] [--export-format ID] [--export-volumes vdb|vti|none]\n"
           "                    [--snapshot-every N] [--image-size WxH]\n"
           "Steps the scene headless, prints per-frame stats, writes DIR/stats.csv, DIR/frame_times.svg;\n"
@@ -49,18 +50,21 @@ static void usage(FILE* f) {
           "level set); DIR/meshes/NAME.EXT once per collider (its local frame); and\n"
           "DIR/snapshots/frame_NNNNN.png every --snapshot-every frames (all also on the last frame;\n"
           "0 = off). NAME: the scene's name of the actor, or colliderK, deformableK, fluidK.\n"
-          "Defaults: the bundled default scene, 300 frames, dt 1/60, 2 workers, out/sample,\n"
+          "--device: where the deformables' implicit solves run (vpWorldDef.device; cuda needs a GPU).\n"
+          "Defaults: the bundled default scene, 300 frames, dt 1/60, 2 workers, cpu, out/sample,\n"
           "export every 30 frames as ply, no volumes, snapshot every 60 frames at 640x480.\n");
 }
 
 static int parseOptions(int argc, char** argv, Options* o) {
   static const char* const kVolumeFormats[3] = {"none", "vdb", "vti"}; /* indexed by VolumeFormat */
+  static const char* const kDevices[3] = {"auto", "cpu", "cuda"};      /* indexed by vpDevice */
   int i, volumeFormat = VolumeFormat_None;
   o->scene = defaultScenePath();
   o->outDir = "out/sample";
   o->frames = 300;
   o->dt = 1.0 / 60.0;
   o->workers = 2;
+  o->device = vpDevice_Cpu;
   o->budgetMs = -1.0;
   o->quiet = 0;
   o->outputs.exportEvery = 30;
@@ -88,6 +92,7 @@ static int parseOptions(int argc, char** argv, Options* o) {
     else if (!strcmp(a, "--frames")) { if (!cliInt("volphys_host", a, v, 1, 10000000, &o->frames)) return 0; }
     else if (!strcmp(a, "--dt")) { if (!cliDouble("volphys_host", a, v, 1e-5, 1.0, &o->dt)) return 0; }
     else if (!strcmp(a, "--workers")) { if (!cliInt("volphys_host", a, v, 1, 64, &o->workers)) return 0; }
+    else if (!strcmp(a, "--device")) { if (!cliChoice("volphys_host", a, v, kDevices, 3, &o->device)) return 0; }
     else if (!strcmp(a, "--budget")) { if (!cliDouble("volphys_host", a, v, 0.0, 1e4, &o->budgetMs)) return 0; }
     else if (!strcmp(a, "--export-every")) { if (!cliInt("volphys_host", a, v, 0, 10000000, &o->outputs.exportEvery)) return 0; }
     else if (!strcmp(a, "--export-format")) o->outputs.exportFormat = v;
@@ -216,7 +221,8 @@ static int run(vpWorldId world, const ActorLabels* labels, const Options* o) {
   csv = openOutput(o->outDir, "stats.csv");
   if (!csv || !frameTimesInit(&times, o->frames) || !framePlotInit(&plot, o->frames)) goto done;
 
-  printf("volphys_host: scene %s, %d frames, dt %.5f s, %d workers\n", o->scene, o->frames, o->dt, o->workers);
+  printf("volphys_host: scene %s, %d frames, dt %.5f s, %d workers, deformables' solves on %s\n", o->scene, o->frames,
+         o->dt, o->workers, o->device == vpDevice_Cuda ? "cuda" : o->device == vpDevice_Auto ? "auto's choice" : "cpu");
   if (!printMeshQuality(stdout, labels)) goto done;
   for (frame = 0; frame < o->frames; ++frame) {
     vpActorStats rigid = vpDefaultActorStats();
@@ -296,6 +302,7 @@ int main(int argc, char** argv) {
 
   def = vpDefaultWorldDef();
   def.workerCount = o.workers;
+  def.device = o.device;
   if ((s = vpWorldCreate(&def, &world)) != vpStatus_Ok) return fail("vpWorldCreate", s);
   if ((s = vpWorldLoadScene(world, o.scene)) != vpStatus_Ok)
     rc = fail("vpWorldLoadScene", s);

@@ -5,90 +5,17 @@
 // from a converged run. The mesh is the one the Bullet comparison uses (beam_mesh.h).
 #include <benchmark/benchmark.h>
 
-#include <chrono>
-#include <ctime>
-#include <string>
-#include <utility>
-
-#include "beam_mesh.h"
-#include "deform_beam_desc.h"
-#include "core/task_system.h"
-#include "deform/deformable_body.h"
+#include "beam_run.h"
 
 namespace vp::bench {
 namespace {
-
-struct BeamRun {
-  double seconds = 0.0, tipDy = 0.0, cgIterations = 0.0;
-  int64_t tets = 0;
-  int32_t nodes = 0;
-  double phaseMs[kPhaseCount] = {};  // per step
-  double processCpuSeconds = 0.0;    // all threads: with other programs competing for the
-                                     // cores, wall time alone says little
-  bool ok = false;
-};
-
-BeamRun runBeam(int64_t tets, double tolerance, int maxIterations, int workers, int degree = 1,
-               Preconditioner preconditioner = Preconditioner::Auto,
-               PMultigridCoarseOperator coarse = DeformableSolverSettings{}.pMultigridCoarseOperator) {
-  BeamRun run;
-  BeamCells cells;
-  if (!beamCellsNearTetCount(tets, &cells)) return run;
-  const BeamMesh beam = makeBeamMesh(cells.x, cells.y, cells.z, 4.0, 1.0, 1.0);
-  run.tets = beam.tetCount();
-  if (!findBeamMeshDefect(beam, 4.0).empty()) return run;
-  DeformableDesc desc = beamDeformableDesc(beam, degree);
-  desc.solver.tolerance = tolerance;
-  desc.solver.maxIterations = maxIterations;
-  desc.solver.preconditioner = preconditioner;
-  desc.solver.pMultigridCoarseOperator = coarse;
-  std::unique_ptr<DeformableBody> body;
-  if (!ok(DeformableBody::create(std::move(desc), &body))) return run;
-  run.nodes = body->nodeCount();
-  // Pinning the clamped face's vertices also pins its edge/face control points (degree > 1).
-  body->setPinned(beam.fixedVertices.data(), static_cast<int64_t>(beam.fixedVertices.size()), true);
-  auto tasks = TaskSystem::create(TaskHooks{}, workers);
-  DeformableStepInput in;
-  in.dt = 1.0 / 60.0;
-  in.gravity = Vec3(0, -9.81, 0);
-  in.tasks = tasks.get();
-  const double y0 = body->positions()[3 * beam.tipVertex + 1];
-  const auto start = std::chrono::steady_clock::now();
-  const std::clock_t cpuStart = std::clock();
-  int iterations = 0;
-  for (int step = 0; step < 60; ++step) {
-    ActorStats stats;
-    body->step(in, &stats);
-    iterations += stats.phase(Phase::Solve).iterations;
-    for (int p = 0; p < kPhaseCount; ++p) run.phaseMs[p] += stats.phases[p].ms / 60.0;
-  }
-  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  run.processCpuSeconds = double(std::clock() - cpuStart) / CLOCKS_PER_SEC;
-  run.tipDy = body->positions()[3 * beam.tipVertex + 1] - y0;
-  run.cgIterations = iterations / 60.0;
-  run.ok = true;
-  return run;
-}
-
-void report(benchmark::State& state, const BeamRun& run) {
-  state.SetIterationTime(run.seconds);
-  state.counters["hz"] = 60.0 / run.seconds;
-  state.counters["cg_iters"] = run.cgIterations;
-  state.counters["tip_dy"] = run.tipDy;
-  state.counters["tets"] = static_cast<double>(run.tets);
-  state.counters["nodes"] = run.nodes;
-  state.counters["process_cpu_s"] = run.processCpuSeconds;
-  const std::pair<Phase, const char*> phases[] = {
-      {Phase::Corotate, "corotate_ms"}, {Phase::Assemble, "assemble_ms"}, {Phase::Solve, "solve_ms"}, {Phase::Embed, "embed_ms"}};
-  for (const auto& [phase, name] : phases) state.counters[name] = run.phaseMs[static_cast<int>(phase)];
-}
 
 void BM_DeformLinearBeam(benchmark::State& state) {
   for (auto _ : state) {
     const BeamRun run = runBeam(state.range(0), DeformableSolverSettings{}.tolerance,
                                 DeformableSolverSettings{}.maxIterations, 2);
     if (!run.ok) return state.SkipWithError("beam setup failed");
-    report(state, run);
+    reportBeamRun(state, run);
   }
 }
 BENCHMARK(BM_DeformLinearBeam)->Arg(12288)->Arg(98304)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(1)->Repetitions(3);
@@ -97,7 +24,7 @@ void BM_DeformLinearBeamReference(benchmark::State& state) {
   for (auto _ : state) {
     const BeamRun run = runBeam(state.range(0), 1e-8, 100000, 2);
     if (!run.ok) return state.SkipWithError("beam setup failed");
-    report(state, run);
+    reportBeamRun(state, run);
   }
 }
 BENCHMARK(BM_DeformLinearBeamReference)->Arg(12288)->Arg(98304)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(1);
@@ -115,7 +42,7 @@ void BM_DeformQuadraticBeam(benchmark::State& state) {
     const BeamRun run = runBeam(state.range(0), DeformableSolverSettings{}.tolerance,
                                 DeformableSolverSettings{}.maxIterations, 2, 2);
     if (!run.ok) return state.SkipWithError("beam setup failed");
-    report(state, run);
+    reportBeamRun(state, run);
   }
 }
 BENCHMARK(BM_DeformQuadraticBeam)->Arg(12288)->Arg(13000)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(1)->Repetitions(3);
@@ -126,7 +53,7 @@ void BM_DeformQuadraticBeamGalerkin(benchmark::State& state) {
     const BeamRun run = runBeam(state.range(0), DeformableSolverSettings{}.tolerance, DeformableSolverSettings{}.maxIterations,
                                 2, 2, Preconditioner::Auto, PMultigridCoarseOperator::Galerkin);
     if (!run.ok) return state.SkipWithError("beam setup failed");
-    report(state, run);
+    reportBeamRun(state, run);
   }
 }
 BENCHMARK(BM_DeformQuadraticBeamGalerkin)->Arg(13000)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(1)->Repetitions(3);
@@ -137,7 +64,7 @@ void BM_DeformQuadraticBeamAggregationMultigrid(benchmark::State& state) {
     const BeamRun run = runBeam(state.range(0), DeformableSolverSettings{}.tolerance,
                                 DeformableSolverSettings{}.maxIterations, 2, 2, Preconditioner::Multigrid);
     if (!run.ok) return state.SkipWithError("beam setup failed");
-    report(state, run);
+    reportBeamRun(state, run);
   }
 }
 BENCHMARK(BM_DeformQuadraticBeamAggregationMultigrid)->Arg(13000)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(1)->Repetitions(3);

@@ -64,6 +64,20 @@ class WorldLifecycle(unittest.TestCase):
         info = volphys.build_info()
         self.assertGreaterEqual(info["hardware_threads"], 1)
 
+    def test_device_choice_and_where_a_deformable_was_solved(self):
+        has_device = volphys.build_info()["cuda_device_count"] > 0
+        verts, tets = centred_cube(1, 1.0)
+        for device in (None, volphys.Device.Auto, volphys.Device.Cuda):
+            if device == volphys.Device.Cuda and not has_device:
+                with self.assertRaisesRegex(volphys.UnsupportedError, "device = 2"):
+                    volphys.World(device=device)
+                continue
+            with volphys.World(device=device) as w:
+                w.create_deformable(vertices=verts, tets=tets)
+                w.step(DT)
+                solved = w.actor_stats()[1].device
+                self.assertEqual(solved, volphys.Device.Cuda if device is not None and has_device else volphys.Device.Cpu)
+
 
 class Logging(unittest.TestCase):
     def test_log_callback_receives_world_created(self):

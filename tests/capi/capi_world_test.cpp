@@ -169,6 +169,8 @@ TEST(CApiWorld, WorldDefRejectsBadValues) {
       {"rigidMaxSubstep = 0", [](vpWorldDef& d) { d.rigidMaxSubstep = 0; }, vpStatus_InvalidArgument},
       {"vpWorldDef.structSize = 3", [](vpWorldDef& d) { d.structSize = 3; }, vpStatus_VersionMismatch},
       {"enqueueTask and finishTask", [](vpWorldDef& d) { d.finishTask = [](void*, void*) {}; }, vpStatus_InvalidArgument},
+      {"device = 3", [](vpWorldDef& d) { d.device = 3; }, vpStatus_InvalidArgument},
+      {"device = -1", [](vpWorldDef& d) { d.device = -1; }, vpStatus_InvalidArgument},
   };
   for (const Case& c : cases) {
     vpWorldDef def = vpDefaultWorldDef();
@@ -214,6 +216,42 @@ TEST(CApiWorld, BrokenSceneChangesNothing) {
   ASSERT_VP_OK(vpWorldGetColliderCount(w.id, &count));
   EXPECT_EQ(count, 0);
   EXPECT_EQ(vpWorldLoadScene(w.id, nullptr), vpStatus_InvalidArgument);
+}
+
+// The CPU by default; Auto takes the CPU where no device is usable; Cuda there is refused,
+// naming the field. Each world says where its deformable's solve ran.
+TEST(CApiWorld, TheDeviceChoiceFallsToTheCpuOnlyWhenAskedToChoose) {
+  EXPECT_EQ(vpDefaultWorldDef().device, vpDevice_Cpu);
+  vpBuildInfo info;
+  ASSERT_VP_OK(vpGetBuildInfo(&info));
+  for (vpDevice device : {vpDevice_Cpu, vpDevice_Auto, vpDevice_Cuda}) {
+    vpWorldDef def = vpDefaultWorldDef();
+    def.device = device;
+    vpWorldId id{};
+    if (device == vpDevice_Cuda && info.cudaDeviceCount == 0) {
+      EXPECT_EQ(vpWorldCreate(&def, &id), vpStatus_Unsupported);
+      EXPECT_TRUE(lastErrorContains("device = 2 (Cuda): no usable CUDA device")) << vpGetLastError();
+      continue;
+    }
+    ASSERT_VP_OK(vpWorldCreate(&def, &id));
+    vpDeformableDef d = vpDefaultDeformableDef();
+    const float vertices[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+    const int32_t tets[4] = {0, 1, 2, 3};
+    d.vertices = vertices;
+    d.vertexCount = 4;
+    d.tets = tets;
+    d.tetCount = 1;
+    vpDeformableId body;
+    ASSERT_VP_OK(vpDeformableCreate(id, &d, &body));
+    ASSERT_VP_OK(vpWorldStep(id, 1.0f / 60.0f));
+    vpActorStats s;
+    s.structSize = sizeof s;
+    ASSERT_VP_OK(vpWorldGetActorStats(id, 1, &s));
+    EXPECT_EQ(s.kind, vpActorKind_Deformable);
+    const bool onDevice = device == vpDevice_Cuda || (device == vpDevice_Auto && info.cudaDeviceCount > 0);
+    EXPECT_EQ(s.device, onDevice ? vpDevice_Cuda : vpDevice_Cpu) << device;
+    ASSERT_VP_OK(vpWorldDestroy(id));
+  }
 }
 
 TEST(CApiWorld, BuildInfoAnswersWithoutAGpu) {

@@ -9,9 +9,11 @@
 
 #include "beam_mesh.h"
 #include "deform/deformable_body.h"
+#include "deform/node_constraints.h"
 #include "deform_beam_desc.h"
 #include "gpu_kernels/device_block_system.h"
 #include "linalg/bin_bcsr_matrix.h"
+#include "linalg/conjugate_gradient.h"
 
 namespace vp::gpu_test {
 
@@ -20,7 +22,8 @@ struct BeamStepSystem {
   std::unique_ptr<TaskSystem> tasks = TaskSystem::create(TaskHooks{}, 2);
   BinBcsrMatrix<double> bin;
   Array<double> inverseDiagonal;
-  std::vector<double> rhs, freeDofs;
+  std::vector<double> rhs;
+  NodeConstraints constraints;  // the clamped nodes fixed
 
   const BlockSparseMatrix<double>& matrix() const { return body->stepMatrix(); }
   int64_t dofs() const { return 3 * static_cast<int64_t>(matrix().blockRows); }
@@ -30,7 +33,8 @@ struct BeamStepSystem {
     h.matrix = bin.view();
     h.slots = bin.slots();
     h.inverseDiagonal = inverseDiagonal.data();
-    h.freeDofs = freeDofs.data();
+    h.nodeKind = constraints.kind.data();
+    h.nodeNormal = constraints.normal.data();
     if (withBcsr) {
       h.bcsrRowStart = matrix().rowStart.data();
       h.bcsrColumns = matrix().columns.data();
@@ -56,15 +60,27 @@ inline bool makeBeamStepSystem(const bench::BeamCells& cells, int degree, BeamSt
   body.step(in, &stats);  // at rest: the matrix of the rest configuration
   const int32_t n = body.nodeCount();
   out->rhs.assign(3 * static_cast<size_t>(n), 0.0);
-  out->freeDofs.assign(3 * static_cast<size_t>(n), 0.0);
+  out->constraints.resize(n);
   for (int32_t i = 0; i < n; ++i) {
-    if (body.pinned(i)) continue;
-    out->rhs[3 * i + 1] = -in.dt * body.nodeMasses()[i] * 9.81;
-    for (int a = 0; a < 3; ++a) out->freeDofs[3 * i + a] = 1.0;
+    if (body.pinned(i)) out->constraints.kind[i] = NodeConstraints::kFixed;
+    else out->rhs[3 * i + 1] = -in.dt * body.nodeMasses()[i] * 9.81;
   }
   buildBinBcsr(out->matrix(), &out->bin);
   binnedInverseDiagonal(out->matrix(), &out->inverseDiagonal);
   return true;
+}
+
+// The system as the CPU's CG takes it (block-Jacobi, the constraints' filter).
+inline LinearSystem cpuLinearSystem(const BeamStepSystem& sys) {
+  LinearSystem system;
+  system.size = sys.dofs();
+  system.apply = [&sys](const double* x, double* y) { sys.matrix().multiply(*sys.tasks, x, y); };
+  system.precondition = [&sys](const double* r, double* z) {
+    for (int32_t row = 0; row < sys.matrix().blockRows; ++row)
+      kernels::blockJacobiRow(row, sys.inverseDiagonal.data(), r, z);
+  };
+  system.filter = [&sys](double* v) { sys.constraints.filter(*sys.tasks, v); };
+  return system;
 }
 
 }  // namespace vp::gpu_test

@@ -11,6 +11,10 @@
 //       launches_per_iter, residual.
 //   BM_CpuSpMV/N, BM_CpuCG/98304   the same on the CPU (2 worker threads), for the
 //       CPU-to-device ratio in the same units.
+//   BM_GpuDeformLinearBeam/{cuda,cpu}/N   the beam's 60 steps (beam_run.h) at the actor's default
+//       tolerance with its implicit solves on the device (block-Jacobi CG) or on the CPU
+//       (the default multigrid), 2 worker threads for everything else; counters hz, tip_dy,
+//       cg_iters and the phases' ms per step.
 // Without a device the Gpu benchmarks report "no CUDA device" and stop. Figures: the README's
 // GPU section and the commit that adds them.
 #include <benchmark/benchmark.h>
@@ -21,6 +25,7 @@
 #include <memory>
 #include <string>
 
+#include "beam_run.h"
 #include "beam_step_system.h"
 #include "cusparse_bsr_multiply.h"
 #include "gpu_kernels/device_query.h"
@@ -151,16 +156,7 @@ void BM_CpuCG(benchmark::State& state) {
   BeamCase& c = beamCase("98304");
   if (!c.ok) return state.SkipWithError(c.error.c_str());
   const int64_t n = c.sys.dofs();
-  LinearSystem system;
-  system.size = n;
-  system.apply = [&](const double* x, double* y) { c.sys.matrix().multiply(*c.sys.tasks, x, y); };
-  system.precondition = [&](const double* r, double* z) {
-    for (int32_t row = 0; row < c.sys.matrix().blockRows; ++row)
-      kernels::blockJacobiRow(row, c.sys.inverseDiagonal.data(), r, z);
-  };
-  system.filter = [&](double* v) {
-    for (int64_t i = 0; i < n; ++i) v[i] *= c.sys.freeDofs[static_cast<size_t>(i)];
-  };
+  const LinearSystem system = cpuLinearSystem(c.sys);
   CgWorkspace work;
   for (auto _ : state) {
     std::vector<double> x(static_cast<size_t>(n), 0.0);
@@ -170,6 +166,17 @@ void BM_CpuCG(benchmark::State& state) {
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     if (!r.converged) return state.SkipWithError("did not converge");
     reportCg(state, r.iterations, ms, r.relativeResidual, 0);
+  }
+}
+
+void BM_GpuDeformLinearBeam(benchmark::State& state, bool onDevice) {
+  if (onDevice && gpu::cudaDeviceCount() == 0) return state.SkipWithError("no CUDA device");
+  for (auto _ : state) {
+    const bench::BeamRun run = bench::runBeam(state.range(0), DeformableSolverSettings{}.tolerance,
+                                              DeformableSolverSettings{}.maxIterations, 2, 1, Preconditioner::Auto,
+                                              DeformableSolverSettings{}.pMultigridCoarseOperator, onDevice);
+    if (!run.ok || run.onDevice != onDevice) return state.SkipWithError("beam setup failed");
+    bench::reportBeamRun(state, run);
   }
 }
 
@@ -199,6 +206,15 @@ const bool registered = [] {
         ->Unit(benchmark::kMillisecond)
         ->Iterations(1)
         ->Repetitions(5);
+  for (const auto& [onDevice, name] : {std::pair{true, "cuda"}, {false, "cpu"}})
+    benchmark::RegisterBenchmark((std::string("BM_GpuDeformLinearBeam/") + name).c_str(),
+                                 [onDevice = onDevice](benchmark::State& s) { BM_GpuDeformLinearBeam(s, onDevice); })
+        ->Arg(12288)
+        ->Arg(98304)
+        ->UseManualTime()
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(1)
+        ->Repetitions(3);
   benchmark::RegisterBenchmark("BM_CpuCG/98304", BM_CpuCG)
       ->UseManualTime()
       ->Unit(benchmark::kMillisecond)

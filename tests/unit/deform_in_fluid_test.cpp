@@ -103,7 +103,9 @@ TEST(DeformableInFluid, ATranslatingSurfaceGivesItsVelocityToTheFacesItCovers) {
   ASSERT_EQ(computeFaceFractions(&deforming, 1, &field), Status::Ok);
   for (int axis = 0; axis < 3; ++axis)
     for (size_t f = 0; f < field.open[axis].size(); ++f)
-      if (field.open[axis][f] < 1.0) ASSERT_NEAR(field.solidVelocity[axis][f], d.linearVelocity[axis], 1e-12);
+      if (field.open[axis][f] < 1.0) {
+        ASSERT_NEAR(field.solidVelocity[axis][f], d.linearVelocity[axis], 1e-12);
+      }
 }
 
 // Smoke flows around a deformable held still as around the rigid mesh of its surface.

@@ -27,6 +27,7 @@ namespace VolPhys
     public enum ShapeType : int { Sphere = 0, Box = 1, Capsule = 2, Cylinder = 3, Plane = 4, ConvexHull = 5, TriangleMesh = 6 }
 
     public enum SurfaceMesher : int { Default = 0, Stuffing = 1, Voxel = 2 }
+    public enum Device : int { Auto = 0, Cpu = 1, Cuda = 2 }
     public enum FluidKind : int { Smoke = 0, Liquid = 1 }
     public enum Advection : int { SemiLagrangian = 0, MacCormack = 1 }
     public enum DomainSide : int { Wall = 0, Open = 1 }
@@ -110,6 +111,8 @@ namespace VolPhys
         public IntPtr clock;
         public IntPtr clockContext;
         public IntPtr userData;
+        /// <summary>Where the deformables' solves run (default Cpu).</summary>
+        public Device device;
     }
 
     [StructLayout(LayoutKind.Sequential)]
@@ -144,6 +147,8 @@ namespace VolPhys
         /// <summary>Deformable: its solve ended the frame above its targetResidual.</summary>
         public int floorMissed;
         public uint failedPhases;
+        /// <summary>Where its solve ran in this frame (Cpu, or Cuda).</summary>
+        public Device device;
 
         public vpPhaseStats Phase(Phase phase)
         {

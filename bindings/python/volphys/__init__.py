@@ -10,7 +10,7 @@ import ctypes
 from . import _types as _T
 from ._api import call as _call, lib as _lib
 from ._arrays import HAVE_NUMPY
-from ._types import (ActorKind, Advection, BodyType, ContactEventType, DomainSide, FluidField, FluidKind, HitKind,
+from ._types import (ActorKind, Advection, BodyType, ContactEventType, Device, DomainSide, FluidField, FluidKind, HitKind,
                      LogLevel, Phase, QueryKind, ShapeType, Status, SurfaceMesher)
 from .queries import Hit
 from .box_mesh import box_tet_mesh
@@ -55,7 +55,7 @@ __all__ = [
     "World", "Collider", "Deformable", "Fluid", "BoxRegion", "SphereRegion", "Emitter", "Transform", "Shape",
     "Sphere", "Box", "Capsule", "Cylinder", "Plane", "ConvexHull", "TriangleMesh", "StepStats", "ActorStats",
     "PhaseStats", "Status", "BodyType", "ShapeType", "ActorKind", "Phase", "LogLevel", "FluidKind", "Advection",
-    "SurfaceMesher", "DomainSide", "FluidField", "VolPhysError", "InvalidArgumentError", "InvalidIdError", "OutOfMemoryError",
+    "SurfaceMesher", "Device", "DomainSide", "FluidField", "VolPhysError", "InvalidArgumentError", "InvalidIdError", "OutOfMemoryError",
     "UnsupportedError", "IoError", "ParseError", "BusyError", "DivergedError", "VersionMismatchError",
     "InternalError", "NotConvergedError", "PhaseFailedError", "library_version", "library_path", "build_info", "status_name", "HAVE_NUMPY",
     "set_log_callback", "box_tet_mesh", "MeshQuality",

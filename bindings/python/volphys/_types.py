@@ -123,6 +123,12 @@ class SurfaceMesher(NamedIntEnum):
     Voxel = 2
 
 
+class Device(NamedIntEnum):
+    Auto = 0
+    Cpu = 1
+    Cuda = 2
+
+
 class FluidKind(NamedIntEnum):
     Smoke = 0
     Liquid = 1
@@ -205,6 +211,7 @@ class vpWorldDef(ctypes.Structure):
         ("clock", vpClockFn),
         ("clockContext", c_void_p),
         ("userData", c_void_p),
+        ("device", c_int32),
     ]
 
 
@@ -229,6 +236,7 @@ class vpActorStats(ctypes.Structure):
         ("priority", c_int32),
         ("floorMissed", c_int32),
         ("failedPhases", c_uint32),
+        ("device", c_int32),
     ]
 
 

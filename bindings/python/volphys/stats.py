@@ -2,7 +2,7 @@
 from dataclasses import dataclass, field
 from typing import Dict
 
-from ._types import PHASE_COUNT, ActorKind, Phase
+from ._types import PHASE_COUNT, ActorKind, Device, Phase
 
 
 @dataclass(frozen=True)
@@ -52,6 +52,7 @@ class ActorStats:
     floor_missed: bool    # deformable: its solve ended the frame above its target_residual
     phases: Dict[Phase, PhaseStats] = field(default_factory=dict)
     failed_phases: tuple = ()  # phases that hit an error in this frame (World.step raised PhaseFailedError)
+    device: Device = Device.Cpu  # where its solve ran in this frame
 
     @classmethod
     def _from_c(cls, s):
@@ -66,4 +67,5 @@ class ActorStats:
                    simulated_dt=s.simulatedDt, interval=s.interval, completed_step=bool(s.completedStep),
                    progress=s.progress, slices=s.slices, residual=s.residual, priority=s.priority,
                    floor_missed=bool(s.floorMissed), phases=phases,
-                   failed_phases=tuple(Phase(i) for i in range(PHASE_COUNT) if s.failedPhases & (1 << i)))
+                   failed_phases=tuple(Phase(i) for i in range(PHASE_COUNT) if s.failedPhases & (1 << i)),
+                   device=Device(s.device) if s.device in (1, 2) else s.device)

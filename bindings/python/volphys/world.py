@@ -108,9 +108,10 @@ class World:
     colliders, deformables and fluids go stale then (using them raises InvalidIdError).
 
     Arguments left as None keep vpDefaultWorldDef()'s values (gravity (0,-9.81,0), 1 worker,
-    16 ms budget, 1/120 s rigid sub-step)."""
+    16 ms budget, 1/120 s rigid sub-step, deformables solved on the CPU; device=Device.Cuda or
+    Device.Auto moves their solves to a CUDA device, README "The GPU path")."""
 
-    def __init__(self, gravity=None, workers=None, frame_budget_ms=None, rigid_max_substep=None):
+    def __init__(self, gravity=None, workers=None, frame_budget_ms=None, rigid_max_substep=None, device=None):
         d = lib.vpDefaultWorldDef()
         if gravity is not None:
             d.gravity = _arrays.vec3(gravity)
@@ -120,6 +121,8 @@ class World:
             d.frameBudgetMs = frame_budget_ms
         if rigid_max_substep is not None:
             d.rigidMaxSubstep = rigid_max_substep
+        if device is not None:
+            d.device = int(device)
         self._id = T.vpWorldId()
         call("vpWorldCreate", ctypes.byref(d), ctypes.byref(self._id))
         self._destroyed = False

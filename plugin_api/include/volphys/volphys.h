@@ -213,6 +213,19 @@ VP_API int vpFluidIdIsNull(vpFluidId id);
 
 /* ---------------------------------------------------------------- world */
 
+/* Where the deformables' implicit solves run (README, "The GPU path"). On a CUDA device each
+ * solve is CG with block-Jacobi (the multigrids run on the CPU only); assembly, contacts and
+ * the fluids stay on the CPU. Auto takes CUDA when this library was built with it and a device
+ * is usable, else the CPU. Cuda without a usable device is refused by vpWorldCreate; a device
+ * failure later moves that deformable back to the CPU (logged). The default is the CPU: its
+ * results are the same bits on every machine, and the device's are not. vpActorStats.device
+ * says where each actor ran. */
+typedef enum vpDevice {
+  vpDevice_Auto = 0,
+  vpDevice_Cpu = 1,
+  vpDevice_Cuda = 2
+} vpDevice;
+
 typedef struct vpWorldDef {
   uint32_t structSize;
   vpVec3 gravity;              /* default (0, -9.81, 0) */
@@ -250,6 +263,7 @@ typedef struct vpWorldDef {
   vpClockFn* clock;            /* NULL: steady clock */
   void* clockContext;
   void* userData;
+  int32_t device;              /* a vpDevice; default vpDevice_Cpu */
 } vpWorldDef;
 
 VP_API vpWorldDef vpDefaultWorldDef(void);
@@ -331,6 +345,8 @@ typedef struct vpActorStats {
   int32_t floorMissed; /* deformable: 1 if the budget stopped its solve above its targetResidual */
   uint32_t failedPhases; /* bit (1 << p) set: phase p (vpPhase) hit an error in this frame and the
                             step went on without it; vpWorldStep then returned PhaseFailed */
+  int32_t device;     /* where its solve ran in this frame: vpDevice_Cuda for a deformable solved on
+                         the device, else vpDevice_Cpu */
 } vpActorStats;
 
 typedef struct vpStepStats {

@@ -20,14 +20,14 @@ int main(void) {
   SIZE(vpWorldDef); FIELD(vpWorldDef, structSize); FIELD(vpWorldDef, gravity); FIELD(vpWorldDef, workerCount);
   FIELD(vpWorldDef, frameBudgetMs); FIELD(vpWorldDef, rigidMaxSubstep); FIELD(vpWorldDef, enqueueTask);
   FIELD(vpWorldDef, finishTask); FIELD(vpWorldDef, userTaskContext); FIELD(vpWorldDef, clock);
-  FIELD(vpWorldDef, clockContext); FIELD(vpWorldDef, userData);
+  FIELD(vpWorldDef, clockContext); FIELD(vpWorldDef, userData); FIELD(vpWorldDef, device);
   SIZE(vpPhaseStats); FIELD(vpPhaseStats, ms); FIELD(vpPhaseStats, iterations); FIELD(vpPhaseStats, residual);
   FIELD(vpPhaseStats, budgetCut);
   SIZE(vpActorStats); FIELD(vpActorStats, structSize); FIELD(vpActorStats, kind); FIELD(vpActorStats, index1); FIELD(vpActorStats, totalMs);
   FIELD(vpActorStats, diverged); FIELD(vpActorStats, phases); FIELD(vpActorStats, simulatedDt);
   FIELD(vpActorStats, interval); FIELD(vpActorStats, completedStep); FIELD(vpActorStats, progress);
   FIELD(vpActorStats, slices); FIELD(vpActorStats, residual); FIELD(vpActorStats, priority);
-  FIELD(vpActorStats, floorMissed); FIELD(vpActorStats, failedPhases);
+  FIELD(vpActorStats, floorMissed); FIELD(vpActorStats, failedPhases); FIELD(vpActorStats, device);
   SIZE(vpStepStats); FIELD(vpStepStats, structSize); FIELD(vpStepStats, stepIndex); FIELD(vpStepStats, dt);
   FIELD(vpStepStats, totalMs); FIELD(vpStepStats, budgetMs); FIELD(vpStepStats, budgetCut);
   FIELD(vpStepStats, actorCount); FIELD(vpStepStats, colliderCount); FIELD(vpStepStats, rigidSubsteps);
