@@ -217,7 +217,10 @@ VP_API int vpFluidIdIsNull(vpFluidId id);
  * solve is CG with block-Jacobi (the multigrids run on the CPU only); assembly, contacts and
  * the fluids stay on the CPU. Auto takes CUDA when this library was built with it and a device
  * is usable, else the CPU. Cuda without a usable device is refused by vpWorldCreate; a device
- * failure later moves that deformable back to the CPU (logged). The default is the CPU: its
+ * failure later moves that deformable back to the CPU (logged). Block-Jacobi needs many more
+ * iterations than the CPU's multigrid for the same residual, each far cheaper (README, "The
+ * GPU path"): raise solverMaxIterations on the device, or its solves stop at the cap above
+ * their tolerance. The default is the CPU: its
  * results are the same bits on every machine, and the device's are not. vpActorStats.device
  * says where each actor ran. */
 typedef enum vpDevice {
