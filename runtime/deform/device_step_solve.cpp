@@ -4,14 +4,10 @@
 #include <string>
 
 #include "core/status.h"
-#include "gpu_kernels/device_query.h"
-#if VP_HAVE_CUDA
 #include "gpu_kernels/device_block_system.h"
-#endif
+#include "gpu_kernels/device_query.h"
 
 namespace vp {
-
-#if VP_HAVE_CUDA
 
 namespace {
 
@@ -77,19 +73,6 @@ Status DeviceStepSolve::solve(const BlockSparseMatrix<double>& matrix, const dou
   out->budgetCut = r.stoppedByCaller;
   return Status::Ok;
 }
-
-#else
-
-Status DeviceStepSolve::create(const BlockSparseMatrix<double>&, std::unique_ptr<DeviceStepSolve>*) {
-  return fail(Status::Unsupported, "this build has no CUDA path");
-}
-
-Status DeviceStepSolve::solve(const BlockSparseMatrix<double>&, const double*, const NodeConstraints&, const double*,
-                              double*, const CgSettings&, const Deadline&, double, const Deadline&, CgResult*) {
-  return fail(Status::Unsupported, "this build has no CUDA path");
-}
-
-#endif
 
 DeviceStepSolve::~DeviceStepSolve() = default;
 
