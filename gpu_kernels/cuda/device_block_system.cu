@@ -5,6 +5,7 @@
 #include <utility>
 #include <vector>
 
+#include "device_support.cuh"
 #include "gpu_kernels/constraint_kernels.h"
 #include "gpu_kernels/device_block_system.h"
 #include "gpu_kernels/vector_kernels.h"
@@ -19,30 +20,6 @@ using kernels::BinBcsrView;
 constexpr int kBinsPerBlock = 2;
 constexpr int kThreads = 3 * kernels::kBinRows * kBinsPerBlock;
 using BlockReduce = cub::BlockReduce<double, kThreads>;
-
-template <class T>
-class DeviceArray {
- public:
-  DeviceArray() = default;
-  ~DeviceArray() { cudaFree(data_); }
-  DeviceArray(const DeviceArray&) = delete;
-  DeviceArray& operator=(const DeviceArray&) = delete;
-  cudaError_t allocate(size_t n) {
-    size_ = n;
-    return cudaMalloc(&data_, (n ? n : 1) * sizeof(T));
-  }
-  cudaError_t upload(const T* host, size_t n) {
-    cudaError_t e = allocate(n);
-    if (e != cudaSuccess || n == 0) return e;
-    return cudaMemcpy(data_, host, n * sizeof(T), cudaMemcpyHostToDevice);
-  }
-  T* get() const { return data_; }
-  size_t size() const { return size_; }
-
- private:
-  T* data_ = nullptr;
-  size_t size_ = 0;
-};
 
 // The fused CG's scalars. Each lives in a ring indexed by the iteration, so that the kernel
 // that clears a slot for a later iteration never races a reader of the current one.
@@ -229,37 +206,6 @@ unsigned blocksForRows(int32_t rows) {
   const int32_t bins = (rows + kernels::kBinRows - 1) / kernels::kBinRows;
   return static_cast<unsigned>((bins + kBinsPerBlock - 1) / kBinsPerBlock);
 }
-
-bool failed(cudaError_t e, std::string* error) {
-  if (e == cudaSuccess) e = cudaGetLastError();
-  if (e == cudaSuccess) return false;
-  if (error) *error = cudaGetErrorString(e);
-  cudaGetLastError();  // clear a sticky-free error so later calls can report their own
-  return true;
-}
-
-class EventTimer {
- public:
-  EventTimer() {
-    cudaEventCreate(&start_);
-    cudaEventCreate(&stop_);
-  }
-  ~EventTimer() {
-    cudaEventDestroy(start_);
-    cudaEventDestroy(stop_);
-  }
-  void start() { cudaEventRecord(start_); }
-  double stopMs() {
-    cudaEventRecord(stop_);
-    cudaEventSynchronize(stop_);
-    float ms = 0;
-    cudaEventElapsedTime(&ms, start_, stop_);
-    return ms;
-  }
-
- private:
-  cudaEvent_t start_{}, stop_{};
-};
 
 }  // namespace
 

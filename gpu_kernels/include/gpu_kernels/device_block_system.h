@@ -1,8 +1,9 @@
 // A symmetric positive definite system of 3x3 blocks resident on a CUDA device: the matrix in
 // BIN-BCSR (gpu_kernels/block_row_kernels.h), optionally a BCSR copy for the baseline
 // product, the block-Jacobi inverse, the node constraints (gpu_kernels/constraint_kernels.h),
-// and the CG's vectors. Only declared where the CUDA path is compiled (VP_HAVE_CUDA); every call reports a
-// CUDA failure as false with the CUDA error text, never by aborting.
+// and the CG's vectors. Every call reports a CUDA failure as false with the CUDA error text,
+// never by aborting; without the CUDA path (gpu_kernels/cpu/device_block_system_none.cpp)
+// create says the build has none.
 //
 // The CG is the CPU's filtered, block-Jacobi preconditioned CG (linalg/conjugate_gradient.h)
 // with the filter the node constraints' projection, in two forms:

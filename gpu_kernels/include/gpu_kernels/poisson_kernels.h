@@ -75,4 +75,13 @@ struct PoissonRow {
   VP_HOST_DEVICE T interiorNeighbourSum(int64_t i) const { return faceSum(i, x[i - 1], x[i + 1]); }
 };
 
+// (L x) at one cell: diagonal x minus the coupled neighbours, 0 on a cell that holds no unknown
+// (the CPU's row kernels store the same values a row at a time). For one thread per cell.
+template <class T>
+VP_HOST_DEVICE inline T poissonApplyCell(const PoissonStencil<T>& s, int64_t cell, const T* x) {
+  const int64_t i = cell % s.nx, row = cell / s.nx;
+  const PoissonRow<T> r(s, row % s.ny, row / s.ny, x);
+  return r.diagonal[i] > T(0) ? r.diagonal[i] * r.x[i] - r.neighbourSum(i) : T(0);
+}
+
 }  // namespace vp::kernels

@@ -1,0 +1,67 @@
+// What the CUDA sources share: device arrays that free themselves, a CUDA error turned into
+// false with its text, and an event timer.
+#pragma once
+
+#include <cuda_runtime.h>
+
+#include <cstddef>
+#include <string>
+
+namespace vp::gpu {
+
+template <class T>
+class DeviceArray {
+ public:
+  DeviceArray() = default;
+  ~DeviceArray() { cudaFree(data_); }
+  DeviceArray(const DeviceArray&) = delete;
+  DeviceArray& operator=(const DeviceArray&) = delete;
+  cudaError_t allocate(size_t n) {
+    size_ = n;
+    return cudaMalloc(&data_, (n ? n : 1) * sizeof(T));
+  }
+  cudaError_t upload(const T* host, size_t n) {
+    cudaError_t e = allocate(n);
+    if (e != cudaSuccess || n == 0) return e;
+    return cudaMemcpy(data_, host, n * sizeof(T), cudaMemcpyHostToDevice);
+  }
+  T* get() const { return data_; }
+  size_t size() const { return size_; }
+
+ private:
+  T* data_ = nullptr;
+  size_t size_ = 0;
+};
+
+inline bool failed(cudaError_t e, std::string* error) {
+  if (e == cudaSuccess) e = cudaGetLastError();
+  if (e == cudaSuccess) return false;
+  if (error) *error = cudaGetErrorString(e);
+  cudaGetLastError();  // clear a sticky-free error so later calls can report their own
+  return true;
+}
+
+class EventTimer {
+ public:
+  EventTimer() {
+    cudaEventCreate(&start_);
+    cudaEventCreate(&stop_);
+  }
+  ~EventTimer() {
+    cudaEventDestroy(start_);
+    cudaEventDestroy(stop_);
+  }
+  void start() { cudaEventRecord(start_); }
+  double stopMs() {
+    cudaEventRecord(stop_);
+    cudaEventSynchronize(stop_);
+    float ms = 0;
+    cudaEventElapsedTime(&ms, start_, stop_);
+    return ms;
+  }
+
+ private:
+  cudaEvent_t start_{}, stop_{};
+};
+
+}  // namespace vp::gpu
