@@ -5,5 +5,6 @@ namespace vp::gpu {
 
 bool cudaCompiled() { return false; }
 int cudaDeviceCount() { return 0; }
+bool cudaDeviceProperties(int, DeviceProperties*) { return false; }
 
 }  // namespace vp::gpu

@@ -16,4 +16,18 @@ int cudaDeviceCount() {
   return count;
 }
 
+bool cudaDeviceProperties(int index, DeviceProperties* out) {
+  cudaDeviceProp p{};
+  if (index < 0 || index >= cudaDeviceCount() || cudaGetDeviceProperties(&p, index) != cudaSuccess) {
+    cudaGetLastError();
+    return false;
+  }
+  out->name = p.name;
+  out->totalMemoryBytes = p.totalGlobalMem;
+  out->computeCapabilityMajor = p.major;
+  out->computeCapabilityMinor = p.minor;
+  out->multiprocessors = p.multiProcessorCount;
+  return true;
+}
+
 }  // namespace vp::gpu

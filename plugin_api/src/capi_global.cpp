@@ -1,8 +1,10 @@
 // Library-wide calls: version, errors, hooks, build information.
 #include <cmath>
+#include <cstdio>
 #include <thread>
 
 #include "capi_convert.h"
+#include "capi_versioned_struct.h"
 #include "core/allocator.h"
 #include "core/log.h"
 #include "gpu_kernels/device_query.h"
@@ -78,6 +80,30 @@ vpStatus vpSetLogCallback(vpLogFn* logFn, void* userContext, vpLogLevel minLevel
     };
     setLogSink(logFn ? +forward : nullptr, nullptr, static_cast<LogLevel>(level));
     return Status::Ok;
+  });
+}
+
+vpDeviceInfo vpDefaultDeviceInfo(void) {
+  vpDeviceInfo info{};
+  info.structSize = sizeof info;
+  return info;
+}
+
+vpStatus vpGetDeviceInfo(int32_t device, vpDeviceInfo* outInfo) {
+  return guarded(__func__, [&] {
+    VP_REQUIRE_POINTER(outInfo);
+    const int count = gpu::cudaDeviceCount();
+    gpu::DeviceProperties p;
+    if (device < 0 || device >= count || !gpu::cudaDeviceProperties(device, &p))
+      return fail(Status::InvalidArgument, "device = %d: must be in [0, %d) (vpBuildInfo.cudaDeviceCount)", device,
+                  count);
+    vpDeviceInfo info = vpDefaultDeviceInfo();
+    std::snprintf(info.name, sizeof info.name, "%s", p.name.c_str());
+    info.totalMemoryBytes = p.totalMemoryBytes;
+    info.computeCapabilityMajor = p.computeCapabilityMajor;
+    info.computeCapabilityMinor = p.computeCapabilityMinor;
+    info.multiprocessorCount = p.multiprocessors;
+    return writeVersioned("vpDeviceInfo", info, outInfo);
   });
 }
 

@@ -37,6 +37,8 @@ VP_OFFSETS(vpStepStats, VP_AT(stepIndex), VP_AT(dt), VP_AT(totalMs), VP_AT(budge
 VP_OFFSETS(vpActorStats, VP_AT(kind), VP_AT(index1), VP_AT(totalMs), VP_AT(diverged), VP_AT(phases),
            VP_AT(simulatedDt), VP_AT(interval), VP_AT(completedStep), VP_AT(progress), VP_AT(slices),
            VP_AT(residual), VP_AT(priority), VP_AT(floorMissed), VP_AT(failedPhases), VP_AT(device));
+VP_OFFSETS(vpDeviceInfo, VP_AT(name), VP_AT(totalMemoryBytes), VP_AT(computeCapabilityMajor),
+           VP_AT(computeCapabilityMinor), VP_AT(multiprocessorCount));
 VP_OFFSETS(vpShapeDef, VP_AT(type), VP_AT(radius), VP_AT(halfHeight), VP_AT(halfExtents), VP_AT(normal),
            VP_AT(offset), VP_AT(points), VP_AT(pointCount), VP_AT(indices), VP_AT(triangleCount), VP_AT(meshFile),
            VP_AT(meshScale));

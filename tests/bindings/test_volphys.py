@@ -64,6 +64,13 @@ class WorldLifecycle(unittest.TestCase):
         info = volphys.build_info()
         self.assertGreaterEqual(info["hardware_threads"], 1)
 
+    def test_device_info_for_each_counted_device(self):
+        count = volphys.build_info()["cuda_device_count"]
+        for d in range(count):
+            self.assertTrue(volphys.device_info(d)["name"])
+        with self.assertRaisesRegex(volphys.InvalidArgumentError, "device = %d" % count):
+            volphys.device_info(count)
+
     def test_device_choice_and_where_a_deformable_was_solved(self):
         has_device = volphys.build_info()["cuda_device_count"] > 0
         verts, tets = centred_cube(1, 1.0)

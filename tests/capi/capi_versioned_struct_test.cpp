@@ -84,7 +84,7 @@ TEST(CApiVersionedStruct, AWorldDefCutAtEachFieldTakesTheDefaultsOfTheRest) {
   using T = vpWorldDef;
   const size_t cuts[] = {AT(T, gravity),  AT(T, workerCount), AT(T, frameBudgetMs), AT(T, rigidMaxSubstep),
                          AT(T, enqueueTask), AT(T, finishTask), AT(T, userTaskContext), AT(T, clock),
-                         AT(T, clockContext), AT(T, userData), sizeof(T)};
+                         AT(T, clockContext), AT(T, userData), AT(T, device), sizeof(T)};
   for (size_t cut : cuts) {
     SCOPED_TRACE(cut);
     const auto block = prefixOf(full, cut);
@@ -99,6 +99,17 @@ TEST(CApiVersionedStruct, AWorldDefCutAtEachFieldTakesTheDefaultsOfTheRest) {
     EXPECT_EQ(stats.budgetMs, cut > AT(T, frameBudgetMs) ? 0.0f : 16.0f);
     ASSERT_VP_OK(vpWorldDestroy(world));
   }
+}
+
+// A def from a header older than `device` gets the CPU: a bad value past the cut is not read.
+TEST(CApiVersionedStruct, AWorldDefCutBeforeItsDeviceRunsOnTheCpu) {
+  vpWorldDef full = unbudgetedWorldDef();
+  full.device = 7;
+  vpWorldId world{};
+  EXPECT_EQ(vpWorldCreate(&full, &world), vpStatus_InvalidArgument);
+  const auto block = prefixOf(full, AT(vpWorldDef, device));
+  ASSERT_VP_OK(vpWorldCreate(as<vpWorldDef>(block), &world));
+  ASSERT_VP_OK(vpWorldDestroy(world));
 }
 
 // Deformable and fluid defs hold pointers with counts: a cut between the two leaves a pointer

@@ -254,6 +254,28 @@ TEST(CApiWorld, TheDeviceChoiceFallsToTheCpuOnlyWhenAskedToChoose) {
   }
 }
 
+// Each device the build info counts has a name and memory; any other index is refused naming
+// the range.
+TEST(CApiWorld, DeviceInfoForEachCountedDeviceAndNoOther) {
+  vpBuildInfo build;
+  ASSERT_VP_OK(vpGetBuildInfo(&build));
+  for (int32_t d = 0; d < build.cudaDeviceCount; ++d) {
+    vpDeviceInfo info = vpDefaultDeviceInfo();
+    ASSERT_VP_OK(vpGetDeviceInfo(d, &info));
+    EXPECT_GT(std::strlen(info.name), 0u);
+    EXPECT_GT(info.totalMemoryBytes, 0u);
+    EXPECT_GE(info.computeCapabilityMajor, 5);
+    EXPECT_GT(info.multiprocessorCount, 0);
+  }
+  vpDeviceInfo info = vpDefaultDeviceInfo();
+  EXPECT_EQ(vpGetDeviceInfo(build.cudaDeviceCount, &info), vpStatus_InvalidArgument);
+  EXPECT_TRUE(lastErrorContains("device = " + std::to_string(build.cudaDeviceCount) + ": must be in [0, " +
+                                std::to_string(build.cudaDeviceCount) + ")"))
+      << vpGetLastError();
+  EXPECT_EQ(vpGetDeviceInfo(-1, &info), vpStatus_InvalidArgument);
+  EXPECT_EQ(vpGetDeviceInfo(0, nullptr), vpStatus_InvalidArgument);
+}
+
 TEST(CApiWorld, BuildInfoAnswersWithoutAGpu) {
   vpBuildInfo info;
   ASSERT_VP_OK(vpGetBuildInfo(&info));

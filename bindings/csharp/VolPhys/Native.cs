@@ -17,6 +17,7 @@ namespace VolPhys
         [DllImport(Library)] public static extern Status vpCheckHeaderVersion(uint headerVersion, uint worldDefSize);
         [DllImport(Library)] public static extern Status vpSetLogCallback(IntPtr logFn, IntPtr userContext, LogLevel minLevel);
         [DllImport(Library)] public static extern Status vpGetBuildInfo(out vpBuildInfo info);
+        [DllImport(Library)] public static extern Status vpGetDeviceInfo(int device, ref vpDeviceInfo info);
 
         [DllImport(Library)] public static extern int vpWorldIdIsNull(vpWorldId id);
         [DllImport(Library)] public static extern int vpColliderIdIsNull(vpColliderId id);

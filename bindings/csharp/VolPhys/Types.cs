@@ -463,4 +463,16 @@ namespace VolPhys
         public int cudaDeviceCount;
         public int hardwareThreads;
     }
+
+    /// <summary>Set structSize to Marshal.SizeOf(typeof(vpDeviceInfo)) before vpGetDeviceInfo.</summary>
+    [StructLayout(LayoutKind.Sequential, CharSet = CharSet.Ansi)]
+    public struct vpDeviceInfo
+    {
+        public uint structSize;
+        [MarshalAs(UnmanagedType.ByValTStr, SizeConst = 256)] public string name;
+        public ulong totalMemoryBytes;
+        public int computeCapabilityMajor;
+        public int computeCapabilityMinor;
+        public int multiprocessorCount;
+    }
 }

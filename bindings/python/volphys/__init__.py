@@ -47,6 +47,16 @@ def build_info():
             "hardware_threads": b.hardwareThreads}
 
 
+def device_info(device=0):
+    """dict with name, total_memory_bytes, compute_capability (major, minor) and
+    multiprocessors of CUDA device `device` (0 .. build_info()['cuda_device_count'] - 1)."""
+    d = _lib.vpDefaultDeviceInfo()
+    _call("vpGetDeviceInfo", int(device), ctypes.byref(d))
+    return {"name": d.name.decode(), "total_memory_bytes": d.totalMemoryBytes,
+            "compute_capability": (d.computeCapabilityMajor, d.computeCapabilityMinor),
+            "multiprocessors": d.multiprocessorCount}
+
+
 def status_name(status):
     return _lib.vpStatusName(int(status)).decode()
 
@@ -57,6 +67,6 @@ __all__ = [
     "PhaseStats", "Status", "BodyType", "ShapeType", "ActorKind", "Phase", "LogLevel", "FluidKind", "Advection",
     "SurfaceMesher", "Device", "DomainSide", "FluidField", "VolPhysError", "InvalidArgumentError", "InvalidIdError", "OutOfMemoryError",
     "UnsupportedError", "IoError", "ParseError", "BusyError", "DivergedError", "VersionMismatchError",
-    "InternalError", "NotConvergedError", "PhaseFailedError", "library_version", "library_path", "build_info", "status_name", "HAVE_NUMPY",
+    "InternalError", "NotConvergedError", "PhaseFailedError", "library_version", "library_path", "build_info", "device_info", "status_name", "HAVE_NUMPY",
     "set_log_callback", "box_tet_mesh", "MeshQuality",
 ]

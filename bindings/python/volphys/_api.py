@@ -112,6 +112,8 @@ _PROTOTYPES = {
     "vpWorldGetFluids": (_S, [T.vpWorldId, _P(T.vpFluidId), c_int32, _P(c_int32)]),
     "vpWorldFindFluid": (_S, [T.vpWorldId, c_char_p, _P(T.vpFluidId)]),
     "vpGetBuildInfo": (_S, [_P(T.vpBuildInfo)]),
+    "vpDefaultDeviceInfo": (T.vpDeviceInfo, []),
+    "vpGetDeviceInfo": (_S, [c_int32, _P(T.vpDeviceInfo)]),
     "vpDefaultQueryFilter": (T.vpQueryFilter, []),
     "vpWorldGetContactEvents": (_S, [T.vpWorldId, _P(T.vpContactEvent), c_int32, _P(c_int32)]),
     "vpWorldSaveState": (_S, [T.vpWorldId, c_void_p, c_size_t, _P(c_size_t)]),

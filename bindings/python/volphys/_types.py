@@ -414,6 +414,12 @@ class vpBuildInfo(ctypes.Structure):
     _fields_ = [("cudaCompiled", c_int32), ("cudaDeviceCount", c_int32), ("hardwareThreads", c_int32)]
 
 
+class vpDeviceInfo(ctypes.Structure):
+    _fields_ = [("structSize", c_uint32), ("name", ctypes.c_char * 256), ("totalMemoryBytes", ctypes.c_uint64),
+                ("computeCapabilityMajor", c_int32), ("computeCapabilityMinor", c_int32),
+                ("multiprocessorCount", c_int32)]
+
+
 class vpQueryFilter(ctypes.Structure):
     _fields_ = [("kinds", c_int32), ("filter", vpCollisionFilter)]
 

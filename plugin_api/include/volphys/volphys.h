@@ -954,6 +954,19 @@ typedef struct vpBuildInfo {
 } vpBuildInfo;
 VP_API vpStatus vpGetBuildInfo(vpBuildInfo* outInfo);
 
+/* One CUDA device, device in [0, vpBuildInfo.cudaDeviceCount): what vpDevice_Auto and
+ * vpDevice_Cuda use is device 0. Start from vpDefaultDeviceInfo() (it sets structSize). */
+typedef struct vpDeviceInfo {
+  uint32_t structSize;
+  char name[256];                 /* NUL-terminated */
+  uint64_t totalMemoryBytes;
+  int32_t computeCapabilityMajor;
+  int32_t computeCapabilityMinor;
+  int32_t multiprocessorCount;
+} vpDeviceInfo;
+VP_API vpDeviceInfo vpDefaultDeviceInfo(void);
+VP_API vpStatus vpGetDeviceInfo(int32_t device, vpDeviceInfo* outInfo);
+
 /* ---------------------------------------------------------------- version check */
 
 /* Returns vpStatus_Ok when this header matches the loaded library. Call once at start-up. */

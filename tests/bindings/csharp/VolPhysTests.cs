@@ -46,7 +46,7 @@ static class VolPhysTests
                          typeof(vpQueryFilter), typeof(vpRay), typeof(vpQueryHit), typeof(vpDeformableMaterial),
                          typeof(vpFluidParameters), typeof(vpContactEvent),
                          typeof(vpDeformableDef), typeof(vpFluidId), typeof(vpFluidRegion), typeof(vpFluidEmitter),
-                         typeof(vpFluidDef), typeof(vpBuildInfo) };
+                         typeof(vpFluidDef), typeof(vpBuildInfo), typeof(vpDeviceInfo) };
         foreach (Type t in types)
         {
             Check(expected.ContainsKey(t.Name), t.Name + " is printed by the layout program");
@@ -81,6 +81,14 @@ static class VolPhysTests
         vpWorldDef def = World.DefaultDef();
         Check(Math.Abs(def.gravity.y + 9.81f) < 1e-5f, "default gravity");
         Check(def.workerCount == 1 && def.frameBudgetMs == 16.0f, "default workers and budget");
+        Check(def.device == Device.Cpu, "default device");
+        vpBuildInfo build;
+        Check(Native.vpGetBuildInfo(out build) == Status.Ok, "build info");
+        vpDeviceInfo device = new vpDeviceInfo();
+        device.structSize = (uint)Marshal.SizeOf(typeof(vpDeviceInfo));
+        for (int d = 0; d < build.cudaDeviceCount; ++d)
+            Check(Native.vpGetDeviceInfo(d, ref device) == Status.Ok && device.name.Length > 0, "device " + d);
+        Check(Native.vpGetDeviceInfo(build.cudaDeviceCount, ref device) == Status.InvalidArgument, "no device past the count");
     }
 
     // A static plane at y = 0 and a dynamic ball of radius 0.5 dropped from y = 2.

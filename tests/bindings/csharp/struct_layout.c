@@ -92,5 +92,8 @@ int main(void) {
   FIELD(vpFluidDef, filter);
   SIZE(vpBuildInfo); FIELD(vpBuildInfo, cudaCompiled); FIELD(vpBuildInfo, cudaDeviceCount);
   FIELD(vpBuildInfo, hardwareThreads);
+  SIZE(vpDeviceInfo); FIELD(vpDeviceInfo, structSize); FIELD(vpDeviceInfo, name); FIELD(vpDeviceInfo, totalMemoryBytes);
+  FIELD(vpDeviceInfo, computeCapabilityMajor); FIELD(vpDeviceInfo, computeCapabilityMinor);
+  FIELD(vpDeviceInfo, multiprocessorCount);
   return 0;
 }
