@@ -6,7 +6,7 @@
 // and a ray-parity walk through the whole mesh, and a cell the surface passes through needs
 // it at a few hundred nodes: a deformable's boundary, recomputed every fluid step, made that
 // pass most of the tank's fraction time. Crossings along lines need one ray-parity test per
-// cell and a handful of line-triangle tests per line (73 lines).
+// cell and a handful of line-triangle tests per line (a few dozen lines).
 //
 // How. Node (a, b, c) sits at origin + h * (cell + (a, b, c) / 7), bitwise as the pass places
 // it. The sign of node (0, 0, 0) is the mesh's ray parity (the test the signed distance uses);
