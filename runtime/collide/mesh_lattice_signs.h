@@ -16,7 +16,8 @@
 // so this gives the same signs as a signed distance at each node. Where a line passes within
 // a tolerance of a triangle's edge, lies nearly in its plane, or crosses it near a node (a
 // node on the surface: not open there), the crossings do not decide and the function says so;
-// the caller then samples the signed distance as before.
+// the caller then samples the signed distance as before. (geometry/row_parity_inside.h counts
+// crossings for a whole grid too, but with its own positions and either answer on the surface.)
 #pragma once
 
 #include <array>
