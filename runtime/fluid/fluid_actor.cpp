@@ -311,17 +311,8 @@ Status FluidActor::addFractionUpdatePasses(SlabPasses& passes) {
       // pressure operator look stale).
       if (!moved || !(a.bounds.overlaps(domain) || b.bounds.overlaps(domain))) continue;
       VP_TRY(addFaceFractionUpdatePasses(passes, geometry.data(), count, a.bounds, b.bounds, &fractions_));
-      // A collider moving a little per step (a paddle) has nearly the same box before and
-      // after: one pass over their union instead of two over the overlap.
-      if (a.bounds.overlaps(b.bounds)) {
-        Aabb both;
-        both.lo = a.bounds.lo.cwiseMin(b.bounds.lo);
-        both.hi = a.bounds.hi.cwiseMax(b.bounds.hi);
-        VP_TRY(addSplitCellPasses(passes, geometry.data(), count, both, &fractions_, nullptr));
-      } else {
-        VP_TRY(addSplitCellPasses(passes, geometry.data(), count, a.bounds, &fractions_, nullptr));
-        VP_TRY(addSplitCellPasses(passes, geometry.data(), count, b.bounds, &fractions_, nullptr));
-      }
+      for (const Aabb& box : boxesToUpdate(a.bounds, b.bounds))
+        VP_TRY(addSplitCellPasses(passes, geometry.data(), count, box, &fractions_, nullptr));
       fractionsChanged_ = pressureOperatorStale_ = true;
     }
   }

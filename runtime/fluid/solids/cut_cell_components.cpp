@@ -9,6 +9,7 @@
 #include <memory>
 #include <vector>
 
+#include "collide/mesh_lattice_signs.h"
 #include "core/parallel_for.h"
 #include "fluid/grid_index.h"
 
@@ -228,11 +229,38 @@ bool convexLeavesOnePiece(const PreparedCollider& collider, const Eigen::Vector3
   return true;
 }
 
+// The cell's open nodes. A mesh's signs come from crossings along the lattice lines
+// (collide/mesh_lattice_signs.h: a few hundred of its signed distances cost far more), the
+// other colliders' from the sampler; where the crossings do not decide, the sampler does all.
+NodeMask openNodes(const PreparedCollider* const* colliders, int count, const MacGridSpec& grid,
+                   const Eigen::Vector3d& cell) {
+  const PreparedCollider* others[kMaxColliders];
+  int rest = 0;
+  NodeMask open;
+  open.fill(~uint64_t(0));
+  for (int c = 0; c < count; ++c) {
+    if (colliders[c]->shape.kind != ShapeKind::TriangleMesh) {
+      others[rest++] = colliders[c];
+      continue;
+    }
+    NodeMask outside;
+    if (!latticeNodesOutsideMesh(*colliders[c], grid.origin, grid.h, cell, &outside))
+      return NodeSampler(colliders, count, grid, cell).sample();
+    for (int z = 0; z < kNodes; ++z) open[static_cast<size_t>(z)] &= outside[static_cast<size_t>(z)];
+  }
+  if (rest == count) return NodeSampler(colliders, count, grid, cell).sample();
+  if (rest > 0) {
+    const NodeMask sampled = NodeSampler(others, rest, grid, cell).sample();
+    for (int z = 0; z < kNodes; ++z) open[static_cast<size_t>(z)] &= sampled[static_cast<size_t>(z)];
+  }
+  return open;
+}
+
 // Fills `out` and returns true when the cell's open nodes form two or more pieces that reach
 // the cell's boundary.
 bool sampleSplitCell(const PreparedCollider* const* colliders, int count, const MacGridSpec& grid,
                      const Eigen::Vector3d& cell, SplitCell* out) {
-  const NodeMask open = NodeSampler(colliders, count, grid, cell).sample();
+  const NodeMask open = openNodes(colliders, count, grid, cell);
   // Open nodes on the cell's boundary not yet in a piece.
   constexpr uint64_t kRing = 0xFF818181818181FF;  // x or y at 0 or 7
   NodeMask left;

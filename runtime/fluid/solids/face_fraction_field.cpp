@@ -210,12 +210,19 @@ Status computeFaceFractions(const PreparedCollider* const* colliders, int count,
   return Status::Ok;
 }
 
+std::array<Aabb, 2> boxesToUpdate(const Aabb& oldBounds, const Aabb& newBounds) {
+  if (!oldBounds.overlaps(newBounds)) return {oldBounds, newBounds};
+  Aabb both;
+  both.lo = oldBounds.lo.cwiseMin(newBounds.lo);
+  both.hi = oldBounds.hi.cwiseMax(newBounds.hi);
+  return {both, Aabb{}};
+}
+
 Status updateFaceFractions(const PreparedCollider* const* colliders, int count,
                            const Aabb& oldBounds, const Aabb& newBounds,
                            FaceFractionField* field) {
   VP_TRY(checkArgs(colliders, count, field));
-  recomputeBox(colliders, count, oldBounds, field);
-  recomputeBox(colliders, count, newBounds, field);
+  for (const Aabb& box : boxesToUpdate(oldBounds, newBounds)) recomputeBox(colliders, count, box, field);
   return Status::Ok;
 }
 
@@ -234,8 +241,7 @@ Status addFaceFractionPasses(SlabPasses& passes, const PreparedCollider* const* 
 Status addFaceFractionUpdatePasses(SlabPasses& passes, const PreparedCollider* const* colliders, int count,
                                    const Aabb& oldBounds, const Aabb& newBounds, FaceFractionField* field) {
   VP_TRY(checkArgs(colliders, count, field));
-  addBoxPasses(passes, colliders, count, oldBounds, field);
-  addBoxPasses(passes, colliders, count, newBounds, field);
+  for (const Aabb& box : boxesToUpdate(oldBounds, newBounds)) addBoxPasses(passes, colliders, count, box, field);
   return Status::Ok;
 }
 

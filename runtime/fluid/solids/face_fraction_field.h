@@ -30,6 +30,7 @@
 #include "core/slab_passes.h"
 #include "core/status.h"
 
+#include <array>
 #include <vector>
 
 namespace vp {
@@ -59,9 +60,15 @@ Status initFaceFractionField(const MacGridSpec& grid, FaceFractionField* field);
 Status computeFaceFractions(const PreparedCollider* const* colliders, int count,
                             FaceFractionField* field);
 
+// The boxes an update after a move recomputes: the boxes before and after, or, when they
+// overlap, the box around both and an empty one (a collider moving a little per step, a paddle
+// or a deformable's surface, then has its overlap recomputed once, not twice).
+std::array<Aabb, 2> boxesToUpdate(const Aabb& oldBounds, const Aabb& newBounds);
+
 // Incremental update after colliders moved: recomputes (from all current colliders) only the
-// faces touching `oldBounds` or `newBounds` (e.g. the moved collider's boxes before and after
-// the move). Gives the same result as computeFaceFractions when every change lies in them.
+// faces touching boxesToUpdate(oldBounds, newBounds) (e.g. the moved collider's boxes before
+// and after the move). Gives the same result as computeFaceFractions when every change lies
+// in them.
 Status updateFaceFractions(const PreparedCollider* const* colliders, int count,
                            const Aabb& oldBounds, const Aabb& newBounds,
                            FaceFractionField* field);
