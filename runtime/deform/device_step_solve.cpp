@@ -30,7 +30,9 @@ Status DeviceStepSolve::create(const BlockSparseMatrix<double>& matrix, std::uni
   if (gpu::cudaDeviceCount() == 0) return fail(Status::Unsupported, "no CUDA device is usable");
   std::unique_ptr<DeviceStepSolve> solve(new DeviceStepSolve);
   buildBinBcsr(matrix, &solve->bin_);
-  binnedInverseDiagonal(matrix, &solve->binnedInverse_);
+  // The first solve uploads the values with the assembly's block-Jacobi inverses: until then
+  // the device holds zeros there rather than inverses computed a second time.
+  solve->binnedInverse_.assign(solve->bin_.diagonal.size(), 0.0);
   gpu::HostBlockSystem host;
   host.matrix = solve->bin_.view();
   host.slots = solve->bin_.slots();
@@ -38,7 +40,6 @@ Status DeviceStepSolve::create(const BlockSparseMatrix<double>& matrix, std::uni
   std::string error;
   solve->device_ = gpu::DeviceBlockSystem::create(host, &error);
   if (!solve->device_) return fail(Status::OutOfMemory, "the deformable's solve on the CUDA device: %s", error.c_str());
-  solve->valuesOnDevice_ = true;
   *out = std::move(solve);
   return Status::Ok;
 }
