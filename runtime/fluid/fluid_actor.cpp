@@ -389,7 +389,7 @@ bool FluidActor::advance(const FluidStepInput& input, const SliceBudget& budget,
   stats->diverged = stats->diverged || step_->diverged;
   for (SliceSizer& sizer : slabs_) sizer.adapt(budget.targetSliceMs);
   lastStepSlices_ = job_.slicesRun();
-  work_.finish();
+  work_.finish(step_->substeps);
   step_.reset();
   return true;
 }
@@ -397,7 +397,7 @@ bool FluidActor::advance(const FluidStepInput& input, const SliceBudget& budget,
 void FluidActor::abandonStep() {
   job_.reset();
   step_.reset();
-  work_.finish();
+  work_.finish(work_.parts());
   restorePublished();
   fractionsValid_ = false;
   fractionsChanged_ = true;
@@ -483,6 +483,8 @@ void FluidActor::planSubsteps() {
       st.speed = std::max(st.speed, solidSpeedBound(*c.geometry));
   st.substeps = clampIndex(std::ceil(st.speed * st.input.dt / (solver.cflNumber * grid_.spec.h)), 1, solver.maxSubsteps);
   st.h = st.input.dt / st.substeps;
+  // The plan paces the step by its expected work (frame_plan.h), which follows its sub-steps.
+  work_.expectParts(st.substeps);
   st.loadSum.assign(st.input.colliders.size(), PressureLoad{});
   st.vertexForceSum.assign(st.input.colliders.size(), Array<Vec3>{});
   for (int sub = 0; sub < st.substeps; ++sub) queueSubstep(sub);

@@ -292,7 +292,7 @@ void readFluidState(StateReader& in, const FluidActor& fluid, FluidState* s) {
   in.array(&s->sliceCostsMs, static_cast<uint64_t>(FluidSlice::Count), "fluid's slice cost count");
   in.requireFinite("fluid's slice costs", s->sliceCostsMs.data(), s->sliceCostsMs.size());
   s->work = in.value<WorkProgress>();
-  if (in.ok() && (s->work.done() < 0 || s->work.last() < 0 || s->work.expected() < 0 || s->lastStepSlices < 0))
+  if (in.ok() && (!s->work.valid() || s->lastStepSlices < 0))
     in.outOfRange("a fluid's step progress");
   readSchedule(in, &s->schedule);
 }

@@ -186,3 +186,53 @@ TEST(FluidSlicedStep, TheLoadsOnACoupledBodyAreThoseOfTheLastCompletedStep) {
 
 }  // namespace
 }  // namespace vp
+
+namespace vp {
+namespace {
+
+// A step that needs more sub-steps than the last one is expected to take that many sub-steps'
+// work as soon as its plan is made (the frame plan paces it by that, core/work_progress.h).
+TEST(FluidSlicedStep, TheExpectedWorkFollowsTheSubstepCount) {
+  auto tasks = TaskSystem::create(TaskHooks{}, 1);
+  SecondClock clock;
+  const Clock ticking{&SecondClock::read, &clock};
+  std::unique_ptr<FluidActor> actor;
+  ASSERT_EQ(FluidActor::create(smallFluid(FluidKind::Liquid), *tasks, &actor), Status::Ok) << lastError();
+  FluidStepInput input;
+  input.dt = 0.1;
+  input.gravity = Vec3(0, -9.81, 0);
+  input.tasks = tasks.get();
+  ActorStats calm;
+  actor->step(input, &calm, nullptr);
+  ASSERT_EQ(calm.substeps, 1);
+  const int64_t perSubstep = actor->stepWork().expectedPerPart();
+  ASSERT_GT(perSubstep, 0);
+  // 7 m/s over dt = 0.1 s is 3.5 cells of h = 0.1 at a CFL number of 2 per sub-step: 4 sub-steps.
+  ASSERT_TRUE(actor->editFields([](FluidActor::EditableFields& f) {
+    for (double& u : f.grid.velocity[0]) u = 7.0;
+  }));
+  SliceBudget budget;
+  budget.share = Deadline(ticking, 1.0);
+  budget.minWork = 1;  // one slice per call
+  int64_t expectedAfterPlan = -1;
+  ActorStats stats;
+  while (!actor->advance(input, budget, &stats)) {
+    if (expectedAfterPlan < 0 && actor->stepWork().parts() == 4) expectedAfterPlan = actor->stepWork().expected();
+    stats = ActorStats{};
+  }
+  ASSERT_EQ(stats.substeps, 4);
+  ASSERT_GT(expectedAfterPlan, 0) << "the plan's sub-step count never reached the expectation";
+  const int64_t actual = actor->stepWork().last();
+  std::printf("per sub-step %lld, expected after the plan %lld, took %lld\n", static_cast<long long>(perSubstep),
+              static_cast<long long>(expectedAfterPlan), static_cast<long long>(actual));
+  // Four sub-steps' worth on top of the head: the face fraction update's three slices, each
+  // counted as one pass over the grid when no collider gives them samples ...
+  EXPECT_GE(expectedAfterPlan, 4 * perSubstep);
+  EXPECT_LE(expectedAfterPlan, 4 * perSubstep + 3 * actor->grid().cellCount());
+  // ... which is what the step took, but for the pressure iterations the flow added: a
+  // per-step expectation would have been about a quarter of it.
+  EXPECT_GT(static_cast<double>(expectedAfterPlan), 0.9 * static_cast<double>(actual));
+}
+
+}  // namespace
+}  // namespace vp
