@@ -102,7 +102,12 @@ Eigen::Vector3d solidVelocityAt(const PreparedCollider& c, const Eigen::Vector3d
 }
 
 double solidSpeedBound(const PreparedCollider& c) {
-  if (c.vertexVelocities.empty()) return c.shape.linearVelocity.norm() + c.shape.angularVelocity.norm() * c.boundRadius;
+  if (c.vertexVelocities.empty()) {
+    // A plane's bound radius is infinite: without spin it adds nothing (0 * inf is NaN, which
+    // the sub-step rule's max would drop with the plane's own speed).
+    const double spin = c.shape.angularVelocity.norm();
+    return c.shape.linearVelocity.norm() + (spin > 0.0 ? spin * c.boundRadius : 0.0);
+  }
   double fastest = 0.0;
   for (const Eigen::Vector3d& v : c.vertexVelocities) fastest = std::max(fastest, v.squaredNorm());
   return std::sqrt(fastest);

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 namespace vp {
 namespace {
 
@@ -78,6 +80,23 @@ TEST(FluidFaceBox, RandomPosesAgainstSupersampling2000) {
   }
   EXPECT_GE(partial, 2);
   std::printf("box vs supersampling(2000^2): max error %.3g\n", maxErr);
+}
+
+// The sub-step rule's speed bound: a moving plane's speed, not NaN from its infinite extent.
+TEST(FluidFacePlane, AMovingPlaneBoundsItsSpeedByItsVelocity) {
+  ColliderShape s;
+  s.kind = ShapeKind::Plane;
+  s.planeNormal = Eigen::Vector3d(0, 1, 0);
+  s.linearVelocity = Eigen::Vector3d(0, 3, 0);
+  PreparedCollider c;
+  ASSERT_EQ(prepareCollider(s, &c), Status::Ok);
+  EXPECT_EQ(solidSpeedBound(c), 3.0);
+  s.linearVelocity.setZero();
+  ASSERT_EQ(prepareCollider(s, &c), Status::Ok);
+  EXPECT_EQ(solidSpeedBound(c), 0.0);
+  s.angularVelocity = Eigen::Vector3d(0, 1, 0);  // a spinning plane has no finite bound
+  ASSERT_EQ(prepareCollider(s, &c), Status::Ok);
+  EXPECT_EQ(solidSpeedBound(c), std::numeric_limits<double>::infinity());
 }
 
 TEST(FluidFacePlane, AnalyticAndRandom) {
