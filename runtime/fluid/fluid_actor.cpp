@@ -259,21 +259,20 @@ void FluidActor::applySources() {
   }
 }
 
-void FluidActor::applyForces() {
-  TaskSystem& tasks = *step_->input.tasks;
-  const double h = step_->h;
-  const Vec3& gravity = step_->input.gravity;
-  if (desc_.kind == FluidKind::Smoke) {
-    applyBuoyancy(tasks, grid_, smokeDensity_, temperature_, desc_.smoke, gravity, h);
-    applyVorticityConfinement(tasks, grid_, desc_.smoke.vorticityConfinement, h, vorticity_);
-    dissipate(smokeDensity_, desc_.smoke.densityDissipation, h);
-    dissipate(temperature_, desc_.smoke.temperatureDissipation, h);
-  } else {
-    for (int a = 0; a < 3; ++a) {
-      if (gravity[a] == 0.0) continue;
-      for (double& u : grid_.velocity[a]) u += h * gravity[a];
-    }
-  }
+void FluidActor::planForces() {
+  StepInProgress& st = *step_;
+  st.forces.reset(*st.input.tasks);
+  if (desc_.kind == FluidKind::Smoke)
+    addSmokeForcePasses(st.forces, grid_, smokeDensity_, temperature_, desc_.smoke, st.input.gravity, st.h, vorticity_);
+  else
+    addGravityPasses(st.forces, grid_, st.input.gravity, st.h);
+}
+
+bool FluidActor::applyForcesSlice() {
+  StepInProgress& st = *step_;
+  const bool done = st.forces.runSlice(slabSamples(FluidSlice::Forces));
+  sliceWork_ = st.forces.lastSliceSamples();
+  return done;
 }
 
 Status FluidActor::addFractionUpdatePasses(SlabPasses& passes) {
@@ -501,7 +500,8 @@ void FluidActor::queueSubstep(int) {
   once(FluidSlice::Sources, &FluidActor::applySources);
   if (liquid) job_.then(static_cast<int>(FluidSlice::LevelSet), [this] { return keepLevelSetHealthySlice(); });
   if (desc_.kinematicViscosity > 0.0) once(FluidSlice::Viscosity, &FluidActor::diffuseVelocity);
-  once(FluidSlice::Forces, &FluidActor::applyForces);
+  once(FluidSlice::Forces, &FluidActor::planForces);
+  job_.then(static_cast<int>(FluidSlice::Forces), [this] { return applyForcesSlice(); });
   job_.then(static_cast<int>(FluidSlice::PressureSetup), [this] { return setUpProjectionSlice(); });
   job_.then(static_cast<int>(FluidSlice::PressureIteration), [this] { return iterateProjection(); });
   job_.then(static_cast<int>(FluidSlice::PressureUpdate), [this] { return finishProjectionSlice(); });
@@ -644,6 +644,7 @@ bool FluidActor::runsSlabs(FluidSlice kind) {
     case FluidSlice::AdvectVelocity:
     case FluidSlice::AdvectScalars:
     case FluidSlice::LevelSet:
+    case FluidSlice::Forces:
     case FluidSlice::PressureUpdate:
     case FluidSlice::Extrapolate: return true;
     default: return false;  // the projection's setup also has pieces that are not slabs

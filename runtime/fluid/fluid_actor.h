@@ -25,7 +25,7 @@
 //              tolerance or pressureMaxIterations, never cut by time), velocity update in
 //              slabs, loads (on a dynamic collider its force and torque, pressure_forces.h;
 //              on a deformable's surface the force on each vertex, surface_pressure_load.h)
-// Passes over the grid (fractions, advection, level-set upkeep, extrapolation, the
+// Passes over the grid (fractions, advection, level-set upkeep, forces, extrapolation, the
 // projection's setup and update) run in slabs, one slab per slice, of at most
 // solver.samplesPerSlice samples; under a budget, of a number of samples that starts small
 // and follows the slices' measured cost toward the budget's target slice length
@@ -216,7 +216,10 @@ class FluidActor {
   // Solid extension, redistancing, volume correction: one slice per call; true when done.
   bool keepLevelSetHealthySlice();
   void diffuseVelocity();
-  void applyForces();
+  // The sub-step's body forces (smoke_forces.h): planned as passes, then one slice per call;
+  // true when done.
+  void planForces();
+  bool applyForcesSlice();
   // The projection's setup, CG iterations and velocity update (with the loads): one slice per
   // call; true when that part is done.
   bool setUpProjectionSlice();
@@ -263,6 +266,7 @@ class FluidActor {
     std::vector<Array<Vec3>> vertexForceSum;  // per input collider (deforming surfaces only)
     std::vector<const PreparedCollider*> fractionColliders;  // the input's, with geometry
     SlabPasses fractionUpdate;
+    SlabPasses forces;  // the sub-step's body forces
     VelocityAdvectionSlices velocityAdvection;
     ScalarAdvectionSlices scalarAdvection;
     bool advecting = false;  // an advection pass list is prepared and running

@@ -11,6 +11,7 @@ namespace vp {
 namespace {
 
 constexpr int64_t kRowGrain = 8;
+constexpr int64_t kValueGrain = 4096;
 
 kernels::CellLattice cellLattice(const MacGridSpec& s) {
   kernels::CellLattice g;
@@ -24,10 +25,10 @@ kernels::CellLattice cellLattice(const MacGridSpec& s) {
   return g;
 }
 
-// body(i, j, k, cell index) for every cell, rows in parallel.
+// body(i, j, k, cell index) for every cell: a pass over cell rows.
 template <class Body>
-void forEachCell(TaskSystem& tasks, const MacGridSpec& s, const Body& body) {
-  parallelFor(tasks, static_cast<int64_t>(s.ny) * s.nz, kRowGrain, [&](int64_t begin, int64_t end) {
+void addCellPass(SlabPasses& passes, const MacGridSpec& s, Body body) {
+  passes.addParallel(static_cast<int64_t>(s.ny) * s.nz, s.nx, kRowGrain, [s, body](int64_t begin, int64_t end) {
     for (int64_t row = begin; row < end; ++row) {
       const int j = static_cast<int>(row % s.ny), k = static_cast<int>(row / s.ny);
       for (int i = 0; i < s.nx; ++i) body(i, j, k, static_cast<int64_t>(i) + s.nx * row);
@@ -37,13 +38,16 @@ void forEachCell(TaskSystem& tasks, const MacGridSpec& s, const Body& body) {
 
 // Adds dt times the mean of the force over each a-face's two cells (the one cell at the
 // domain's sides) to the face velocities; cellForce(c) is the force's component a at cell c.
+// A pass over the a-faces' rows.
 template <class CellForce>
-void addCellForceToFaces(TaskSystem& tasks, MacGrid& grid, int a, double dt, const CellForce& cellForce) {
-  const MacGridSpec& s = grid.spec;
+void addCellForceToFaces(SlabPasses& passes, MacGrid& grid, int a, double dt, CellForce cellForce) {
   const Eigen::Vector3i d = grid.faceDims(a);
-  const int64_t nx = s.nx, ny = s.ny, nz = s.nz;
-  double* u = grid.velocity[a].data();
-  parallelFor(tasks, static_cast<int64_t>(d.y()) * d.z(), kRowGrain, [&](int64_t begin, int64_t end) {
+  MacGrid* g = &grid;
+  passes.addParallel(static_cast<int64_t>(d.y()) * d.z(), d.x(), kRowGrain, [g, a, d, dt, cellForce](int64_t begin,
+                                                                                                     int64_t end) {
+    const MacGridSpec& s = g->spec;
+    const int64_t nx = s.nx, ny = s.ny, nz = s.nz;
+    double* u = g->velocity[a].data();
     for (int64_t row = begin; row < end; ++row) {
       const int64_t j = row % d.y(), k = row / d.y();
       double* faces = u + d.x() * row;
@@ -67,27 +71,24 @@ void addCellForceToFaces(TaskSystem& tasks, MacGrid& grid, int a, double dt, con
   });
 }
 
-}  // namespace
-
-void applyBuoyancy(TaskSystem& tasks, MacGrid& grid, const Array<double>& smokeDensity,
-                   const Array<double>& temperature, const SmokeParameters& p, const Vec3& gravity,
-                   double dt) {
+void addBuoyancyPasses(SlabPasses& passes, MacGrid& grid, const Array<double>& smokeDensity,
+                       const Array<double>& temperature, const SmokeParameters& p, const Vec3& gravity, double dt) {
   const double g = gravity.norm();
   if (!(g > 0.0)) return;
   const Vec3 up = -gravity / g;
-  const double* density = smokeDensity.data();
-  const double* heat = temperature.data();
+  const Array<double>* density = &smokeDensity;
+  const Array<double>* heat = &temperature;
   for (int a = 0; a < 3; ++a)
-    addCellForceToFaces(tasks, grid, a, dt, [&](int64_t c) {
-      return kernels::buoyancy(up[a], p.densityBuoyancy, p.thermalBuoyancy, p.ambientTemperature, density[c],
-                               heat[c]);
+    addCellForceToFaces(passes, grid, a, dt, [density, heat, p, lift = up[a]](int64_t c) {
+      return kernels::buoyancy(lift, p.densityBuoyancy, p.thermalBuoyancy, p.ambientTemperature, (*density)[c],
+                               (*heat)[c]);
     });
 }
 
 // Each cell's velocity and |omega| are read by up to six neighbours' differences: computed once
 // per cell in their own passes rather than in every difference.
-void applyVorticityConfinement(TaskSystem& tasks, MacGrid& grid, double epsilon, double dt,
-                               VorticityWorkspace& work) {
+void addVorticityConfinementPasses(SlabPasses& passes, MacGrid& grid, double epsilon, double dt,
+                                   VorticityWorkspace& work) {
   if (!(epsilon > 0.0)) return;
   const MacGridSpec& s = grid.spec;
   const size_t cells = static_cast<size_t>(grid.cellCount());
@@ -95,28 +96,56 @@ void applyVorticityConfinement(TaskSystem& tasks, MacGrid& grid, double epsilon,
   work.omegaNorm.resize(cells);
   work.force.resize(3 * cells);
   const kernels::CellLattice lattice = cellLattice(s);
-  const double* faces[3] = {grid.velocity[0].data(), grid.velocity[1].data(), grid.velocity[2].data()};
-  double* velocity = work.force.data();
-  double* omega = work.omega.data();
-  double* omegaNorm = work.omegaNorm.data();
-  forEachCell(tasks, s, [&](int i, int j, int k, int64_t c) {
-    kernels::cellVelocityAt(faces, s.nx, s.ny, i, j, k, velocity + 3 * c);
+  MacGrid* g = &grid;
+  VorticityWorkspace* w = &work;
+  addCellPass(passes, s, [g, w](int i, int j, int k, int64_t c) {
+    const MacGridSpec& spec = g->spec;
+    const double* faces[3] = {g->velocity[0].data(), g->velocity[1].data(), g->velocity[2].data()};
+    kernels::cellVelocityAt(faces, spec.nx, spec.ny, i, j, k, w->force.data() + 3 * c);
   });
-  forEachCell(tasks, s, [&](int i, int j, int k, int64_t c) {
-    kernels::vorticityAt(lattice, velocity, i, j, k, omega + 3 * c);
-    omegaNorm[c] = kernels::norm3(omega + 3 * c);
+  addCellPass(passes, s, [lattice, w](int i, int j, int k, int64_t c) {
+    kernels::vorticityAt(lattice, w->force.data(), i, j, k, w->omega.data() + 3 * c);
+    w->omegaNorm[static_cast<size_t>(c)] = kernels::norm3(w->omega.data() + 3 * c);
   });
-  forEachCell(tasks, s, [&](int i, int j, int k, int64_t c) {
-    kernels::confinementAt(lattice, omega, omegaNorm, epsilon, i, j, k, work.force.data() + 3 * c);
+  addCellPass(passes, s, [lattice, w, epsilon](int i, int j, int k, int64_t c) {
+    kernels::confinementAt(lattice, w->omega.data(), w->omegaNorm.data(), epsilon, i, j, k, w->force.data() + 3 * c);
   });
-  const double* force = work.force.data();
-  for (int a = 0; a < 3; ++a) addCellForceToFaces(tasks, grid, a, dt, [&](int64_t c) { return force[3 * c + a]; });
+  for (int a = 0; a < 3; ++a)
+    addCellForceToFaces(passes, grid, a, dt, [w, a](int64_t c) { return w->force[static_cast<size_t>(3 * c + a)]; });
 }
 
-void dissipate(Array<double>& values, double rate, double dt) {
+// values *= exp(-rate dt), a pass over the values.
+void addDissipationPass(SlabPasses& passes, Array<double>& values, double rate, double dt) {
   if (!(rate > 0.0)) return;
   const double factor = std::exp(-rate * dt);
-  for (double& v : values) v *= factor;
+  Array<double>* v = &values;
+  passes.addParallel(static_cast<int64_t>(values.size()), 1, kValueGrain, [v, factor](int64_t begin, int64_t end) {
+    double* x = v->data();
+    for (int64_t c = begin; c < end; ++c) x[c] *= factor;
+  });
+}
+
+}  // namespace
+
+void addSmokeForcePasses(SlabPasses& passes, MacGrid& grid, Array<double>& smokeDensity, Array<double>& temperature,
+                         const SmokeParameters& params, const Vec3& gravity, double dt, VorticityWorkspace& work) {
+  addBuoyancyPasses(passes, grid, smokeDensity, temperature, params, gravity, dt);
+  addVorticityConfinementPasses(passes, grid, params.vorticityConfinement, dt, work);
+  addDissipationPass(passes, smokeDensity, params.densityDissipation, dt);
+  addDissipationPass(passes, temperature, params.temperatureDissipation, dt);
+}
+
+void addGravityPasses(SlabPasses& passes, MacGrid& grid, const Vec3& gravity, double dt) {
+  MacGrid* g = &grid;
+  for (int a = 0; a < 3; ++a) {
+    if (gravity[a] == 0.0) continue;
+    const Eigen::Vector3i d = grid.faceDims(a);
+    const double dv = dt * gravity[a];
+    passes.addParallel(static_cast<int64_t>(d.y()) * d.z(), d.x(), kRowGrain, [g, a, d, dv](int64_t begin, int64_t end) {
+      double* u = g->velocity[a].data();
+      for (int64_t f = begin * d.x(); f < end * d.x(); ++f) u[f] += dv;
+    });
+  }
 }
 
 }  // namespace vp
