@@ -1,0 +1,116 @@
+#include "deform/pair_contacts.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/parallel_for.h"
+
+namespace vp {
+namespace {
+
+Vec3 nodeVector(const Array<double>& a, int32_t i) { return Vec3(a[3 * i], a[3 * i + 1], a[3 * i + 2]); }
+
+double maxNodeSpeed(const Array<double>& v) {
+  double s = 0.0;
+  for (size_t i = 0; i + 2 < v.size(); i += 3) s = std::max(s, Vec3(v[i], v[i + 1], v[i + 2]).norm());
+  return s;
+}
+
+// The point of triangle (a, b, c) under p along its normal: weights and signed height, or false
+// when that point is outside the triangle or the triangle is degenerate.
+bool projectOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, Vec3* weights, Vec3* normal,
+                       double* height) {
+  const Vec3 n = (b - a).cross(c - a);
+  const double area2 = n.squaredNorm();
+  if (!(area2 > 0.0)) return false;
+  const Vec3 q = p - a;
+  const double wb = (q.cross(c - a)).dot(n) / area2;
+  const double wc = ((b - a).cross(q)).dot(n) / area2;
+  const double wa = 1.0 - wb - wc;
+  if (wa < 0.0 || wb < 0.0 || wc < 0.0) return false;
+  *normal = n / std::sqrt(area2);
+  *height = q.dot(*normal);
+  *weights = Vec3(wa, wb, wc);
+  return true;
+}
+
+// The best contact of node `node` of body `a` against the triangles of body `b`, or false.
+bool nearestTriangle(const std::vector<PairContactBody>& bodies, int32_t a, int32_t node, int32_t b, double h,
+                     double speedB, PairContact* best) {
+  const PairContactBody& A = bodies[a];
+  const PairContactBody& B = bodies[b];
+  const Vec3 p = nodeVector(*A.x, node), vp = nodeVector(*A.v, node);
+  const double reach = h * (vp.norm() + speedB) + A.rest + B.depth;
+  const Array<RefitBvh::Triangle>& triangles = B.surface->triangles();
+  bool found = false;
+  double bestPredicted = 0.0;
+  B.surface->bvh().visitBox(p - Vec3::Constant(reach), p + Vec3::Constant(reach), [&](int32_t t) {
+    const RefitBvh::Triangle& tri = triangles[t];
+    if (a == b && (A.surface->neighbours(node, tri[0]) || A.surface->neighbours(node, tri[1]) ||
+                   A.surface->neighbours(node, tri[2])))
+      return;
+    Vec3 w, n;
+    double height;
+    if (!projectOnTriangle(p, nodeVector(*B.x, tri[0]), nodeVector(*B.x, tri[1]), nodeVector(*B.x, tri[2]), &w, &n,
+                           &height) || height < -B.depth)
+      return;
+    std::array<Vec3, 3> vt{{nodeVector(*B.v, tri[0]), nodeVector(*B.v, tri[1]), nodeVector(*B.v, tri[2])}};
+    const Vec3 vc = w[0] * vt[0] + w[1] * vt[1] + w[2] * vt[2];
+    const double predicted = height + h * (vp - vc).dot(n);
+    if (predicted >= A.rest || (found && predicted >= bestPredicted)) return;
+    bestPredicted = predicted;
+    const double mt = w[0] * (*B.mass)[tri[0]] + w[1] * (*B.mass)[tri[1]] + w[2] * (*B.mass)[tri[2]];
+    const double mn = (*A.mass)[node];
+    best->nodeBody = a;
+    best->node = node;
+    best->triangleBody = b;
+    best->triangleNodes = tri;
+    best->weights = w;
+    best->normal = n;
+    best->gap = height;
+    best->rest = A.rest;
+    best->reducedMass = mn * mt / (mn + mt);
+    best->friction = A.frictionCoefficient * B.frictionCoefficient;
+    best->nodeVelocity = vp;
+    best->triangleVelocities = vt;
+    found = true;
+  });
+  return found;
+}
+
+}  // namespace
+
+void findPairContacts(const std::vector<PairContactBody>& bodies, double h, TaskSystem& tasks,
+                      std::vector<PairContact>* out) {
+  out->clear();
+  std::vector<double> speed(bodies.size());
+  for (size_t b = 0; b < bodies.size(); ++b) speed[b] = maxNodeSpeed(*bodies[b].v);
+  std::vector<PairContact> slots;
+  for (int32_t a = 0; a < static_cast<int32_t>(bodies.size()); ++a) {
+    const PairContactBody& A = bodies[a];
+    const Array<int32_t>& nodes = *A.surfaceNodes;
+    slots.assign(nodes.size(), PairContact());
+    parallelFor(tasks, static_cast<int64_t>(nodes.size()), 256, [&](int64_t begin, int64_t end) {
+      for (int64_t s = begin; s < end; ++s) {
+        PairContact& best = slots[static_cast<size_t>(s)];
+        for (int32_t b = 0; b < static_cast<int32_t>(bodies.size()); ++b) {
+          if (b == a ? !A.selfCollision : !(A.filter.meets(bodies[b].filter))) continue;
+          PairContact candidate;
+          if (!nearestTriangle(bodies, a, nodes[s], b, h, speed[b], &candidate)) continue;
+          if (best.node < 0 || candidate.predictedGap(h) < best.predictedGap(h)) best = candidate;
+        }
+      }
+    });
+    for (PairContact& c : slots) {
+      if (c.node < 0) continue;
+      const PairFriction& f = (*A.friction)[c.node];
+      if (f.otherBody == c.triangleBody) {
+        c.state = f;
+        c.state.stick -= c.state.stick.dot(c.normal) * c.normal;
+      }
+      out->push_back(c);
+    }
+  }
+}
+
+}  // namespace vp
