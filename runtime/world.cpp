@@ -11,6 +11,7 @@
 #include "core/log.h"
 #include "core/parallel_for.h"
 #include "core/run_delay.h"
+#include "deform/pair_contact_settlement.h"
 #include "gpu_kernels/device_query.h"
 
 namespace vp {
@@ -478,6 +479,13 @@ bool World::stepDeformables(double dt, const Deadline& frame, StepStats* stats) 
     a.totalMs = frame.elapsedMs() - start;
     a.simulatedDt = input.dt;
   });
+  std::vector<DeformableBody*> bodies;
+  std::vector<double> steppedDt;
+  for (size_t i = 0; i < handles.size(); ++i) {
+    bodies.push_back(deformable(handles[i]));
+    steppedDt.push_back(actors[i].simulatedDt);
+  }
+  settlePairContacts(pairContacts, bodies, steppedDt);
   std::vector<bool> missed(handles.size(), false);
   for (size_t i = 0; i < handles.size(); ++i) {
     ActorSchedule& s = *planned[i].schedule;

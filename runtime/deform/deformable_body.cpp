@@ -157,6 +157,7 @@ Status DeformableBody::create(DeformableDesc desc, std::unique_ptr<DeformableBod
   Status immersed = b.immersion_.build(boundary, boundaryNodes, b.x_);
   b.contactSurface_.build(boundary, boundaryNodes, b.elementNodes_, N, b.nodeCount_);
   b.pairFriction_.assign(static_cast<size_t>(b.nodeCount_), PairFriction());
+  b.pendingImpulse_.assign(3 * static_cast<size_t>(b.nodeCount_), 0.0);
   b.pairContactDepth_ = kPairContactDepthEdges * meanTetEdgeLength(mesh);
   if (!ok(immersed)) return addErrorContext(immersed, "boundary surface");
   Status embedded = embedPoints(mesh, b.renderRest_.vertices, &b.embedding_);
@@ -288,6 +289,10 @@ Status DeformableBody::applyForce(int32_t node, const Vec3& force) {
     return fail(Status::InvalidArgument, "force = (%g, %g, %g): must be finite", force.x(), force.y(), force.z());
   for (int k = 0; k < 3; ++k) externalForce_[3 * node + k] += force[k];
   return Status::Ok;
+}
+
+void DeformableBody::addContactImpulse(int32_t node, const Vec3& impulse) {
+  for (int k = 0; k < 3; ++k) pendingImpulse_[3 * node + k] += impulse[k];
 }
 
 Status DeformableBody::applyImpulse(int32_t node, const Vec3& impulse) {
@@ -567,7 +572,7 @@ StepEnergy DeformableBody::solvedStepEnergy(TaskSystem& tasks, double h, const V
         sum.kineticStart += 0.5 * m * v[k] * v[k];
         sum.kineticEnd += 0.5 * m * vn[k] * vn[k];
         sum.gravity += h * m * gravity[k] * vn[k];
-        sum.applied += (h * externalForce_[3 * i + k] + impulse[k]) * vn[k];
+        sum.applied += (h * externalForce_[3 * i + k] + pendingImpulse_[3 * i + k] + impulse[k]) * vn[k];
       }
     }
     return sum;
@@ -620,11 +625,13 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
   if (in.pairContacts) addPairContactStiffness(*in.pairContacts, in.pairBody, in.dt, &matrix_);
   assembleStepSystem(in);
   if (in.pairContacts) addPairContactRhs(*in.pairContacts, in.pairBody, in.dt, &rhs_);
+  for (size_t k = 0; k < rhs_.size(); ++k) rhs_[k] += pendingImpulse_[k];
   timer.lap(Phase::Assemble);
   const bool reachedFloor = solveStepSystem(in, timer, stats);
   if (in.pairContacts) updatePairFriction(*in.pairContacts, in.pairBody, in.dt, vNext_, &pairFriction_);
   integrateAndGuard(in, reachedFloor, stats);  // its energy passes are timed with the embedding
   std::fill(externalForce_.begin(), externalForce_.end(), 0.0);
+  std::fill(pendingImpulse_.begin(), pendingImpulse_.end(), 0.0);
   updateRenderMesh(*in.tasks);
   timer.lap(Phase::Embed);
 }

@@ -103,6 +103,8 @@ class DeformableBody {
   void updateRenderMesh(TaskSystem& tasks);
   Status applyForce(int32_t node, const Vec3& force);    // for the next step only
   Status applyImpulse(int32_t node, const Vec3& impulse);  // changes the velocity now
+  // An impulse the next step applies to the node (pair contacts' settlement; not validated).
+  void addContactImpulse(int32_t node, const Vec3& impulse);
   Status setPinned(const int32_t* nodes, int64_t count, bool pinned);
   bool pinned(int32_t node) const { return pinned_[node] != 0; }
   // Nodes follow the collider rigidly from their current offset in its frame.
@@ -254,6 +256,7 @@ class DeformableBody {
   double contactMargin_ = 0.0;
   ContactSurface contactSurface_;        // what other deformables and the body itself touch
   Array<PairFriction> pairFriction_;     // per node, its pair contact's friction state
+  Array<double> pendingImpulse_;         // 3 per node, for the next step (addContactImpulse)
   double pairContactDepth_ = 0.0;
   CgWorkspace cg_;
   StepPreconditioner preconditioner_;

@@ -24,6 +24,13 @@ void addPairContactStiffness(const std::vector<PairContact>& pairs, int32_t body
 void addPairContactRhs(const std::vector<PairContact>& pairs, int32_t body, double h, Array<double>* rhs);
 // The work Σ P·v' the contacts did on the body's nodes over the step (the energy guard's).
 double pairContactWork(const std::vector<PairContact>& pairs, int32_t body, double h, const Array<double>& vNext);
+// What the two sides of contact p applied in total (zero for an exact coupling): the node side
+// over a step of nodeH with the node's body's new velocities, the triangle side over triangleH
+// with its body's (a side whose body did not step has h = 0 and applied nothing). Each side
+// saw the other at the frame's start, so the sum is not zero; the world hands it back, half
+// to each side, as impulses in their next steps, and the momentum is conserved.
+Vec3 pairContactMismatch(const PairContact& p, double nodeH, const Array<double>& nodeV, double triangleH,
+                         const Array<double>& triangleV);
 // After the solve, the body's nodes' friction states for the next step: a sticking spring
 // stretched beyond mu J_n slides, a slide that stopped or reversed sticks again; a node with no
 // contact, or one whose spring pulled, starts afresh.

@@ -16,6 +16,8 @@ double maxNodeSpeed(const Array<double>& v) {
   return s;
 }
 
+constexpr double kOnTriangle = 1e-9;  // barycentric slack
+
 // The point of triangle (a, b, c) under p along its normal: weights and signed height, or false
 // when that point is outside the triangle or the triangle is degenerate.
 bool projectOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, Vec3* weights, Vec3* normal,
@@ -27,10 +29,12 @@ bool projectOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& 
   const double wb = (q.cross(c - a)).dot(n) / area2;
   const double wc = ((b - a).cross(q)).dot(n) / area2;
   const double wa = 1.0 - wb - wc;
-  if (wa < 0.0 || wb < 0.0 || wc < 0.0) return false;
+  // A point on an edge or a corner belongs to every triangle there, whatever the rounding.
+  if (wa < -kOnTriangle || wb < -kOnTriangle || wc < -kOnTriangle) return false;
   *normal = n / std::sqrt(area2);
   *height = q.dot(*normal);
-  *weights = Vec3(wa, wb, wc);
+  const Vec3 w = Vec3(wa, wb, wc).cwiseMax(0.0);
+  *weights = w / w.sum();
   return true;
 }
 
