@@ -129,6 +129,12 @@ class Device(NamedIntEnum):
     Cuda = 2
 
 
+class SelfCollision(NamedIntEnum):
+    Auto = 0  # on for meshes with more than one layer of elements
+    Off = 1
+    On = 2
+
+
 class FluidKind(NamedIntEnum):
     Smoke = 0
     Liquid = 1
@@ -365,6 +371,7 @@ class vpDeformableDef(ctypes.Structure):
         ("priority", c_int32),
         ("filter", vpCollisionFilter),
         ("surfaceMesher", c_int32),  # SurfaceMesher
+        ("selfCollision", c_int32),  # SelfCollision
     ]
 
 
