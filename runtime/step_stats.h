@@ -66,6 +66,7 @@ struct StepStats {
   double maxSliceMs = 0.0;  // the longest single slice of work in this frame
   // Finding the deformables' contacts with each other and themselves (deform/pair_contacts.h).
   double deformableContactMs = 0.0;
+  int deformablePairContacts = 0;  // how many it found
   std::vector<ActorStats> actors;  // [0] is the rigid pseudo-actor
 };
 

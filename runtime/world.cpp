@@ -413,6 +413,7 @@ std::vector<PairContact> World::findDeformablePairContacts(const std::vector<Def
   std::vector<PairContact> pairs;
   findPairContacts(bodies, dt, *tasks_, &pairs);
   stats->deformableContactMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  stats->deformablePairContacts = static_cast<int>(pairs.size());
   return pairs;
 }
 

@@ -45,10 +45,13 @@ bool nearestTriangle(const std::vector<PairContactBody>& bodies, int32_t a, int3
   const PairContactBody& B = bodies[b];
   const Vec3 p = nodeVector(*A.x, node), vp = nodeVector(*A.v, node);
   const double reach = h * (vp.norm() + speedB) + A.rest + B.depth;
+  const Vec3 lo = p - Vec3::Constant(reach), hi = p + Vec3::Constant(reach);
+  const RefitBvh& bvh = B.surface->bvh();
+  if ((lo.array() > bvh.hi().array()).any() || (hi.array() < bvh.lo().array()).any()) return false;  // far off
   const Array<RefitBvh::Triangle>& triangles = B.surface->triangles();
   bool found = false;
   double bestPredicted = 0.0;
-  B.surface->bvh().visitBox(p - Vec3::Constant(reach), p + Vec3::Constant(reach), [&](int32_t t) {
+  bvh.visitBox(lo, hi, [&](int32_t t) {
     const RefitBvh::Triangle& tri = triangles[t];
     if (a == b && (A.surface->neighbours(node, tri[0]) || A.surface->neighbours(node, tri[1]) ||
                    A.surface->neighbours(node, tri[2])))
@@ -89,31 +92,34 @@ void findPairContacts(const std::vector<PairContactBody>& bodies, double h, Task
   out->clear();
   std::vector<double> speed(bodies.size());
   for (size_t b = 0; b < bodies.size(); ++b) speed[b] = maxNodeSpeed(*bodies[b].v);
-  std::vector<PairContact> slots;
-  for (int32_t a = 0; a < static_cast<int32_t>(bodies.size()); ++a) {
-    const PairContactBody& A = bodies[a];
-    const Array<int32_t>& nodes = *A.surfaceNodes;
-    slots.assign(nodes.size(), PairContact());
-    parallelFor(tasks, static_cast<int64_t>(nodes.size()), 256, [&](int64_t begin, int64_t end) {
-      for (int64_t s = begin; s < end; ++s) {
-        PairContact& best = slots[static_cast<size_t>(s)];
-        for (int32_t b = 0; b < static_cast<int32_t>(bodies.size()); ++b) {
-          if (b == a ? !A.selfCollision : !(A.filter.meets(bodies[b].filter))) continue;
-          PairContact candidate;
-          if (!nearestTriangle(bodies, a, nodes[s], b, h, speed[b], &candidate)) continue;
-          if (best.node < 0 || candidate.predictedGap(h) < best.predictedGap(h)) best = candidate;
-        }
+  // One slot per surface node of every body, filled in parallel, then read in body and node
+  // order: the same contacts for any worker count.
+  std::vector<int64_t> first(bodies.size() + 1, 0);
+  for (size_t a = 0; a < bodies.size(); ++a) first[a + 1] = first[a] + static_cast<int64_t>(bodies[a].surfaceNodes->size());
+  std::vector<PairContact> slots(static_cast<size_t>(first.back()));
+  parallelFor(tasks, first.back(), 64, [&](int64_t begin, int64_t end) {
+    int32_t a = static_cast<int32_t>(std::upper_bound(first.begin(), first.end(), begin) - first.begin()) - 1;
+    for (int64_t s = begin; s < end; ++s) {
+      while (s >= first[a + 1]) ++a;
+      const PairContactBody& A = bodies[a];
+      const int32_t node = (*A.surfaceNodes)[s - first[a]];
+      PairContact& best = slots[static_cast<size_t>(s)];
+      for (int32_t b = 0; b < static_cast<int32_t>(bodies.size()); ++b) {
+        if (b == a ? !A.selfCollision : !(A.filter.meets(bodies[b].filter))) continue;
+        PairContact candidate;
+        if (!nearestTriangle(bodies, a, node, b, h, speed[b], &candidate)) continue;
+        if (best.node < 0 || candidate.predictedGap(h) < best.predictedGap(h)) best = candidate;
       }
-    });
-    for (PairContact& c : slots) {
-      if (c.node < 0) continue;
-      const PairFriction& f = (*A.friction)[c.node];
-      if (f.otherBody == c.triangleBody) {
-        c.state = f;
-        c.state.stick -= c.state.stick.dot(c.normal) * c.normal;
-      }
-      out->push_back(c);
     }
+  });
+  for (PairContact& c : slots) {
+    if (c.node < 0) continue;
+    const PairFriction& f = (*bodies[c.nodeBody].friction)[c.node];
+    if (f.otherBody == c.triangleBody) {
+      c.state = f;
+      c.state.stick -= c.state.stick.dot(c.normal) * c.normal;
+    }
+    out->push_back(c);
   }
 }
 

@@ -17,9 +17,9 @@ namespace {
 constexpr double kDt = 1.0 / 60.0;
 constexpr double kJellySize = 0.2;  // m, the cubes' edge
 
-std::unique_ptr<World> makeWorld(const Vec3& gravity) {
+std::unique_ptr<World> makeWorld(const Vec3& gravity, int workers = 2) {
   WorldConfig config;
-  config.workerCount = 2;
+  config.workerCount = workers;
   config.frameBudgetMs = 0.0;  // no budget cuts
   config.gravity = gravity;
   std::unique_ptr<World> world;
@@ -230,6 +230,26 @@ TEST(DeformablePairContact, ABarFoldedOntoItselfDoesNotPassThroughItself) {
               "(the lower arm's top is at %.2f m)\n", yOn, yOff, FoldedBar::kArm);
   EXPECT_GT(yOn, FoldedBar::kArm * 0.9);  // on the lower arm, at most a tenth of it deep
   EXPECT_LT(yOff, FoldedBar::kArm * 0.5);  // without it the arm falls through (the test can fail)
+}
+
+// Each body reads the others as they were at the frame's start: the same bits for any worker
+// count (the bodies step side by side with more than one).
+TEST(DeformablePairContact, TheSameBitsForAnyWorkerCount) {
+  auto run = [](int workers) {
+    auto world = makeWorld(Vec3(0, -9.81, 0), workers);
+    addGround(*world, 1.0);
+    std::vector<DeformableHandle> cubes;
+    for (int i = 0; i < 3; ++i)
+      cubes.push_back(addJelly(*world, Vec3(-0.1 + 0.03 * i, 0.21 * i, -0.1), 1000.0, 0.5, Vec3::Zero()));
+    for (int step = 0; step < 60; ++step) EXPECT_EQ(world->step(kDt), Status::Ok);
+    std::vector<double> x;
+    for (DeformableHandle h : cubes)
+      x.insert(x.end(), world->deformable(h)->positions().begin(), world->deformable(h)->positions().end());
+    return x;
+  };
+  const std::vector<double> one = run(1);
+  EXPECT_EQ(run(2), one);
+  EXPECT_EQ(run(3), one);
 }
 
 TEST(DeformablePairContact, ABadSelfCollisionIsRefusedNamingIt) {
