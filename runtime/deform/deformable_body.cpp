@@ -811,6 +811,8 @@ DeformableState DeformableBody::saveState() const {
   s.renderNormals = renderNormals_;
   s.schedule = schedule_;
   s.immersionTracking = immersion_.tracking();
+  s.pairFriction = pairFriction_;
+  s.pendingImpulse = pendingImpulse_;
   return s;
 }
 
@@ -826,6 +828,8 @@ void DeformableBody::restoreState(DeformableState&& s) {
   ++renderVersion_;
   schedule_ = s.schedule;
   immersion_.restoreTracking(s.immersionTracking);
+  pairFriction_ = std::move(s.pairFriction);
+  pendingImpulse_ = std::move(s.pendingImpulse);
 }
 
 }  // namespace vp
