@@ -64,6 +64,9 @@ struct StepStats {
   // interval cap.
   bool budgetInfeasible = false;
   double maxSliceMs = 0.0;  // the longest single slice of work in this frame
+  // Finding the deformables' contacts with each other and themselves (deform/pair_contacts.h).
+  double deformableContactMs = 0.0;
+  int deformablePairContacts = 0;  // how many it found
   std::vector<ActorStats> actors;  // [0] is the rigid pseudo-actor
 };
 

@@ -1,6 +1,7 @@
 #include "world.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <new>
@@ -10,6 +11,7 @@
 #include "core/log.h"
 #include "core/parallel_for.h"
 #include "core/run_delay.h"
+#include "deform/pair_contact_settlement.h"
 #include "gpu_kernels/device_query.h"
 
 namespace vp {
@@ -403,6 +405,18 @@ Status World::solveDeformableStatic(DeformableHandle handle, int32_t maxIteratio
                                 maxIterations, tolerance, result);
 }
 
+std::vector<PairContact> World::findDeformablePairContacts(const std::vector<DeformableHandle>& handles, double dt,
+                                                          StepStats* stats) {
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<PairContactBody> bodies;
+  for (const DeformableHandle& h : handles) bodies.push_back(deformable(h)->pairContactBody());
+  std::vector<PairContact> pairs;
+  findPairContacts(bodies, dt, *tasks_, &pairs);
+  stats->deformableContactMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  stats->deformablePairContacts = static_cast<int>(pairs.size());
+  return pairs;
+}
+
 bool World::stepDeformables(double dt, const Deadline& frame, StepStats* stats) {
   const std::vector<Filtered<ContactCollider>> contactColliders = deformableContactColliders(colliders_);
   const std::vector<DeformableHandle> handles = deformableHandles();
@@ -435,6 +449,7 @@ bool World::stepDeformables(double dt, const Deadline& frame, StepStats* stats) 
     actors[i] = actorStats(ActorKind::Deformable, handles[i].index1, handles[i].generation, priorities[i], 0.0);
     actors[i].interval = planned[i].schedule->interval;
   }
+  const std::vector<PairContact> pairContacts = findDeformablePairContacts(handles, dt, stats);
   // Side by side, each takes the rest of the frame (and its own floor) for itself.
   const bool concurrent = runsConcurrently(static_cast<int>(served.size()));
   runActors(concurrent, static_cast<int>(served.size()), [&](int n) {
@@ -446,6 +461,8 @@ bool World::stepDeformables(double dt, const Deadline& frame, StepStats* stats) 
                                                   concurrent ? 1 : static_cast<int>(served.size()) - n);
     DeformableStepInput input = deformableStepInput(body, contactColliders);
     input.dt = s.pendingDt;
+    input.pairContacts = &pairContacts;
+    input.pairBody = i;
     if (fluids_.size() > 0) {  // a world without fluids pays nothing for them
       setFluidLoads(handles[i], body);
       body.applyFluidLoads(input.dt, config_.gravity);
@@ -463,6 +480,13 @@ bool World::stepDeformables(double dt, const Deadline& frame, StepStats* stats) 
     a.totalMs = frame.elapsedMs() - start;
     a.simulatedDt = input.dt;
   });
+  std::vector<DeformableBody*> bodies;
+  std::vector<double> steppedDt;
+  for (size_t i = 0; i < handles.size(); ++i) {
+    bodies.push_back(deformable(handles[i]));
+    steppedDt.push_back(actors[i].simulatedDt);
+  }
+  settlePairContacts(pairContacts, bodies, steppedDt);
   std::vector<bool> missed(handles.size(), false);
   for (size_t i = 0; i < handles.size(); ++i) {
     ActorSchedule& s = *planned[i].schedule;

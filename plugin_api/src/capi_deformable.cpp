@@ -14,6 +14,10 @@ static_assert(static_cast<int>(SurfaceMesher::Default) == vpSurfaceMesher_Defaul
                   static_cast<int>(SurfaceMesher::Stuffing) == vpSurfaceMesher_Stuffing &&
                   static_cast<int>(SurfaceMesher::Voxel) == vpSurfaceMesher_Voxel,
               "vp::SurfaceMesher and vpSurfaceMesher must match");
+static_assert(static_cast<int>(SelfCollision::Auto) == vpSelfCollision_Auto &&
+                  static_cast<int>(SelfCollision::Off) == vpSelfCollision_Off &&
+                  static_cast<int>(SelfCollision::On) == vpSelfCollision_On,
+              "vp::SelfCollision and vpSelfCollision must match");
 
 namespace {
 
@@ -95,6 +99,7 @@ vpDeformableDef vpDefaultDeformableDef(void) {
   d.priority = defaults.priority;
   d.filter = toC(defaults.filter);
   d.surfaceMesher = static_cast<int32_t>(DeformableMeshSource{}.surfaceMesher);
+  d.selfCollision = static_cast<int32_t>(defaults.selfCollision);
   return d;
 }
 
@@ -124,6 +129,7 @@ vpStatus vpDeformableCreate(vpWorldId worldId, const vpDeformableDef* def, vpDef
     desc.solver.targetResidual = d.targetResidual;
     desc.priority = d.priority;
     desc.filter = toFilter(d.filter);
+    desc.selfCollision = static_cast<SelfCollision>(d.selfCollision);  // validateDeformableDesc checks the range
     desc.userData = d.userData;
     DeformableHandle h;
     VP_TRY(world->createDeformable(std::move(desc), &h));

@@ -19,6 +19,7 @@
 #include "deform/degree_hierarchy.h"
 #include "deform/degree_level_assembly.h"
 #include "deform/polar_decomposition.h"
+#include "deform/pair_contact_terms.h"
 #include "geometry/tet_mesh_boundary.h"
 #include "deform/linear_tet_corotation.h"
 #include "phase_timer.h"
@@ -154,6 +155,10 @@ Status DeformableBody::create(DeformableDesc desc, std::unique_ptr<DeformableBod
   // The boundary's vertices are the first surface nodes, in the boundary's order.
   const Array<int32_t> boundaryNodes(b.surfaceNodes_.begin(), b.surfaceNodes_.begin() + boundary.vertices.size());
   Status immersed = b.immersion_.build(boundary, boundaryNodes, b.x_);
+  b.contactSurface_.build(boundary, boundaryNodes, b.elementNodes_, N, b.nodeCount_);
+  b.pairFriction_.assign(static_cast<size_t>(b.nodeCount_), PairFriction());
+  b.pendingImpulse_.assign(3 * static_cast<size_t>(b.nodeCount_), 0.0);
+  b.pairContactDepth_ = kPairContactDepthEdges * meanTetEdgeLength(mesh);
   if (!ok(immersed)) return addErrorContext(immersed, "boundary surface");
   Status embedded = embedPoints(mesh, b.renderRest_.vertices, &b.embedding_);
   if (!ok(embedded)) return addErrorContext(embedded, "render mesh");
@@ -163,6 +168,28 @@ Status DeformableBody::create(DeformableDesc desc, std::unique_ptr<DeformableBod
   b.updateRenderMesh(*TaskSystem::create(TaskHooks{}, 1));
   *out = std::move(body);
   return Status::Ok;
+}
+
+bool DeformableBody::selfCollision() const {
+  if (desc_.selfCollision == SelfCollision::Auto) return contactSurface_.hasInteriorNode();
+  return desc_.selfCollision == SelfCollision::On;
+}
+
+PairContactBody DeformableBody::pairContactBody() {
+  contactSurface_.refit(x_);
+  PairContactBody b;
+  b.x = &x_;
+  b.v = &v_;
+  b.mass = &mass_;
+  b.surfaceNodes = &surfaceNodes_;
+  b.surface = &contactSurface_;
+  b.friction = &pairFriction_;
+  b.filter = desc_.filter;
+  b.frictionCoefficient = desc_.material.friction;
+  b.rest = contactMargin_;
+  b.depth = pairContactDepth_;
+  b.selfCollision = selfCollision();
+  return b;
 }
 
 Preconditioner DeformableBody::preconditioner() const {
@@ -262,6 +289,10 @@ Status DeformableBody::applyForce(int32_t node, const Vec3& force) {
     return fail(Status::InvalidArgument, "force = (%g, %g, %g): must be finite", force.x(), force.y(), force.z());
   for (int k = 0; k < 3; ++k) externalForce_[3 * node + k] += force[k];
   return Status::Ok;
+}
+
+void DeformableBody::addContactImpulse(int32_t node, const Vec3& impulse) {
+  for (int k = 0; k < 3; ++k) pendingImpulse_[3 * node + k] += impulse[k];
 }
 
 Status DeformableBody::applyImpulse(int32_t node, const Vec3& impulse) {
@@ -519,7 +550,8 @@ struct NodeWork {
 
 }  // namespace
 
-StepEnergy DeformableBody::solvedStepEnergy(TaskSystem& tasks, double h, const Vec3& gravity) {
+StepEnergy DeformableBody::solvedStepEnergy(TaskSystem& tasks, double h, const Vec3& gravity,
+                                           const std::vector<PairContact>* pairs, int32_t pairBody) {
   if (elasticEnergyAtX_ < 0.0) elasticEnergyAtX_ = elasticEnergy(tasks);
   const NodeWork w = parallelReduce<NodeWork>(tasks, nodeCount_, 1024, [&](int64_t begin, int64_t end) {
     NodeWork sum;
@@ -540,7 +572,7 @@ StepEnergy DeformableBody::solvedStepEnergy(TaskSystem& tasks, double h, const V
         sum.kineticStart += 0.5 * m * v[k] * v[k];
         sum.kineticEnd += 0.5 * m * vn[k] * vn[k];
         sum.gravity += h * m * gravity[k] * vn[k];
-        sum.applied += (h * externalForce_[3 * i + k] + impulse[k]) * vn[k];
+        sum.applied += (h * externalForce_[3 * i + k] + pendingImpulse_[3 * i + k] + impulse[k]) * vn[k];
       }
     }
     return sum;
@@ -556,6 +588,7 @@ StepEnergy DeformableBody::solvedStepEnergy(TaskSystem& tasks, double h, const V
     const double* vn = &vNext_[3 * static_cast<int64_t>(contacts[c].node)];
     e.appliedWork += contacts_.frictionImpulses()[c].dot(Vec3(vn[0], vn[1], vn[2]));
   }
+  if (pairs) e.appliedWork += pairContactWork(*pairs, pairBody, h, vNext_);
   return e;
 }
 
@@ -589,11 +622,16 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
   timer.lap(Phase::Contacts);
   corotateAndAssemble(*in.tasks, in.dt * desc_.material.stiffnessDamping + in.dt * in.dt);
   timer.lap(Phase::Corotate);
+  if (in.pairContacts) addPairContactStiffness(*in.pairContacts, in.pairBody, in.dt, &matrix_);
   assembleStepSystem(in);
+  if (in.pairContacts) addPairContactRhs(*in.pairContacts, in.pairBody, in.dt, &rhs_);
+  for (size_t k = 0; k < rhs_.size(); ++k) rhs_[k] += pendingImpulse_[k];
   timer.lap(Phase::Assemble);
   const bool reachedFloor = solveStepSystem(in, timer, stats);
+  if (in.pairContacts) updatePairFriction(*in.pairContacts, in.pairBody, in.dt, vNext_, &pairFriction_);
   integrateAndGuard(in, reachedFloor, stats);  // its energy passes are timed with the embedding
   std::fill(externalForce_.begin(), externalForce_.end(), 0.0);
+  std::fill(pendingImpulse_.begin(), pendingImpulse_.end(), 0.0);
   updateRenderMesh(*in.tasks);
   timer.lap(Phase::Embed);
 }
@@ -729,7 +767,7 @@ Status DeformableBody::setSolveOnDevice(bool onDevice) {
 }
 
 void DeformableBody::integrateAndGuard(const DeformableStepInput& in, bool solveReachedFloor, ActorStats* stats) {
-  const StepEnergy energy = solvedStepEnergy(*in.tasks, in.dt, in.gravity);
+  const StepEnergy energy = solvedStepEnergy(*in.tasks, in.dt, in.gravity, in.pairContacts, in.pairBody);
   for (size_t i = 0; i < x_.size(); ++i) {
     v_[i] = vNext_[i];
     x_[i] += in.dt * vNext_[i];
@@ -773,6 +811,8 @@ DeformableState DeformableBody::saveState() const {
   s.renderNormals = renderNormals_;
   s.schedule = schedule_;
   s.immersionTracking = immersion_.tracking();
+  s.pairFriction = pairFriction_;
+  s.pendingImpulse = pendingImpulse_;
   return s;
 }
 
@@ -788,6 +828,8 @@ void DeformableBody::restoreState(DeformableState&& s) {
   ++renderVersion_;
   schedule_ = s.schedule;
   immersion_.restoreTracking(s.immersionTracking);
+  pairFriction_ = std::move(s.pairFriction);
+  pendingImpulse_ = std::move(s.pendingImpulse);
 }
 
 }  // namespace vp

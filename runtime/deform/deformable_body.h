@@ -23,9 +23,11 @@
 #include "deform/step_energy.h"
 #include "deform/bb_rotated_stiffness.h"
 #include "deform/contact_active_set.h"
+#include "deform/contact_surface.h"
 #include "deform/deformable_contacts.h"
 #include "deform/device_step_solve.h"
 #include "deform/node_constraints.h"
+#include "deform/pair_contacts.h"
 #include "deform/step_preconditioner.h"
 #include "deform/degree_level_assembly.h"
 #include "deform/element_incidence.h"
@@ -61,6 +63,10 @@ struct DeformableStepInput {
   // When > 0, the solver's iteration cap instead of the desc's (a per-frame cap): the static
   // solve, outside any frame, lets CG run to its tolerance.
   int32_t solverMaxIterations = 0;
+  // Contacts with other deformables and with itself (deform/pair_contacts.h), found at the
+  // frame's start; this body is bodies[pairBody] there.
+  const std::vector<PairContact>* pairContacts = nullptr;
+  int32_t pairBody = -1;
 };
 
 class DeformableBody {
@@ -97,6 +103,8 @@ class DeformableBody {
   void updateRenderMesh(TaskSystem& tasks);
   Status applyForce(int32_t node, const Vec3& force);    // for the next step only
   Status applyImpulse(int32_t node, const Vec3& impulse);  // changes the velocity now
+  // An impulse the next step applies to the node (pair contacts' settlement; not validated).
+  void addContactImpulse(int32_t node, const Vec3& impulse);
   Status setPinned(const int32_t* nodes, int64_t count, bool pinned);
   bool pinned(int32_t node) const { return pinned_[node] != 0; }
   // Nodes follow the collider rigidly from their current offset in its frame.
@@ -107,6 +115,10 @@ class DeformableBody {
   // Per node, 1 where the host holds it (pinned or attached), else 0.
   void heldNodes(Array<uint8_t>* out) const;
   const Array<int32_t>& surfaceNodes() const { return surfaceNodes_; }
+  // What contact detection between deformables reads of this body, its surface refit to the
+  // current positions.
+  PairContactBody pairContactBody();
+  bool selfCollision() const;  // the desc's switch, Auto resolved
   // Contacts active at the end of the last step (after lift-off releases).
   const Array<NodeContact>& contacts() const { return contacts_.contacts(); }
   // What the last step's contacts with dynamic colliders did to them (empty if it diverged).
@@ -166,7 +178,8 @@ class DeformableBody {
   void energyRotation(int64_t element, const double F[9], double R[9]) const;
   // The energies and works of the step just solved (vNext_), all but the elastic energy at
   // its end (deform/step_energy.h).
-  StepEnergy solvedStepEnergy(TaskSystem& tasks, double h, const Vec3& gravity);
+  StepEnergy solvedStepEnergy(TaskSystem& tasks, double h, const Vec3& gravity, const std::vector<PairContact>* pairs,
+                              int32_t pairBody);
   // The guard after integrating: true when the step blew up (not finite, too fast, or an
   // energy gain its work does not explain while its solve reached the accuracy floor).
   bool stepBlewUp(TaskSystem& tasks, StepEnergy energy, bool solveReachedFloor);
@@ -241,6 +254,10 @@ class DeformableBody {
   Array<ContactReaction> reactions_;
   FluidImmersion immersion_;
   double contactMargin_ = 0.0;
+  ContactSurface contactSurface_;        // what other deformables and the body itself touch
+  Array<PairFriction> pairFriction_;     // per node, its pair contact's friction state
+  Array<double> pendingImpulse_;         // 3 per node, for the next step (addContactImpulse)
+  double pairContactDepth_ = 0.0;
   CgWorkspace cg_;
   StepPreconditioner preconditioner_;
   std::unique_ptr<DeviceStepSolve> deviceSolve_;  // set: the solve runs on the CUDA device

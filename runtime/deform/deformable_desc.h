@@ -68,6 +68,11 @@ struct DeformableSolverSettings {
   PMultigridCoarseOperator pMultigridCoarseOperator = PMultigridCoarseOperator::Rediscretized;
 };
 
+// Contact of a deformable with itself (deform/pair_contacts.h). Auto: on for a mesh with more
+// than one layer of elements (a corner node inside it); a single layer is a sheet or a thin
+// shell, whose two sides are closer than a contact's reach.
+enum class SelfCollision : int { Auto = 0, Off = 1, On = 2 };
+
 struct DeformableDesc {
   std::string name;
   int degree = 1;
@@ -78,7 +83,8 @@ struct DeformableDesc {
   DeformableMaterial material;
   DeformableSolverSettings solver;
   int priority = 0;  // higher is served first when the frame budget is short (actor_priority.h)
-  CollisionFilter filter;  // which colliders it contacts
+  CollisionFilter filter;  // which colliders and deformables it contacts
+  SelfCollision selfCollision = SelfCollision::Auto;
   void* userData = nullptr;
 };
 

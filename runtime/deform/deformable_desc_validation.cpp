@@ -50,6 +50,10 @@ Status validateDeformableDesc(DeformableDesc& in) {
     return fail(Status::InvalidArgument, "solverMaxIterations = %d: must be in [1, %d]", in.solver.maxIterations,
                 DeformableSolverSettings::kMaxSolverIterations);
   VP_TRY(validateActorPriority(in.priority));
+  const int self = static_cast<int>(in.selfCollision);
+  if (self < static_cast<int>(SelfCollision::Auto) || self > static_cast<int>(SelfCollision::On))
+    return fail(Status::InvalidArgument, "selfCollision = %d: must be vpSelfCollision_Auto (0), _Off (1) or _On (2)",
+                self);
   VP_TRY(checkPose("pose", &in.pose));
   VP_TRY(checkLinearVelocity("linearVelocity", in.linearVelocity));
   if (in.renderMesh) {

@@ -225,13 +225,21 @@ Status parseSurfaceMesher(const JsonObject& obj, SurfaceMesher* out) {
   return Status::Ok;
 }
 
+// "selfCollision": "auto" | "off" | "on"; absent: auto.
+Status parseSelfCollision(const JsonObject& obj, SelfCollision* out) {
+  int position = -1;
+  VP_TRY(parseEnum(obj, "selfCollision", {"auto", "off", "on"}, &position));
+  if (position >= 0) *out = static_cast<SelfCollision>(position);
+  return Status::Ok;
+}
+
 Status parseDeformable(const JsonObject& obj, const std::string& baseDirectory, SceneDeformable* out) {
   VP_TRY(obj.checkKeys({"name", "degree", "box", "tetFile", "surfaceFile", "voxelResolution", "surfaceMesher",
                         "renderFile", "scale",
                         "ifFileMissing", "position", "rotation", "axisAngle", "linearVelocity", "youngsModulus",
                         "poissonRatio", "density", "massDamping", "stiffnessDamping", "friction", "solverTolerance",
                         "solverMaxIterations", "targetResidual", "priority", "pinBox", "attach",
-                        "collisionFilter", "startAtRest"}));
+                        "collisionFilter", "startAtRest", "selfCollision"}));
   bool replaced = false;
   VP_TRY(applyFileFallback(obj, baseDirectory, out, &replaced));
   if (replaced) return Status::Ok;
@@ -256,6 +264,7 @@ Status parseDeformable(const JsonObject& obj, const std::string& baseDirectory, 
   VP_TRY(obj.string("surfaceFile", &source.surfaceFile));
   VP_TRY(obj.integer("voxelResolution", &source.voxelResolution));
   VP_TRY(parseSurfaceMesher(obj, &source.surfaceMesher));
+  VP_TRY(parseSelfCollision(obj, &desc.selfCollision));
   VP_TRY(obj.string("renderFile", &source.renderFile));
   source.tetFile = resolvePath(source.tetFile, baseDirectory);
   source.surfaceFile = resolvePath(source.surfaceFile, baseDirectory);

@@ -165,6 +165,13 @@ void writeDeformableState(StateWriter& out, const DeformableState& s) {
   writeSchedule(out, s.schedule);
   const FluidImmersion::Tracking& t = s.immersionTracking;
   for (const Vec3* v : {&t.velocity, &t.velocityChange, &t.spin, &t.spinChange}) writeVec(out, *v);
+  for (const PairFriction& f : s.pairFriction) {
+    writeVec(out, f.stick);
+    out.value(f.lastNormalImpulse);
+    out.value(f.otherBody);
+    out.value(f.sliding);
+  }
+  out.array(s.pendingImpulse);
 }
 
 void readDeformableState(StateReader& in, const DeformableBody& body, DeformableState* s) {
@@ -199,6 +206,19 @@ void readDeformableState(StateReader& in, const DeformableBody& body, Deformable
   readSchedule(in, &s->schedule);
   FluidImmersion::Tracking& t = s->immersionTracking;
   for (Vec3* v : {&t.velocity, &t.velocityChange, &t.spin, &t.spinChange}) *v = readVec(in, "a deformable's tracked motion");
+  // One friction state per node, as many as the body has (not counted in the buffer).
+  if (in.ok() && in.has(nodes, 4 * sizeof(double) + sizeof(int32_t) + sizeof(uint8_t))) {
+    s->pairFriction.resize(static_cast<size_t>(nodes));
+    for (PairFriction& f : s->pairFriction) {
+      f.stick = readVec(in, "a deformable's pair contact stretch");
+      f.lastNormalImpulse = in.value<double>();
+      in.requireFinite("a deformable's pair contact impulse", &f.lastNormalImpulse, 1);
+      f.otherBody = in.value<int32_t>();
+      f.sliding = in.value<uint8_t>();
+      if (in.ok() && (f.otherBody < -1 || f.sliding > 1)) in.outOfRange("a deformable's pair contact state");
+    }
+  }
+  readFiniteArray(in, &s->pendingImpulse, 3 * nodes, "deformable's pending impulse count (3 per node)");
 }
 
 void writeFluidState(StateWriter& out, const FluidState& s) {

@@ -19,6 +19,7 @@
 #include "core/slice_sizer.h"
 #include "core/work_progress.h"
 #include "deform/deformable_contacts.h"
+#include "deform/pair_contacts.h"
 #include "fluid/solids/pressure_forces.h"
 #include "frame_plan.h"
 
@@ -58,6 +59,10 @@ struct DeformableState {
   Array<Vec3> renderPositions, renderNormals;
   ActorSchedule schedule;
   FluidImmersion::Tracking immersionTracking;  // for the fluids' loads
+  // Contacts with deformables (deform/pair_contacts.h): per node, its friction state, and the
+  // impulses the next step applies (3 per node).
+  Array<PairFriction> pairFriction;
+  Array<double> pendingImpulse;
 };
 
 struct FluidColliderPose {

@@ -640,7 +640,7 @@ class FramePlanFields(unittest.TestCase):
         self.assertEqual(d.targetResidual, ctypes.c_float(1e-2).value)
         self.assertEqual(d.priority, 0)
         self.assertEqual(volphys._lib.vpDefaultFluidDef().priority, 0)
-        self.assertEqual((T.VP_VERSION_MAJOR, T.VP_VERSION_MINOR), (0, 7))
+        self.assertEqual((T.VP_VERSION_MAJOR, T.VP_VERSION_MINOR), (0, 8))
 
     def test_priorities_and_floor_reach_the_stats(self):
         jelly = self.world.create_deformable(vertices=self.verts, tets=self.tets, target_residual=0.05, priority=5)

@@ -405,3 +405,25 @@ TEST(CApiDeformable, ASurfaceResolutionAboveTheBoundIsRefusedNamingIt) {
   ASSERT_VP_OK(vpWorldGetDeformableCount(w.id, &count));
   EXPECT_EQ(count, 0);
 }
+
+TEST(CApiDeformable, ABadSelfCollisionIsRefusedNamingTheValue) {
+  ScopedWorld w;
+  BoxArrays box;
+  EXPECT_EQ(vpDefaultDeformableDef().selfCollision, vpSelfCollision_Auto);
+  for (int32_t bad : {-1, 3, 1 << 30}) {
+    vpDeformableDef def = box.def();
+    def.selfCollision = bad;
+    vpDeformableId id{};
+    EXPECT_EQ(vpDeformableCreate(w.id, &def, &id), vpStatus_InvalidArgument);
+    EXPECT_TRUE(lastErrorContains("selfCollision = " + std::to_string(bad))) << vpGetLastError();
+  }
+  int32_t count = -1;
+  ASSERT_VP_OK(vpWorldGetDeformableCount(w.id, &count));
+  EXPECT_EQ(count, 0);
+  for (int32_t good : {vpSelfCollision_Auto, vpSelfCollision_Off, vpSelfCollision_On}) {
+    vpDeformableDef def = box.def();
+    def.selfCollision = good;
+    vpDeformableId id{};
+    EXPECT_EQ(vpDeformableCreate(w.id, &def, &id), vpStatus_Ok) << vpGetLastError();
+  }
+}

@@ -381,6 +381,30 @@ TEST(SceneLoader, SurfaceMesherChoosesHowTheSurfaceFileBecomesTets) {
       << lastError();
 }
 
+// "selfCollision": "auto" (the default), "off" or "on"; anything else is refused naming it.
+TEST(SceneLoader, SelfCollisionIsAutoOffOrOn) {
+  const test::TempDir dir;
+  auto load = [&](const std::string& name, const std::string& keys, SelfCollision* self) {
+    auto world = makeWorld();
+    const Status s = loadScene(*world, writeCubeScene(dir, name, R"("box": {"cells": [2, 2, 2], "size": [1, 1, 1]})" + keys));
+    DeformableHandle h;
+    if (ok(s) && world->findDeformable("jelly", &h)) *self = world->deformable(h)->desc().selfCollision;
+    return s;
+  };
+  SelfCollision self = SelfCollision::On;
+  ASSERT_EQ(load("default.json", "", &self), Status::Ok) << lastError();
+  EXPECT_EQ(self, SelfCollision::Auto);
+  ASSERT_EQ(load("off.json", R"(, "selfCollision": "off")", &self), Status::Ok) << lastError();
+  EXPECT_EQ(self, SelfCollision::Off);
+  ASSERT_EQ(load("on.json", R"(, "selfCollision": "on")", &self), Status::Ok) << lastError();
+  EXPECT_EQ(self, SelfCollision::On);
+  EXPECT_EQ(load("bad.json", R"(, "selfCollision": "sometimes")", &self), Status::ParseError);
+  EXPECT_NE(std::string(lastError()).find(
+                R"($.deformables[0].selfCollision = "sometimes": expected one of: auto, off, on)"),
+            std::string::npos)
+      << lastError();
+}
+
 TEST(SceneLoader, IfFileMissingStandsInOnlyWhenTheFileIsAbsent) {
   const test::TempDir dir;
   const char* fallback = R"("ifFileMissing": {"box": {"cells": [2, 1, 1], "size": [3, 1, 1]}}, "density": 500)";

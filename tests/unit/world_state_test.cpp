@@ -112,6 +112,12 @@ TEST(WorldState, DeformablesContinueBitwise) {
   checkRoundTrip(VP_TEST_DATA_DIR "/scenes/jelly_bridge.json", 0.0, 30, 30);
 }
 
+// Two jellies touching (deform/pair_contacts.h), the top one sliding: the contacts' friction
+// states and the impulses their settlement left for the next steps are in the state.
+TEST(WorldState, TouchingDeformablesContinueBitwise) {
+  checkRoundTrip(VP_TEST_DATA_DIR "/scenes/jelly_stack.json", 0.0, 30, 30);
+}
+
 TEST(WorldState, FluidsContinueBitwise) { checkRoundTrip(VP_TEST_DATA_DIR "/scenes/fluid_pair.json", 0.0, 20, 20); }
 
 // Under a budget (tick clock: deterministic) fluid steps span frames; the save lands on one

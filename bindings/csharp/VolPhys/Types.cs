@@ -27,6 +27,8 @@ namespace VolPhys
     public enum ShapeType : int { Sphere = 0, Box = 1, Capsule = 2, Cylinder = 3, Plane = 4, ConvexHull = 5, TriangleMesh = 6 }
 
     public enum SurfaceMesher : int { Default = 0, Stuffing = 1, Voxel = 2 }
+    /// <summary>Contact of a deformable with itself; Auto: on for meshes with more than one layer of elements.</summary>
+    public enum SelfCollision : int { Auto = 0, Off = 1, On = 2 }
     public enum Device : int { Auto = 0, Cpu = 1, Cuda = 2 }
     public enum FluidKind : int { Smoke = 0, Liquid = 1 }
     public enum Advection : int { SemiLagrangian = 0, MacCormack = 1 }
@@ -39,7 +41,7 @@ namespace VolPhys
 
     public static class Constants
     {
-        public const int VersionMajor = 0, VersionMinor = 7, VersionPatch = 0;
+        public const int VersionMajor = 0, VersionMinor = 8, VersionPatch = 0;
         public const uint HeaderVersion = (VersionMajor << 16) | (VersionMinor << 8) | VersionPatch;
         public const int MaxPhases = 16;
     }
@@ -366,6 +368,8 @@ namespace VolPhys
         public vpCollisionFilter filter;
         /// <summary>How surfaceFile becomes tets (isosurface stuffing by default, or voxels).</summary>
         public SurfaceMesher surfaceMesher;
+        /// <summary>Contact with itself (Auto: on for meshes with more than one layer of elements).</summary>
+        public SelfCollision selfCollision;
     }
 
     /// <summary>A region in world coordinates: a box (centre, halfExtents) or a sphere (centre, radius).</summary>

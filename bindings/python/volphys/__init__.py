@@ -11,7 +11,7 @@ from . import _types as _T
 from ._api import call as _call, lib as _lib
 from ._arrays import HAVE_NUMPY
 from ._types import (ActorKind, Advection, BodyType, ContactEventType, Device, DomainSide, FluidField, FluidKind, HitKind,
-                     LogLevel, Phase, QueryKind, ShapeType, Status, SurfaceMesher)
+                     LogLevel, Phase, QueryKind, SelfCollision, ShapeType, Status, SurfaceMesher)
 from .queries import Hit
 from .box_mesh import box_tet_mesh
 from .collider import BodyProperties, Collider, Transform

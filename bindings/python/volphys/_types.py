@@ -8,7 +8,7 @@ import enum
 from ctypes import c_float, c_int32, c_uint16, c_uint32, c_uint64, c_void_p, c_char_p, c_double, c_size_t, POINTER
 
 VP_VERSION_MAJOR = 0
-VP_VERSION_MINOR = 7
+VP_VERSION_MINOR = 8
 VP_VERSION_PATCH = 0
 VP_HEADER_VERSION = (VP_VERSION_MAJOR << 16) | (VP_VERSION_MINOR << 8) | VP_VERSION_PATCH
 VP_MAX_PHASES = 16
@@ -127,6 +127,12 @@ class Device(NamedIntEnum):
     Auto = 0
     Cpu = 1
     Cuda = 2
+
+
+class SelfCollision(NamedIntEnum):
+    Auto = 0  # on for meshes with more than one layer of elements
+    Off = 1
+    On = 2
 
 
 class FluidKind(NamedIntEnum):
@@ -365,6 +371,7 @@ class vpDeformableDef(ctypes.Structure):
         ("priority", c_int32),
         ("filter", vpCollisionFilter),
         ("surfaceMesher", c_int32),  # SurfaceMesher
+        ("selfCollision", c_int32),  # SelfCollision
     ]
 
 

@@ -303,10 +303,12 @@ class World:
 
     def create_deformable(self, vertices=None, tets=None, tet_file=None, surface_file=None,
                           render_vertices=None, render_triangles=None, position=None, rotation=None,
-                          linear_velocity=None, surface_mesher=None, **scalars):
+                          linear_velocity=None, surface_mesher=None, self_collision=None, **scalars):
         """Exactly one mesh source: vertices (n,3) + tets (m,4), tet_file, or surface_file.
         surface_mesher: SurfaceMesher or 'stuffing' (the default) / 'voxel', how surface_file
         becomes tets; voxel_resolution: cells along its longest axis, for either mesher.
+        self_collision: SelfCollision or 'auto' (the default: on for meshes with more than one
+        layer of elements) / 'off' / 'on', contact of the deformable with itself.
         Further keywords: degree, voxel_resolution, youngs_modulus, poisson_ratio, density,
         mass_damping, stiffness_damping, friction, solver_tolerance, solver_max_iterations,
         target_residual (the accuracy floor of the implicit solve, in [solver_tolerance, 1]),
@@ -339,6 +341,8 @@ class World:
             d.linearVelocity = _arrays.vec3(linear_velocity)
         if surface_mesher is not None:
             d.surfaceMesher = _enum_value(T.SurfaceMesher, surface_mesher, "surface_mesher")
+        if self_collision is not None:
+            d.selfCollision = _enum_value(T.SelfCollision, self_collision, "self_collision")
         _set_scalars(d, _DEFORMABLE_SCALARS, scalars)
         did = T.vpDeformableId()
         call("vpDeformableCreate", self._id, ctypes.byref(d), ctypes.byref(did))

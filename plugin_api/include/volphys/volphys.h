@@ -78,7 +78,7 @@ extern "C" {
 /* ---------------------------------------------------------------- version */
 
 #define VP_VERSION_MAJOR 0
-#define VP_VERSION_MINOR 7
+#define VP_VERSION_MINOR 8
 #define VP_VERSION_PATCH 0
 /* Major changes break the ABI; minor ones only add. */
 #define VP_HEADER_VERSION ((VP_VERSION_MAJOR << 16) | (VP_VERSION_MINOR << 8) | VP_VERSION_PATCH)
@@ -538,6 +538,16 @@ typedef enum vpSurfaceMesher {
  * frame; `pose` places them. The render mesh is renderVertices/renderTriangles if given, the
  * surface file's own mesh for surfaceFile, else the boundary of the tet mesh; it is embedded
  * in the tets and follows them. */
+/* Contact of a deformable with itself: its surface nodes against its own boundary triangles,
+ * away from each node's own elements. Auto: on for a mesh with more than one layer of elements
+ * (a corner node inside it), off for a single layer (a sheet, whose two sides are closer than
+ * the contacts' reach). Contacts with other deformables follow `filter` either way. */
+typedef enum vpSelfCollision {
+  vpSelfCollision_Auto = 0,
+  vpSelfCollision_Off = 1,
+  vpSelfCollision_On = 2
+} vpSelfCollision;
+
 typedef struct vpDeformableDef {
   uint32_t structSize;
   int32_t degree;               /* element degree: 1 linear, 2 quadratic, 3 cubic (Bernstein–Bézier) */
@@ -572,8 +582,9 @@ typedef struct vpDeformableDef {
                                    [solverTolerance, 1]; default 1e-2 */
   int32_t priority;             /* -1000000..1000000: higher is served first when the frame budget
                                    is short (deformables and fluids share the scale); default 0 */
-  vpCollisionFilter filter;     /* the colliders it contacts */
+  vpCollisionFilter filter;     /* the colliders and the other deformables it contacts */
   int32_t surfaceMesher;        /* for surfaceFile: a vpSurfaceMesher; default vpSurfaceMesher_Default */
+  int32_t selfCollision;        /* a vpSelfCollision; default vpSelfCollision_Auto */
 } vpDeformableDef;
 
 VP_API vpDeformableDef vpDefaultDeformableDef(void);

@@ -195,6 +195,31 @@ static class VolPhysTests
         }
     }
 
+    public static void TestSelfCollisionDefaultsToAutoAndABadValueIsNamed()
+    {
+        using (var world = new World())
+        {
+            float[] vertices;
+            int[] tets;
+            BoxMesh(out vertices, out tets);
+            vpDeformableDef def = Deformable.DefaultDef();
+            Check(def.selfCollision == SelfCollision.Auto, "default selfCollision " + def.selfCollision);
+            def.selfCollision = SelfCollision.Off;
+            world.CreateDeformable(def, vertices, tets);
+            def.selfCollision = (SelfCollision)7;
+            try
+            {
+                world.CreateDeformable(def, vertices, tets);
+                Check(false, "selfCollision = 7 was accepted");
+            }
+            catch (VolPhysException e)
+            {
+                Check(e.Status == Status.InvalidArgument, "status " + e.Status);
+                Check(e.Message.Contains("selfCollision = 7"), "message names field and value: " + e.Message);
+            }
+        }
+    }
+
     public static void TestLiquidTankHasAVolumeAndASurface()
     {
         vpWorldDef worldDef = World.DefaultDef();

@@ -1,0 +1,57 @@
+#include "deform/contact_surface.h"
+
+#include <algorithm>
+
+namespace vp {
+
+void ContactSurface::build(const SurfaceMesh& boundary, const Array<int32_t>& vertexNode,
+                           const Array<int32_t>& elementNodes, int nodesPerElement, int32_t nodeCount) {
+  vertexNode_ = vertexNode;
+  triangles_.assign(boundary.triangles.begin(), boundary.triangles.end());
+  triangleNodes_.resize(triangles_.size());
+  for (size_t t = 0; t < triangles_.size(); ++t)
+    for (int k = 0; k < 3; ++k) triangleNodes_[t][k] = vertexNode_[triangles_[t][k]];
+  // Each node's corner neighbours through the elements (control points of higher degrees
+  // included, as their element's corners' neighbours), sorted per node (a CSR list).
+  const size_t elements = elementNodes.size() / static_cast<size_t>(nodesPerElement);
+  std::vector<std::vector<int32_t>> lists(static_cast<size_t>(nodeCount));
+  for (size_t e = 0; e < elements; ++e)
+    for (int a = 0; a < nodesPerElement; ++a)
+      for (int b = 0; b < 4; ++b) lists[elementNodes[nodesPerElement * e + a]].push_back(elementNodes[nodesPerElement * e + b]);
+  neighbourStart_.assign(static_cast<size_t>(nodeCount) + 1, 0);
+  neighbourList_.clear();
+  for (int32_t i = 0; i < nodeCount; ++i) {
+    std::vector<int32_t>& l = lists[static_cast<size_t>(i)];
+    std::sort(l.begin(), l.end());
+    l.erase(std::unique(l.begin(), l.end()), l.end());
+    neighbourList_.insert(neighbourList_.end(), l.begin(), l.end());
+    neighbourStart_[i + 1] = static_cast<int32_t>(neighbourList_.size());
+  }
+  Array<uint8_t> onBoundary(static_cast<size_t>(nodeCount), 0);
+  for (int32_t n : vertexNode_) onBoundary[n] = 1;
+  hasInteriorNode_ = false;
+  for (size_t e = 0; e < elements && !hasInteriorNode_; ++e)
+    for (int a = 0; a < 4; ++a) hasInteriorNode_ = hasInteriorNode_ || !onBoundary[elementNodes[nodesPerElement * e + a]];
+  positions_.clear();
+  bvh_ = RefitBvh();
+}
+
+void ContactSurface::refit(const Array<double>& x) {
+  positions_.resize(vertexNode_.size());
+  for (size_t v = 0; v < vertexNode_.size(); ++v) {
+    const int64_t n = vertexNode_[v];
+    positions_[v] = Vec3(x[3 * n], x[3 * n + 1], x[3 * n + 2]);
+  }
+  if (bvh_.empty()) bvh_.rebuild(positions_, triangles_);
+  else bvh_.refit(positions_, triangles_);
+}
+
+bool ContactSurface::neighbours(int32_t a, int32_t b) const {
+  if (a == b) return true;
+  if (a < 0 || static_cast<size_t>(a) + 1 >= neighbourStart_.size()) return false;
+  const int32_t* begin = neighbourList_.data() + neighbourStart_[a];
+  const int32_t* end = neighbourList_.data() + neighbourStart_[a + 1];
+  return std::binary_search(begin, end, b);
+}
+
+}  // namespace vp

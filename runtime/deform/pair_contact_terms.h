@@ -1,0 +1,40 @@
+// What the pair contacts (deform/pair_contacts.h) put into one body's implicit step. At each
+// node of the body on a contact, the contact's impulse over the step is P = c − D v', with v'
+// the node's new velocity: D (symmetric, positive semi-definite) goes on the node's diagonal
+// block, c on the right-hand side. The node side takes the spring with the triangle's point
+// at its frame-start velocity; each triangle node i takes −w_i times the spring with the node
+// at its frame-start velocity and the other triangle nodes at theirs. A sticking contact's
+// springs act in every direction; a sliding one's only along the normal, with kinetic friction
+// mu J_n (the last normal impulse) against the slip.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/allocator.h"
+#include "deform/pair_contacts.h"
+#include "linalg/block_sparse_matrix.h"
+
+namespace vp {
+
+// The contacts' D on the diagonal blocks of body `body`'s matrix (after its assembly).
+void addPairContactStiffness(const std::vector<PairContact>& pairs, int32_t body, double h,
+                             BlockSparseMatrix<double>* matrix);
+// Their c on its right-hand side (3 per node).
+void addPairContactRhs(const std::vector<PairContact>& pairs, int32_t body, double h, Array<double>* rhs);
+// The work Σ P·v' the contacts did on the body's nodes over the step (the energy guard's).
+double pairContactWork(const std::vector<PairContact>& pairs, int32_t body, double h, const Array<double>& vNext);
+// What the two sides of contact p applied in total (zero for an exact coupling): the node side
+// over a step of nodeH with the node's body's new velocities, the triangle side over triangleH
+// with its body's (a side whose body did not step has h = 0 and applied nothing). Each side
+// saw the other at the frame's start, so the sum is not zero; the world hands it back, half
+// to each side, as impulses in their next steps, and the momentum is conserved.
+Vec3 pairContactMismatch(const PairContact& p, double nodeH, const Array<double>& nodeV, double triangleH,
+                         const Array<double>& triangleV);
+// After the solve, the body's nodes' friction states for the next step: a sticking spring
+// stretched beyond mu J_n slides, a slide that stopped or reversed sticks again; a node with no
+// contact, or one whose spring pulled, starts afresh.
+void updatePairFriction(const std::vector<PairContact>& pairs, int32_t body, double h, const Array<double>& vNext,
+                        Array<PairFriction>* friction);
+
+}  // namespace vp

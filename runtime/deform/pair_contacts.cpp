@@ -1,0 +1,126 @@
+#include "deform/pair_contacts.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/parallel_for.h"
+
+namespace vp {
+namespace {
+
+Vec3 nodeVector(const Array<double>& a, int32_t i) { return Vec3(a[3 * i], a[3 * i + 1], a[3 * i + 2]); }
+
+double maxNodeSpeed(const Array<double>& v) {
+  double s = 0.0;
+  for (size_t i = 0; i + 2 < v.size(); i += 3) s = std::max(s, Vec3(v[i], v[i + 1], v[i + 2]).norm());
+  return s;
+}
+
+constexpr double kOnTriangle = 1e-9;  // barycentric slack
+
+// The point of triangle (a, b, c) under p along its normal: weights and signed height, or false
+// when that point is outside the triangle or the triangle is degenerate.
+bool projectOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, Vec3* weights, Vec3* normal,
+                       double* height) {
+  const Vec3 n = (b - a).cross(c - a);
+  const double area2 = n.squaredNorm();
+  if (!(area2 > 0.0)) return false;
+  const Vec3 q = p - a;
+  const double wb = (q.cross(c - a)).dot(n) / area2;
+  const double wc = ((b - a).cross(q)).dot(n) / area2;
+  const double wa = 1.0 - wb - wc;
+  // A point on an edge or a corner belongs to every triangle there, whatever the rounding.
+  if (wa < -kOnTriangle || wb < -kOnTriangle || wc < -kOnTriangle) return false;
+  *normal = n / std::sqrt(area2);
+  *height = q.dot(*normal);
+  const Vec3 w = Vec3(wa, wb, wc).cwiseMax(0.0);
+  *weights = w / w.sum();
+  return true;
+}
+
+// The best contact of node `node` of body `a` against the triangles of body `b`, or false.
+bool nearestTriangle(const std::vector<PairContactBody>& bodies, int32_t a, int32_t node, int32_t b, double h,
+                     double speedB, PairContact* best) {
+  const PairContactBody& A = bodies[a];
+  const PairContactBody& B = bodies[b];
+  const Vec3 p = nodeVector(*A.x, node), vp = nodeVector(*A.v, node);
+  const double reach = h * (vp.norm() + speedB) + A.rest + B.depth;
+  const Vec3 lo = p - Vec3::Constant(reach), hi = p + Vec3::Constant(reach);
+  const RefitBvh& bvh = B.surface->bvh();
+  if ((lo.array() > bvh.hi().array()).any() || (hi.array() < bvh.lo().array()).any()) return false;  // far off
+  const Array<RefitBvh::Triangle>& triangles = B.surface->triangles();
+  bool found = false;
+  double bestPredicted = 0.0;
+  bvh.visitBox(lo, hi, [&](int32_t t) {
+    const RefitBvh::Triangle& tri = triangles[t];
+    if (a == b && (A.surface->neighbours(node, tri[0]) || A.surface->neighbours(node, tri[1]) ||
+                   A.surface->neighbours(node, tri[2])))
+      return;
+    Vec3 w, n;
+    double height;
+    if (!projectOnTriangle(p, nodeVector(*B.x, tri[0]), nodeVector(*B.x, tri[1]), nodeVector(*B.x, tri[2]), &w, &n,
+                           &height) || height < -B.depth)
+      return;
+    std::array<Vec3, 3> vt{{nodeVector(*B.v, tri[0]), nodeVector(*B.v, tri[1]), nodeVector(*B.v, tri[2])}};
+    const Vec3 vc = w[0] * vt[0] + w[1] * vt[1] + w[2] * vt[2];
+    const double predicted = height + h * (vp - vc).dot(n);
+    if (predicted >= A.rest || (found && predicted >= bestPredicted)) return;
+    bestPredicted = predicted;
+    const double mt = w[0] * (*B.mass)[tri[0]] + w[1] * (*B.mass)[tri[1]] + w[2] * (*B.mass)[tri[2]];
+    const double mn = (*A.mass)[node];
+    best->nodeBody = a;
+    best->node = node;
+    best->triangleBody = b;
+    best->triangleNodes = tri;
+    best->weights = w;
+    best->normal = n;
+    best->gap = height;
+    best->rest = A.rest;
+    best->reducedMass = mn * mt / (mn + mt);
+    best->friction = A.frictionCoefficient * B.frictionCoefficient;
+    best->nodeVelocity = vp;
+    best->triangleVelocities = vt;
+    found = true;
+  });
+  return found;
+}
+
+}  // namespace
+
+void findPairContacts(const std::vector<PairContactBody>& bodies, double h, TaskSystem& tasks,
+                      std::vector<PairContact>* out) {
+  out->clear();
+  std::vector<double> speed(bodies.size());
+  for (size_t b = 0; b < bodies.size(); ++b) speed[b] = maxNodeSpeed(*bodies[b].v);
+  // One slot per surface node of every body, filled in parallel, then read in body and node
+  // order: the same contacts for any worker count.
+  std::vector<int64_t> first(bodies.size() + 1, 0);
+  for (size_t a = 0; a < bodies.size(); ++a) first[a + 1] = first[a] + static_cast<int64_t>(bodies[a].surfaceNodes->size());
+  std::vector<PairContact> slots(static_cast<size_t>(first.back()));
+  parallelFor(tasks, first.back(), 64, [&](int64_t begin, int64_t end) {
+    int32_t a = static_cast<int32_t>(std::upper_bound(first.begin(), first.end(), begin) - first.begin()) - 1;
+    for (int64_t s = begin; s < end; ++s) {
+      while (s >= first[a + 1]) ++a;
+      const PairContactBody& A = bodies[a];
+      const int32_t node = (*A.surfaceNodes)[s - first[a]];
+      PairContact& best = slots[static_cast<size_t>(s)];
+      for (int32_t b = 0; b < static_cast<int32_t>(bodies.size()); ++b) {
+        if (b == a ? !A.selfCollision : !(A.filter.meets(bodies[b].filter))) continue;
+        PairContact candidate;
+        if (!nearestTriangle(bodies, a, node, b, h, speed[b], &candidate)) continue;
+        if (best.node < 0 || candidate.predictedGap(h) < best.predictedGap(h)) best = candidate;
+      }
+    }
+  });
+  for (PairContact& c : slots) {
+    if (c.node < 0) continue;
+    const PairFriction& f = (*bodies[c.nodeBody].friction)[c.node];
+    if (f.otherBody == c.triangleBody) {
+      c.state = f;
+      c.state.stick -= c.state.stick.dot(c.normal) * c.normal;
+    }
+    out->push_back(c);
+  }
+}
+
+}  // namespace vp

@@ -1,0 +1,90 @@
+// Contacts between deformables, and of a deformable with itself: a surface node of one body
+// against a boundary triangle of another (or of its own, away from the node's neighbourhood).
+//
+// Deformables step side by side, each from the state every body had when the frame began, so
+// no step can see the other body's new velocities. A hard constraint to the other body's old
+// velocity, with its reaction sent one step late, is a delayed feedback loop: a stack of two
+// jellies chattered (0.4 m/s after 3 s). Each contact is instead a stiff spring along the
+// triangle's normal, with a tangential spring that sticks (its anchor carried from step to step)
+// until its force leaves Coulomb's cone, then slides with kinetic friction mu times its last
+// normal impulse, as collider contacts do. Each body treats its own side of the spring
+// implicitly (the spring's stiffness on its diagonal) and the other side at the state of the
+// frame's start (docs/choices.md: why the loop's gain stays below one).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/allocator.h"
+#include "core/collision_filter.h"
+#include "core/math_types.h"
+#include "core/task_system.h"
+#include "deform/contact_surface.h"
+
+namespace vp {
+
+// The spring's stiffness over h² as a multiple of the pair's reduced mass: the loop gain of
+// one side is k h² / (m + k h²), so the two-body loop's gain is below (kStiffness / (1 +
+// kStiffness))² and the penetration at rest is g h² / kStiffness over the share of the
+// body's weight the contact nodes carry.
+constexpr double kPairContactStiffness = 8.0;
+// How deep below a triangle a node still counts as touching it, in mean element edges: deeper
+// points are on another part of the surface (a convex edge's other face).
+constexpr double kPairContactDepthEdges = 0.5;
+
+// Below this slip speed (m/s) a sliding contact sticks again (ContactActiveSet::kSlipSpeed's rule).
+constexpr double kPairSlipSpeed = 1e-4;
+
+// A node's tangential spring, carried from its last step (kept by the node's body).
+struct PairFriction {
+  Vec3 stick = Vec3::Zero();       // the spring's stretch, in the last contact's tangent plane
+  double lastNormalImpulse = 0.0;  // N s
+  int32_t otherBody = -1;          // the body whose triangle it touched; -1: none
+  uint8_t sliding = 0;
+};
+
+struct PairContact {
+  int32_t nodeBody = -1, node = -1;  // the node side
+  int32_t triangleBody = -1;         // the triangle side (the node's own body: self contact)
+  std::array<int32_t, 3> triangleNodes{{-1, -1, -1}};
+  Vec3 weights = Vec3::Zero();       // the contact point's barycentric weights
+  Vec3 normal = Vec3::UnitY();       // out of the triangle
+  double gap = 0.0;                  // (node − contact point)·normal at the frame's start
+  double rest = 0.0;                 // the spring's rest gap
+  double reducedMass = 0.0;          // of the node and the triangle's point
+  double friction = 0.0;             // combined coefficient (product of the bodies')
+  Vec3 nodeVelocity = Vec3::Zero();
+  std::array<Vec3, 3> triangleVelocities{};
+  PairFriction state;                // the node's friction state, stick projected on the tangent plane
+
+  // The contact point's velocity at the frame's start.
+  Vec3 triangleVelocity() const {
+    return weights[0] * triangleVelocities[0] + weights[1] * triangleVelocities[1] + weights[2] * triangleVelocities[2];
+  }
+  // The gap at the end of a step of h at the frame's start velocities.
+  double predictedGap(double h) const { return gap + h * (nodeVelocity - triangleVelocity()).dot(normal); }
+};
+
+// What detection reads of one body, at the frame's start.
+struct PairContactBody {
+  const Array<double>* x = nullptr;      // 3 per node
+  const Array<double>* v = nullptr;
+  const Array<double>* mass = nullptr;   // per node
+  const Array<int32_t>* surfaceNodes = nullptr;
+  const ContactSurface* surface = nullptr;  // refit to x
+  const Array<PairFriction>* friction = nullptr;  // per node
+  CollisionFilter filter;
+  double frictionCoefficient = 0.5;  // the body's Coulomb coefficient
+  double rest = 0.0;       // its contact margin: the spring's rest gap for its nodes
+  double depth = 0.0;      // kPairContactDepthEdges mean edges
+  bool selfCollision = false;
+};
+
+// Every surface node's nearest touching triangle (the lowest predicted gap over the step h)
+// among the bodies its filter meets and, with selfCollision, its own; in body, node order
+// (the same for any worker count).
+void findPairContacts(const std::vector<PairContactBody>& bodies, double h, TaskSystem& tasks,
+                      std::vector<PairContact>* out);
+
+}  // namespace vp
