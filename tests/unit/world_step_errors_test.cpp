@@ -4,6 +4,8 @@
 // the solvers do not fail on valid input.
 #include <gtest/gtest.h>
 
+#include <ostream>
+
 #include <string>
 
 #include "world.h"
@@ -16,6 +18,13 @@ struct Case {
   double viscosity;
   Phase phase;
 };
+
+// Names the case by value (gtest prints an unnamed struct's bytes, padding included, which
+// differ from run to run).
+void PrintTo(const Case& c, std::ostream* out) {
+  *out << (c.kind == FluidKind::Smoke ? "smoke" : "liquid") << "_phase" << static_cast<int>(c.phase)
+       << (c.viscosity > 0.0 ? "_viscous" : "");
+}
 
 class StepErrors : public testing::TestWithParam<Case> {};
 
