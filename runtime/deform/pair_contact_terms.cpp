@@ -27,7 +27,7 @@ struct Term {
 // visit(term) for each node of `body` on contact p, over a step of h. The triangle's corners
 // each take their weight's share with the other corners at their frame-start velocities: the
 // corners' coupling w_i w_j k is left out of the matrix (with it, in the matrix, the stack of
-// two jellies did not come to rest: 0.026 m/s against 0.0006).
+// two jellies did not come to rest; docs/choices.md).
 template <class Visit>
 void visitTerms(const PairContact& p, int32_t body, double h, const Visit& visit) {
   const double K2 = kPairContactStiffness * p.reducedMass;  // h² k
