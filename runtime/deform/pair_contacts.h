@@ -4,8 +4,8 @@
 // Deformables step side by side, each from the state every body had when the frame began, so
 // no step can see the other body's new velocities. A hard constraint to the other body's old
 // velocity, with its reaction sent one step late, is a delayed feedback loop: a stack of two
-// jellies chattered (docs/choices.md has the figures). Each contact is instead a stiff spring along the
-// triangle's normal, with a tangential spring that sticks (its anchor carried from step to step)
+// jellies chattered. Each contact is instead a stiff spring along the triangle's normal, with
+// a tangential spring that sticks (its anchor carried from step to step)
 // until its force leaves Coulomb's cone, then slides with kinetic friction mu times its last
 // normal impulse, as collider contacts do. Each body treats its own side of the spring
 // implicitly (the spring's stiffness on its diagonal) and the other side at the state of the
