@@ -14,6 +14,7 @@
 #include <ctime>
 
 #include "geometry/box_tet_mesh.h"
+#include "ground_world.h"
 #include "world.h"
 
 namespace vp::bench {
@@ -21,15 +22,8 @@ namespace {
 
 void runContact(benchmark::State& state, PMultigridCoarseOperator coarseOperator) {
   for (auto _ : state) {
-    WorldConfig config;
-    config.workerCount = 2;
-    config.frameBudgetMs = 0.0;
-    std::unique_ptr<World> world;
-    if (!ok(World::create(config, &world))) return state.SkipWithError("world");
-    ColliderDesc ground;
-    ground.shape.type = ShapeType::Plane;
-    ColliderHandle groundHandle;
-    if (!ok(world->createCollider(ground, &groundHandle))) return state.SkipWithError("ground");
+    std::unique_ptr<World> world = worldOnGround();
+    if (world == nullptr) return state.SkipWithError("world on the ground");
     DeformableDesc d;
     d.degree = 3;
     d.mesh = makeBoxTetMesh({5, 5, 5}, Vec3::Constant(0.8), Vec3::Constant(-0.4));

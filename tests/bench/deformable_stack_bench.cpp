@@ -13,6 +13,7 @@
 #include <chrono>
 
 #include "geometry/box_tet_mesh.h"
+#include "ground_world.h"
 #include "world.h"
 
 namespace vp::bench {
@@ -23,15 +24,8 @@ constexpr double kSize = 0.2, kGap = 0.01;
 void BM_DeformableStack(benchmark::State& state) {
   const int count = static_cast<int>(state.range(0));
   for (auto _ : state) {
-    WorldConfig config;
-    config.workerCount = 2;
-    config.frameBudgetMs = 0.0;
-    std::unique_ptr<World> world;
-    if (!ok(World::create(config, &world))) return state.SkipWithError("world");
-    ColliderDesc ground;
-    ground.shape.type = ShapeType::Plane;
-    ColliderHandle groundHandle;
-    if (!ok(world->createCollider(ground, &groundHandle))) return state.SkipWithError("ground");
+    std::unique_ptr<World> world = worldOnGround();
+    if (world == nullptr) return state.SkipWithError("world on the ground");
     std::vector<DeformableHandle> cubes(static_cast<size_t>(count));
     for (int i = 0; i < count; ++i) {
       DeformableDesc d;
