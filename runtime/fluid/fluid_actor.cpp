@@ -232,9 +232,11 @@ bool FluidActor::advectScalarsSlab() {
       // The level set is extended into solids on purpose (level_set_solid_extension.h) and
       // sampled as it is. Cells farther from the surface than the sub-step moves it, plus the
       // forward and backward traces' stencils, keep their sign, and redistancing rewrites them.
+      // Beyond the open sides is air.
       Array<double>* scalars[1] = {&phi_};
       st.scalarAdvection.prepare(tasks, grid_, st.h, scheme, scalars, 1, advection_, nullptr, nullptr,
-                                 st.speed * st.h + 3.0 * grid_.spec.h);
+                                 st.speed * st.h + 3.0 * grid_.spec.h, /*conservedField=*/-1,
+                                 /*levelSetField=*/0);
     }
     st.advecting = true;
   }

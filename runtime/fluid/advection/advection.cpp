@@ -152,6 +152,23 @@ double openSideOutflow(const MacGrid& grid, const double* values, double dt) {
   return out;
 }
 
+// How far (metres) a point of the cell-centred lattice lies beyond the domain's Open sides,
+// counting only the axes whose Open side it passed; -infinity inside the domain or beyond Wall
+// sides only. The domain spans lattice coordinates [-1/2, n - 1/2] per axis.
+double distanceBeyondOpenSides(const MacGrid& grid, const Eigen::Vector3d& lattice) {
+  const int n[3] = {grid.spec.nx, grid.spec.ny, grid.spec.nz};
+  double squared = 0.0;
+  bool beyond = false;
+  for (int a = 0; a < 3; ++a) {
+    const double below = -0.5 - lattice[a], above = lattice[a] - (n[a] - 0.5);
+    const double out = below > 0.0 && grid.side(a, false) == DomainSide::Open  ? below
+                       : above > 0.0 && grid.side(a, true) == DomainSide::Open ? above
+                                                                                : 0.0;
+    if (out > 0.0) squared += out * out, beyond = true;
+  }
+  return beyond ? std::sqrt(squared) * grid.spec.h : -std::numeric_limits<double>::infinity();
+}
+
 }  // namespace
 
 void VelocityAdvectionSlices::prepare(TaskSystem& tasks, MacGrid& grid, double dt, AdvectionScheme scheme,
@@ -305,7 +322,7 @@ void buildCellOpenFaces(TaskSystem& tasks, const MacGrid& grid, const FaceFracti
 void ScalarAdvectionSlices::prepare(TaskSystem& tasks, const MacGrid& grid, double dt, AdvectionScheme scheme,
                                     Array<double>* const* fields, int fieldCount, AdvectionWorkspace& work,
                                     const CellOpenFaces* openFaces, const double* solidValues, double keepBeyond,
-                                    int conservedField) {
+                                    int conservedField, int levelSetField) {
   grid_ = &grid;
   work_ = &work;
   dt_ = dt;
@@ -316,6 +333,7 @@ void ScalarAdvectionSlices::prepare(TaskSystem& tasks, const MacGrid& grid, doub
   solidValues_.clear();
   if (solidValues != nullptr) solidValues_.assign(solidValues, solidValues + fields_.size());
   keepBeyond_ = keepBeyond;
+  levelSetField_ = levelSetField;
   passes_.reset(tasks);
   if (fields_.empty()) return;
   const Eigen::Vector3i d(grid.spec.nx, grid.spec.ny, grid.spec.nz);
@@ -427,8 +445,11 @@ void ScalarAdvectionSlices::forwardPass(const AdvectionRows& slab) {
         double value[kTraceBatch], low[kTraceBatch], high[kTraceBatch];
         rules.sample(old.data(), cells, work.cellTrace.data() + rowStart, value, maccormack ? low : nullptr,
                      maccormack ? high : nullptr);
+        keepAirBeyondOpenSides(slab, cells, work.cellTrace.data() + rowStart, value);
         scatterBatch(cells, value, fwd + rowStart);
         if (!maccormack) return;
+        // The correction's clamp must not take the air back.
+        for (int s = 0; s < cells.count; ++s) high[s] = std::max(high[s], value[s]);
         scatterBatch(cells, low, lo + rowStart);
         scatterBatch(cells, high, hi + rowStart);
       });
@@ -444,22 +465,31 @@ void ScalarAdvectionSlices::correctionPass(const AdvectionRows& slab) {
   forEachSampleBatch(
       slab, 3, [&](size_t c) { return rules.advected(c); }, [&](size_t c) { out[c] = fwd[c]; },
       [&](const TraceStarts& batch, size_t rowStart) {
-        double backAgain[kTraceBatch];
+        double backAgain[kTraceBatch], corrected[kTraceBatch];
         rules.sample(fwd, batch, work.cellTrace.data() + cells + rowStart, backAgain, nullptr, nullptr);
         for (int s = 0; s < batch.count; ++s) {
           const size_t c = rowStart + static_cast<size_t>(batch.i[s]);
-          out[c] = std::clamp(fwd[c] + 0.5 * (old[c] - backAgain[s]), work.rangeLo[c], work.rangeHi[c]);
+          corrected[s] = std::clamp(fwd[c] + 0.5 * (old[c] - backAgain[s]), work.rangeLo[c], work.rangeHi[c]);
         }
+        keepAirBeyondOpenSides(slab, batch, work.cellTrace.data() + rowStart, corrected);
+        scatterBatch(batch, corrected, out + rowStart);
       });
+}
+
+void ScalarAdvectionSlices::keepAirBeyondOpenSides(const AdvectionRows& rows, const TraceStarts& cells,
+                                                   const Eigen::Vector3d* traces, double* values) const {
+  if (rows.target != levelSetField_) return;
+  for (int s = 0; s < cells.count; ++s)
+    values[s] = std::max(values[s], distanceBeyondOpenSides(*grid_, traces[cells.i[s]]));
 }
 
 void advectCellScalars(TaskSystem& tasks, const MacGrid& grid, double dt, AdvectionScheme scheme,
                        Array<double>* const* fields, int fieldCount, AdvectionWorkspace& work,
                        const CellOpenFaces* openFaces, const double* solidValues, double keepBeyond,
-                       int conservedField) {
+                       int conservedField, int levelSetField) {
   ScalarAdvectionSlices slices;
   slices.prepare(tasks, grid, dt, scheme, fields, fieldCount, work, openFaces, solidValues, keepBeyond,
-                 conservedField);
+                 conservedField, levelSetField);
   slices.runSlice(std::numeric_limits<int64_t>::max());
 }
 

@@ -13,7 +13,11 @@
 // semi-Lagrangian phi^ instead (clamping it fed energy into a stirred liquid, advection.cpp).
 // Twice the cost, much less dissipation.
 //
-// Points traced out of the domain take the boundary's values (clamped sampling).
+// Points traced out of the domain take the boundary's values (clamped sampling), but for a
+// liquid's level set beyond an Open side: what lies there is air (the side's p = 0 is the
+// atmosphere's), so such a point takes at least its distance beyond the side. Clamped, a
+// liquid cell on an open side would draw liquid from outside as long as the flow enters
+// there: a sheet at an open top falls forever, fed from above.
 //
 // Sliced (VelocityAdvectionSlices, ScalarAdvectionSlices): every pass computes each sample
 // from the pass's inputs alone, so a pass's rows can be cut into slabs run one at a time,
@@ -40,6 +44,8 @@
 #include "fluid/solids/face_fraction_field.h"
 
 namespace vp {
+
+struct TraceStarts;  // advection_rows.h
 
 // Scratch arrays, kept between steps so advection does not allocate.
 struct AdvectionWorkspace {
@@ -89,10 +95,12 @@ void advectVelocity(TaskSystem& tasks, MacGrid& grid, double dt, AdvectionScheme
 // plume's base), and MacCormack's clamp to the stencil's range adds more, so a hot plume
 // held far more smoke than it was given. A uniform scale is the correction that keeps the
 // field's shape and sign (as the liquid's volume correction is a uniform shift).
+// levelSetField (optional, >= 0): that field is a liquid level set (free_surface.h) with air
+// beyond the Open sides (see the top of this header).
 void advectCellScalars(TaskSystem& tasks, const MacGrid& grid, double dt, AdvectionScheme scheme,
                        Array<double>* const* fields, int fieldCount, AdvectionWorkspace& work,
                        const CellOpenFaces* openFaces = nullptr, const double* solidValues = nullptr,
-                       double keepBeyond = 0.0, int conservedField = -1);
+                       double keepBeyond = 0.0, int conservedField = -1, int levelSetField = -1);
 
 // Rows [rowBegin, rowEnd) (x-lines, numbered j + dims.y * k) of one pass's sample lattice:
 // the unit a slice of advection runs (core/slab_passes.h cuts the passes into slices).
@@ -159,7 +167,7 @@ class ScalarAdvectionSlices {
   void prepare(TaskSystem& tasks, const MacGrid& grid, double dt, AdvectionScheme scheme,
                Array<double>* const* fields, int fieldCount, AdvectionWorkspace& work,
                const CellOpenFaces* openFaces, const double* solidValues, double keepBeyond,
-               int conservedField = -1);
+               int conservedField = -1, int levelSetField = -1);
   // Runs the next slice of at most maxSamples cell samples (one row at least), parallel over
   // its rows; true when every pass is done.
   bool runSlice(int64_t maxSamples) { return passes_.runSlice(maxSamples); }
@@ -169,6 +177,10 @@ class ScalarAdvectionSlices {
   void tracePass(const AdvectionRows& rows);
   void forwardPass(const AdvectionRows& rows);
   void correctionPass(const AdvectionRows& rows);
+  // The level set's values at the batch's traced points raised to at least their distance
+  // beyond the Open sides (a no-op for other fields and for traces inside the domain).
+  void keepAirBeyondOpenSides(const AdvectionRows& rows, const TraceStarts& cells, const Eigen::Vector3d* traces,
+                              double* values) const;
   // The conserved field's total: row sums in parallel, added in row order (the same on any
   // number of workers). Before advection: the target (the total less the open sides'
   // outflow); after: the scale that meets it, applied.
@@ -185,6 +197,7 @@ class ScalarAdvectionSlices {
   const CellOpenFaces* openFaces_ = nullptr;
   Array<double> solidValues_;  // per field; empty: solid cells keep their values
   double keepBeyond_ = 0.0;
+  int levelSetField_ = -1;
   Array<double> rowSums_;
   double targetTotal_ = 0.0, scale_ = 1.0;
   SlabPasses passes_;
