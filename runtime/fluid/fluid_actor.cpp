@@ -11,6 +11,7 @@
 #include "fluid/fluid_sources.h"
 #include "fluid/grid_index.h"
 #include "fluid/solids/cut_cell_components.h"
+#include "fluid/solids/sliver_cells.h"
 #include "fluid/surface/level_set_solid_extension.h"
 #include "fluid/surface/liquid_volume.h"
 
@@ -293,13 +294,18 @@ Status FluidActor::addFractionUpdatePasses(SlabPasses& passes) {
   for (size_t i = 0; sameSet && i < now.size(); ++i)
     sameSet = now[i].index1 == snapshots_[i].index1 && now[i].generation == snapshots_[i].generation;
   // Every recomputed region also gets its split cut cells' minor pieces closed
-  // (cut_cell_components.h): without it a plate one cell thick leaks.
+  // (cut_cell_components.h: without it a plate one cell thick leaks), then its sliver cells
+  // (sliver_cells.h: they hold absurd pressures).
+  auto tidy = [&](const Aabb& box) -> Status {
+    VP_TRY(addSplitCellPasses(passes, geometry.data(), count, box, &fractions_, nullptr));
+    addSliverCellPasses(passes, box, &fractions_);
+    return Status::Ok;
+  };
   if (!sameSet) {
     // A collider came or went: a full recompute is simpler than tracking the union of
     // everything that changed, and it happens only on such events.
     VP_TRY(addFaceFractionPasses(passes, geometry.data(), count, &fractions_));
-    for (const PreparedCollider* c : geometry)
-      VP_TRY(addSplitCellPasses(passes, geometry.data(), count, c->bounds, &fractions_, nullptr));
+    for (const PreparedCollider* c : geometry) VP_TRY(tidy(c->bounds));
     fractionsChanged_ = pressureOperatorStale_ = true;
   } else {
     for (size_t i = 0; i < now.size(); ++i) {
@@ -312,8 +318,7 @@ Status FluidActor::addFractionUpdatePasses(SlabPasses& passes) {
       // pressure operator look stale).
       if (!moved || !(a.bounds.overlaps(domain) || b.bounds.overlaps(domain))) continue;
       VP_TRY(addFaceFractionUpdatePasses(passes, geometry.data(), count, a.bounds, b.bounds, &fractions_));
-      for (const Aabb& box : boxesToUpdate(a.bounds, b.bounds))
-        VP_TRY(addSplitCellPasses(passes, geometry.data(), count, box, &fractions_, nullptr));
+      for (const Aabb& box : boxesToUpdate(a.bounds, b.bounds)) VP_TRY(tidy(box));
       fractionsChanged_ = pressureOperatorStale_ = true;
     }
   }

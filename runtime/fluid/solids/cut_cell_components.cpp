@@ -12,6 +12,7 @@
 #include "collide/mesh_lattice_signs.h"
 #include "core/parallel_for.h"
 #include "fluid/grid_index.h"
+#include "fluid/solids/cell_box.h"
 
 namespace vp {
 namespace {
@@ -22,12 +23,6 @@ constexpr int kMaxColliders = 64;
 struct SplitCell {
   int64_t cell;
   std::array<uint64_t, 6> mainNodes;  // per face 2 * axis + high: bit u + 8 v set where the node is in the main piece
-};
-
-// A cell index box, inclusive.
-struct CellBox {
-  int lo[3], hi[3];
-  bool empty() const { return lo[0] > hi[0] || lo[1] > hi[1] || lo[2] > hi[2]; }
 };
 
 // A convex collider at least this many cells wide everywhere splits no cell except near its
@@ -62,29 +57,8 @@ double minWidthLowerBound(const PreparedCollider& c) {
   return 0.0;
 }
 
-// Every cell that has a face recomputeBox (face_fraction_field.cpp) recomputes for `box`,
-// grown by `margin` cells.
-CellBox cellBoxAround(const MacGridSpec& g, const Aabb& box, int margin) {
-  CellBox b;
-  const Eigen::Vector3d lo = (box.lo - g.origin) / g.h, hi = (box.hi - g.origin) / g.h;
-  const int cells[3] = {g.nx, g.ny, g.nz};
-  for (int d = 0; d < 3; ++d) {
-    b.lo[d] = clampIndex(std::ceil(lo[d]) - 2.0 - margin, 0, cells[d] - 1);
-    b.hi[d] = clampIndex(std::floor(hi[d]) + 1.0 + margin, 0, cells[d] - 1);
-  }
-  return b;
-}
-
 size_t cellIndex(const MacGridSpec& g, int i, int j, int k) {
   return static_cast<size_t>(i) + static_cast<size_t>(g.nx) * (j + static_cast<size_t>(g.ny) * k);
-}
-
-// Open fraction of face (2 * axis + high) of cell (i, j, k).
-double& faceOpen(FaceFractionField& f, int i, int j, int k, int face) {
-  const int a = face / 2;
-  Eigen::Vector3i fi(i, j, k);
-  fi[a] += face & 1;
-  return f.open[a][f.faceIndex(a, fi.x(), fi.y(), fi.z())];
 }
 
 // The cell's nodes as 8 layers (one per z node) of 64 bits, bit x + 8 y.

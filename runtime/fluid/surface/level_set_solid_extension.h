@@ -17,18 +17,17 @@
 #include "core/allocator.h"
 #include "core/status.h"
 #include "fluid/solids/face_fraction_field.h"
+#include "fluid/solids/sliver_cells.h"
 
 namespace vp {
 
-// A cell that a collider's side cuts parallel to the grid is open through one whole face, so
-// its open weight is at least 1/6 however deep the cut: liquid flows through it, and its phi
-// must be the one advection gives it, or its surface cannot rise with what flows in.
-// Extending such a cell ties its surface to its neighbours', and the projection then drains
-// the inflow up the cut column through a surface that never moves, as a jet up the collider's
-// wall far faster than the flow (fluid_liquid_cut_wall_test.cpp). Below half that weight, less
-// than half a face is open in all: a covered cell but for slivers, whose phi is what the
-// collider dragged in.
-constexpr double kMaxCoveredCellWeight = 1.0 / 12.0;
+// Covered cells are those below the sliver weight, which the fractions close anyway
+// (sliver_cells.h). A cell open through one whole face is above it and keeps the phi that
+// advection gives it, or its surface cannot rise with what flows in: extending such a cell
+// ties its surface to its neighbours', and the projection then drains the inflow up the cut
+// column through a surface that never moves, as a jet up the collider's wall far faster than
+// the flow (fluid_liquid_cut_wall_test.cpp).
+constexpr double kMaxCoveredCellWeight = kSliverCellWeight;
 
 // cellWeights and phi: cellCount values in cell order; scratch is the run's list of unknown
 // cells. Does nothing when the sizes do not match the grid. Runs SolidExtensionRun in one
