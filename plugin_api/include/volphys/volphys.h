@@ -703,7 +703,8 @@ typedef enum vpAdvection {
 
 typedef enum vpDomainSide {
   vpDomainSide_Wall = 0, /* closed, motionless */
-  vpDomainSide_Open = 1  /* the fluid continues outside at zero pressure */
+  vpDomainSide_Open = 1  /* the fluid continues outside at zero pressure; for a liquid, air is
+                            outside: what flows in there is air */
 } vpDomainSide;
 
 typedef enum vpRegionType {
