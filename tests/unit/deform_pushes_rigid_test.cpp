@@ -8,6 +8,7 @@
 
 #include "geometry/box_tet_mesh.h"
 #include "world.h"
+#include "world_test_util.h"
 
 namespace vp {
 namespace {
@@ -77,11 +78,8 @@ TEST(DeformablePushesRigid, AJellyHittingABallConservesMomentumAndSendsItOff) {
 
 // A world under gravity with a static ground plane at y = 0.
 std::unique_ptr<World> groundWorld() {
-  WorldConfig config;
-  config.workerCount = 2;
-  config.frameBudgetMs = 0.0;
-  std::unique_ptr<World> world;
-  EXPECT_EQ(World::create(config, &world), Status::Ok) << lastError();
+  std::unique_ptr<World> world = testutil::unbudgetedWorld();
+  if (!world) return world;
   ColliderDesc ground;
   ground.bodyType = BodyType::Static;
   ground.shape.type = ShapeType::Plane;
