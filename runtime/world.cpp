@@ -409,7 +409,10 @@ std::vector<PairContact> World::findDeformablePairContacts(const std::vector<Def
                                                           StepStats* stats) {
   const auto start = std::chrono::steady_clock::now();
   std::vector<PairContactBody> bodies;
-  for (const DeformableHandle& h : handles) bodies.push_back(deformable(h)->pairContactBody());
+  for (const DeformableHandle& h : handles) {
+    bodies.push_back(deformable(h)->pairContactBody());
+    bodies.back().id = PairBodyId{h.index1, h.generation};
+  }
   std::vector<PairContact> pairs;
   findPairContacts(bodies, dt, *tasks_, &pairs);
   stats->deformableContactMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

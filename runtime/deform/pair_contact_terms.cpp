@@ -112,7 +112,7 @@ void updatePairFriction(const std::vector<PairContact>& pairs, int32_t body, dou
     const double jn = impulse.dot(p.normal);
     if (!(jn > 0.0)) continue;
     PairFriction& f = (*friction)[p.node];
-    f.otherBody = p.triangleBody;
+    f.other = p.triangleBodyId;
     f.lastNormalImpulse = jn;
     Vec3 slip = v - p.triangleVelocity();
     slip -= slip.dot(p.normal) * p.normal;

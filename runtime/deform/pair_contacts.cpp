@@ -71,6 +71,7 @@ bool nearestTriangle(const std::vector<PairContactBody>& bodies, int32_t a, int3
     best->nodeBody = a;
     best->node = node;
     best->triangleBody = b;
+    best->triangleBodyId = B.id;
     best->triangleNodes = tri;
     best->weights = w;
     best->normal = n;
@@ -115,7 +116,7 @@ void findPairContacts(const std::vector<PairContactBody>& bodies, double h, Task
   for (PairContact& c : slots) {
     if (c.node < 0) continue;
     const PairFriction& f = (*bodies[c.nodeBody].friction)[c.node];
-    if (f.otherBody == c.triangleBody) {
+    if (f.other == c.triangleBodyId) {
       c.state = f;
       c.state.stick -= c.state.stick.dot(c.normal) * c.normal;
     }

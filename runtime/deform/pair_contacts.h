@@ -36,17 +36,26 @@ constexpr double kPairContactDepthEdges = 0.5;
 // Below this slip speed (m/s) a sliding contact sticks again (ContactActiveSet::kSlipSpeed's rule).
 constexpr double kPairSlipSpeed = 1e-4;
 
+// Which deformable a contact touched, by its handle: list positions shift when a deformable
+// before it is destroyed, and a friction state carried by position would be taken up by
+// another pair.
+struct PairBodyId {
+  uint32_t index1 = 0, generation = 0;  // index1 0: none
+  bool operator==(const PairBodyId& o) const { return index1 == o.index1 && generation == o.generation; }
+};
+
 // A node's tangential spring, carried from its last step (kept by the node's body).
 struct PairFriction {
   Vec3 stick = Vec3::Zero();       // the spring's stretch, in the last contact's tangent plane
   double lastNormalImpulse = 0.0;  // N s
-  int32_t otherBody = -1;          // the body whose triangle it touched; -1: none
+  PairBodyId other;                // the body whose triangle it touched
   uint8_t sliding = 0;
 };
 
 struct PairContact {
   int32_t nodeBody = -1, node = -1;  // the node side
   int32_t triangleBody = -1;         // the triangle side (the node's own body: self contact)
+  PairBodyId triangleBodyId;         // its handle
   std::array<int32_t, 3> triangleNodes{{-1, -1, -1}};
   Vec3 weights = Vec3::Zero();       // the contact point's barycentric weights
   Vec3 normal = Vec3::UnitY();       // out of the triangle
@@ -68,6 +77,7 @@ struct PairContact {
 
 // What detection reads of one body, at the frame's start.
 struct PairContactBody {
+  PairBodyId id;                         // the body's handle
   const Array<double>* x = nullptr;      // 3 per node
   const Array<double>* v = nullptr;
   const Array<double>* mass = nullptr;   // per node

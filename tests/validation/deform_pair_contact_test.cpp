@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "geometry/box_tet_mesh.h"
 #include "world.h"
@@ -251,6 +252,29 @@ TEST(DeformablePairContact, TheSameBitsForAnyWorkerCount) {
   const std::vector<double> one = run(1);
   EXPECT_EQ(run(2), one);
   EXPECT_EQ(run(3), one);
+}
+
+// A stack on a slope below the friction angle, and a jelly far away that comes first in the
+// list. Destroying the far one while the stack's contacts stick changes nothing about the
+// stack: its friction states name the body they touched by handle, not by list position (by
+// position, the stack's states pointed one body off after the destroy and were dropped).
+TEST(DeformablePairContact, DestroyingAnotherDeformableLeavesAStacksFrictionAlone) {
+  auto run = [](bool destroyFarJelly) {
+    const double a = 10.0 * M_PI / 180.0;
+    auto world = makeWorld(9.81 * Vec3(std::sin(a), -std::cos(a), 0.0));
+    addGround(*world, 4.0);
+    const DeformableHandle far = addJelly(*world, Vec3(5.0, 0.0, 5.0), 1000.0, 0.5, Vec3::Zero());
+    const DeformableHandle bottom = addJelly(*world, Vec3(-0.1, 0.0, -0.1), 1000.0, 0.5, Vec3::Zero());
+    const DeformableHandle top = addJelly(*world, Vec3(-0.1, 0.2 + 1e-3, -0.1), 1000.0, 1.0, Vec3::Zero());
+    for (int step = 0; step < 60; ++step) {
+      if (destroyFarJelly && step == 30) EXPECT_EQ(world->destroyDeformable(far), Status::Ok);
+      EXPECT_EQ(world->step(kDt), Status::Ok) << lastError();
+    }
+    std::vector<double> x(world->deformable(bottom)->positions().begin(), world->deformable(bottom)->positions().end());
+    x.insert(x.end(), world->deformable(top)->positions().begin(), world->deformable(top)->positions().end());
+    return x;
+  };
+  EXPECT_EQ(run(true), run(false));
 }
 
 TEST(DeformablePairContact, ABadSelfCollisionIsRefusedNamingIt) {
