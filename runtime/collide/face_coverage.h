@@ -86,6 +86,8 @@ struct PreparedCollider {
   // per vertex, and a count of its moves, so that a reader can tell it moved without
   // comparing vertices. Empty and 0 for a rigid shape.
   Array<Eigen::Vector3d> vertexVelocities;
+  // Their mean: what the fluid's faces deep inside the surface take (face_fraction_field.h).
+  Eigen::Vector3d meanVertexVelocity = Eigen::Vector3d::Zero();
   uint64_t surfaceMoves = 0;
 };
 

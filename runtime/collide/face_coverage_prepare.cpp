@@ -268,6 +268,9 @@ void setDeformingSurface(PreparedCollider* c, const Array<Eigen::Vector3d>& vert
                          const Array<Eigen::Vector3d>& velocities) {
   c->shape.meshVertices = vertices;
   c->vertexVelocities = velocities;
+  c->meanVertexVelocity = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& v : velocities) c->meanVertexVelocity += v;
+  if (!velocities.empty()) c->meanVertexVelocity /= static_cast<double>(velocities.size());
   ++c->surfaceMoves;
   updateWorld(c);
 }

@@ -108,6 +108,60 @@ TEST(DeformableInFluid, ATranslatingSurfaceGivesItsVelocityToTheFacesItCovers) {
       }
 }
 
+// A deforming surface's velocities: a face it covers whole that borders a cell with an open
+// face (one the fluid may read) takes the nearest surface point's velocity; a face whose cells
+// are covered whole takes the surface's mean vertex velocity (no fluid cell reads it).
+TEST(DeformableInFluid, InteriorFacesTakeTheMeanVelocityAndFacesBesideFluidTheNearestPoints) {
+  std::unique_ptr<DeformableBody> body;
+  ASSERT_EQ(DeformableBody::create(jellyBlock(500.0, 0.33), &body), Status::Ok) << lastError();
+  PreparedCollider surface = *body->fluidSurface();
+  // An expansion about the block's centre: every vertex has its own velocity.
+  const Vec3 centre(0.5, 0.43, 0.5);
+  Array<Vec3> velocities;
+  for (const Vec3& x : surface.shape.meshVertices) velocities.push_back(x - centre);
+  setDeformingSurface(&surface, surface.shape.meshVertices, velocities);
+  MacGridSpec grid;
+  grid.h = 1.0 / 48;
+  grid.nx = grid.ny = grid.nz = 48;
+  FaceFractionField field;
+  ASSERT_EQ(initFaceFractionField(grid, &field), Status::Ok);
+  const PreparedCollider* deforming = &surface;
+  ASSERT_EQ(computeFaceFractions(&deforming, 1, &field), Status::Ok);
+  auto cellOpen = [&](int i, int j, int k) {
+    if (i < 0 || j < 0 || k < 0 || i >= grid.nx || j >= grid.ny || k >= grid.nz) return false;
+    for (int a = 0; a < 3; ++a) {
+      Eigen::Vector3i hi(i, j, k);
+      hi[a] += 1;
+      if (field.open[a][field.faceIndex(a, i, j, k)] > 0.0 || field.open[a][field.faceIndex(a, hi.x(), hi.y(), hi.z())] > 0.0)
+        return true;
+    }
+    return false;
+  };
+  int besideFluid = 0, interior = 0;
+  for (int a = 0; a < 3; ++a) {
+    const Eigen::Vector3i d = field.faceDims(a);
+    for (int k = 0; k < d.z(); ++k)
+      for (int j = 0; j < d.y(); ++j)
+        for (int i = 0; i < d.x(); ++i) {
+          const size_t f = field.faceIndex(a, i, j, k);
+          ASSERT_FALSE(std::isnan(field.solidVelocity[a][f]));
+          if (field.open[a][f] > 0.0) continue;
+          Eigen::Vector3i low(i, j, k);
+          low[a] -= 1;
+          if (cellOpen(i, j, k) || cellOpen(low.x(), low.y(), low.z())) {
+            ASSERT_EQ(field.solidVelocity[a][f], solidVelocityAt(surface, field.face(a, i, j, k).centre)[a]);
+            ++besideFluid;
+          } else {
+            ASSERT_EQ(field.solidVelocity[a][f], surface.meanVertexVelocity[a]);
+            ++interior;
+          }
+        }
+  }
+  std::printf("covered faces beside fluid %d, interior %d\n", besideFluid, interior);
+  EXPECT_GT(besideFluid, 100);
+  EXPECT_GT(interior, 100);
+}
+
 // Smoke flows around a deformable held still as around the rigid mesh of its surface.
 TEST(DeformableInFluid, SmokeAroundAStillDeformableIsSmokeAroundTheSameRigidMesh) {
   auto run = [](bool deformable) {

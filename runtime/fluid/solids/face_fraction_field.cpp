@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "fluid/grid_index.h"
 
@@ -53,6 +54,12 @@ double colliderNormalVelocity(const PreparedCollider& c, const AxisFace& face, d
   return solidVelocityAt(c, x)[face.axis];
 }
 
+// A face that one deforming surface covers whole gets its velocity in a second pass
+// (settleInteriorFaces), once its neighbours' coverage is known; until then it holds this.
+constexpr double kVelocityPending = std::numeric_limits<double>::quiet_NaN();
+
+bool deforming(const PreparedCollider& c) { return !c.vertexVelocities.empty(); }
+
 void recomputeFace(const PreparedCollider* const* colliders, int count, int axis, int i, int j,
                    int k, FaceFractionField* field) {
   const AxisFace face = field->face(axis, i, j, k);
@@ -64,7 +71,8 @@ void recomputeFace(const PreparedCollider* const* colliders, int count, int axis
   double covered = 0.0, velocity = 0.0;
   if (n == 1) {
     covered = coveredFraction(*near[0], face);
-    if (covered > 0.0) velocity = colliderNormalVelocity(*near[0], face, covered);
+    if (covered >= 1.0 && deforming(*near[0])) velocity = kVelocityPending;
+    else if (covered > 0.0) velocity = colliderNormalVelocity(*near[0], face, covered);
   } else if (n > 1) {
     covered = coveredFractionUnion(near, n, face);
     if (covered > 0.0) {
@@ -103,6 +111,10 @@ constexpr int64_t kSamplesPerFace = 256;
 // Faces per parallel chunk: a face near a collider costs far more than one away from it, so
 // chunks are small.
 constexpr int64_t kFaceGrain = 4;
+// Settling a face is a check of its two cells, and for the faces beside fluid a
+// nearest-point search: a few coverage samples' worth on average.
+constexpr int64_t kSamplesPerSettledFace = 16;
+constexpr int64_t kSettleGrain = 64;
 
 FaceBox facesAround(const FaceFractionField& field, const Aabb& box, int axis) {
   FaceBox r;
@@ -122,14 +134,51 @@ FaceBox facesAround(const FaceFractionField& field, const Aabb& box, int axis) {
   return r;
 }
 
+// visit(i, j, k) for faces [begin, end) of r, numbered along i first.
+template <class Visit>
+void forEachFaceOf(const FaceBox& r, int64_t begin, int64_t end, const Visit& visit) {
+  const int64_t nx = r.hi[0] - r.lo[0] + 1, ny = r.hi[1] - r.lo[1] + 1;
+  for (int64_t n = begin; n < end; ++n)
+    visit(r.lo[0] + static_cast<int>(n % nx), r.lo[1] + static_cast<int>(n / nx % ny),
+          r.lo[2] + static_cast<int>(n / nx / ny));
+}
+
 void recomputeFaces(const PreparedCollider* const* colliders, int count, const FaceBox& r, int64_t begin,
                     int64_t end, FaceFractionField* field) {
-  const int64_t nx = r.hi[0] - r.lo[0] + 1, ny = r.hi[1] - r.lo[1] + 1;
-  for (int64_t n = begin; n < end; ++n) {
-    const int i = r.lo[0] + static_cast<int>(n % nx), j = r.lo[1] + static_cast<int>(n / nx % ny),
-              k = r.lo[2] + static_cast<int>(n / nx / ny);
-    recomputeFace(colliders, count, r.axis, i, j, k, field);
+  forEachFaceOf(r, begin, end, [&](int i, int j, int k) { recomputeFace(colliders, count, r.axis, i, j, k, field); });
+}
+
+// Whether any face of cell (i, j, k) is open at all (so the cell may be fluid); false for a
+// cell outside the grid.
+bool cellHasOpenFace(const FaceFractionField& f, int i, int j, int k) {
+  const MacGridSpec& g = f.grid;
+  if (i < 0 || j < 0 || k < 0 || i >= g.nx || j >= g.ny || k >= g.nz) return false;
+  for (int a = 0; a < 3; ++a) {
+    Eigen::Vector3i high(i, j, k);
+    high[a] += 1;
+    if (f.open[a][f.faceIndex(a, i, j, k)] > 0.0 || f.open[a][f.faceIndex(a, high.x(), high.y(), high.z())] > 0.0)
+      return true;
   }
+  return false;
+}
+
+// The pending faces of [begin, end) of r: the nearest surface point's velocity when a cell
+// beside the face has an open face, else the surface's mean vertex velocity.
+void settleInteriorFaces(const PreparedCollider* const* colliders, int count, const FaceBox& r, int64_t begin,
+                         int64_t end, FaceFractionField* field) {
+  forEachFaceOf(r, begin, end, [&](int i, int j, int k) {
+    double& velocity = field->solidVelocity[r.axis][field->faceIndex(r.axis, i, j, k)];
+    if (!std::isnan(velocity)) return;
+    const AxisFace face = field->face(r.axis, i, j, k);
+    const Aabb fb = faceBounds(face);
+    const PreparedCollider* surface = nullptr;
+    for (int c = 0; c < count && surface == nullptr; ++c)
+      if (colliders[c]->bounds.overlaps(fb)) surface = colliders[c];
+    Eigen::Vector3i low(i, j, k);
+    low[r.axis] -= 1;
+    const bool read = cellHasOpenFace(*field, i, j, k) || cellHasOpenFace(*field, low.x(), low.y(), low.z());
+    velocity = read ? colliderNormalVelocity(*surface, face, 1.0) : surface->meanVertexVelocity[r.axis];
+  });
 }
 
 void recomputeBox(const PreparedCollider* const* colliders, int count, const Aabb& box,
@@ -137,6 +186,10 @@ void recomputeBox(const PreparedCollider* const* colliders, int count, const Aab
   for (int a = 0; a < 3; ++a) {
     const FaceBox r = facesAround(*field, box, a);
     recomputeFaces(colliders, count, r, 0, r.faces(), field);
+  }
+  for (int a = 0; a < 3; ++a) {
+    const FaceBox r = facesAround(*field, box, a);
+    settleInteriorFaces(colliders, count, r, 0, r.faces(), field);
   }
 }
 
@@ -147,6 +200,12 @@ void addBoxPasses(SlabPasses& passes, const PreparedCollider* const* colliders, 
     const FaceBox r = facesAround(*field, box, a);
     passes.addParallel(r.faces(), kSamplesPerFace, kFaceGrain, [=](int64_t begin, int64_t end) {
       recomputeFaces(colliders, count, r, begin, end, field);
+    });
+  }
+  for (int a = 0; a < 3; ++a) {
+    const FaceBox r = facesAround(*field, box, a);
+    passes.addParallel(r.faces(), kSamplesPerSettledFace, kSettleGrain, [=](int64_t begin, int64_t end) {
+      settleInteriorFaces(colliders, count, r, begin, end, field);
     });
   }
 }

@@ -21,8 +21,11 @@
 //                     its vertex velocities interpolated at the surface point nearest that
 //                     centroid (collide/face_coverage.h, solidVelocityAt): exact for a body
 //                     moving rigidly by translation, an approximation of the velocity inside
-//                     it otherwise. Faces covered by several colliders average the
-//                     colliders' values weighted by their individual coverage.
+//                     it otherwise; a face it covers whole whose two cells are covered whole
+//                     too (no fluid cell reads it) takes the surface's mean vertex velocity
+//                     instead, which spares the nearest-point search for the body's
+//                     interior. Faces covered by several colliders average the colliders'
+//                     values weighted by their individual coverage.
 #pragma once
 
 #include "core/allocator.h"
