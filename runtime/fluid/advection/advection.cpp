@@ -445,11 +445,9 @@ void ScalarAdvectionSlices::forwardPass(const AdvectionRows& slab) {
         double value[kTraceBatch], low[kTraceBatch], high[kTraceBatch];
         rules.sample(old.data(), cells, work.cellTrace.data() + rowStart, value, maccormack ? low : nullptr,
                      maccormack ? high : nullptr);
-        keepAirBeyondOpenSides(slab, cells, work.cellTrace.data() + rowStart, value);
+        keepAirBeyondOpenSides(slab, cells, work.cellTrace.data() + rowStart, value, maccormack ? high : nullptr);
         scatterBatch(cells, value, fwd + rowStart);
         if (!maccormack) return;
-        // The correction's clamp must not take the air back.
-        for (int s = 0; s < cells.count; ++s) high[s] = std::max(high[s], value[s]);
         scatterBatch(cells, low, lo + rowStart);
         scatterBatch(cells, high, hi + rowStart);
       });
@@ -471,16 +469,20 @@ void ScalarAdvectionSlices::correctionPass(const AdvectionRows& slab) {
           const size_t c = rowStart + static_cast<size_t>(batch.i[s]);
           corrected[s] = std::clamp(fwd[c] + 0.5 * (old[c] - backAgain[s]), work.rangeLo[c], work.rangeHi[c]);
         }
-        keepAirBeyondOpenSides(slab, batch, work.cellTrace.data() + rowStart, corrected);
+        keepAirBeyondOpenSides(slab, batch, work.cellTrace.data() + rowStart, corrected, nullptr);
         scatterBatch(batch, corrected, out + rowStart);
       });
 }
 
 void ScalarAdvectionSlices::keepAirBeyondOpenSides(const AdvectionRows& rows, const TraceStarts& cells,
-                                                   const Eigen::Vector3d* traces, double* values) const {
+                                                   const Eigen::Vector3d* traces, double* values,
+                                                   double* rangeHigh) const {
   if (rows.target != levelSetField_) return;
-  for (int s = 0; s < cells.count; ++s)
+  for (int s = 0; s < cells.count; ++s) {
     values[s] = std::max(values[s], distanceBeyondOpenSides(*grid_, traces[cells.i[s]]));
+    // MacCormack's correction is clamped to this range: it must not take the air back.
+    if (rangeHigh != nullptr) rangeHigh[s] = std::max(rangeHigh[s], values[s]);
+  }
 }
 
 void advectCellScalars(TaskSystem& tasks, const MacGrid& grid, double dt, AdvectionScheme scheme,

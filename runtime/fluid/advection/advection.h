@@ -178,9 +178,10 @@ class ScalarAdvectionSlices {
   void forwardPass(const AdvectionRows& rows);
   void correctionPass(const AdvectionRows& rows);
   // The level set's values at the batch's traced points raised to at least their distance
-  // beyond the Open sides (a no-op for other fields and for traces inside the domain).
+  // beyond the Open sides, and rangeHigh (MacCormack's clamp range; may be null) with them (a
+  // no-op for other fields and for traces inside the domain).
   void keepAirBeyondOpenSides(const AdvectionRows& rows, const TraceStarts& cells, const Eigen::Vector3d* traces,
-                              double* values) const;
+                              double* values, double* rangeHigh) const;
   // The conserved field's total: row sums in parallel, added in row order (the same on any
   // number of workers). Before advection: the target (the total less the open sides'
   // outflow); after: the scale that meets it, applied.

@@ -38,5 +38,15 @@ inline double& faceOpen(FaceFractionField& f, int i, int j, int k, int face) {
   fi[a] += face & 1;
   return f.open[a][f.faceIndex(a, fi.x(), fi.y(), fi.z())];
 }
+inline double faceOpen(const FaceFractionField& f, int i, int j, int k, int face) {
+  return faceOpen(const_cast<FaceFractionField&>(f), i, j, k, face);
+}
+
+// The sum of the open fractions of cell (i, j, k)'s six faces, in face order.
+inline double cellOpenSum(const FaceFractionField& f, int i, int j, int k) {
+  double sum = 0.0;
+  for (int face = 0; face < 6; ++face) sum += faceOpen(f, i, j, k, face);
+  return sum;
+}
 
 }  // namespace vp

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "fluid/grid_index.h"
+#include "fluid/solids/cell_box.h"
 
 namespace vp {
 namespace {
@@ -153,13 +154,7 @@ void recomputeFaces(const PreparedCollider* const* colliders, int count, const F
 bool cellHasOpenFace(const FaceFractionField& f, int i, int j, int k) {
   const MacGridSpec& g = f.grid;
   if (i < 0 || j < 0 || k < 0 || i >= g.nx || j >= g.ny || k >= g.nz) return false;
-  for (int a = 0; a < 3; ++a) {
-    Eigen::Vector3i high(i, j, k);
-    high[a] += 1;
-    if (f.open[a][f.faceIndex(a, i, j, k)] > 0.0 || f.open[a][f.faceIndex(a, high.x(), high.y(), high.z())] > 0.0)
-      return true;
-  }
-  return false;
+  return cellOpenSum(f, i, j, k) > 0.0;
 }
 
 // The pending faces of [begin, end) of r: the nearest surface point's velocity when a cell

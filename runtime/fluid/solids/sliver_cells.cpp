@@ -19,8 +19,7 @@ int64_t closeSweep(const CellBox& b, FaceFractionField& f) {
   for (int k = b.lo[2]; k <= b.hi[2]; ++k)
     for (int j = b.lo[1]; j <= b.hi[1]; ++j)
       for (int i = b.lo[0]; i <= b.hi[0]; ++i) {
-        double sum = 0.0;
-        for (int face = 0; face < kFaces; ++face) sum += faceOpen(f, i, j, k, face);
+        const double sum = cellOpenSum(f, i, j, k);
         if (!(sum > 0.0) || sum >= kFaces * kSliverCellWeight) continue;
         for (int face = 0; face < kFaces; ++face) faceOpen(f, i, j, k, face) = 0.0;
         ++closed;
