@@ -353,6 +353,11 @@ void World::stepRigidBodies(double dt, const Deadline& frame, StepStats* stats) 
     log(LogLevel::Warning, "the host allocator refused %llu block(s) Bullet needed in this step; they came from the "
                            "system heap", static_cast<unsigned long long>(refused));
   rigid.diverged = result.restoredBodies > 0;
+  if (result.energyBlewUp)
+    log(LogLevel::Warning, "rigid step blew up: the dynamic bodies' energy rose %g J beyond the %g J its work "
+        "explains (kinetic %g -> %g)", StepEnergyGuard::unexplainedGain(result.energy),
+        result.energy.gravityWork + result.energy.appliedWork + result.energy.boundedWork, result.energy.kineticStart,
+        result.energy.kineticEnd);
   if (rigid.diverged)
     log(LogLevel::Warning, "%d rigid bod%s diverged; restored to their state before the step", result.restoredBodies,
         result.restoredBodies == 1 ? "y" : "ies");

@@ -121,10 +121,10 @@ bool diverged(const btRigidBody& body) {
 
 }  // namespace
 
-int CollisionWorld::restoreDivergedBodies() {
+int CollisionWorld::restoreDivergedBodies(bool all) {
   int restored = 0;
   for (const BodyState& s : before_) {
-    if (!diverged(*s.body)) continue;
+    if (!all && !diverged(*s.body)) continue;
     s.body->setWorldTransform(s.transform);
     s.body->setInterpolationWorldTransform(s.transform);
     if (btMotionState* m = s.body->getMotionState()) m->setWorldTransform(s.transform);
@@ -147,17 +147,28 @@ int CollisionWorld::restoreDivergedBodies() {
 CollisionWorld::StepResult CollisionWorld::step(double dt, double maxSubstep, Collider* const* kinematics, int count,
                                                 Collider* const* loaded, int loadedCount) {
   saveDynamicBodies();
+  energy_.begin(*world_);
   const int substeps = std::max(1, static_cast<int>(std::ceil(dt / maxSubstep - 1e-9)));
   const double h = dt / substeps;
   for (int k = 0; k < count; ++k) kinematics[k]->beginKinematicStep(dt);
   for (int s = 0; s < substeps; ++s) {
     for (int k = 0; k < count; ++k) kinematics[k]->advanceKinematic(h, s + 1 == substeps);
     for (int k = 0; k < loadedCount; ++k) loaded[k]->applyExternalLoads();
+    energy_.beforeSubstep();
     // maxSubSteps = 0: one step of exactly h, no interpolation.
     world_->stepSimulation(btScalar(h), 0);
+    energy_.afterSubstep(*world_, h);
   }
   for (int k = 0; k < count; ++k) kinematics[k]->endKinematicStep();
-  return StepResult{substeps, restoreDivergedBodies()};
+  StepResult result{substeps, restoreDivergedBodies(false), energy_.finish()};
+  // The bodies' energy is one account (their contacts pass it between them): a step that
+  // gains more than its work explains is undone for all of them. Not judged when a body
+  // diverged already: its energy has no meaning.
+  if (result.restoredBodies == 0 && StepEnergyGuard::blewUp(result.energy, energy_.totalMass())) {
+    result.energyBlewUp = true;
+    result.restoredBodies = restoreDivergedBodies(true);
+  }
+  return result;
 }
 
 

@@ -6,6 +6,7 @@
 #include <memory>
 #include <vector>
 
+#include "collide/rigid_step_energy.h"
 #include "core/collision_filter.h"
 #include "core/math_types.h"
 #include "snapshot/actor_states.h"
@@ -40,13 +41,17 @@ class CollisionWorld {
   struct StepResult {
     int substeps = 0;
     int restoredBodies = 0;  // dynamic bodies the divergence guard put back
+    StepEnergy energy;        // the dynamic bodies' (collide/rigid_step_energy.h)
+    bool energyBlewUp = false;
   };
   // Steps by dt in ceil(dt / maxSubstep) equal sub-steps. `kinematics` lists the kinematic
   // colliders to drive (count entries); `loaded` the dynamic ones carrying a fluid or host load
   // (loadedCount entries), applied on every sub-step.
   // Divergence guard: a dynamic body whose pose or velocity comes out of the step not finite,
   // or faster than kMaxSpeed (kMaxAngularSpeed turning; core/physical_limits.h, the limits a
-  // host may set), goes back to its pose and velocity before the step, its contacts dropped.
+  // host may set), goes back to its pose and velocity before the step, its contacts dropped;
+  // when the dynamic bodies' energy rose beyond what the step's work explains
+  // (core/step_energy.h, collide/rigid_step_energy.h), all of them do.
   StepResult step(double dt, double maxSubstep, Collider* const* kinematics, int count,
                   Collider* const* loaded = nullptr, int loadedCount = 0);
 
@@ -90,7 +95,9 @@ class CollisionWorld {
   struct BodyState;
   std::vector<BodyState> before_;  // the dynamic bodies at the start of the step
   void saveDynamicBodies();
-  int restoreDivergedBodies();
+  RigidStepEnergy energy_;  // of the step running
+  // Puts back the diverged dynamic bodies (`all`: every one); returns how many.
+  int restoreDivergedBodies(bool all);
 };
 
 }  // namespace vp

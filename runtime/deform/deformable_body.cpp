@@ -539,7 +539,7 @@ void DeformableBody::restoreStepStart() {
 
 namespace {
 
-// Per-node sums of a solved step (deform/step_energy.h), reduced in chunk order.
+// Per-node sums of a solved step (core/step_energy.h), reduced in chunk order.
 struct NodeWork {
   double kineticStart = 0.0, kineticEnd = 0.0, gravity = 0.0, applied = 0.0;
   NodeWork& operator+=(const NodeWork& o) {

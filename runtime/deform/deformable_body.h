@@ -20,7 +20,7 @@
 #include "core/slot_map.h"
 #include "core/task_system.h"
 #include "deform/deformable_desc.h"
-#include "deform/step_energy.h"
+#include "core/step_energy.h"
 #include "deform/bb_rotated_stiffness.h"
 #include "deform/contact_active_set.h"
 #include "deform/contact_surface.h"
@@ -177,7 +177,7 @@ class DeformableBody {
   double elementElasticEnergy(int64_t element) const;
   void energyRotation(int64_t element, const double F[9], double R[9]) const;
   // The energies and works of the step just solved (vNext_), all but the elastic energy at
-  // its end (deform/step_energy.h).
+  // its end (core/step_energy.h).
   StepEnergy solvedStepEnergy(TaskSystem& tasks, double h, const Vec3& gravity, const std::vector<PairContact>* pairs,
                               int32_t pairBody);
   // The guard after integrating: true when the step blew up (not finite, too fast, or an

@@ -484,9 +484,12 @@ void FluidActor::planSubsteps() {
   // ended with is the speed this one starts with.
   if (speedAtEnd_ < 0.0) speedAtEnd_ = maxSpeed(*st.input.tasks);
   st.speed = speedAtEnd_;
+  double solidSpeed = 0.0;
   for (const FluidCollider& c : st.input.colliders)
     if (c.geometry != nullptr && c.geometry->bounds.overlaps(domainBounds()))
-      st.speed = std::max(st.speed, solidSpeedBound(*c.geometry));
+      solidSpeed = std::max(solidSpeed, solidSpeedBound(*c.geometry));
+  st.speed = std::max(st.speed, solidSpeed);
+  planEnergyBound(solidSpeed);
   st.substeps = clampIndex(std::ceil(st.speed * st.input.dt / (solver.cflNumber * grid_.spec.h)), 1, solver.maxSubsteps);
   st.h = st.input.dt / st.substeps;
   // The plan paces the step by its expected work (frame_plan.h), which follows its sub-steps.
@@ -495,6 +498,47 @@ void FluidActor::planSubsteps() {
   st.vertexForceSum.assign(st.input.colliders.size(), Array<Vec3>{});
   for (int sub = 0; sub < st.substeps; ++sub) queueSubstep(sub);
   job_.thenOnce(static_cast<int>(FluidSlice::Publish), [this] { publish(); });
+}
+
+void FluidActor::planEnergyBound(double solidSpeed) {
+  StepInProgress& st = *step_;
+  TaskSystem& tasks = *st.input.tasks;
+  const double dt = st.input.dt;
+  st.energy.kineticStart = fluidKineticEnergy(tasks, grid_, fractions_, liquidPhi(), desc_.density);
+  double emitterSpeed = 0.0, emitted = 0.0, emittedHeat = 0.0;
+  for (const FluidEmitter& e : desc_.emitters) {
+    if (!e.enabled) continue;
+    emitterSpeed = std::max(emitterSpeed, e.velocity.norm());
+    emitted += std::abs(e.densityRate) * dt;
+    emittedHeat = std::max(emittedHeat, std::abs(e.temperature - desc_.smoke.ambientTemperature));
+  }
+  st.energyBoundarySpeed = std::max(solidSpeed, emitterSpeed);
+  const double gravity = st.input.gravity.norm();
+  if (desc_.kind == FluidKind::Liquid) {
+    st.energyAcceleration = gravity;
+    return;
+  }
+  const double densityMax = largestDeviation(tasks, smokeDensity_, 0.0) + emitted;
+  const double heatMax = std::max(largestDeviation(tasks, temperature_, desc_.smoke.ambientTemperature), emittedHeat);
+  const double buoyancy = smokeAccelerationBound(desc_.smoke, gravity, densityMax, heatMax, 0.0);
+  st.energyAcceleration = smokeAccelerationBound(desc_.smoke, gravity, densityMax, heatMax,
+                                                 std::max(st.speed, emitterSpeed) + buoyancy * dt);
+}
+
+bool FluidActor::energyBlewUp() {
+  StepInProgress& st = *step_;
+  const double h = grid_.spec.h;
+  const double volume = desc_.kind == FluidKind::Liquid ? std::max(targetVolume_, 0.0)
+                                                        : static_cast<double>(grid_.cellCount()) * h * h * h;
+  const double mass = desc_.density * volume;
+  st.energy.kineticEnd = fluidKineticEnergy(*st.input.tasks, grid_, fractions_, liquidPhi(), desc_.density);
+  st.energy.boundedWork = fluidSourceWorkBound(st.energy.kineticStart, mass, st.energyAcceleration,
+                                               st.energyBoundarySpeed, st.input.dt);
+  if (!StepEnergyGuard::blewUp(st.energy, mass)) return false;
+  log(LogLevel::Warning, "fluid step blew up: its kinetic energy rose %g J beyond the %g J its sources and moving "
+      "solids can put in (%g -> %g J)", StepEnergyGuard::unexplainedGain(st.energy), st.energy.boundedWork,
+      st.energy.kineticStart, st.energy.kineticEnd);
+  return true;
 }
 
 void FluidActor::queueSubstep(int) {
@@ -596,8 +640,14 @@ void FluidActor::publish() {
     // the step blew up. Its result is dropped: the fluid goes back to its last completed
     // step, which is what readers see already, rather than hand NaNs or absurd loads to the
     // host and the rigid bodies.
+    if (injectedVelocityScale_ != 1.0) {
+      for (Array<double>& u : grid_.velocity)
+        for (double& v : u) v *= injectedVelocityScale_;
+      injectedVelocityScale_ = 1.0;
+    }
     speedAtEnd_ = maxSpeed(*st.input.tasks);
-    if (!(std::isfinite(speedAtEnd_) && speedAtEnd_ <= kMaxFluidSpeed)) {
+    // So does a kinetic energy beyond what the step's sources can explain (fluid_step_energy.h).
+    if (!(std::isfinite(speedAtEnd_) && speedAtEnd_ <= kMaxFluidSpeed) || energyBlewUp()) {
       restorePublished();
       st.diverged = true;
       return;

@@ -52,6 +52,7 @@
 #include "core/work_progress.h"
 #include "fluid/advection/advection.h"
 #include "fluid/fluid_desc.h"
+#include "fluid/fluid_step_energy.h"
 #include "fluid/mac_grid.h"
 #include "fluid/pressure/pressure_projection.h"
 #include "fluid/smoke_forces.h"
@@ -172,6 +173,9 @@ class FluidActor {
   void setCollisionFilter(const CollisionFilter& filter) { desc_.filter = filter; }
   // Test hook: the next fallible part of `phase` fails as if its solver had (see phaseOk).
   void injectPhaseFailureForTesting(Phase phase) { injectedFailure_ = phase; }
+  // Test hook: the next step's velocities are scaled by `factor` just before its divergence
+  // guard, as a stage that put energy in unasked would leave them.
+  void injectVelocityScaleForTesting(double factor) { injectedVelocityScale_ = factor; }
   // The controls as last set (those waiting for the next step included); a change is
   // validated (on failure nothing changes) and takes effect when the next step begins.
   FluidControls controls() const;
@@ -208,6 +212,9 @@ class FluidActor {
   bool updateFractionsSlice();  // one slice of the planned update per call; true when done
   void finishFractionUpdate();
   void planSubsteps();
+  void planEnergyBound(double solidSpeed);
+  // Whether the step's kinetic energy rose beyond its sources' bound (logs it when so).
+  bool energyBlewUp();
   void queueSubstep(int sub);
   // One slice of the sub-step's advection per call; true when the last is done.
   bool advectVelocitySlab();
@@ -277,6 +284,10 @@ class FluidActor {
     bool projectionPrepared = false;  // for the sub-step's projection in progress
     bool projectionFailed = false;
     bool diverged = false;
+    // The divergence guard's energy account (fluid_step_energy.h): the start's kinetic
+    // energy, the largest body-force acceleration, the fastest solid or emitter.
+    StepEnergy energy;
+    double energyAcceleration = 0.0, energyBoundarySpeed = 0.0;
     ActorStats* stats = nullptr;  // of the frame now running
   };
   // What readers see (the last completed step).
@@ -289,6 +300,7 @@ class FluidActor {
   FluidDesc desc_;
   std::optional<FluidControls> pendingControls_;  // applied by beginStep
   std::optional<Phase> injectedFailure_;
+  double injectedVelocityScale_ = 1.0;
   // One fallible part of a step's phase: on failure (or an injected one) logs it, marks the
   // phase failed in the frame's stats, and returns false; the step goes on without that part.
   bool phaseOk(Phase phase, const char* what, Status status);

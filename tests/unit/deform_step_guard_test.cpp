@@ -1,4 +1,4 @@
-// What keeps a deformable's step sound: the energy guard (deform/step_energy.h) restores a step
+// What keeps a deformable's step sound: the energy guard (core/step_energy.h) restores a step
 // whose mechanical energy rises beyond what gravity, the host's forces and the constraints put
 // in, and not steps whose gain that work explains, however large; the contact passes release
 // pulling contacts even when the frame's share ran out.
@@ -9,7 +9,7 @@
 
 #include "collide/face_coverage.h"
 #include "deform/deformable_body.h"
-#include "deform/step_energy.h"
+#include "core/step_energy.h"
 #include "geometry/box_tet_mesh.h"
 #include "../budget/tick_clock.h"
 
@@ -23,6 +23,19 @@ TEST(StepEnergyGuard, AGainTheWorkExplainsIsNotABlowUp) {
   e.kineticEnd = 60.0, e.elasticEnd = 33.0;  // exactly start + work
   EXPECT_DOUBLE_EQ(StepEnergyGuard::unexplainedGain(e), 0.0);
   EXPECT_FALSE(StepEnergyGuard::blewUp(e, 1.0));
+}
+
+// Work known only by its bound (a moving boundary's, a fluid's sources) explains a gain up to
+// the bound and adds to the energy the step had to work with.
+TEST(StepEnergyGuard, BoundedWorkIsExplainedAndAvailable) {
+  StepEnergy e;
+  e.kineticStart = 1.0;
+  e.boundedWork = 10.0;
+  e.kineticEnd = 11.0;
+  EXPECT_DOUBLE_EQ(StepEnergyGuard::unexplainedGain(e), 0.0);
+  EXPECT_DOUBLE_EQ(StepEnergyGuard::available(e), 11.0);
+  e.kineticEnd = 11.0 + StepEnergyGuard::kGrowthFactor * 11.0 + 1.0;  // beyond bound and factor
+  EXPECT_TRUE(StepEnergyGuard::blewUp(e, 1.0));
 }
 
 TEST(StepEnergyGuard, AnUnexplainedGainAboveTheFactorIsABlowUp) {

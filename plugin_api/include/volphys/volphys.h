@@ -329,10 +329,11 @@ typedef struct vpActorStats {
   vpActorKind kind;
   uint32_t index1;    /* the actor id's index1 (0 for the rigid pseudo-actor) */
   float totalMs;
-  int32_t diverged;   /* the step blew up (non-finite or absurd speeds; for a deformable also
-                         an energy rise its work does not explain) and was undone: a
-                         deformable or rigid body is back to its state before the step, a
-                         fluid to its last completed step (docs/choices.md, "Divergence guard") */
+  int32_t diverged;   /* the step blew up (non-finite or absurd speeds, or an energy rise its
+                         work does not explain) and was undone: a deformable or rigid body is
+                         back to its state before the step (for an energy rise of the rigid
+                         bodies, all of them), a fluid to its last completed step
+                         (docs/choices.md, "Divergence guard") */
   vpPhaseStats phases[VP_MAX_PHASES]; /* indexed by vpPhase */
   float simulatedDt;  /* seconds this step advanced the actor: 0 unless a step completed in it;
                          the frames' dt since its last step when its step spanned frames or
