@@ -504,7 +504,9 @@ void FluidActor::planEnergyBound(double solidSpeed) {
   StepInProgress& st = *step_;
   TaskSystem& tasks = *st.input.tasks;
   const double dt = st.input.dt;
-  st.energy.kineticStart = fluidKineticEnergy(tasks, grid_, fractions_, liquidPhi(), desc_.density);
+  // As with the speed: the last step's end is this one's start.
+  if (kineticAtEnd_ < 0.0) kineticAtEnd_ = fluidKineticEnergy(tasks, grid_, fractions_, liquidPhi(), desc_.density);
+  st.energy.kineticStart = kineticAtEnd_;
   double emitterSpeed = 0.0, emitted = 0.0, emittedHeat = 0.0;
   for (const FluidEmitter& e : desc_.emitters) {
     if (!e.enabled) continue;
@@ -652,6 +654,7 @@ void FluidActor::publish() {
       st.diverged = true;
       return;
     }
+    kineticAtEnd_ = st.energy.kineticEnd;
     if (desc_.twoWayCoupling) {
       // The load is the mean over this step and acts during the next one (a delay of one
       // step: explicit coupling). Extrapolating it one step ahead to cancel the delay was
@@ -670,7 +673,7 @@ bool FluidActor::editFields(const std::function<void(EditableFields&)>& edit) {
   if (stepInProgress()) return false;
   EditableFields fields{grid_, smokeDensity_, temperature_, phi_};
   edit(fields);
-  speedAtEnd_ = -1.0;  // the next step measures the edited velocities
+  speedAtEnd_ = kineticAtEnd_ = -1.0;  // the next step measures the edited velocities
   publishFields();
   return true;
 }
@@ -683,7 +686,7 @@ void FluidActor::restorePublished() {
   phi_ = shown_.levelSet;
   pressure_.pressure = shown_.pressure;
   cellWeights_ = shown_.cellWeights;
-  speedAtEnd_ = -1.0;  // the next step measures the restored velocities
+  speedAtEnd_ = kineticAtEnd_ = -1.0;  // the next step measures the restored velocities
 }
 
 void FluidActor::publishFields() {
@@ -752,6 +755,7 @@ FluidState FluidActor::saveState() const {
                                                     c.translation, c.linearVelocity, c.angularVelocity});
   s.fractionsValid = fractionsValid_;
   s.speedAtEnd = speedAtEnd_;
+  s.kineticAtEnd = kineticAtEnd_;
   s.targetVolume = targetVolume_;
   for (const FluidColliderLoad& l : shown_.loads)
     s.loads.push_back(FluidColliderLoadState{l.index1, l.generation, l.load, l.vertexForces});
@@ -786,6 +790,7 @@ void FluidActor::restoreState(FluidState&& s) {
   fractionsValid_ = s.fractionsValid;
   invalidateDerived();
   speedAtEnd_ = s.speedAtEnd;
+  kineticAtEnd_ = s.kineticAtEnd;
   targetVolume_ = s.targetVolume;
   publishFields();
   shown_.loads.clear();

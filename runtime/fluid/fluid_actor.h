@@ -311,6 +311,7 @@ class FluidActor {
   bool fractionsChanged_ = true;  // since the advection's open-face masks were built
   bool pressureOperatorStale_ = true;  // the fractions changed since the last projection
   double speedAtEnd_ = -1.0;  // largest face speed after the last step; < 0 before the first
+  double kineticAtEnd_ = -1.0;  // kinetic energy after the last step (fluid_step_energy.h); < 0: unknown
   Array<double> smokeDensity_, temperature_, phi_;
   PressureState pressure_;
   AdvectionWorkspace advection_;

@@ -9,19 +9,32 @@ namespace vp {
 
 namespace {
 
-// A face with a liquid cell on either side.
-bool besideLiquid(const MacGrid& grid, const double* phi, int axis, int i, int j, int k) {
-  int at[3] = {i, j, k};
-  const int cells[3] = {grid.spec.nx, grid.spec.ny, grid.spec.nz};
-  if (at[axis] < cells[axis] && phi[grid.cellIndex(at[0], at[1], at[2])] < 0.0) return true;
-  --at[axis];
-  return at[axis] >= 0 && phi[grid.cellIndex(at[0], at[1], at[2])] < 0.0;
+// Σ open u² over one row of faces along x (axis a's faces (·, j, k)); with a level set, over the
+// faces beside a liquid cell: the cells below and above each face, rows of phi or null where
+// the face is on the domain's side (for x faces the cells are the row's own, one apart).
+double rowSum(const double* u, const double* open, int count, const double* phiLow, const double* phiHigh,
+              bool alongRow) {
+  double s = 0.0;
+  if (phiLow == nullptr && phiHigh == nullptr && !alongRow) {
+    for (int i = 0; i < count; ++i) s += open[i] * u[i] * u[i];
+    return s;
+  }
+  for (int i = 0; i < count; ++i) {
+    bool liquid;
+    if (alongRow)  // x faces: cells i - 1 and i of the row phiHigh
+      liquid = (i > 0 && phiHigh[i - 1] < 0.0) || (i + 1 < count && phiHigh[i] < 0.0);
+    else
+      liquid = (phiLow != nullptr && phiLow[i] < 0.0) || (phiHigh != nullptr && phiHigh[i] < 0.0);
+    s += liquid ? open[i] * u[i] * u[i] : 0.0;
+  }
+  return s;
 }
 
 }  // namespace
 
 double fluidKineticEnergy(TaskSystem& tasks, const MacGrid& grid, const FaceFractionField& fractions,
                           const double* liquidPhi, double density) {
+  const MacGridSpec& g = grid.spec;
   double sum = 0.0;
   for (int a = 0; a < 3; ++a) {
     const Eigen::Vector3i dims = grid.faceDims(a);
@@ -33,16 +46,19 @@ double fluidKineticEnergy(TaskSystem& tasks, const MacGrid& grid, const FaceFrac
       for (int64_t row = begin; row < end; ++row) {
         const int j = static_cast<int>(row % dims.y()), k = static_cast<int>(row / dims.y());
         const size_t first = grid.faceIndex(a, 0, j, k);
-        for (int i = 0; i < dims.x(); ++i) {
-          if (liquidPhi != nullptr && !besideLiquid(grid, liquidPhi, a, i, j, k)) continue;
-          const double v = u[first + i];
-          s += open[first + i] * v * v;
+        const double *low = nullptr, *high = nullptr;
+        if (liquidPhi != nullptr) {
+          const int cell[3] = {0, j, k};
+          const int n[3] = {g.nx, g.ny, g.nz};
+          if (a == 0 || cell[a] < n[a]) high = liquidPhi + grid.cellIndex(0, j, k);
+          if (a != 0 && cell[a] > 0) low = liquidPhi + grid.cellIndex(0, j - (a == 1), k - (a == 2));
         }
+        s += rowSum(u + first, open + first, dims.x(), low, high, liquidPhi != nullptr && a == 0);
       }
       return s;
     });
   }
-  const double h = grid.spec.h;
+  const double h = g.h;
   return 0.5 * density * h * h * h * sum;
 }
 

@@ -241,6 +241,7 @@ void writeFluidState(StateWriter& out, const FluidState& s) {
   }
   out.value(static_cast<uint8_t>(s.fractionsValid));
   out.value(s.speedAtEnd);
+  out.value(s.kineticAtEnd);
   out.value(s.targetVolume);
   out.value(static_cast<uint64_t>(s.loads.size()));
   for (const FluidColliderLoadState& l : s.loads) {
@@ -291,9 +292,10 @@ void readFluidState(StateReader& in, const FluidActor& fluid, FluidState* s) {
   }
   s->fractionsValid = in.value<uint8_t>() != 0;
   s->speedAtEnd = in.value<double>();
+  s->kineticAtEnd = in.value<double>();
   s->targetVolume = in.value<double>();
-  const double scalars[] = {s->speedAtEnd, s->targetVolume};
-  in.requireFinite("fluid's speed or volume", scalars, 2);
+  const double scalars[] = {s->speedAtEnd, s->kineticAtEnd, s->targetVolume};
+  in.requireFinite("fluid's speed, energy or volume", scalars, 3);
   const uint64_t loads = in.value<uint64_t>();
   if (in.ok() && in.has(loads, 2 * sizeof(uint32_t) + 7 * sizeof(double))) {
     s->loads.resize(static_cast<size_t>(loads));

@@ -85,7 +85,7 @@ struct FluidState {
   Array<uint8_t> extrapolationMark[3];
   std::vector<FluidColliderPose> fractionColliders;  // the colliders the fractions are of
   bool fractionsValid = false;
-  double speedAtEnd = -1.0, targetVolume = 0.0;
+  double speedAtEnd = -1.0, kineticAtEnd = -1.0, targetVolume = 0.0;
   std::vector<FluidColliderLoadState> loads;
   uint64_t stepCount = 0;
   int32_t lastStepSlices = 0;
