@@ -4,9 +4,13 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <vector>
 
 #include "fluid/grid_index.h"
 #include "fluid/solids/cell_box.h"
+#include "fluid/solids/face_box.h"
+#include "fluid/solids/mesh_face_classes.h"
 
 namespace vp {
 namespace {
@@ -61,8 +65,21 @@ constexpr double kVelocityPending = std::numeric_limits<double>::quiet_NaN();
 
 bool deforming(const PreparedCollider& c) { return !c.vertexVelocities.empty(); }
 
-void recomputeFace(const PreparedCollider* const* colliders, int count, int axis, int i, int j,
-                   int k, FaceFractionField* field) {
+// The meshes' face classes of the box being recomputed (mesh_face_classes.h).
+using MeshClassList = std::vector<MeshFaceClasses>;
+
+// One collider's coverage of a face: from its classes where they decide, else exact.
+double coverageOf(const PreparedCollider& c, const AxisFace& face, int i, int j, int k, const MeshClassList& classes) {
+  for (const MeshFaceClasses& m : classes) {
+    if (m.mesh != &c) continue;
+    const FaceClass cls = m.at(face.axis, i, j, k);
+    if (cls != FaceClass::Touched) return cls == FaceClass::Inside ? 1.0 : 0.0;
+  }
+  return coveredFraction(c, face);
+}
+
+void recomputeFace(const PreparedCollider* const* colliders, int count, const MeshClassList& classes, int axis,
+                   int i, int j, int k, FaceFractionField* field) {
   const AxisFace face = field->face(axis, i, j, k);
   const Aabb fb = faceBounds(face);
   const PreparedCollider* near[kMaxCollidersPerFace];
@@ -71,7 +88,7 @@ void recomputeFace(const PreparedCollider* const* colliders, int count, int axis
     if (colliders[c]->bounds.overlaps(fb)) near[n++] = colliders[c];
   double covered = 0.0, velocity = 0.0;
   if (n == 1) {
-    covered = coveredFraction(*near[0], face);
+    covered = coverageOf(*near[0], face, i, j, k, classes);
     if (covered >= 1.0 && deforming(*near[0])) velocity = kVelocityPending;
     else if (covered > 0.0) velocity = colliderNormalVelocity(*near[0], face, covered);
   } else if (n > 1) {
@@ -93,17 +110,6 @@ void recomputeFace(const PreparedCollider* const* colliders, int count, int axis
   field->solidVelocity[axis][f] = velocity;
 }
 
-// The faces of one axis touching a box, numbered along i first, then j, then k.
-struct FaceBox {
-  int axis = 0;
-  int lo[3] = {0, 0, 0}, hi[3] = {-1, -1, -1};  // inclusive
-  int64_t faces() const {
-    int64_t n = 1;
-    for (int d = 0; d < 3; ++d) n *= hi[d] < lo[d] ? 0 : hi[d] - lo[d] + 1;
-    return n;
-  }
-};
-
 // Recomputing a face costs at least this many of the samples that bound a slice (an
 // advection sample): a coverage evaluation per collider near it. Traced in the frame-budget
 // benchmark around the default scene's moving colliders, faces beside a collider cost about
@@ -116,37 +122,33 @@ constexpr int64_t kFaceGrain = 4;
 // nearest-point search: a few coverage samples' worth on average.
 constexpr int64_t kSamplesPerSettledFace = 16;
 constexpr int64_t kSettleGrain = 64;
+// Classifying the faces of a box against a mesh (mesh_face_classes.h) is a pass over its
+// triangles and its rows of faces: a sample's worth per face.
+constexpr int64_t kSamplesPerClassifiedFace = 1;
 
-FaceBox facesAround(const FaceFractionField& field, const Aabb& box, int axis) {
-  FaceBox r;
-  r.axis = axis;
-  if (box.empty()) return r;
-  const MacGridSpec& g = field.grid;
-  const Eigen::Vector3d lo = (box.lo - g.origin) / g.h, hi = (box.hi - g.origin) / g.h;
-  const Eigen::Vector3i dims = field.faceDims(axis);
-  for (int d = 0; d < 3; ++d) {
-    // Faces of axis a sit at integer coordinates along a, span [j, j+1] across; one extra
-    // face each side keeps the range conservative under rounding.
-    const double l = (d == axis) ? std::ceil(lo[d]) - 1.0 : std::ceil(lo[d]) - 2.0;
-    const double u = std::floor(hi[d]) + 1.0;
-    r.lo[d] = clampIndex(l, 0, dims[d] - 1);
-    r.hi[d] = clampIndex(u, 0, dims[d] - 1);
+void recomputeFaces(const PreparedCollider* const* colliders, int count, const MeshClassList& classes,
+                    const FaceBox& r, int64_t begin, int64_t end, FaceFractionField* field) {
+  forEachFaceOf(r, begin, end,
+                [&](int i, int j, int k) { recomputeFace(colliders, count, classes, r.axis, i, j, k, field); });
+}
+
+// A mesh is classified over a box when the box has at least as many faces as the mesh has
+// triangles: the classification visits every triangle once, the exact path a column of them
+// per face (a large static mesh beside a small moving collider is left to the exact path).
+bool worthClassifying(const PreparedCollider& c, const Aabb& box, int64_t faces) {
+  return c.shape.kind == ShapeKind::TriangleMesh && c.bounds.overlaps(box) &&
+         faces >= static_cast<int64_t>(c.triangles.size());
+}
+
+void classifyMeshes(const PreparedCollider* const* colliders, int count, const Aabb& box,
+                    const FaceFractionField& field, MeshClassList* classes) {
+  const int64_t faces = classifiedFaces(field, box);
+  classes->clear();
+  for (int c = 0; c < count; ++c) {
+    if (!worthClassifying(*colliders[c], box, faces)) continue;
+    classes->emplace_back();
+    classifyMeshFaces(*colliders[c], field, box, &classes->back());
   }
-  return r;
-}
-
-// visit(i, j, k) for faces [begin, end) of r, numbered along i first.
-template <class Visit>
-void forEachFaceOf(const FaceBox& r, int64_t begin, int64_t end, const Visit& visit) {
-  const int64_t nx = r.hi[0] - r.lo[0] + 1, ny = r.hi[1] - r.lo[1] + 1;
-  for (int64_t n = begin; n < end; ++n)
-    visit(r.lo[0] + static_cast<int>(n % nx), r.lo[1] + static_cast<int>(n / nx % ny),
-          r.lo[2] + static_cast<int>(n / nx / ny));
-}
-
-void recomputeFaces(const PreparedCollider* const* colliders, int count, const FaceBox& r, int64_t begin,
-                    int64_t end, FaceFractionField* field) {
-  forEachFaceOf(r, begin, end, [&](int i, int j, int k) { recomputeFace(colliders, count, r.axis, i, j, k, field); });
 }
 
 // Whether any face of cell (i, j, k) is open at all (so the cell may be fluid); false for a
@@ -178,9 +180,11 @@ void settleInteriorFaces(const PreparedCollider* const* colliders, int count, co
 
 void recomputeBox(const PreparedCollider* const* colliders, int count, const Aabb& box,
                   FaceFractionField* field) {
+  MeshClassList classes;
+  classifyMeshes(colliders, count, box, *field, &classes);
   for (int a = 0; a < 3; ++a) {
     const FaceBox r = facesAround(*field, box, a);
-    recomputeFaces(colliders, count, r, 0, r.faces(), field);
+    recomputeFaces(colliders, count, classes, r, 0, r.faces(), field);
   }
   for (int a = 0; a < 3; ++a) {
     const FaceBox r = facesAround(*field, box, a);
@@ -191,10 +195,13 @@ void recomputeBox(const PreparedCollider* const* colliders, int count, const Aab
 // Faces, not rows, are the unit: one row of faces along a collider can cost a whole slice.
 void addBoxPasses(SlabPasses& passes, const PreparedCollider* const* colliders, int count, const Aabb& box,
                   FaceFractionField* field) {
+  auto classes = std::make_shared<MeshClassList>();
+  passes.addWhole(classifiedFaces(*field, box) * kSamplesPerClassifiedFace,
+                  [=] { classifyMeshes(colliders, count, box, *field, classes.get()); });
   for (int a = 0; a < 3; ++a) {
     const FaceBox r = facesAround(*field, box, a);
     passes.addParallel(r.faces(), kSamplesPerFace, kFaceGrain, [=](int64_t begin, int64_t end) {
-      recomputeFaces(colliders, count, r, begin, end, field);
+      recomputeFaces(colliders, count, *classes, r, begin, end, field);
     });
   }
   for (int a = 0; a < 3; ++a) {
