@@ -3,6 +3,7 @@
 #include "geometry/bcc_lattice.h"
 #include "geometry/row_parity_inside.h"
 #include "geometry/segment_surface_crossing.h"
+#include "geometry/stuffing_offset.h"
 #include "geometry/stuffing_stencils.h"
 #include "geometry/stuffing_warp.h"
 
@@ -45,10 +46,8 @@ Status classifyLattice(const SurfaceMesh& surface, const BccLattice& lattice, Ar
 
 // One cut point per edge from an inside to an outside vertex, in the order of the inside
 // vertex's id and then of its neighbours.
-std::vector<CutPoint> findCutPoints(const SurfaceMesh& surface, const BccLattice& lattice, const Array<int8_t>& sign,
-                                    int64_t* missed) {
-  RefitBvh bvh;
-  bvh.rebuild(surface.vertices, surface.triangles);
+std::vector<CutPoint> findCutPoints(const SurfaceMesh& surface, const RefitBvh& bvh, const BccLattice& lattice,
+                                    const Array<int8_t>& sign, int64_t* missed) {
   std::vector<CutPoint> cuts;
   for (int64_t id = 0; id < lattice.vertexCount(); ++id) {
     if (sign[static_cast<size_t>(id)] <= 0) continue;
@@ -74,6 +73,7 @@ struct Stuffing {
   Array<int32_t> output;                          // output vertex per lattice vertex, or -1
   std::unordered_map<uint64_t, int32_t> cutVertex;  // edge key -> output vertex
   Array<Eigen::Vector3d> positions;
+  Array<uint8_t> onSurface;                       // per output vertex: a warped vertex or a cut point
 };
 
 Status numberVertices(const BccLattice& lattice, const std::vector<CutPoint>& cuts,
@@ -85,11 +85,13 @@ Status numberVertices(const BccLattice& lattice, const std::vector<CutPoint>& cu
     if (sign < 0) continue;
     s->output[static_cast<size_t>(id)] = static_cast<int32_t>(s->positions.size());
     s->positions.push_back(sign > 0 ? lattice.position(id) : cuts[static_cast<size_t>(warp.at(id))].position);
+    s->onSurface.push_back(sign == 0);
   }
   for (const CutPoint& c : cuts) {
     if (s->sign[static_cast<size_t>(c.inside)] <= 0 || s->sign[static_cast<size_t>(c.outside)] == 0) continue;
     s->cutVertex.emplace(edgeKey(c.inside, c.outside), static_cast<int32_t>(s->positions.size()));
     s->positions.push_back(c.position);
+    s->onSurface.push_back(1);
   }
   if (s->positions.size() > size_t(std::numeric_limits<int32_t>::max()))
     return fail(Status::InvalidArgument, "%s: %zu vertices do not fit 32-bit indices", kCaller, s->positions.size());
@@ -128,8 +130,9 @@ Status fillLattice(const BccLattice& lattice, const Stuffing& s,
   return status;
 }
 
-// Drops the warped vertices no tet uses, keeping the order of the others.
-void compact(Array<Eigen::Vector3d>&& positions, Array<std::array<int32_t, 4>>&& tets, TetMesh* mesh) {
+// Drops the warped vertices no tet uses, keeping the order of the others (and their flags).
+void compact(Array<Eigen::Vector3d>&& positions, const Array<uint8_t>& flags, Array<std::array<int32_t, 4>>&& tets,
+             TetMesh* mesh, Array<uint8_t>* keptFlags) {
   Array<int32_t> renumber(positions.size(), -1);
   for (const auto& t : tets)
     for (int32_t v : t) renumber[static_cast<size_t>(v)] = 0;
@@ -137,13 +140,15 @@ void compact(Array<Eigen::Vector3d>&& positions, Array<std::array<int32_t, 4>>&&
     if (renumber[v] < 0) continue;
     renumber[v] = static_cast<int32_t>(mesh->vertices.size());
     mesh->vertices.push_back(positions[v]);
+    keptFlags->push_back(flags[v]);
   }
   for (auto& t : tets)
     for (int32_t& v : t) v = renumber[static_cast<size_t>(v)];
   mesh->tets = std::move(tets);
 }
 
-Status build(const SurfaceMesh& surface, int resolution, TetMesh* out, StuffingReport* reportOut) {
+Status build(const SurfaceMesh& surface, int resolution, StuffingBoundary boundary, TetMesh* out,
+             StuffingReport* reportOut) {
   StuffingReport report;
   VP_TRY(makeSurfaceGrid(surface, resolution, kCaller, &report.grid));
   const double h = report.grid.cellSize;
@@ -155,7 +160,9 @@ Status build(const SurfaceMesh& surface, int resolution, TetMesh* out, StuffingR
   Stuffing s;
   VP_TRY(classifyLattice(surface, lattice, &s.sign));
   for (int8_t sign : s.sign) report.insideVertices += sign > 0;
-  const std::vector<CutPoint> cuts = findCutPoints(surface, lattice, s.sign, &report.missedCuts);
+  RefitBvh bvh;
+  bvh.rebuild(surface.vertices, surface.triangles);
+  const std::vector<CutPoint> cuts = findCutPoints(surface, bvh, lattice, s.sign, &report.missedCuts);
   const std::unordered_map<int64_t, int32_t> warp = warpLattice(lattice, cuts);
   report.warpedVertices = static_cast<int64_t>(warp.size());
   VP_TRY(numberVertices(lattice, cuts, warp, &s));
@@ -164,7 +171,9 @@ Status build(const SurfaceMesh& surface, int resolution, TetMesh* out, StuffingR
   Array<std::array<int32_t, 4>> tets;
   VP_TRY(fillLattice(lattice, s, &tets));
   TetMesh mesh;
-  compact(std::move(s.positions), std::move(tets), &mesh);
+  Array<uint8_t> onSurface;
+  compact(std::move(s.positions), s.onSurface, std::move(tets), &mesh, &onSurface);
+  if (boundary == StuffingBoundary::KeepVolume) offsetStuffedBoundary(surface, bvh, h, onSurface, &mesh, &report.offset);
   *out = std::move(mesh);
   if (reportOut != nullptr) *reportOut = report;
   return Status::Ok;
@@ -172,10 +181,11 @@ Status build(const SurfaceMesh& surface, int resolution, TetMesh* out, StuffingR
 
 }  // namespace
 
-Status tetrahedralizeByStuffing(const SurfaceMesh& surface, int resolution, TetMesh* out, StuffingReport* report) {
+Status tetrahedralizeByStuffing(const SurfaceMesh& surface, int resolution, TetMesh* out, StuffingReport* report,
+                                StuffingBoundary boundary) {
   if (out == nullptr) return fail(Status::InvalidArgument, "%s: out is null", kCaller);
   try {
-    return build(surface, resolution, out, report);
+    return build(surface, resolution, boundary, out, report);
   } catch (const std::bad_alloc&) {
     return fail(Status::OutOfMemory, "%s: out of memory at resolution %d", kCaller, resolution);
   }

@@ -22,6 +22,18 @@ double dihedralDegrees(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const
 
 }  // namespace
 
+void tetDihedralRangeDegrees(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                             const Eigen::Vector3d& d, double* minDegrees, double* maxDegrees) {
+  const Eigen::Vector3d* p[4] = {&a, &b, &c, &d};
+  *minDegrees = std::numeric_limits<double>::infinity();
+  *maxDegrees = 0.0;
+  for (const auto& edge : kEdges) {
+    const double angle = dihedralDegrees(*p[edge[0]], *p[edge[1]], *p[edge[2]], *p[edge[3]]);
+    *minDegrees = std::min(*minDegrees, angle);
+    *maxDegrees = std::max(*maxDegrees, angle);
+  }
+}
+
 double enclosedVolume(const SurfaceMesh& surface) {
   double volume = 0.0;
   for (const auto& t : surface.triangles)
@@ -35,12 +47,11 @@ TetMeshQuality tetMeshQuality(const TetMesh& mesh, const SurfaceMesh& surface) {
   q.maxDihedralDegrees = 0.0;
   for (size_t t = 0; t < mesh.tets.size(); ++t) {
     const auto& tet = mesh.tets[t];
-    for (const auto& edge : kEdges) {
-      const double angle = dihedralDegrees(mesh.vertices[tet[edge[0]]], mesh.vertices[tet[edge[1]]],
-                                           mesh.vertices[tet[edge[2]]], mesh.vertices[tet[edge[3]]]);
-      q.minDihedralDegrees = std::min(q.minDihedralDegrees, angle);
-      q.maxDihedralDegrees = std::max(q.maxDihedralDegrees, angle);
-    }
+    double lo, hi;
+    tetDihedralRangeDegrees(mesh.vertices[tet[0]], mesh.vertices[tet[1]], mesh.vertices[tet[2]],
+                            mesh.vertices[tet[3]], &lo, &hi);
+    q.minDihedralDegrees = std::min(q.minDihedralDegrees, lo);
+    q.maxDihedralDegrees = std::max(q.maxDihedralDegrees, hi);
   }
   if (mesh.tets.empty()) q.minDihedralDegrees = 0.0;
   q.tetVolume = totalVolume(mesh);

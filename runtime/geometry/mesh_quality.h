@@ -19,6 +19,10 @@ struct TetMeshQuality {
 // vertices seen along the edge. `mesh` positively oriented, indices in range.
 TetMeshQuality tetMeshQuality(const TetMesh& mesh, const SurfaceMesh& surface);
 
+// The smallest and largest dihedral angle (degrees) of the tet (a, b, c, d).
+void tetDihedralRangeDegrees(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                             const Eigen::Vector3d& d, double* minDegrees, double* maxDegrees);
+
 // The volume a closed, outward-oriented triangle surface encloses.
 double enclosedVolume(const SurfaceMesh& surface);
 

@@ -519,12 +519,13 @@ VP_API vpStatus vpColliderGetName(vpColliderId collider, char* buffer, int32_t c
 /* ---------------------------------------------------------------- deformables */
 
 /* How a surfaceFile becomes tets. Stuffing (isosurface stuffing, Labelle & Shewchuk 2007) fills
- * the surface with tets whose boundary lies on it: the volume is kept (the error shrinks with
- * the square of the cell size), and the paper proves its dihedral angles within 10.7 to 164.8
- * degrees (this implementation's warp order is its own: docs/choices.md;
- * vpDeformableGetMeshQuality reports a mesh's range); parts thinner than about two cells lose
- * volume or vanish. Voxel keeps every cube of the grid the surface touches (6 tets each):
- * it always covers the surface but swells thin parts by up to a cell. */
+ * the surface with tets whose boundary vertices lie on it and are then moved up to half a cell
+ * off it so that the boundary keeps the enclosed volume (its triangles are chords of a curved
+ * surface), and the paper proves its dihedral angles within 10.7 to 164.8 degrees, which the
+ * move keeps (this implementation's warp order is its own: docs/choices.md;
+ * vpDeformableGetMeshQuality reports a mesh's range); parts thinner than about a cell and a
+ * half may lose pieces or vanish. Voxel keeps every cube of the grid the surface touches (6
+ * tets each): it always covers the surface but swells thin parts by up to a cell. */
 typedef enum vpSurfaceMesher {
   vpSurfaceMesher_Default = 0,  /* Stuffing */
   vpSurfaceMesher_Stuffing = 1,
