@@ -76,6 +76,18 @@ double coveredFraction(const PreparedCollider& c, const AxisFace& face) {
   return std::min(1.0, std::max(0.0, area / fr.area()));
 }
 
+double coveredFractionAndCentroid(const PreparedCollider& c, const AxisFace& face, Eigen::Vector3d* centroid) {
+  *centroid = face.centre;
+  if (c.shape.kind != ShapeKind::TriangleMesh || classifyFace(c, face) < 0) return coveredFraction(c, face);
+  const detail::FaceFrame fr = detail::makeFrame(face);
+  const detail::CoveredMoments m = detail::coveredMomentsMesh(c, fr);
+  if (m.area > 0.0) {
+    (*centroid)[fr.a1] = m.u / m.area;
+    (*centroid)[fr.a2] = m.v / m.area;
+  }
+  return std::min(1.0, std::max(0.0, m.area / fr.area()));
+}
+
 double coveredFraction(const ColliderShape& shape, const AxisFace& face) {
   PreparedCollider c;
   if (!ok(prepareCollider(shape, &c))) return std::numeric_limits<double>::quiet_NaN();

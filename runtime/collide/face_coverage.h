@@ -122,6 +122,12 @@ double solidSpeedBound(const PreparedCollider& collider);
 // Covered area fraction in [0,1] of `face` by one collider. No allocation.
 double coveredFraction(const PreparedCollider& collider, const AxisFace& face);
 
+// The covered fraction as coveredFraction gives it and, for a triangle mesh (a deforming
+// surface included), the centroid of the covered part, exact (first moments by Green's
+// theorem, face_coverage_mesh.cpp). The centroid is the face's centre where nothing is
+// covered, and for any other shape. No allocation.
+double coveredFractionAndCentroid(const PreparedCollider& collider, const AxisFace& face, Eigen::Vector3d* centroid);
+
 // Convenience for one-off queries and tests: prepares `shape` (allocates); returns NaN when
 // the shape is invalid (vp::lastError() says why).
 double coveredFraction(const ColliderShape& shape, const AxisFace& face);

@@ -114,6 +114,12 @@ double coveredAreaHalfSpaces(const Eigen::Vector4d* planes, int count, const Fac
 double coveredAreaSphere(const PreparedCollider& c, const FaceFrame& fr);
 double coveredAreaCapsuleOrCylinder(const PreparedCollider& c, const FaceFrame& fr);
 double coveredAreaMesh(const PreparedCollider& c, const FaceFrame& fr);
+// The covered part's area and first moments ∫u dA, ∫v dA in the face's (u, v) frame; the area
+// is bitwise coveredAreaMesh's.
+struct CoveredMoments {
+  double area = 0.0, u = 0.0, v = 0.0;
+};
+CoveredMoments coveredMomentsMesh(const PreparedCollider& c, const FaceFrame& fr);
 
 // Convex-hull half-spaces of a point set (local frame): unit n, d in w; n.x <= d inside.
 Status convexHullPlanes(const Array<Eigen::Vector3d>& points,

@@ -10,6 +10,9 @@
 //
 // Needed segments are those whose u-range meets [u0, u1] and that reach above v0 (segments
 // above the face contribute (v1 - v0) du), found by a BVH box query over that column.
+// The first moments follow the same way: ∫∫ u dA = - ∮ u (clamp(v) - v0) du and
+// ∫∫ v dA = - ∮ ½ (clamp(v)² - v0²) du, piecewise polynomials of degree at most two in u,
+// which Simpson's rule integrates exactly.
 // Consistency: a vertex exactly on the plane counts as above it (symbolic perturbation), the
 // crossing point of an edge is computed from its endpoints in index order (so both triangles
 // sharing the edge get bit-identical points) and a segment's direction follows from the
@@ -20,9 +23,10 @@ namespace vp {
 namespace detail {
 namespace {
 
-// ∫_{lo}^{hi} (clamp(va + k (u - ua), v0, v1) - v0) du for a line v(u); exact.
-double clampedIntegral(double ua, double va, double ub, double vb, double lo, double hi,
-                       double v0, double v1) {
+// Over [lo, hi] for a line v(u) through (ua, va), (ub, vb), with f = clamp(v, v0, v1) - v0:
+// ∫ f du, and when `moments`, ∫ u f du and ∫ ½ (clamp(v)² - v0²) du; exact.
+CoveredMoments clampedIntegrals(double ua, double va, double ub, double vb, double lo, double hi, double v0,
+                                double v1, bool moments) {
   const double k = (vb - va) / (ub - ua);
   auto vAt = [&](double u) { return va + k * (u - ua); };
   double knots[4];
@@ -36,30 +40,41 @@ double clampedIntegral(double ua, double va, double ub, double vb, double lo, do
   }
   knots[n++] = hi;
   if (n == 4 && knots[1] > knots[2]) std::swap(knots[1], knots[2]);
-  double s = 0.0;
+  CoveredMoments s;
   for (int i = 0; i + 1 < n; ++i) {
     const double a = knots[i], b = knots[i + 1];
     if (b <= a) continue;
-    const double vm = vAt(0.5 * (a + b));
+    const double m = 0.5 * (a + b), vm = vAt(m);
     if (vm <= v0) continue;
-    if (vm >= v1) { s += (v1 - v0) * (b - a); continue; }
-    s += 0.5 * (vAt(a) + vAt(b) - 2.0 * v0) * (b - a);
+    if (vm >= v1) {
+      s.area += (v1 - v0) * (b - a);
+      if (moments) {
+        s.u += (v1 - v0) * m * (b - a);
+        s.v += 0.5 * (v1 * v1 - v0 * v0) * (b - a);
+      }
+      continue;
+    }
+    s.area += 0.5 * (vAt(a) + vAt(b) - 2.0 * v0) * (b - a);
+    if (moments) {
+      const double fa = vAt(a) - v0, fm = vm - v0, fb = vAt(b) - v0;
+      auto g = [&](double v) { return 0.5 * (v * v - v0 * v0); };
+      s.u += (b - a) / 6.0 * (a * fa + 4.0 * m * fm + b * fb);
+      s.v += (b - a) / 6.0 * (g(vAt(a)) + 4.0 * g(vm) + g(vAt(b)));
+    }
   }
   return s;
 }
 
-}  // namespace
-
-double coveredAreaMesh(const PreparedCollider& c, const FaceFrame& fr) {
+CoveredMoments meshIntegrals(const PreparedCollider& c, const FaceFrame& fr, bool moments) {
   Eigen::Vector3d lo, hi;
   lo[fr.a] = hi[fr.a] = fr.c0;
   lo[fr.a1] = fr.u0;
   hi[fr.a1] = fr.u1;
   lo[fr.a2] = fr.v0;
   hi[fr.a2] = c.bounds.hi[fr.a2];
-  if (hi[fr.a2] < lo[fr.a2]) return 0.0;
+  CoveredMoments sum;
+  if (hi[fr.a2] < lo[fr.a2]) return sum;
   const Array<Eigen::Vector3d>& V = c.worldVertices;
-  double area = 0.0;
   bvhQueryBox(c.bvh, lo, hi, [&](int t) {
     const Eigen::Vector3i& tri = c.triangles[t];
     bool above[3];
@@ -83,10 +98,25 @@ double coveredAreaMesh(const PreparedCollider& c, const FaceFrame& fr) {
     if (pu == qu) return;
     const double l = std::max(std::min(pu, qu), fr.u0), h = std::min(std::max(pu, qu), fr.u1);
     if (h <= l) return;
-    const double integral = clampedIntegral(pu, pv, qu, qv, l, h, fr.v0, fr.v1);
-    area -= (qu > pu) ? integral : -integral;
+    const CoveredMoments part = clampedIntegrals(pu, pv, qu, qv, l, h, fr.v0, fr.v1, moments);
+    const double sign = (qu > pu) ? -1.0 : 1.0;
+    sum.area += sign * part.area;
+    sum.u += sign * part.u;
+    sum.v += sign * part.v;
   });
-  return std::min(fr.area(), std::max(0.0, area));
+  return sum;
+}
+
+}  // namespace
+
+double coveredAreaMesh(const PreparedCollider& c, const FaceFrame& fr) {
+  return std::min(fr.area(), std::max(0.0, meshIntegrals(c, fr, false).area));
+}
+
+CoveredMoments coveredMomentsMesh(const PreparedCollider& c, const FaceFrame& fr) {
+  CoveredMoments m = meshIntegrals(c, fr, true);
+  m.area = std::min(fr.area(), std::max(0.0, m.area));
+  return m;
 }
 
 }  // namespace detail

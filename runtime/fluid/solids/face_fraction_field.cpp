@@ -68,14 +68,25 @@ bool deforming(const PreparedCollider& c) { return !c.vertexVelocities.empty(); 
 // The meshes' face classes of the box being recomputed (mesh_face_classes.h).
 using MeshClassList = std::vector<MeshFaceClasses>;
 
-// One collider's coverage of a face: from its classes where they decide, else exact.
-double coverageOf(const PreparedCollider& c, const AxisFace& face, int i, int j, int k, const MeshClassList& classes) {
+// One collider's coverage of a face: from its classes where they decide, else exact; for a
+// mesh with the centroid of its covered part too (the face's centre otherwise).
+double coverageOf(const PreparedCollider& c, const AxisFace& face, int i, int j, int k, const MeshClassList& classes,
+                  Eigen::Vector3d* centroid) {
+  *centroid = face.centre;
   for (const MeshFaceClasses& m : classes) {
     if (m.mesh != &c) continue;
     const FaceClass cls = m.at(face.axis, i, j, k);
     if (cls != FaceClass::Touched) return cls == FaceClass::Inside ? 1.0 : 0.0;
   }
-  return coveredFraction(c, face);
+  return coveredFractionAndCentroid(c, face, centroid);
+}
+
+// The solid's normal velocity over its covered part of a face: at the covered part's centroid
+// where a mesh gave it exactly, else as colliderNormalVelocity finds it.
+double normalVelocityOver(const PreparedCollider& c, const AxisFace& face, double covered,
+                          const Eigen::Vector3d& centroid) {
+  if (c.shape.kind != ShapeKind::TriangleMesh) return colliderNormalVelocity(c, face, covered);
+  return solidVelocityAt(c, centroid)[face.axis];
 }
 
 void recomputeFace(const PreparedCollider* const* colliders, int count, const MeshClassList& classes, int axis,
@@ -88,9 +99,10 @@ void recomputeFace(const PreparedCollider* const* colliders, int count, const Me
     if (colliders[c]->bounds.overlaps(fb)) near[n++] = colliders[c];
   double covered = 0.0, velocity = 0.0;
   if (n == 1) {
-    covered = coverageOf(*near[0], face, i, j, k, classes);
+    Eigen::Vector3d centroid;
+    covered = coverageOf(*near[0], face, i, j, k, classes, &centroid);
     if (covered >= 1.0 && deforming(*near[0])) velocity = kVelocityPending;
-    else if (covered > 0.0) velocity = colliderNormalVelocity(*near[0], face, covered);
+    else if (covered > 0.0) velocity = normalVelocityOver(*near[0], face, covered, centroid);
   } else if (n > 1) {
     covered = coveredFractionUnion(near, n, face);
     if (covered > 0.0) {
