@@ -232,7 +232,7 @@ int64_t RedistanceRun::claimBand(int64_t budget) {
 // half-sweep's colour. Returns their largest drop.
 double RedistanceRun::sweepSlab(int64_t begin, int64_t end) {
   const Lattice lat(grid_);
-  const double h = grid_.h;
+  const double h = grid_.h, clamp = settings_.bandCells * h;
   double* dist = ws_->distance.data();
   const int32_t* list = ws_->band[colour_].data() + begin;
   return parallelReduce<MaxDrop>(*tasks_, end - begin, kListGrain, [&](int64_t first, int64_t last) {
@@ -251,8 +251,9 @@ double RedistanceRun::sweepSlab(int64_t begin, int64_t end) {
       if (std::isinf(std::min({upwind[0], upwind[1], upwind[2]}))) continue;  // not reached yet
       const double updated = eikonalUpdate(upwind[0], upwind[1], upwind[2], h);
       if (updated < dist[c]) {
-        if (!std::isinf(dist[c])) part.value = std::max(part.value, dist[c] - updated);
-        else part.value = kInfinity;
+        // Only values under the clamp count: a cell's update reads only smaller neighbours, so
+        // values at or above it never reach one under it, nor the clamped result.
+        if (updated < clamp) part.value = std::isinf(dist[c]) ? kInfinity : std::max(part.value, dist[c] - updated);
         dist[c] = updated;
       }
     }

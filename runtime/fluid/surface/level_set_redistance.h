@@ -13,7 +13,9 @@
 //    6-neighbour path of at most sqrt(3) d / h + 1 steps to a surface cell).
 // 3. Eikonal |grad d| = 1 on the band by the first-order Godunov upwind update (the one of
 //    fast marching and fast sweeping, Zhao 2005: exact for planes), iterated as red-black
-//    Gauss-Seidel from d = +inf until no value drops by more than a tolerance. Red cells read
+//    Gauss-Seidel from d = +inf until no value under the clamp W h drops by more than a
+//    tolerance (an update reads only neighbours smaller than its result, so values at or
+//    above the clamp never move one under it, and the result clamps them). Red cells read
 //    only black neighbours, so each half-sweep is parallel and its result does not depend on
 //    the worker count.
 // 4. phi = sign(old phi) * min(d, W h) on the band, +-W h beyond it: a signed distance clamped
@@ -35,7 +37,7 @@ namespace vp {
 
 struct RedistanceSettings {
   double bandCells = 4.0;         // W: exact distances up to W h, clamped beyond
-  double tolerance = 1e-6;        // stop when no value drops by more than tolerance * h
+  double tolerance = 1e-6;        // stop when no value under W h drops by more than tolerance * h
   int maxSweeps = 64;             // red-black sweep pairs
 };
 
