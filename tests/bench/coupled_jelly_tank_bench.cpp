@@ -15,9 +15,14 @@
 //   coupling_share     coupling_ms / fluid_ms (the issue bounds it at 25%)
 //   immersion_ms       the jelly's own step in the coupled world less the twin's (the loads'
 //                      stabilization and whatever the different motion costs)
+//   advect_ms, pressure_ms, surface_ms (and _uncoupled): the tank's other phases, where the rest
+//                      of coupling_ms goes; pressure_ms holds the loads on the jelly's nodes
+//                      (integrated after each projection) and the projections themselves
+//   pressure_iters (and _uncoupled): the tank's pressure iterations per step, all sub-steps
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <string>
 #include <vector>
 
 #include "geometry/box_tet_mesh.h"
@@ -83,7 +88,7 @@ void BM_CoupledJellyTank(benchmark::State& state) {
   for (auto _ : state) {
     Tank coupled, twin;
     if (!makeTank(n, true, &coupled) || !makeTank(n, false, &twin)) return state.SkipWithError(lastError());
-    std::vector<double> fluid[2], fractions[2], jelly[2];
+    std::vector<double> fluid[2], fractions[2], jelly[2], advect[2], pressure[2], surface[2], iterations[2];
     for (int frame = 0; frame < kWarmFrames + kMeasuredFrames; ++frame) {
       Tank* tanks[2] = {&coupled, &twin};
       for (int w = 0; w < 2; ++w) {
@@ -94,6 +99,10 @@ void BM_CoupledJellyTank(benchmark::State& state) {
         if (frame < kWarmFrames) continue;
         fluid[w].push_back(f->totalMs);
         fractions[w].push_back(f->phase(Phase::Fractions).ms);
+        advect[w].push_back(f->phase(Phase::Advect).ms);
+        pressure[w].push_back(f->phase(Phase::Pressure).ms);
+        surface[w].push_back(f->phase(Phase::Surface).ms);
+        iterations[w].push_back(f->phase(Phase::Pressure).iterations);
         jelly[w].push_back(d->totalMs);
       }
     }
@@ -105,6 +114,13 @@ void BM_CoupledJellyTank(benchmark::State& state) {
     state.counters["coupling_ms"] = fluidMs - uncoupledMs;
     state.counters["coupling_share"] = (fluidMs - uncoupledMs) / fluidMs;
     state.counters["immersion_ms"] = median(jelly[0]) - median(jelly[1]);
+    const char* suffix[2] = {"", "_uncoupled"};
+    for (int w = 0; w < 2; ++w) {
+      state.counters[std::string("advect_ms") + suffix[w]] = median(advect[w]);
+      state.counters[std::string("pressure_ms") + suffix[w]] = median(pressure[w]);
+      state.counters[std::string("surface_ms") + suffix[w]] = median(surface[w]);
+      state.counters[std::string("pressure_iters") + suffix[w]] = median(iterations[w]);
+    }
   }
 }
 BENCHMARK(BM_CoupledJellyTank)->Arg(64)->Iterations(1)->Unit(benchmark::kMillisecond);

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "collide/mesh_grid_inside.h"
 #include "fluid/grid_index.h"
 
 namespace vp {
@@ -47,6 +48,35 @@ bool solidCell(const MacGrid& grid, const FaceFractionField& fractions, const Ei
   return true;
 }
 
+// Which of the box's cell centres lie inside `body` (none without one), in the box's
+// numbering: for a mesh by row parity over the box (collide/mesh_grid_inside.h), one ray per
+// row; per centre by solidContains for other shapes and where the rows do not pair up.
+Array<uint8_t> cellsInBody(const MacGrid& grid, const PreparedCollider* body, const LocalPressure& local) {
+  const int64_t count = int64_t(local.dims.x()) * local.dims.y() * local.dims.z();
+  Array<uint8_t> inside;
+  if (body == nullptr) {
+    inside.assign(static_cast<size_t>(count), 0);
+    return inside;
+  }
+  if (body->shape.kind == ShapeKind::TriangleMesh) {
+    SampleGrid centres;
+    centres.spacing = grid.spec.h;
+    centres.offset = 0.5;
+    for (int d = 0; d < 3; ++d) {
+      centres.origin[d] = grid.spec.origin[d] + grid.spec.h * local.lo[d];
+      centres.count[static_cast<size_t>(d)] = local.dims[d];
+    }
+    if (meshGridInside(*body, centres, "extended pressure", &inside) == Status::Ok) return inside;
+  }
+  inside.assign(static_cast<size_t>(count), 0);
+  for (int64_t l = 0; l < count; ++l) {
+    const Eigen::Vector3i c = local.lo + Eigen::Vector3i(int(l % local.dims.x()), int((l / local.dims.x()) % local.dims.y()),
+                                                        int(l / (int64_t(local.dims.x()) * local.dims.y())));
+    inside[static_cast<size_t>(l)] = solidContains(*body, grid.cellCentre(c.x(), c.y(), c.z())) ? 1 : 0;
+  }
+  return inside;
+}
+
 void extendIntoSolid(const MacGrid& grid, const FaceFractionField& fractions, const CutCellPoisson& op,
                      const double* pressure, const double* liquidPhi, const PreparedCollider* body,
                      LocalPressure& local) {
@@ -54,6 +84,7 @@ void extendIntoSolid(const MacGrid& grid, const FaceFractionField& fractions, co
   local.value.assign(static_cast<size_t>(count), 0.0);
   local.layer.assign(static_cast<size_t>(count), 0);
   local.air.assign(static_cast<size_t>(count), 0);
+  const Array<uint8_t> inBodyCells = cellsInBody(grid, body, local);
   Array<int64_t> unknown;
   for (int k = 0; k < local.dims.z(); ++k)
     for (int j = 0; j < local.dims.y(); ++j)
@@ -61,7 +92,7 @@ void extendIntoSolid(const MacGrid& grid, const FaceFractionField& fractions, co
         const Eigen::Vector3i c = local.lo + Eigen::Vector3i(i, j, k);
         const int64_t l = local.index(c);
         const size_t g = grid.cellIndex(c.x(), c.y(), c.z());
-        const bool inBody = body != nullptr && solidContains(*body, grid.cellCentre(c.x(), c.y(), c.z()));
+        const bool inBody = inBodyCells[static_cast<size_t>(l)] != 0;
         if (op.isFluid(g) && !inBody) {
           local.value[l] = pressure[g];
         } else if (inBody || solidCell(grid, fractions, c)) {

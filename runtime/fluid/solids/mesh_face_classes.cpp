@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "geometry/row_parity_inside.h"
+#include "collide/mesh_grid_inside.h"
 
 namespace vp {
 
@@ -41,11 +41,6 @@ void classifyMeshFaces(const PreparedCollider& mesh, const FaceFractionField& fi
                        MeshFaceClasses* out) {
   out->mesh = &mesh;
   const MacGridSpec& g = field.grid;
-  SurfaceMesh surface;
-  surface.vertices.assign(mesh.worldVertices.begin(), mesh.worldVertices.end());
-  surface.triangles.resize(mesh.triangles.size());
-  for (size_t t = 0; t < mesh.triangles.size(); ++t)
-    surface.triangles[t] = {mesh.triangles[t][0], mesh.triangles[t][1], mesh.triangles[t][2]};
   for (int a = 0; a < 3; ++a) {
     const FaceBox r = facesAround(field, box, a);
     out->boxes[a] = r;
@@ -59,7 +54,7 @@ void classifyMeshFaces(const PreparedCollider& mesh, const FaceFractionField& fi
       centres.count[static_cast<size_t>(d)] = r.hi[d] - r.lo[d] + 1;
     }
     Array<uint8_t> inside;
-    if (insideByRowParity(surface, centres, "classifyMeshFaces", &inside) != Status::Ok) {
+    if (meshGridInside(mesh, centres, "classifyMeshFaces", &inside) != Status::Ok) {
       out->classes[a].assign(static_cast<size_t>(r.faces()), static_cast<uint8_t>(FaceClass::Touched));
       continue;
     }
