@@ -10,7 +10,8 @@
 namespace vp {
 
 enum class Phase : int {
-  Rigid = 0, Corotate, Assemble, Contacts, Solve, Embed, Advect, Forces, Fractions, Pressure, Surface, Viscosity, Count
+  Rigid = 0, Corotate, Assemble, Contacts, Solve, Embed, Advect, Forces, Fractions, Pressure, Surface, Viscosity,
+  Coupling, Count
 };
 constexpr int kPhaseCount = static_cast<int>(Phase::Count);
 

@@ -32,6 +32,16 @@ constexpr double kMaxFluidSpeed = 1e3;
 // in 15 s.
 constexpr double kMinExtrapolationSourceOpenFraction = 0.25;
 
+namespace {
+
+// Whether some solid of the step's input is `which`: the coupling's stages run only then.
+template <class Which>
+bool anySolid(const FluidStepInput& input, const Which& which) {
+  return std::any_of(input.colliders.begin(), input.colliders.end(), which);
+}
+
+}  // namespace
+
 Status FluidActor::create(FluidDesc desc, TaskSystem& tasks, std::unique_ptr<FluidActor>* out) {
   VP_TRY(validateFluidDesc(desc));
   std::unique_ptr<FluidActor> actor(new FluidActor(std::move(desc)));
@@ -278,7 +288,7 @@ bool FluidActor::applyForcesSlice() {
   return done;
 }
 
-Status FluidActor::addFractionUpdatePasses(SlabPasses& passes) {
+Status FluidActor::addFractionUpdatePasses(SlabPasses& passes, SlabPasses& surfacePasses) {
   std::vector<const PreparedCollider*>& geometry = step_->fractionColliders;
   std::vector<ColliderSnapshot> now;
   for (const FluidCollider& c : step_->input.colliders) {
@@ -296,16 +306,16 @@ Status FluidActor::addFractionUpdatePasses(SlabPasses& passes) {
   // Every recomputed region also gets its split cut cells' minor pieces closed
   // (cut_cell_components.h: without it a plate one cell thick leaks), then its sliver cells
   // (sliver_cells.h: they hold absurd pressures).
-  auto tidy = [&](const Aabb& box) -> Status {
-    VP_TRY(addSplitCellPasses(passes, geometry.data(), count, box, &fractions_, nullptr));
-    addSliverCellPasses(passes, box, &fractions_);
+  auto tidy = [&](SlabPasses& list, const Aabb& box) -> Status {
+    VP_TRY(addSplitCellPasses(list, geometry.data(), count, box, &fractions_, nullptr));
+    addSliverCellPasses(list, box, &fractions_);
     return Status::Ok;
   };
   if (!sameSet) {
     // A collider came or went: a full recompute is simpler than tracking the union of
     // everything that changed, and it happens only on such events.
     VP_TRY(addFaceFractionPasses(passes, geometry.data(), count, &fractions_));
-    for (const PreparedCollider* c : geometry) VP_TRY(tidy(c->bounds));
+    for (const PreparedCollider* c : geometry) VP_TRY(tidy(passes, c->bounds));
     fractionsChanged_ = pressureOperatorStale_ = true;
   } else {
     for (size_t i = 0; i < now.size(); ++i) {
@@ -317,8 +327,11 @@ Status FluidActor::addFractionUpdatePasses(SlabPasses& passes) {
       // A body moving elsewhere in the world changes no face here (and must not make the
       // pressure operator look stale).
       if (!moved || !(a.bounds.overlaps(domain) || b.bounds.overlaps(domain))) continue;
-      VP_TRY(addFaceFractionUpdatePasses(passes, geometry.data(), count, a.bounds, b.bounds, &fractions_));
-      for (const Aabb& box : boxesToUpdate(a.bounds, b.bounds)) VP_TRY(tidy(box));
+      // Deformables come after the rigid colliders in the input, so their list running after
+      // the other keeps the order of the updates.
+      SlabPasses& list = (b.generation & kDeformableSolidBit) ? surfacePasses : passes;
+      VP_TRY(addFaceFractionUpdatePasses(list, geometry.data(), count, a.bounds, b.bounds, &fractions_));
+      for (const Aabb& box : boxesToUpdate(a.bounds, b.bounds)) VP_TRY(tidy(list, box));
       fractionsChanged_ = pressureOperatorStale_ = true;
     }
   }
@@ -447,22 +460,35 @@ void FluidActor::beginStep(const FluidStepInput& input) {
   job_.reset();
   work_.begin();
   job_.thenOnce(static_cast<int>(FluidSlice::Fractions), [this] { planFractionUpdate(); });
-  job_.then(static_cast<int>(FluidSlice::Fractions), [this] { return updateFractionsSlice(); });
+  job_.then(static_cast<int>(FluidSlice::Fractions),
+            [this] { return runFractionPassesSlice(step_->fractionUpdate, FluidSlice::Fractions); });
+  if (anySolid(input, [](const FluidCollider& c) { return (c.generation & kDeformableSolidBit) != 0; }))
+    job_.then(static_cast<int>(FluidSlice::SurfaceFractions),
+              [this] { return runFractionPassesSlice(step_->surfaceFractionUpdate, FluidSlice::SurfaceFractions); });
+  job_.then(static_cast<int>(FluidSlice::CellWeights),
+            [this] { return runFractionPassesSlice(step_->cellWeightUpdate, FluidSlice::CellWeights); });
   job_.thenOnce(static_cast<int>(FluidSlice::Plan), [this] { finishFractionUpdate(); });
   job_.thenOnce(static_cast<int>(FluidSlice::Plan), [this] { planSubsteps(); });
 }
 
 void FluidActor::planFractionUpdate() {
+  TaskSystem& tasks = *step_->input.tasks;
   SlabPasses& passes = step_->fractionUpdate;
-  passes.reset(*step_->input.tasks);
-  if (!phaseOk(Phase::Fractions, "face fractions", addFractionUpdatePasses(passes))) passes.reset(*step_->input.tasks);
-  if (desc_.kind == FluidKind::Liquid) addCellOpenFractionPasses(passes, fractions_, &cellWeights_);
+  SlabPasses& surfacePasses = step_->surfaceFractionUpdate;
+  passes.reset(tasks);
+  surfacePasses.reset(tasks);
+  step_->cellWeightUpdate.reset(tasks);
+  if (!phaseOk(Phase::Fractions, "face fractions", addFractionUpdatePasses(passes, surfacePasses))) {
+    passes.reset(tasks);
+    surfacePasses.reset(tasks);
+  }
+  if (desc_.kind == FluidKind::Liquid) addCellOpenFractionPasses(step_->cellWeightUpdate, fractions_, &cellWeights_);
 }
 
-bool FluidActor::updateFractionsSlice() {
-  SlabPasses& passes = step_->fractionUpdate;
-  const bool done = passes.runSlice(slabSamples(FluidSlice::Fractions));
-  sliceWork_ = passes.lastSliceSamples();
+bool FluidActor::runFractionPassesSlice(SlabPasses& passes, FluidSlice kind) {
+  const bool done = passes.runSlice(slabSamples(kind));
+  // An empty list (no such solid moved) did next to nothing, not a pass over the grid.
+  sliceWork_ = std::max<int64_t>(1, passes.lastSliceSamples());
   return done;
 }
 
@@ -558,6 +584,8 @@ void FluidActor::queueSubstep(int) {
   job_.then(static_cast<int>(FluidSlice::PressureSetup), [this] { return setUpProjectionSlice(); });
   job_.then(static_cast<int>(FluidSlice::PressureIteration), [this] { return iterateProjection(); });
   job_.then(static_cast<int>(FluidSlice::PressureUpdate), [this] { return finishProjectionSlice(); });
+  if (desc_.twoWayCoupling && anySolid(step_->input, [](const FluidCollider& c) { return c.dynamic; }))
+    once(FluidSlice::Loads, &FluidActor::addSubstepLoads);
   if (liquid)
     job_.then(static_cast<int>(FluidSlice::Extrapolate), [this] { return extrapolateLiquidVelocitySlice(); });
 }
@@ -605,15 +633,17 @@ bool FluidActor::finishProjectionSlice() {
   PhaseStats& phase = st.stats->phase(Phase::Pressure);
   phase.residual = std::max(phase.residual, ps.relativeResidual);
   st.stats->residual = std::max(st.stats->residual, ps.relativeResidual);
-  if (desc_.twoWayCoupling) addSubstepLoads();
   return true;
 }
 
 void FluidActor::addSubstepLoads() {
   StepInProgress& st = *step_;
+  sliceWork_ = 1;  // next to nothing unless a body takes a load (then a pass's worth)
+  if (st.projectionFailed) return;  // no pressure of this sub-step to load anything with
   for (size_t c = 0; c < st.input.colliders.size(); ++c) {
     const FluidCollider& fc = st.input.colliders[c];
     if (!fc.dynamic || fc.geometry == nullptr) continue;
+    sliceWork_ = 0;
     PressureLoad l;
     if (fc.geometry->vertexVelocities.empty()) {
       l = pressureLoadOnCollider(grid_, fractions_, pressure_.poisson, pressure_.pressure.data(), desc_.density,
@@ -701,6 +731,8 @@ void FluidActor::publishFields() {
 bool FluidActor::runsSlabs(FluidSlice kind) {
   switch (kind) {
     case FluidSlice::Fractions:
+    case FluidSlice::SurfaceFractions:
+    case FluidSlice::CellWeights:
     case FluidSlice::AdvectVelocity:
     case FluidSlice::AdvectScalars:
     case FluidSlice::LevelSet:
@@ -714,7 +746,10 @@ bool FluidActor::runsSlabs(FluidSlice kind) {
 Phase FluidActor::phaseOf(FluidSlice kind) {
   switch (kind) {
     case FluidSlice::Fractions:
+    case FluidSlice::CellWeights:
     case FluidSlice::Plan: return Phase::Fractions;
+    case FluidSlice::SurfaceFractions:
+    case FluidSlice::Loads: return Phase::Coupling;
     case FluidSlice::AdvectVelocity:
     case FluidSlice::AdvectScalars: return Phase::Advect;
     case FluidSlice::Sources:

@@ -116,7 +116,8 @@ struct SliceBudget {
 // The kinds of slice a fluid step is made of (their measured costs are kept per kind).
 enum class FluidSlice : int {
   Fractions, Plan, AdvectVelocity, AdvectScalars, Sources, LevelSet, Viscosity, Forces,
-  PressureSetup, PressureIteration, PressureUpdate, Extrapolate, Publish, Count
+  PressureSetup, PressureIteration, PressureUpdate, Extrapolate, Publish,
+  SurfaceFractions, CellWeights, Loads, Count
 };
 
 class FluidActor {
@@ -209,7 +210,9 @@ class FluidActor {
   void beginStep(const FluidStepInput& input);
   // The stages (see the top of this file).
   void planFractionUpdate();
-  bool updateFractionsSlice();  // one slice of the planned update per call; true when done
+  // One slice of a planned pass list per call (the rigid colliders', the deformables', the
+  // liquid's cell weights after both); true when it is done.
+  bool runFractionPassesSlice(SlabPasses& passes, FluidSlice kind);
   void finishFractionUpdate();
   void planSubsteps();
   void planEnergyBound(double solidSpeed);
@@ -242,7 +245,9 @@ class FluidActor {
   static Phase phaseOf(FluidSlice kind);
   static bool runsSlabs(FluidSlice kind);
 
-  Status addFractionUpdatePasses(SlabPasses& passes);
+  // The fractions' update: `passes` for rigid colliders (and everything when the set of
+  // solids changed), `surfacePasses` for deformables that moved (the coupling's part).
+  Status addFractionUpdatePasses(SlabPasses& passes, SlabPasses& surfacePasses);
   double maxSpeed(TaskSystem& tasks) const;
   const double* liquidPhi() const { return desc_.kind == FluidKind::Liquid ? phi_.data() : nullptr; }
 
@@ -272,7 +277,7 @@ class FluidActor {
     std::vector<PressureLoad> loadSum;  // per input collider
     std::vector<Array<Vec3>> vertexForceSum;  // per input collider (deforming surfaces only)
     std::vector<const PreparedCollider*> fractionColliders;  // the input's, with geometry
-    SlabPasses fractionUpdate;
+    SlabPasses fractionUpdate, surfaceFractionUpdate, cellWeightUpdate;
     SlabPasses forces;  // the sub-step's body forces
     VelocityAdvectionSlices velocityAdvection;
     ScalarAdvectionSlices scalarAdvection;

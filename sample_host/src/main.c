@@ -153,7 +153,9 @@ static const ActorColumns kActorColumns[] = {
     {vpActorKind_Deformable, vpPhase_Solve,
      {vpPhase_Corotate, vpPhase_Assemble, vpPhase_Contacts, vpPhase_Solve, vpPhase_Embed}, 5},
     {vpActorKind_Fluid, vpPhase_Pressure,
-     {vpPhase_Advect, vpPhase_Forces, vpPhase_Viscosity, vpPhase_Fractions, vpPhase_Pressure, vpPhase_Surface}, 6},
+     {vpPhase_Advect, vpPhase_Forces, vpPhase_Viscosity, vpPhase_Fractions, vpPhase_Pressure, vpPhase_Surface,
+      vpPhase_Coupling},
+     7},
 };
 
 static const ActorColumns* actorColumns(vpActorKind kind) {

@@ -13,6 +13,8 @@
 //   coupling_ms        fluid_ms - fluid_ms_uncoupled: what the jelly adds to the fluid's step
 //                      (its surface's fractions, the loads on its nodes, and the flow it stirs)
 //   coupling_share     coupling_ms / fluid_ms (the issue bounds it at 25%)
+//   coupling_phase_ms  the coupled tank's Coupling phase: the jelly's fractions and the loads on
+//                      its nodes, as the issue counts the coupling; coupling_phase_share of fluid_ms
 //   immersion_ms       the jelly's own step in the coupled world less the twin's (the loads'
 //                      stabilization and whatever the different motion costs)
 //   advect_ms, pressure_ms, surface_ms (and _uncoupled): the tank's other phases, where the rest
@@ -88,7 +90,8 @@ void BM_CoupledJellyTank(benchmark::State& state) {
   for (auto _ : state) {
     Tank coupled, twin;
     if (!makeTank(n, true, &coupled) || !makeTank(n, false, &twin)) return state.SkipWithError(lastError());
-    std::vector<double> fluid[2], fractions[2], jelly[2], advect[2], pressure[2], surface[2], iterations[2];
+    std::vector<double> fluid[2], fractions[2], jelly[2], advect[2], pressure[2], surface[2], iterations[2],
+        coupling[2];
     for (int frame = 0; frame < kWarmFrames + kMeasuredFrames; ++frame) {
       Tank* tanks[2] = {&coupled, &twin};
       for (int w = 0; w < 2; ++w) {
@@ -103,6 +106,7 @@ void BM_CoupledJellyTank(benchmark::State& state) {
         pressure[w].push_back(f->phase(Phase::Pressure).ms);
         surface[w].push_back(f->phase(Phase::Surface).ms);
         iterations[w].push_back(f->phase(Phase::Pressure).iterations);
+        coupling[w].push_back(f->phase(Phase::Coupling).ms);
         jelly[w].push_back(d->totalMs);
       }
     }
@@ -114,6 +118,8 @@ void BM_CoupledJellyTank(benchmark::State& state) {
     state.counters["coupling_ms"] = fluidMs - uncoupledMs;
     state.counters["coupling_share"] = (fluidMs - uncoupledMs) / fluidMs;
     state.counters["immersion_ms"] = median(jelly[0]) - median(jelly[1]);
+    state.counters["coupling_phase_ms"] = median(coupling[0]);
+    state.counters["coupling_phase_share"] = median(coupling[0]) / fluidMs;
     const char* suffix[2] = {"", "_uncoupled"};
     for (int w = 0; w < 2; ++w) {
       state.counters[std::string("advect_ms") + suffix[w]] = median(advect[w]);

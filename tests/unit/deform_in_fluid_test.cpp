@@ -54,6 +54,44 @@ JellyMotion motionOf(const DeformableBody& body) {
   return m;
 }
 
+// The coupling's work is a stats phase of its own: a tank with a jelly falling into it spends
+// Coupling time every frame (the jelly's fractions and its loads); the same tank whose filter
+// leaves the jelly out, beside a static collider, spends none, and its fractions stay in the
+// Fractions phase.
+TEST(DeformableInFluid, TheCouplingsWorkIsAStatsPhaseOfItsOwn) {
+  constexpr uint32_t kUnseen = 2;
+  for (const bool seen : {true, false}) {
+    FluidHandle fluid;
+    std::unique_ptr<World> world = testutil::unbudgetedWorld();
+    ASSERT_TRUE(world);
+    FluidDesc d = testutil::liquidTank(16, 16, 16, 1.0 / 16, 0.5);
+    d.sides[3] = DomainSide::Open;
+    d.filter.mask = ~kUnseen;
+    ASSERT_EQ(world->createFluid(d, &fluid), Status::Ok) << lastError();
+    ColliderDesc post;
+    post.bodyType = BodyType::Static;
+    post.shape.type = ShapeType::Box;
+    post.shape.halfExtents = Vec3(0.05, 0.3, 0.05);
+    post.pose.position = Vec3(0.15, 0.3, 0.15);
+    ColliderHandle postHandle;
+    ASSERT_EQ(world->createCollider(post, &postHandle), Status::Ok) << lastError();
+    DeformableDesc jelly = jellyBlock(500.0, 0.55);
+    if (!seen) jelly.filter.category = kUnseen;
+    DeformableHandle jellyHandle;
+    ASSERT_EQ(world->createDeformable(std::move(jelly), &jellyHandle), Status::Ok) << lastError();
+    for (int frame = 0; frame < 20; ++frame) {
+      ASSERT_EQ(world->step(1.0 / 60.0), Status::Ok) << lastError();
+      const ActorStats* f = nullptr;
+      for (const ActorStats& a : world->lastStats().actors)
+        if (a.kind == ActorKind::Fluid) f = &a;
+      ASSERT_NE(f, nullptr);
+      if (seen) EXPECT_GT(f->phase(Phase::Coupling).ms, 0.0) << "frame " << frame;
+      else EXPECT_EQ(f->phase(Phase::Coupling).ms, 0.0) << "frame " << frame;
+      EXPECT_GT(f->phase(Phase::Fractions).ms, 0.0) << "frame " << frame;
+    }
+  }
+}
+
 // The fluid sees the deformable's surface exactly as a rigid mesh of the same triangles: at
 // rest, the same fractions, face for face.
 TEST(DeformableInFluid, ASurfaceAtRestGivesTheFractionsOfTheSameRigidMesh) {

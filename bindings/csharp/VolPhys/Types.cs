@@ -19,7 +19,7 @@ namespace VolPhys
     public enum Phase : int
     {
         Rigid = 0, Corotate = 1, Assemble = 2, Contacts = 3, Solve = 4, Embed = 5, Advect = 6, Forces = 7,
-        Fractions = 8, Pressure = 9, Surface = 10, Viscosity = 11
+        Fractions = 8, Pressure = 9, Surface = 10, Viscosity = 11, Coupling = 12
     }
 
     public enum ActorKind : int { Rigid = 0, Deformable = 1, Fluid = 2 }

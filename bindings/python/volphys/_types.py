@@ -76,9 +76,10 @@ class Phase(NamedIntEnum):
     Pressure = 9
     Surface = 10
     Viscosity = 11
+    Coupling = 12
 
 
-PHASE_COUNT = 12
+PHASE_COUNT = 13
 
 
 class ActorKind(NamedIntEnum):

@@ -306,7 +306,10 @@ typedef enum vpPhase {
   vpPhase_Pressure = 9,
   vpPhase_Surface = 10,
   vpPhase_Viscosity = 11, /* fluids with a kinematic viscosity > 0: the implicit diffusion solve */
-  vpPhase_Count = 12
+  vpPhase_Coupling = 12, /* fluids: the two-way coupling's work, the face fractions of deformables
+                            that moved and the loads on dynamic bodies and deformables (the
+                            fractions of rigid colliders stay in vpPhase_Fractions) */
+  vpPhase_Count = 13
 } vpPhase;
 
 #define VP_MAX_PHASES 16
