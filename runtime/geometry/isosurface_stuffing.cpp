@@ -1,6 +1,7 @@
 #include "geometry/isosurface_stuffing.h"
 
 #include "geometry/bcc_lattice.h"
+#include "geometry/graded_bcc_lattice.h"
 #include "geometry/row_parity_inside.h"
 #include "geometry/segment_surface_crossing.h"
 #include "geometry/stuffing_offset.h"
@@ -114,18 +115,52 @@ bool stencilFor(const BccLattice& lattice, const Stuffing& s, const std::array<L
   return any;
 }
 
+// Fills one lattice tet by its stencil.
+Status fillOne(const BccLattice& lattice, const Stuffing& s, const std::array<LatticePoint, 4>& p,
+               Array<std::array<int32_t, 4>>* tets) {
+  StencilTet tet;
+  std::array<int64_t, 4> ids{};
+  if (!stencilFor(lattice, s, p, &tet, &ids)) return Status::Ok;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+      if (tet.sign[i] > 0 && tet.sign[j] < 0) tet.cut[i][j] = s.cutVertex.at(edgeKey(ids[i], ids[j]));
+  if (!fillStencil(tet, s.positions, tets))
+    return fail(Status::Internal, "%s: a stencil's prism has cyclic diagonals", kCaller);
+  return Status::Ok;
+}
+
 Status fillLattice(const BccLattice& lattice, const Stuffing& s,
                    Array<std::array<int32_t, 4>>* tets) {
   Status status = Status::Ok;
   lattice.forEachTet([&](const std::array<LatticePoint, 4>& p) {
-    StencilTet tet;
-    std::array<int64_t, 4> ids{};
-    if (!ok(status) || !stencilFor(lattice, s, p, &tet, &ids)) return;
-    for (int i = 0; i < 4; ++i)
-      for (int j = 0; j < 4; ++j)
-        if (tet.sign[i] > 0 && tet.sign[j] < 0) tet.cut[i][j] = s.cutVertex.at(edgeKey(ids[i], ids[j]));
-    if (!fillStencil(tet, s.positions, tets))
-      status = fail(Status::Internal, "%s: a stencil's prism has cyclic diagonals", kCaller);
+    if (ok(status)) status = fillOne(lattice, s, p, tets);
+  });
+  return status;
+}
+
+// The graded lattice: the finest faces by the stencils, the rest (all inside, none warped:
+// graded_bcc_lattice.h) as they are, oriented.
+Status fillGraded(const BccLattice& lattice, const Stuffing& s, int grading, Array<std::array<int32_t, 4>>* tets) {
+  const GradedBccLattice graded(lattice, s.sign, grading);
+  Status status = Status::Ok;
+  graded.forEachFineTet([&](const std::array<LatticePoint, 4>& p) {
+    if (ok(status)) status = fillOne(lattice, s, p, tets);
+  });
+  graded.forEachCoarseTet([&](const std::array<LatticePoint, 4>& p) {
+    if (!ok(status)) return;
+    std::array<int32_t, 4> t{};
+    for (int k = 0; k < 4; ++k) {
+      const int64_t id = lattice.id(p[k]);
+      if (id < 0 || s.sign[static_cast<size_t>(id)] <= 0) {
+        status = fail(Status::Internal, "%s: a coarse tet has a vertex that is not inside", kCaller);
+        return;
+      }
+      t[k] = s.output[static_cast<size_t>(id)];
+    }
+    const auto& x = s.positions;
+    const Eigen::Vector3d a = x[size_t(t[0])];
+    if ((x[size_t(t[1])] - a).cross(x[size_t(t[2])] - a).dot(x[size_t(t[3])] - a) < 0.0) std::swap(t[2], t[3]);
+    tets->push_back(t);
   });
   return status;
 }
@@ -147,8 +182,10 @@ void compact(Array<Eigen::Vector3d>&& positions, const Array<uint8_t>& flags, Ar
   mesh->tets = std::move(tets);
 }
 
-Status build(const SurfaceMesh& surface, int resolution, StuffingBoundary boundary, TetMesh* out,
+Status build(const SurfaceMesh& surface, int resolution, StuffingBoundary boundary, int grading, TetMesh* out,
              StuffingReport* reportOut) {
+  if (grading < 0 || grading > kMaxStuffingGrading)
+    return fail(Status::InvalidArgument, "%s: grading %d is outside [0, %d]", kCaller, grading, kMaxStuffingGrading);
   StuffingReport report;
   VP_TRY(makeSurfaceGrid(surface, resolution, kCaller, &report.grid));
   const double h = report.grid.cellSize;
@@ -169,7 +206,11 @@ Status build(const SurfaceMesh& surface, int resolution, StuffingBoundary bounda
   report.cutPoints = static_cast<int64_t>(s.cutVertex.size());
 
   Array<std::array<int32_t, 4>> tets;
-  VP_TRY(fillLattice(lattice, s, &tets));
+  if (grading == 0) {
+    VP_TRY(fillLattice(lattice, s, &tets));
+  } else {
+    VP_TRY(fillGraded(lattice, s, grading, &tets));
+  }
   TetMesh mesh;
   Array<uint8_t> onSurface;
   compact(std::move(s.positions), s.onSurface, std::move(tets), &mesh, &onSurface);
@@ -182,10 +223,10 @@ Status build(const SurfaceMesh& surface, int resolution, StuffingBoundary bounda
 }  // namespace
 
 Status tetrahedralizeByStuffing(const SurfaceMesh& surface, int resolution, TetMesh* out, StuffingReport* report,
-                                StuffingBoundary boundary) {
+                                StuffingBoundary boundary, int grading) {
   if (out == nullptr) return fail(Status::InvalidArgument, "%s: out is null", kCaller);
   try {
-    return build(surface, resolution, boundary, out, report);
+    return build(surface, resolution, boundary, grading, out, report);
   } catch (const std::bad_alloc&) {
     return fail(Status::OutOfMemory, "%s: out of memory at resolution %d", kCaller, resolution);
   }

@@ -8,11 +8,12 @@
 // whose triangles are chords of it, so curved parts lose volume (second order in the lattice
 // spacing, large for parts a few cells thick); by default the boundary vertices are then moved
 // off the surface to give that volume back (stuffing_offset.h). Features thinner than the
-// spacing may be lost, which no offset restores. Grading (an octree-graded lattice, coarser
-// inside) is not built: every tet has about the lattice's size.
+// spacing may be lost, which no offset restores. With `grading` > 0 the lattice is octree-graded
+// (graded_bcc_lattice.h): finest near the surface, up to 2^grading times coarser deep inside.
 #pragma once
 
 #include "core/status.h"
+#include "geometry/graded_bcc_lattice.h"
 #include "geometry/stuffing_offset.h"
 #include "geometry/surface_grid.h"
 #include "geometry/surface_mesh.h"
@@ -29,6 +30,13 @@ constexpr double kStuffingAlphaLong = 0.24999;
 constexpr double kStuffingAlphaShort = 0.41189;
 constexpr double kStuffingMinDihedralDegrees = 10.7;
 constexpr double kStuffingMaxDihedralDegrees = 164.8;
+// The graded lattice (graded_bcc_lattice.h) keeps the same bounds: the surface's side is the
+// uniform lattice's, and the tets inside are pieces of octahedra and pyramids between cube
+// centres and face points, whose angles (enumerated over every way a face's edges can be split:
+// docs/choices.md) lie well inside these. The paper's own graded construction, with its own
+// thresholds and bounds, is not the one built here.
+constexpr double kGradedStuffingMinDihedralDegrees = kStuffingMinDihedralDegrees;
+constexpr double kGradedStuffingMaxDihedralDegrees = kStuffingMaxDihedralDegrees;
 
 struct StuffingReport {
   SurfaceGrid grid;             // the cubes; the lattice adds one cube of margin on every side
@@ -62,12 +70,15 @@ enum class StuffingBoundary { OnSurface, KeepVolume };
 // edge) slightly under the lower bound: the bound is the paper's, checked by the tests, not
 // proven for this code (docs/choices.md). The offset never takes a tet outside them (it
 // checks each move).
-// Errors: InvalidArgument naming the field and value: resolution, an empty surface, an index
+// `grading`: levels of coarsening inside, 0..kMaxStuffingGrading; 0 is the uniform lattice
+// (the output is the same as without the argument). Graded tets away from the surface keep
+// their lattice shapes (all vertices inside and unwarped); the surface's side is the uniform one.
+// Errors: InvalidArgument naming the field and value: resolution, grading, an empty surface, an index
 // out of range, a non-finite coordinate, a surface that is not closed (a ray crosses it an
 // odd number of times), a null `out`; OutOfMemory. `*out` and `*report` are unchanged on
 // error; `report` may be null.
 Status tetrahedralizeByStuffing(const SurfaceMesh& surface, int resolution, TetMesh* out,
                                 StuffingReport* report = nullptr,
-                                StuffingBoundary boundary = StuffingBoundary::KeepVolume);
+                                StuffingBoundary boundary = StuffingBoundary::KeepVolume, int grading = 0);
 
 }  // namespace vp

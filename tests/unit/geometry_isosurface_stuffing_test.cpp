@@ -11,6 +11,7 @@
 #include "geometry/refit_bvh.h"
 
 #include "geometry_test_shapes.h"
+#include "tet_mesh_conformity.h"
 
 #include <gtest/gtest.h>
 
@@ -51,39 +52,6 @@ double surfaceDistanceWithin(const RefitBvh& bvh, const SurfaceMesh& surface, co
   return best;
 }
 
-struct FaceUse {
-  int count = 0;
-  std::array<int32_t, 3> first{};
-};
-
-// The faces used by one tet only, after checking conformity: no face is used by more than two
-// tets, and two tets that share a face see it with opposite orientations.
-std::vector<std::array<int32_t, 3>> boundaryFaces(const TetMesh& mesh) {
-  std::map<std::array<int32_t, 3>, FaceUse> faces;
-  for (const auto& tet : mesh.tets)
-    for (const auto& f : kTetFaces) {
-      const std::array<int32_t, 3> oriented{{tet[f[0]], tet[f[1]], tet[f[2]]}};
-      std::array<int32_t, 3> key = oriented;
-      std::sort(key.begin(), key.end());
-      FaceUse& use = faces[key];
-      if (use.count == 1) {
-        bool same = false;
-        for (int r = 0; r < 3; ++r)
-          same = same || (oriented[0] == use.first[r] && oriented[1] == use.first[(r + 1) % 3] &&
-                          oriented[2] == use.first[(r + 2) % 3]);
-        EXPECT_FALSE(same) << "a face shared by two tets with the same orientation";
-      }
-      if (use.count == 0) use.first = oriented;
-      ++use.count;
-    }
-  std::vector<std::array<int32_t, 3>> boundary;
-  for (const auto& [key, use] : faces) {
-    EXPECT_LE(use.count, 2) << "a face shared by more than two tets";
-    if (use.count == 1) boundary.push_back(use.first);
-  }
-  return boundary;
-}
-
 struct Stuffed {
   TetMesh mesh;
   StuffingReport report;
@@ -114,7 +82,7 @@ void expectValidStuffing(const SurfaceMesh& surface, Stuffed* s,
   RefitBvh bvh;
   bvh.rebuild(surface.vertices, surface.triangles);
   const double h = s->report.grid.cellSize;
-  for (const auto& face : boundaryFaces(mesh))
+  for (const auto& face : test::boundaryFaces(mesh))
     for (int32_t v : face)
       s->maxBoundaryDistance =
           std::max(s->maxBoundaryDistance, surfaceDistanceWithin(bvh, surface, mesh.vertices[v], h) / h);
@@ -209,7 +177,7 @@ TEST(GeometryIsosurfaceStuffing, TheOffsetMovesTheBoundaryOnlyAndKeepsEachTetsAn
     EXPECT_GT(after.report.offset.movedVertices, 0);
     EXPECT_LT(after.report.offset.maxOffset, kMaxOffsetCells * (1.0 + 1e-12));
     std::vector<bool> onBoundary(before.mesh.vertices.size(), false);
-    for (const auto& face : boundaryFaces(before.mesh))
+    for (const auto& face : test::boundaryFaces(before.mesh))
       for (int32_t v : face) onBoundary[static_cast<size_t>(v)] = true;
     for (size_t v = 0; v < before.mesh.vertices.size(); ++v)
       if (!onBoundary[v]) {
@@ -236,7 +204,7 @@ TEST(GeometryIsosurfaceStuffing, LatticeAlignedBox) {
   StuffingReport report;
   ASSERT_EQ(tetrahedralizeByStuffing(box, 4, &mesh, &report), Status::Ok) << lastError();
   for (size_t t = 0; t < mesh.tets.size(); ++t) ASSERT_GT(signedTetVolume(mesh, t), 0.0) << "tet " << t;
-  boundaryFaces(mesh);
+  test::boundaryFaces(mesh);
   const TetMeshQuality q = tetMeshQuality(mesh, box);
   EXPECT_GT(q.minDihedralDegrees, kStuffingMinDihedralDegrees);
   EXPECT_LT(q.maxDihedralDegrees, kStuffingMaxDihedralDegrees);
