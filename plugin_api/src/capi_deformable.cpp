@@ -46,6 +46,7 @@ Status translateMeshSource(const vpDeformableDef& d, DeformableMeshSource* src) 
   if (d.surfaceFile) src->surfaceFile = d.surfaceFile;
   src->voxelResolution = d.voxelResolution;
   src->surfaceMesher = static_cast<SurfaceMesher>(d.surfaceMesher);  // resolveDeformableMesh checks the range
+  src->meshGrading = d.meshGrading;                                   // and this one
   if (d.renderVertices || d.renderTriangles) {
     if (!d.renderVertices || !d.renderTriangles)
       return fail(Status::InvalidArgument, "renderVertices/renderTriangles: both arrays are needed");
@@ -100,6 +101,7 @@ vpDeformableDef vpDefaultDeformableDef(void) {
   d.filter = toC(defaults.filter);
   d.surfaceMesher = static_cast<int32_t>(DeformableMeshSource{}.surfaceMesher);
   d.selfCollision = static_cast<int32_t>(defaults.selfCollision);
+  d.meshGrading = DeformableMeshSource{}.meshGrading;
   return d;
 }
 

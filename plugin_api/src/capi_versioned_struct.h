@@ -58,7 +58,7 @@ VP_OFFSETS(vpDeformableDef, VP_AT(degree), VP_AT(vertices), VP_AT(vertexCount), 
            VP_AT(linearVelocity), VP_AT(youngsModulus), VP_AT(poissonRatio), VP_AT(density), VP_AT(massDamping),
            VP_AT(stiffnessDamping), VP_AT(friction), VP_AT(solverTolerance), VP_AT(solverMaxIterations),
            VP_AT(userData), VP_AT(targetResidual), VP_AT(priority), VP_AT(filter), VP_AT(surfaceMesher),
-           VP_AT(selfCollision));
+           VP_AT(selfCollision), VP_AT(meshGrading));
 VP_OFFSETS(vpFluidDef, VP_AT(kind), VP_AT(origin), VP_AT(resolution), VP_AT(cellSize), VP_AT(sides), VP_AT(density),
            VP_AT(advection), VP_AT(cflNumber), VP_AT(maxSubsteps), VP_AT(pressureTolerance),
            VP_AT(pressureMaxIterations), VP_AT(ambientTemperature), VP_AT(densityBuoyancy), VP_AT(thermalBuoyancy),

@@ -19,7 +19,8 @@ Status checkSurfaceMesher(SurfaceMesher mesher) {
 
 Status tetrahedralizeSurface(const SurfaceMesh& surface, const DeformableMeshSource& source, TetMesh* mesh) {
   if (source.surfaceMesher == SurfaceMesher::Voxel) return tetrahedralizeVoxels(surface, source.voxelResolution, mesh);
-  VP_TRY(tetrahedralizeByStuffing(surface, source.voxelResolution, mesh));
+  VP_TRY(tetrahedralizeByStuffing(surface, source.voxelResolution, mesh, nullptr, StuffingBoundary::KeepVolume,
+                                  source.meshGrading));
   if (mesh->tets.empty())
     return fail(Status::InvalidArgument,
                 "surfaceMesher = stuffing: no lattice vertex at voxelResolution = %d is inside the surface (thinner "
@@ -32,6 +33,9 @@ Status tetrahedralizeSurface(const SurfaceMesh& surface, const DeformableMeshSou
 
 Status resolveDeformableMesh(const DeformableMeshSource& source, DeformableDesc* desc) {
   VP_TRY(checkSurfaceMesher(source.surfaceMesher));
+  if (source.meshGrading < 0 || source.meshGrading > kMaxStuffingGrading)
+    return fail(Status::InvalidArgument, "meshGrading = %d: must be in [0, %d]", source.meshGrading,
+                kMaxStuffingGrading);
   const int sources = int(source.tets.has_value()) + int(!source.tetFile.empty()) + int(!source.surfaceFile.empty()) +
                       int(source.boxCells.has_value());
   if (sources != 1)

@@ -29,6 +29,7 @@ struct DeformableMeshSource {
   // mesh comes in as a tetFile.
   static constexpr int kMaxVoxelResolution = 48;
   SurfaceMesher surfaceMesher = SurfaceMesher::Default;
+  int meshGrading = 0;  // stuffing: levels of coarsening inside (isosurface_stuffing.h grading)
   std::optional<std::array<int, 3>> boxCells;  // built-in box: cells and size
   Vec3 boxSize{1.0, 1.0, 1.0};
   std::optional<SurfaceMesh> renderMesh;   // explicit render mesh (arrays or renderFile)

@@ -174,7 +174,7 @@ std::string resolvePath(const std::string& path, const std::string& baseDirector
 
 // The keys that say where a deformable's mesh comes from; "ifFileMissing" may replace them.
 const std::initializer_list<const char*> kMeshSourceKeys = {
-    "box", "tetFile", "surfaceFile", "voxelResolution", "surfaceMesher", "renderFile", "scale"};
+    "box", "tetFile", "surfaceFile", "voxelResolution", "surfaceMesher", "meshGrading", "renderFile", "scale"};
 
 Status parseDeformable(const JsonObject& obj, const std::string& baseDirectory, SceneDeformable* out);
 
@@ -235,7 +235,7 @@ Status parseSelfCollision(const JsonObject& obj, SelfCollision* out) {
 
 Status parseDeformable(const JsonObject& obj, const std::string& baseDirectory, SceneDeformable* out) {
   VP_TRY(obj.checkKeys({"name", "degree", "box", "tetFile", "surfaceFile", "voxelResolution", "surfaceMesher",
-                        "renderFile", "scale",
+                        "meshGrading", "renderFile", "scale",
                         "ifFileMissing", "position", "rotation", "axisAngle", "linearVelocity", "youngsModulus",
                         "poissonRatio", "density", "massDamping", "stiffnessDamping", "friction", "solverTolerance",
                         "solverMaxIterations", "targetResidual", "priority", "pinBox", "attach",
@@ -264,6 +264,7 @@ Status parseDeformable(const JsonObject& obj, const std::string& baseDirectory, 
   VP_TRY(obj.string("surfaceFile", &source.surfaceFile));
   VP_TRY(obj.integer("voxelResolution", &source.voxelResolution));
   VP_TRY(parseSurfaceMesher(obj, &source.surfaceMesher));
+  VP_TRY(obj.integer("meshGrading", &source.meshGrading));
   VP_TRY(parseSelfCollision(obj, &desc.selfCollision));
   VP_TRY(obj.string("renderFile", &source.renderFile));
   source.tetFile = resolvePath(source.tetFile, baseDirectory);

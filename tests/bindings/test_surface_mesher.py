@@ -1,5 +1,6 @@
 """The surface mesher choice through the Python package: isosurface stuffing by default, the
-voxel mesher on request, and a name the enum does not have refused in Python."""
+voxel mesher on request, a name the enum does not have refused in Python, and mesh_grading
+(levels of coarsening inside, for stuffing) passed through and checked by the library."""
 import os
 import tempfile
 import unittest
@@ -42,6 +43,15 @@ class SurfaceMesher(unittest.TestCase):
     def test_an_unknown_mesher_is_refused(self):
         with self.assertRaises(ValueError):
             self.quality(surface_mesher="octree")
+
+    def test_mesh_grading_keeps_the_volume_and_is_checked(self):
+        with volphys.World() as w:
+            graded = w.create_deformable(surface_file=self.path, voxel_resolution=24, mesh_grading=2).mesh_quality()
+        self.assertAlmostEqual(graded.tet_volume, 0.5, places=5)
+        self.assertGreater(graded.min_dihedral, 10.7)
+        with self.assertRaises(volphys.InvalidArgumentError) as raised:
+            self.quality(mesh_grading=9)
+        self.assertIn("meshGrading = 9", str(raised.exception))
 
 
 if __name__ == "__main__":

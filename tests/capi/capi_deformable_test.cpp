@@ -377,6 +377,44 @@ TEST(CApiDeformable, AnUnknownSurfaceMesherIsRefusedNamingTheValue) {
   EXPECT_EQ(count, 0);
 }
 
+// meshGrading: 0 by default (the uniform lattice); a graded sphere at a finer lattice has fewer
+// nodes than the uniform one and keeps the volume and angle bounds; out of [0, 8] it is refused
+// naming the field and value, and nothing is created.
+TEST(CApiDeformable, MeshGradingCoarsensTheInsideAndIsChecked) {
+  EXPECT_EQ(vpDefaultDeformableDef().meshGrading, 0);
+  ScopedWorld w;
+  const std::string obj = writeSphereObj("vp_uv_sphere_graded.obj");
+  int32_t nodes[2] = {0, 0};
+  Quality q[2];
+  for (int graded = 0; graded < 2; ++graded) {
+    vpDeformableDef def = vpDefaultDeformableDef();
+    def.surfaceFile = obj.c_str();
+    def.voxelResolution = 32;
+    def.meshGrading = graded ? 3 : 0;
+    vpDeformableId id{};
+    ASSERT_VP_OK(vpDeformableCreate(w.id, &def, &id));
+    ASSERT_VP_OK(vpDeformableGetNodeCount(id, &nodes[graded]));
+    ASSERT_VP_OK(vpDeformableGetMeshQuality(id, &q[graded].minAngle, &q[graded].maxAngle, &q[graded].tetVolume,
+                                            &q[graded].surfaceVolume));
+    ASSERT_VP_OK(vpDeformableDestroy(id));
+  }
+  EXPECT_LT(nodes[1], nodes[0]);
+  EXPECT_LT(std::fabs(q[1].tetVolume - q[1].surfaceVolume), 0.03f * q[1].surfaceVolume);
+  EXPECT_GT(q[1].minAngle, 10.7f);
+  EXPECT_LT(q[1].maxAngle, 164.8f);
+  vpDeformableDef def = vpDefaultDeformableDef();
+  def.surfaceFile = obj.c_str();
+  vpDeformableId id{};
+  for (int32_t bad : {-1, 9}) {
+    def.meshGrading = bad;
+    EXPECT_EQ(vpDeformableCreate(w.id, &def, &id), vpStatus_InvalidArgument);
+    EXPECT_TRUE(lastErrorContains("meshGrading = " + std::to_string(bad))) << vpGetLastError();
+  }
+  int32_t remaining = -1;
+  ASSERT_VP_OK(vpWorldGetDeformableCount(w.id, &remaining));
+  EXPECT_EQ(remaining, 0);
+}
+
 }  // namespace
 
 // The surface lattice is bounded: a resolution whose tets no frame could step (and whose build

@@ -143,7 +143,7 @@ TEST(CApiVersionedStruct, DeformableAndFluidDefsCutAtEachFieldAreReadOnlyUpToThe
        AT(D, renderTriangles), AT(D, renderTriangleCount), AT(D, pose), AT(D, linearVelocity), AT(D, youngsModulus),
        AT(D, poissonRatio), AT(D, density), AT(D, massDamping), AT(D, stiffnessDamping), AT(D, friction),
        AT(D, solverTolerance), AT(D, solverMaxIterations), AT(D, userData), AT(D, targetResidual), AT(D, priority),
-       AT(D, filter), AT(D, surfaceMesher), AT(D, selfCollision), sizeof(D)},
+       AT(D, filter), AT(D, surfaceMesher), AT(D, selfCollision), AT(D, meshGrading), sizeof(D)},
       [&](const D* def) {
         vpDeformableId id{};
         return vpDeformableCreate(w.id, def, &id);

@@ -333,6 +333,16 @@ std::string writeCubeScene(const test::TempDir& dir, const std::string& name, co
   return dir.write(name, std::string(R"({"deformables": [{"name": "jelly", )") + deformable + "}]}");
 }
 
+// Loads a cube scene (writeCubeScene) into a new world and copies the jelly's tets to `mesh`.
+Status loadCubeSceneMesh(const test::TempDir& dir, const std::string& name, const std::string& deformable,
+                         TetMesh* mesh) {
+  auto world = makeWorld();
+  const Status s = loadScene(*world, writeCubeScene(dir, name, deformable));
+  DeformableHandle h;
+  if (ok(s) && world->findDeformable("jelly", &h)) *mesh = world->deformable(h)->desc().mesh;
+  return s;
+}
+
 double extentX(const DeformableBody& body) {
   double lo = 1e9, hi = -1e9;
   for (int32_t i = 0; i < body.nodeCount(); ++i) {
@@ -356,13 +366,7 @@ TEST(SceneLoader, DeformableScaleAppliesToTheSurfaceFile) {
 TEST(SceneLoader, SurfaceMesherChoosesHowTheSurfaceFileBecomesTets) {
   const test::TempDir dir;
   auto load = [&](const std::string& name, const std::string& keys, TetMesh* mesh) {
-    auto world = makeWorld();
-    const std::string path =
-        writeCubeScene(dir, name, R"("surfaceFile": "unit_cube.obj", "voxelResolution": 4)" + keys);
-    const Status s = loadScene(*world, path);
-    DeformableHandle h;
-    if (ok(s) && world->findDeformable("jelly", &h)) *mesh = world->deformable(h)->desc().mesh;
-    return s;
+    return loadCubeSceneMesh(dir, name, R"("surfaceFile": "unit_cube.obj", "voxelResolution": 4)" + keys, mesh);
   };
   TetMesh voxel, stuffed, byDefault;
   ASSERT_EQ(load("voxel.json", R"(, "surfaceMesher": "voxel")", &voxel), Status::Ok) << lastError();
@@ -379,6 +383,24 @@ TEST(SceneLoader, SurfaceMesherChoosesHowTheSurfaceFileBecomesTets) {
                 R"($.deformables[0].surfaceMesher = "octree": expected one of: stuffing, voxel)"),
             std::string::npos)
       << lastError();
+}
+
+// "meshGrading": levels of coarsening inside for stuffing, 0 (the default) the uniform lattice;
+// out of range it is refused naming the field and value.
+TEST(SceneLoader, MeshGradingReachesTheMesher) {
+  const test::TempDir dir;
+  auto load = [&](const std::string& name, const std::string& keys, TetMesh* mesh) {
+    return loadCubeSceneMesh(dir, name, R"("surfaceFile": "unit_cube.obj", "voxelResolution": 24)" + keys, mesh);
+  };
+  TetMesh uniform, zero, graded, unused;
+  ASSERT_EQ(load("uniform.json", "", &uniform), Status::Ok) << lastError();
+  ASSERT_EQ(load("zero.json", R"(, "meshGrading": 0)", &zero), Status::Ok) << lastError();
+  ASSERT_EQ(load("graded.json", R"(, "meshGrading": 2)", &graded), Status::Ok) << lastError();
+  EXPECT_EQ(zero.tets, uniform.tets);
+  EXPECT_LT(graded.tets.size(), uniform.tets.size());
+  EXPECT_NEAR(totalVolume(graded), 1.0, 1e-9);
+  EXPECT_EQ(load("bad.json", R"(, "meshGrading": 9)", &unused), Status::InvalidArgument);
+  EXPECT_NE(std::string(lastError()).find("meshGrading = 9"), std::string::npos) << lastError();
 }
 
 // "selfCollision": "auto" (the default), "off" or "on"; anything else is refused naming it.

@@ -370,6 +370,8 @@ namespace VolPhys
         public SurfaceMesher surfaceMesher;
         /// <summary>Contact with itself (Auto: on for meshes with more than one layer of elements).</summary>
         public SelfCollision selfCollision;
+        /// <summary>Levels of coarsening inside the body for the stuffing mesher, 0..8 (0: a uniform lattice).</summary>
+        public int meshGrading;
     }
 
     /// <summary>A region in world coordinates: a box (centre, halfExtents) or a sphere (centre, radius).</summary>

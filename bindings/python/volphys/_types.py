@@ -373,6 +373,7 @@ class vpDeformableDef(ctypes.Structure):
         ("filter", vpCollisionFilter),
         ("surfaceMesher", c_int32),  # SurfaceMesher
         ("selfCollision", c_int32),  # SelfCollision
+        ("meshGrading", c_int32),  # levels of coarsening inside (stuffing), 0: uniform
     ]
 
 

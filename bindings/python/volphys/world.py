@@ -26,6 +26,7 @@ _DEFORMABLE_SCALARS = {
     "poisson_ratio": "poissonRatio", "density": "density", "mass_damping": "massDamping",
     "stiffness_damping": "stiffnessDamping", "friction": "friction", "solver_tolerance": "solverTolerance",
     "solver_max_iterations": "solverMaxIterations", "target_residual": "targetResidual", "priority": "priority",
+    "mesh_grading": "meshGrading",
 }
 
 _FLUID_SCALARS = {
@@ -306,7 +307,8 @@ class World:
                           linear_velocity=None, surface_mesher=None, self_collision=None, **scalars):
         """Exactly one mesh source: vertices (n,3) + tets (m,4), tet_file, or surface_file.
         surface_mesher: SurfaceMesher or 'stuffing' (the default) / 'voxel', how surface_file
-        becomes tets; voxel_resolution: cells along its longest axis, for either mesher.
+        becomes tets; voxel_resolution: cells along its longest axis, for either mesher;
+        mesh_grading: levels of coarsening inside the body for stuffing, 0..8 (0: uniform).
         self_collision: SelfCollision or 'auto' (the default: on for meshes with more than one
         layer of elements) / 'off' / 'on', contact of the deformable with itself.
         Further keywords: degree, voxel_resolution, youngs_modulus, poisson_ratio, density,

@@ -590,6 +590,12 @@ typedef struct vpDeformableDef {
   vpCollisionFilter filter;     /* the colliders and the other deformables it contacts */
   int32_t surfaceMesher;        /* for surfaceFile: a vpSurfaceMesher; default vpSurfaceMesher_Default */
   int32_t selfCollision;        /* a vpSelfCollision; default vpSelfCollision_Auto */
+  int32_t meshGrading;          /* for surfaceFile with the stuffing mesher: levels of coarsening
+                                   inside the body, 0..8; the tets stay of the lattice's size near
+                                   the surface and grow by up to 2^meshGrading deep inside (an
+                                   octree-graded lattice, fewer tets for the same surface detail,
+                                   same dihedral angle bounds). 0 (default): a uniform lattice.
+                                   The voxel mesher ignores it. */
 } vpDeformableDef;
 
 VP_API vpDeformableDef vpDefaultDeformableDef(void);

@@ -74,7 +74,7 @@ int main(void) {
   FIELD(vpDeformableDef, solverTolerance); FIELD(vpDeformableDef, solverMaxIterations);
   FIELD(vpDeformableDef, userData); FIELD(vpDeformableDef, targetResidual); FIELD(vpDeformableDef, priority);
   FIELD(vpDeformableDef, filter); FIELD(vpDeformableDef, surfaceMesher);
-  FIELD(vpDeformableDef, selfCollision);
+  FIELD(vpDeformableDef, selfCollision); FIELD(vpDeformableDef, meshGrading);
   SIZE(vpFluidId); FIELD(vpFluidId, index1); FIELD(vpFluidId, generation); FIELD(vpFluidId, world);
   SIZE(vpFluidRegion); FIELD(vpFluidRegion, type); FIELD(vpFluidRegion, centre); FIELD(vpFluidRegion, halfExtents);
   FIELD(vpFluidRegion, radius);
