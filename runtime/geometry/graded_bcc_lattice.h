@@ -1,5 +1,6 @@
-// The graded lattice of isosurface stuffing (Labelle & Shewchuk 2007, graded meshes): a
-// balanced octree over the cubes of a uniform BCC lattice (bcc_lattice.h) whose leaves are the
+// The graded lattice of isosurface stuffing: coarser tets inside, as Labelle & Shewchuk 2007
+// grade theirs, by this code's own transition tets (not the paper's red and bisected black
+// ones; docs/choices.md, "Surface to tets"): a balanced octree over the cubes of a uniform BCC lattice (bcc_lattice.h) whose leaves are the
 // lattice's own cubes near the surface and blocks of 2^l x 2^l x 2^l of them deep inside,
 // filled with tets that conform across leaves of different sizes without hanging vertices.
 //

@@ -4,6 +4,7 @@
 // octahedra on its outer faces (as the uniform lattice's do) and conform.
 #include "geometry/graded_bcc_lattice.h"
 
+#include "geometry/mesh_quality.h"
 #include "geometry/tet_mesh.h"
 
 #include "tet_mesh_conformity.h"
@@ -12,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 
 namespace vp {
@@ -91,6 +93,33 @@ TEST(GeometryGradedBccLattice, TetsTileTheBoxAndConform) {
       }
       EXPECT_GE(onBox, 2) << "grading " << grading;
     }
+  }
+}
+
+// The coarse tets have all four vertices on the lattice, inside and unwarped, so they take a
+// few fixed shapes (docs/choices.md, "Surface to tets"). Enumerating every way a face's edges
+// can be split gives dihedral angles from arctan(1/sqrt(2)) = 35.26 to 125.26 degrees; every
+// coarse tet must lie in that range for every grading, well inside the uniform stencils'
+// bounds, which the tets near the surface keep.
+TEST(GeometryGradedBccLattice, CoarseTetsKeepTheTransitionShapesAngles) {
+  const Ball ball;
+  const double low = std::atan(1.0 / std::sqrt(2.0)) * 180.0 / M_PI, high = 90.0 + low;
+  for (int grading : {1, 2, 4}) {
+    const GradedBccLattice graded(ball.lattice, ball.sign, grading);
+    double lo = 180.0, hi = 0.0;
+    int64_t count = 0;
+    graded.forEachCoarseTet([&](const std::array<LatticePoint, 4>& p) {
+      double a = 0.0, b = 0.0;
+      tetDihedralRangeDegrees(ball.lattice.position(p[0]), ball.lattice.position(p[1]), ball.lattice.position(p[2]),
+                              ball.lattice.position(p[3]), &a, &b);
+      lo = std::min(lo, a), hi = std::max(hi, b);
+      ++count;
+    });
+    std::printf("    grading %d: %lld coarse tets, dihedral angles %.2f-%.2f degrees\n", grading,
+                static_cast<long long>(count), lo, hi);
+    EXPECT_GT(count, 0);
+    EXPECT_GE(lo, low - 1e-9) << "grading " << grading;
+    EXPECT_LE(hi, high + 1e-9) << "grading " << grading;
   }
 }
 
