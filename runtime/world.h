@@ -122,7 +122,7 @@ class World {
   // The deformables' contacts with each other and themselves at the frame's start, found once
   // for all their steps (each reads the others as they were then: the same for any worker count).
   std::vector<PairContact> findDeformablePairContacts(const std::vector<DeformableHandle>& handles, double dt,
-                                                      StepStats* stats);
+                                                      const Deadline& frame, StepStats* stats);
   // Deformables push back: each contact reaction of the body's last step acts on its dynamic
   // collider as an impulse at once (equal and opposite to the one on the node).
   void pushDynamicColliders(const DeformableBody& body);

@@ -36,22 +36,26 @@ void ContactSurface::build(const SurfaceMesh& boundary, const Array<int32_t>& ve
   bvh_ = RefitBvh();
 }
 
-void ContactSurface::refit(const Array<double>& x) {
+void ContactSurface::refit(const Array<double>& x, const Array<double>& v, double h) {
   positions_.resize(vertexNode_.size());
-  for (size_t v = 0; v < vertexNode_.size(); ++v) {
-    const int64_t n = vertexNode_[v];
-    positions_[v] = Vec3(x[3 * n], x[3 * n + 1], x[3 * n + 2]);
+  for (size_t i = 0; i < vertexNode_.size(); ++i) {
+    const int64_t n = vertexNode_[i];
+    positions_[i] = Vec3(x[3 * n], x[3 * n + 1], x[3 * n + 2]);
+  }
+  margins_.resize(triangleNodes_.size());
+  for (size_t t = 0; t < triangleNodes_.size(); ++t) {
+    double fastest = 0.0;
+    for (int32_t n : triangleNodes_[t]) fastest = std::max(fastest, Vec3(v[3 * n], v[3 * n + 1], v[3 * n + 2]).norm());
+    margins_[t] = h * fastest;
   }
   if (bvh_.empty()) bvh_.rebuild(positions_, triangles_);
-  else bvh_.refit(positions_, triangles_);
+  bvh_.refit(positions_, triangles_, &margins_);
 }
 
-bool ContactSurface::neighbours(int32_t a, int32_t b) const {
-  if (a == b) return true;
-  if (a < 0 || static_cast<size_t>(a) + 1 >= neighbourStart_.size()) return false;
-  const int32_t* begin = neighbourList_.data() + neighbourStart_[a];
-  const int32_t* end = neighbourList_.data() + neighbourStart_[a + 1];
-  return std::binary_search(begin, end, b);
+ContactSurface::NodeList ContactSurface::neighbourList(int32_t a) const {
+  if (a < 0 || static_cast<size_t>(a) + 1 >= neighbourStart_.size()) return {};
+  return {neighbourList_.data() + neighbourStart_[a], neighbourList_.data() + neighbourStart_[a + 1]};
 }
+
 
 }  // namespace vp

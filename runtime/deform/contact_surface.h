@@ -2,7 +2,9 @@
 // boundary triangles over the corner nodes, a bounding volume hierarchy over them that is
 // refit to the nodes' positions once per step (its shape is built once: a deformable keeps
 // its triangles), and which nodes share an element, so that self contact can leave out a
-// node's own neighbourhood (a node always lies on the triangles around it).
+// node's own neighbourhood (a node always lies on the triangles around it). Each triangle's
+// box is grown by how far its corners move in the coming step, so a node's search covers
+// only its own motion and not the body's fastest node's.
 #pragma once
 
 #include <array>
@@ -21,13 +23,20 @@ class ContactSurface {
   // per element, whose first four are its corners.
   void build(const SurfaceMesh& boundary, const Array<int32_t>& vertexNode, const Array<int32_t>& elementNodes,
              int nodesPerElement, int32_t nodeCount);
-  // The triangles' boxes at node positions x (3 per node).
-  void refit(const Array<double>& x);
+  // The triangles' boxes at node positions x (3 per node), each grown by h times its fastest
+  // corner's speed in v (3 per node).
+  void refit(const Array<double>& x, const Array<double>& v, double h);
 
   const RefitBvh& bvh() const { return bvh_; }
   const Array<RefitBvh::Triangle>& triangles() const { return triangleNodes_; }  // node ids
-  // Whether nodes a and b are the same node or corners of one element.
-  bool neighbours(int32_t a, int32_t b) const;
+  // The corner nodes that share an element with node a (a itself included when it is a
+  // corner), sorted: [first, last).
+  struct NodeList {
+    const int32_t* first = nullptr;
+    const int32_t* last = nullptr;
+  };
+  NodeList neighbourList(int32_t a) const;
+  int32_t nodeCount() const { return static_cast<int32_t>(neighbourStart_.empty() ? 0 : neighbourStart_.size() - 1); }
   // More than one layer of elements: some corner node lies inside the body.
   bool hasInteriorNode() const { return hasInteriorNode_; }
 
@@ -36,6 +45,7 @@ class ContactSurface {
   Array<RefitBvh::Triangle> triangles_;      // over boundary vertices, for the BVH
   Array<RefitBvh::Triangle> triangleNodes_;  // the same over node ids
   Array<Vec3> positions_;                    // boundary vertices, this step
+  Array<double> margins_;                    // per triangle, this step
   RefitBvh bvh_;
   Array<int32_t> neighbourStart_, neighbourList_;  // per node, sorted corner neighbours
   bool hasInteriorNode_ = false;

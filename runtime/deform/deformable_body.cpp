@@ -175,8 +175,8 @@ bool DeformableBody::selfCollision() const {
   return desc_.selfCollision == SelfCollision::On;
 }
 
-PairContactBody DeformableBody::pairContactBody() {
-  contactSurface_.refit(x_);
+PairContactBody DeformableBody::pairContactBody(double h) {
+  contactSurface_.refit(x_, v_, h);
   PairContactBody b;
   b.x = &x_;
   b.v = &v_;

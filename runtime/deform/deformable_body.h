@@ -116,8 +116,8 @@ class DeformableBody {
   void heldNodes(Array<uint8_t>* out) const;
   const Array<int32_t>& surfaceNodes() const { return surfaceNodes_; }
   // What contact detection between deformables reads of this body, its surface refit to the
-  // current positions.
-  PairContactBody pairContactBody();
+  // current positions and to the motion of a step of h (s).
+  PairContactBody pairContactBody(double h);
   bool selfCollision() const;  // the desc's switch, Auto resolved
   // Contacts active at the end of the last step (after lift-off releases).
   const Array<NodeContact>& contacts() const { return contacts_.contacts(); }

@@ -82,7 +82,7 @@ struct PairContactBody {
   const Array<double>* v = nullptr;
   const Array<double>* mass = nullptr;   // per node
   const Array<int32_t>* surfaceNodes = nullptr;
-  const ContactSurface* surface = nullptr;  // refit to x
+  const ContactSurface* surface = nullptr;  // refit to x and the step's motion (ContactSurface::refit)
   const Array<PairFriction>* friction = nullptr;  // per node
   CollisionFilter filter;
   double frictionCoefficient = 0.5;  // the body's Coulomb coefficient

@@ -47,17 +47,20 @@ int RefitBvh::build(const Array<Vec3>& centroids, int first, int count, int dept
   return id;
 }
 
-void RefitBvh::refit(const Array<Vec3>& positions, const Array<Triangle>& triangles) {
+void RefitBvh::refit(const Array<Vec3>& positions, const Array<Triangle>& triangles, const Array<double>* margins) {
   for (size_t k = nodes_.size(); k-- > 0;) {
     Node& n = nodes_[k];
     n.lo = Vec3::Constant(std::numeric_limits<double>::infinity());
     n.hi = -n.lo;
     if (n.count > 0) {
-      for (int i = n.first; i < n.first + n.count; ++i)
-        for (int32_t v : triangles[static_cast<size_t>(order_[static_cast<size_t>(i)])]) {
-          n.lo = n.lo.cwiseMin(positions[static_cast<size_t>(v)]);
-          n.hi = n.hi.cwiseMax(positions[static_cast<size_t>(v)]);
+      for (int i = n.first; i < n.first + n.count; ++i) {
+        const size_t t = static_cast<size_t>(order_[static_cast<size_t>(i)]);
+        const Vec3 margin = Vec3::Constant(margins ? (*margins)[t] : 0.0);
+        for (int32_t v : triangles[t]) {
+          n.lo = n.lo.cwiseMin(positions[static_cast<size_t>(v)] - margin);
+          n.hi = n.hi.cwiseMax(positions[static_cast<size_t>(v)] + margin);
         }
+      }
     } else {
       for (int child : {n.left, n.right}) {
         n.lo = n.lo.cwiseMin(nodes_[static_cast<size_t>(child)].lo);

@@ -24,8 +24,10 @@ class RefitBvh {
   // The tree's shape for `triangles` at `positions` (median splits on the longest axis of
   // the centroids, leaves of at most kLeafSize triangles).
   void rebuild(const Array<Vec3>& positions, const Array<Triangle>& triangles);
-  // The boxes for new positions of the same triangles.
-  void refit(const Array<Vec3>& positions, const Array<Triangle>& triangles);
+  // The boxes for new positions of the same triangles. With `margins` (one per triangle),
+  // each triangle's box is grown by its margin on every side: a box query then also finds
+  // what the triangle may reach by moving (pair_contacts.h).
+  void refit(const Array<Vec3>& positions, const Array<Triangle>& triangles, const Array<double>* margins = nullptr);
   bool empty() const { return nodes_.empty(); }
   // The whole surface's box (the root's); an empty tree has lo > hi.
   Vec3 lo() const { return nodes_.empty() ? Vec3::Constant(1.0) : nodes_[0].lo; }

@@ -174,7 +174,8 @@ TEST(FrameBudget, ADeformableGetsMoreThanItsEqualShareWhenTheOnesAfterItAreCheap
       const double tail = FramePlan::kMargin * w.world->deformable(w.bars[0])->schedule().tailMs;
       EXPECT_LE(actors[1].totalMs, 10.0 - 1.25 * secondExpected) << "frame " << f;
       EXPECT_GE(actors[1].totalMs, 10.0 - 1.25 * secondExpected - tail - 0.5) << "frame " << f;
-      EXPECT_GT(actors[1].totalMs, 8.0);
+      // Of the time left after the contact detection that precedes both steps.
+      EXPECT_GT(actors[1].totalMs, 8.0 - w.world->lastStats().deformableContactMs);
       EXPECT_GE(w.solve(1).iterations, 4) << "frame " << f;  // the cheap bar is not starved
     }
     EXPECT_LE(w.world->lastStats().totalMs, 10.0 + 1.0);

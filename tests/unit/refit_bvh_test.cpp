@@ -79,6 +79,28 @@ TEST(RefitBvh, QueriesMatchBruteForceAfterBuildAndAfterRefits) {
   }
 }
 
+TEST(RefitBvh, AMarginGrowsEachTrianglesBoxByItsOwnAmount) {
+  // Two small triangles in the plane y = 0, two apart; only the second has a margin of 0.3.
+  // (Visits are per leaf, so a box over the first is not a test of its own margin here.)
+  const Soup s{{Vec3(0, 0, 0), Vec3(0.1, 0, 0), Vec3(0, 0, 0.1), Vec3(2, 0, 0), Vec3(2.1, 0, 0), Vec3(2, 0, 0.1)},
+               {{0, 1, 2}, {3, 4, 5}}};
+  RefitBvh grown, plain;
+  grown.rebuild(s.x, s.triangles);
+  plain.rebuild(s.x, s.triangles);
+  const Array<double> margins{0.0, 0.3};
+  grown.refit(s.x, s.triangles, &margins);
+  auto visitedAbove = [&](const RefitBvh& bvh, double y) {
+    std::set<int32_t> seen;
+    bvh.visitBox(Vec3(2.0, y, 0.0), Vec3(2.05, y + 0.05, 0.05), [&](int32_t t) { seen.insert(t); });
+    return seen.count(1) == 1;
+  };
+  EXPECT_TRUE(visitedAbove(grown, 0.25));   // within the second's margin
+  EXPECT_FALSE(visitedAbove(plain, 0.25));  // which a plain refit does not have
+  EXPECT_FALSE(visitedAbove(grown, 0.35));  // beyond it
+  EXPECT_NEAR(grown.hi().y(), 0.3, 1e-15);  // the root holds the grown box
+  EXPECT_NEAR(grown.lo().x(), 0.0, 1e-15);  // and the first triangle's, not grown
+}
+
 TEST(RefitBvh, AnEmptySurfaceVisitsNothing) {
   RefitBvh bvh;
   bvh.rebuild({}, {});
