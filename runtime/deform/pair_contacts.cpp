@@ -57,12 +57,13 @@ bool projectOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& 
   return true;
 }
 
-// The best contact of node `node` of body `a` against the triangles of body `b`, or false.
-// A triangle touched within the step lies within depth, or within the rest gap plus both
-// sides' motion, of the node: B's boxes hold the triangles' motion (ContactSurface::refit),
-// the query box the node's.
-bool nearestTriangle(const std::vector<PairContactBody>& bodies, int32_t a, int32_t node, int32_t b, double h,
-                     PairContact* best) {
+// Node `node` of body `a` against the triangles of body `b`: the first triangle whose
+// predicted gap is below both the rest gap and `lowest` (the best so far, over the bodies
+// searched before) becomes `best`, and `lowest` its gap. A triangle touched within the step
+// lies within depth, or within the rest gap plus both sides' motion, of the node: B's boxes
+// hold the triangles' motion (ContactSurface::refit), the query box the node's.
+void nearestTriangle(const std::vector<PairContactBody>& bodies, int32_t a, int32_t node, int32_t b, double h,
+                     double* lowest, PairContact* best) {
   static thread_local NeighbourMarks ownNeighbourhood;
   const PairContactBody& A = bodies[a];
   const PairContactBody& B = bodies[b];
@@ -70,11 +71,9 @@ bool nearestTriangle(const std::vector<PairContactBody>& bodies, int32_t a, int3
   const double reach = h * vp.norm() + A.rest + B.depth;
   const Vec3 lo = p - Vec3::Constant(reach), hi = p + Vec3::Constant(reach);
   const RefitBvh& bvh = B.surface->bvh();
-  if ((lo.array() > bvh.hi().array()).any() || (hi.array() < bvh.lo().array()).any()) return false;  // far off
+  if ((lo.array() > bvh.hi().array()).any() || (hi.array() < bvh.lo().array()).any()) return;  // far off
   const Array<RefitBvh::Triangle>& triangles = B.surface->triangles();
   if (a == b) ownNeighbourhood.mark(*A.surface, node);
-  bool found = false;
-  double bestPredicted = 0.0;
   bvh.visitBox(lo, hi, [&](int32_t t) {
     const RefitBvh::Triangle& tri = triangles[t];
     if (a == b && (ownNeighbourhood.marked(tri[0]) || ownNeighbourhood.marked(tri[1]) ||
@@ -88,8 +87,8 @@ bool nearestTriangle(const std::vector<PairContactBody>& bodies, int32_t a, int3
     std::array<Vec3, 3> vt{{nodeVector(*B.v, tri[0]), nodeVector(*B.v, tri[1]), nodeVector(*B.v, tri[2])}};
     const Vec3 vc = w[0] * vt[0] + w[1] * vt[1] + w[2] * vt[2];
     const double predicted = height + h * (vp - vc).dot(n);
-    if (predicted >= A.rest || (found && predicted >= bestPredicted)) return;
-    bestPredicted = predicted;
+    if (predicted >= A.rest || predicted >= *lowest) return;
+    *lowest = predicted;
     const double mt = w[0] * (*B.mass)[tri[0]] + w[1] * (*B.mass)[tri[1]] + w[2] * (*B.mass)[tri[2]];
     const double mn = (*A.mass)[node];
     best->nodeBody = a;
@@ -105,9 +104,7 @@ bool nearestTriangle(const std::vector<PairContactBody>& bodies, int32_t a, int3
     best->friction = A.frictionCoefficient * B.frictionCoefficient;
     best->nodeVelocity = vp;
     best->triangleVelocities = vt;
-    found = true;
   });
-  return found;
 }
 
 }  // namespace
@@ -126,13 +123,10 @@ void findPairContacts(const std::vector<PairContactBody>& bodies, double h, Task
       while (s >= first[a + 1]) ++a;
       const PairContactBody& A = bodies[a];
       const int32_t node = (*A.surfaceNodes)[s - first[a]];
-      PairContact& best = slots[static_cast<size_t>(s)];
-      for (int32_t b = 0; b < static_cast<int32_t>(bodies.size()); ++b) {
-        if (b == a ? !A.selfCollision : !(A.filter.meets(bodies[b].filter))) continue;
-        PairContact candidate;
-        if (!nearestTriangle(bodies, a, node, b, h, &candidate)) continue;
-        if (best.node < 0 || candidate.predictedGap(h) < best.predictedGap(h)) best = candidate;
-      }
+      double lowest = std::numeric_limits<double>::infinity();
+      for (int32_t b = 0; b < static_cast<int32_t>(bodies.size()); ++b)
+        if (b == a ? A.selfCollision : A.filter.meets(bodies[b].filter))
+          nearestTriangle(bodies, a, node, b, h, &lowest, &slots[static_cast<size_t>(s)]);
     }
   });
   for (PairContact& c : slots) {

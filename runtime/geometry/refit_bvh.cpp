@@ -48,24 +48,28 @@ int RefitBvh::build(const Array<Vec3>& centroids, int first, int count, int dept
 }
 
 void RefitBvh::refit(const Array<Vec3>& positions, const Array<Triangle>& triangles, const Array<double>* margins) {
+  triangleBoxes_.resize(order_.size());
+  const Box empty{Vec3::Constant(std::numeric_limits<double>::infinity()),
+                  Vec3::Constant(-std::numeric_limits<double>::infinity())};
+  auto grow = [](Box& b, const Box& by) {
+    b.lo = b.lo.cwiseMin(by.lo);
+    b.hi = b.hi.cwiseMax(by.hi);
+  };
   for (size_t k = nodes_.size(); k-- > 0;) {
     Node& n = nodes_[k];
-    n.lo = Vec3::Constant(std::numeric_limits<double>::infinity());
-    n.hi = -n.lo;
+    n.box = empty;
     if (n.count > 0) {
       for (int i = n.first; i < n.first + n.count; ++i) {
         const size_t t = static_cast<size_t>(order_[static_cast<size_t>(i)]);
         const Vec3 margin = Vec3::Constant(margins ? (*margins)[t] : 0.0);
-        for (int32_t v : triangles[t]) {
-          n.lo = n.lo.cwiseMin(positions[static_cast<size_t>(v)] - margin);
-          n.hi = n.hi.cwiseMax(positions[static_cast<size_t>(v)] + margin);
-        }
+        Box& box = triangleBoxes_[static_cast<size_t>(i)];
+        box = empty;
+        for (int32_t v : triangles[t]) grow(box, Box{positions[static_cast<size_t>(v)] - margin,
+                                                     positions[static_cast<size_t>(v)] + margin});
+        grow(n.box, box);
       }
     } else {
-      for (int child : {n.left, n.right}) {
-        n.lo = n.lo.cwiseMin(nodes_[static_cast<size_t>(child)].lo);
-        n.hi = n.hi.cwiseMax(nodes_[static_cast<size_t>(child)].hi);
-      }
+      for (int child : {n.left, n.right}) grow(n.box, nodes_[static_cast<size_t>(child)].box);
     }
   }
 }

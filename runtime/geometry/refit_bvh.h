@@ -30,10 +30,11 @@ class RefitBvh {
   void refit(const Array<Vec3>& positions, const Array<Triangle>& triangles, const Array<double>* margins = nullptr);
   bool empty() const { return nodes_.empty(); }
   // The whole surface's box (the root's); an empty tree has lo > hi.
-  Vec3 lo() const { return nodes_.empty() ? Vec3::Constant(1.0) : nodes_[0].lo; }
-  Vec3 hi() const { return nodes_.empty() ? Vec3::Constant(-1.0) : nodes_[0].hi; }
+  Vec3 lo() const { return nodes_.empty() ? Vec3::Constant(1.0) : nodes_[0].box.lo; }
+  Vec3 hi() const { return nodes_.empty() ? Vec3::Constant(-1.0) : nodes_[0].box.hi; }
 
-  // visit(triangle) for every triangle whose leaf box overlaps [lo, hi].
+  // visit(triangle) for every triangle whose own box (grown by its margin) overlaps [lo, hi],
+  // in the tree's order.
   template <class Visit>
   void visitBox(const Vec3& lo, const Vec3& hi, const Visit& visit) const {
     if (nodes_.empty()) return;
@@ -42,9 +43,10 @@ class RefitBvh {
     stack[top++] = 0;
     while (top > 0) {
       const Node& n = nodes_[static_cast<size_t>(stack[--top])];
-      if ((n.lo.array() > hi.array()).any() || (n.hi.array() < lo.array()).any()) continue;
+      if (!overlaps(n.box, lo, hi)) continue;
       if (n.count > 0) {
-        for (int i = 0; i < n.count; ++i) visit(order_[static_cast<size_t>(n.first + i)]);
+        for (int i = n.first; i < n.first + n.count; ++i)
+          if (overlaps(triangleBoxes_[static_cast<size_t>(i)], lo, hi)) visit(order_[static_cast<size_t>(i)]);
       } else {
         stack[top++] = n.left;
         stack[top++] = n.right;
@@ -64,7 +66,7 @@ class RefitBvh {
     stack[top++] = 0;
     while (top > 0) {
       const Node& n = nodes_[static_cast<size_t>(stack[--top])];
-      if (!rayMeetsBox(origin, inverse, limit, n.lo, n.hi)) continue;
+      if (!rayMeetsBox(origin, inverse, limit, n.box.lo, n.box.hi)) continue;
       if (n.count > 0) {
         for (int i = 0; i < n.count; ++i) limit = visit(order_[static_cast<size_t>(n.first + i)], limit);
       } else {
@@ -78,16 +80,23 @@ class RefitBvh {
   static constexpr int kMaxDepth = 60;  // the traversal stacks' size follows
 
  private:
-  struct Node {
+  struct Box {
     Vec3 lo, hi;
+  };
+  struct Node {
+    Box box;
     int first = 0, count = 0;   // leaf: order_[first, first + count)
     int left = -1, right = -1;  // inner node (count == 0)
   };
+  static bool overlaps(const Box& b, const Vec3& lo, const Vec3& hi) {
+    return !((b.lo.array() > hi.array()).any() || (b.hi.array() < lo.array()).any());
+  }
   int build(const Array<Vec3>& centroids, int first, int count, int depth);
   static bool rayMeetsBox(const Vec3& origin, const Vec3& inverse, double limit, const Vec3& lo, const Vec3& hi);
 
   std::vector<Node> nodes_;
   std::vector<int32_t> order_;  // triangle ids in leaf order
+  Array<Box> triangleBoxes_;  // in leaf order: a leaf's box is not tight on each triangle
 };
 
 }  // namespace vp

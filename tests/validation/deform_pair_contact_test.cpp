@@ -267,7 +267,9 @@ TEST(DeformablePairContact, DestroyingAnotherDeformableLeavesAStacksFrictionAlon
     const DeformableHandle bottom = addJelly(*world, Vec3(-0.1, 0.0, -0.1), 1000.0, 0.5, Vec3::Zero());
     const DeformableHandle top = addJelly(*world, Vec3(-0.1, 0.2 + 1e-3, -0.1), 1000.0, 1.0, Vec3::Zero());
     for (int step = 0; step < 60; ++step) {
-      if (destroyFarJelly && step == 30) EXPECT_EQ(world->destroyDeformable(far), Status::Ok);
+      if (destroyFarJelly && step == 30) {
+        EXPECT_EQ(world->destroyDeformable(far), Status::Ok);
+      }
       EXPECT_EQ(world->step(kDt), Status::Ok) << lastError();
     }
     std::vector<double> x(world->deformable(bottom)->positions().begin(), world->deformable(bottom)->positions().end());
