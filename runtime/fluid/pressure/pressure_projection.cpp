@@ -5,6 +5,7 @@
 
 #include "core/parallel_for.h"
 #include "fluid/surface/free_surface.h"
+#include "gpu_kernels/pressure_update_kernels.h"
 
 namespace vp {
 
@@ -128,48 +129,26 @@ bool PressureProjectionRun::advanceFinish() {
   return passes_.runSlice(samplesPerSlice_);
 }
 
-// Face by face: each face is written once, from the pressure and the fractions only.
+// Face by face (gpu_kernels/pressure_update_kernels.h).
 void PressureProjectionRun::updateVelocityRows(int a, int64_t begin, int64_t end) {
   const MacGrid& grid = *grid_;
-  const FaceFractionField& fractions = *fractions_;
   const MacGridSpec& g = grid.spec;
-  const double* liquidPhi = liquidPhi_;
-  const double gradientScale = dt_ / (density_ * g.h);
-  const double* p = state_->pressure.data();
+  const kernels::PressureUpdateFields fields{fractions_->open[a].data(), fractions_->solidVelocity[a].data(),
+                                             state_->pressure.data(), liquidPhi_, dt_ / (density_ * g.h),
+                                             kMinOpenFraction};
   const Eigen::Vector3i d = grid.faceDims(a);
   const int cellsAlong = a == 0 ? g.nx : a == 1 ? g.ny : g.nz;
-  Array<double>& u = grid_->velocity[a];
+  double* u = grid_->velocity[a].data();
   for (int64_t row = begin; row < end; ++row) {
     const int j = static_cast<int>(row % d.y()), k = static_cast<int>(row / d.y());
     for (int i = 0; i < d.x(); ++i) {
-      const size_t f = grid.faceIndex(a, i, j, k);
-      if (grid.isWallFace(a, i, j, k)) {
-        u[f] = 0.0;
-        continue;
-      }
-      if (!(effectiveOpenFraction(grid, fractions, a, i, j, k) > 0.0)) {
-        u[f] = fractions.solidVelocity[a][f];
-        continue;
-      }
       const int along = a == 0 ? i : a == 1 ? j : k;
       Eigen::Vector3i low(i, j, k);
       low[a] -= 1;
-      const bool hasLow = along > 0, hasHigh = along < cellsAlong;
-      const size_t cellLow = hasLow ? grid.cellIndex(low.x(), low.y(), low.z()) : 0;
-      const size_t cellHigh = hasHigh ? grid.cellIndex(i, j, k) : 0;
-      // Outside an Open side the ghost pressure is 0.
-      double pLow = hasLow ? p[cellLow] : 0.0;
-      double pHigh = hasHigh ? p[cellHigh] : 0.0;
-      if (liquidPhi != nullptr) {
-        const bool liquidLow = hasLow && isLiquid(liquidPhi[cellLow]);
-        const bool liquidHigh = hasHigh && isLiquid(liquidPhi[cellHigh]);
-        if (!liquidLow && !liquidHigh) continue;
-        if (liquidLow && hasHigh && !liquidHigh)
-          pHigh = pLow * (1.0 - 1.0 / freeSurfaceTheta(liquidPhi[cellLow], liquidPhi[cellHigh]));
-        else if (liquidHigh && hasLow && !liquidLow)
-          pLow = pHigh * (1.0 - 1.0 / freeSurfaceTheta(liquidPhi[cellHigh], liquidPhi[cellLow]));
-      }
-      u[f] -= gradientScale * (pHigh - pLow);
+      const int64_t cellLow = along > 0 ? static_cast<int64_t>(grid.cellIndex(low.x(), low.y(), low.z())) : -1;
+      const int64_t cellHigh = along < cellsAlong ? static_cast<int64_t>(grid.cellIndex(i, j, k)) : -1;
+      kernels::pressureUpdateFace(fields, static_cast<int64_t>(grid.faceIndex(a, i, j, k)), grid.isWallFace(a, i, j, k),
+                                  cellLow, cellHigh, u);
     }
   }
 }

@@ -17,22 +17,13 @@
 // (hydrostatic) is reproduced exactly when phi is linear across the face.
 #pragma once
 
+#include "gpu_kernels/pressure_update_kernels.h"
+
 namespace vp {
 
-// theta is clamped below at this value. As theta -> 0 the surface reaches c's centre, the
-// diagonal term A_f / theta grows without bound and the velocity update multiplies the
-// solver's error in p_c by 1/theta. At 1e-3 the diagonal stays within three orders of the
-// ordinary entries (MIC(0) and CG cope: the row becomes nearly Dirichlet, which they handle
-// well) and the error the clamp introduces is in a cell whose pressure is itself
-// O(theta * rho g h), i.e. below 1e-3 of the hydrostatic jump over one cell.
-constexpr double kMinFreeSurfaceTheta = 1e-3;
-
-inline bool isLiquid(double phi) { return phi < 0.0; }
-
-// phiLiquid < 0 <= phiAir.
-inline double freeSurfaceTheta(double phiLiquid, double phiAir) {
-  const double theta = phiLiquid / (phiLiquid - phiAir);
-  return theta > kMinFreeSurfaceTheta ? theta : kMinFreeSurfaceTheta;
-}
+// One home for the crossing, the CPU's and a device's (gpu_kernels/pressure_update_kernels.h).
+using kernels::freeSurfaceTheta;
+using kernels::isLiquid;
+using kernels::kMinFreeSurfaceTheta;
 
 }  // namespace vp
