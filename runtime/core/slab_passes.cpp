@@ -37,9 +37,10 @@ void SlabPasses::addWhole(int64_t samples, std::function<void()> body) {
 
 void SlabPasses::addStep(std::function<void()> step) { add(Pass{0, 0, 0, {}, std::move(step)}); }
 
-bool SlabPasses::runSlice(int64_t maxSamples) {
+bool SlabPasses::runSlice(int64_t maxSamples, const Deadline* stop) {
   lastSamples_ = lastUnits_ = 0;
   int64_t left = std::max<int64_t>(maxSamples, 1);
+  const int64_t piece = stop ? std::max<int64_t>(left / kPiecesPerSlice, 1) : left;
   while (next_ < passes_.size()) {
     if (passes_[next_].units == 0) {
       // Moved out first: the passes it adds may move the list.
@@ -51,13 +52,14 @@ bool SlabPasses::runSlice(int64_t maxSamples) {
       ++next_;
       continue;
     }
-    if (left <= 0) break;
+    if (left <= 0 || (stop && lastUnits_ > 0 && stop->expired())) break;
     const Pass& pass = passes_[next_];
     int64_t count = std::min(pass.units - nextUnit_, left / pass.samplesPerUnit);
     if (count == 0) {
       if (lastUnits_ > 0) break;  // the next unit starts the next slice
       count = 1;
     }
+    count = std::min(count, std::max<int64_t>(piece / pass.samplesPerUnit, 1));
     const int64_t first = nextUnit_;
     if (pass.grain > 0)
       parallelFor(*tasks_, count, pass.grain,

@@ -4,6 +4,7 @@
 #include <functional>
 #include <vector>
 
+#include "core/budget_clock.h"
 #include "core/task_system.h"
 
 namespace vp {
@@ -44,8 +45,13 @@ class SlabPasses {
   void addStep(std::function<void()> step);
 
   // Runs the next slice of at most maxSamples samples (maxSamples >= 1); true when nothing
-  // is left.
-  bool runSlice(int64_t maxSamples);
+  // is left. With `stop`, the slice also ends once stop has expired: the samples then run in
+  // pieces of at most maxSamples / kPiecesPerSlice, with stop read between them on the calling
+  // thread. A pass's samples stand for its mean cost, and a few units can cost many times it
+  // (faces a mesh cuts beside faces no solid touches): the clock bounds such a slice where
+  // the count alone would not.
+  bool runSlice(int64_t maxSamples, const Deadline* stop = nullptr);
+  static constexpr int64_t kPiecesPerSlice = 8;
   void runAll();
   bool done() const { return next_ >= passes_.size(); }
   // Of the last runSlice: samples run and units run.

@@ -215,7 +215,8 @@ bool FluidActor::advectVelocitySlab() {
     st.velocityAdvection.prepare(*st.input.tasks, grid_, st.h, solver.advection, advection_, skip);
     st.advecting = true;
   }
-  const bool done = st.velocityAdvection.runSlice(slabSamples(FluidSlice::AdvectVelocity));
+  const bool done = withSliceStop(
+      [&](const Deadline* stop) { return st.velocityAdvection.runSlice(slabSamples(FluidSlice::AdvectVelocity), stop); });
   sliceWork_ = st.velocityAdvection.lastSliceSamples();
   if (!done) return false;
   st.velocityAdvection.finish();
@@ -251,7 +252,8 @@ bool FluidActor::advectScalarsSlab() {
     }
     st.advecting = true;
   }
-  const bool done = st.scalarAdvection.runSlice(slabSamples(FluidSlice::AdvectScalars));
+  const bool done = withSliceStop(
+      [&](const Deadline* stop) { return st.scalarAdvection.runSlice(slabSamples(FluidSlice::AdvectScalars), stop); });
   sliceWork_ = st.scalarAdvection.lastSliceSamples();
   if (!done) return false;
   st.advecting = false;
@@ -283,7 +285,8 @@ void FluidActor::planForces() {
 
 bool FluidActor::applyForcesSlice() {
   StepInProgress& st = *step_;
-  const bool done = st.forces.runSlice(slabSamples(FluidSlice::Forces));
+  const bool done =
+      withSliceStop([&](const Deadline* stop) { return st.forces.runSlice(slabSamples(FluidSlice::Forces), stop); });
   sliceWork_ = st.forces.lastSliceSamples();
   return done;
 }
@@ -379,6 +382,7 @@ bool FluidActor::advance(const FluidStepInput& input, const SliceBudget& budget,
   step_->stats = stats;
   const Clock& clock = budget.share.clock();
   sliceTargetMs_ = budget.targetSliceMs;
+  sliceClock_ = clock;
   int ran = 0;
   int64_t workRun = 0;
   maxSliceMs_ = 0.0;
@@ -486,7 +490,7 @@ void FluidActor::planFractionUpdate() {
 }
 
 bool FluidActor::runFractionPassesSlice(SlabPasses& passes, FluidSlice kind) {
-  const bool done = passes.runSlice(slabSamples(kind));
+  const bool done = withSliceStop([&](const Deadline* stop) { return passes.runSlice(slabSamples(kind), stop); });
   // An empty list (no such solid moved) did next to nothing, not a pass over the grid.
   sliceWork_ = std::max<int64_t>(1, passes.lastSliceSamples());
   return done;
@@ -594,7 +598,7 @@ bool FluidActor::setUpProjectionSlice() {
   StepInProgress& st = *step_;
   if (st.projectionPrepared) {
     if (st.projectionFailed) return true;
-    const bool done = st.projection.advanceSetup();
+    const bool done = withSliceStop([&](const Deadline* stop) { return st.projection.advanceSetup(stop); });
     sliceWork_ = st.projection.lastSliceSamples();
     return done;
   }
@@ -610,7 +614,8 @@ bool FluidActor::setUpProjectionSlice() {
                                  st.projection.prepare(*st.input.tasks, grid_, fractions_, st.h, desc_.density,
                                                        settings, pressure_, liquidPhi(),
                                                        slabSamples(FluidSlice::PressureUpdate)));
-  return st.projectionFailed || st.projection.advanceSetup();
+  return st.projectionFailed ||
+         withSliceStop([&](const Deadline* stop) { return st.projection.advanceSetup(stop); });
 }
 
 bool FluidActor::iterateProjection() {
@@ -623,7 +628,7 @@ bool FluidActor::iterateProjection() {
 bool FluidActor::finishProjectionSlice() {
   StepInProgress& st = *step_;
   if (!st.projectionFailed) {
-    const bool done = st.projection.advanceFinish();
+    const bool done = withSliceStop([&](const Deadline* stop) { return st.projection.advanceFinish(stop); });
     sliceWork_ = st.projection.lastSliceSamples();
     if (!done) return false;
   }

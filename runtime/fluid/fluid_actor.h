@@ -330,6 +330,15 @@ class FluidActor {
     return sliceTargetMs_ > 0.0 ? slabs_[static_cast<size_t>(kind)].samples() : desc_.solver.samplesPerSlice;
   }
   double sliceTargetMs_ = 0.0;  // of the advance() running
+  Clock sliceClock_;            // its clock
+  // run(stop): budgeted, stop ends a slab slice once it has run for its target
+  // (SlabPasses::runSlice); unbudgeted, stop is null.
+  template <class Run>
+  bool withSliceStop(const Run& run) const {
+    if (!(sliceTargetMs_ > 0.0)) return run(nullptr);
+    const Deadline stop(sliceClock_, sliceTargetMs_);
+    return run(&stop);
+  }
   // Liquid: the volume the level set must keep (initial + emitted - drained), the cells'
   // open fractions that weight it, and the level-set workspaces.
   double targetVolume_ = 0.0;

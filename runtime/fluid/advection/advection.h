@@ -130,7 +130,7 @@ class VelocityAdvectionSlices {
                const FaceSkipMask& skip);
   // Runs the next slice of at most maxSamples face samples (one row at least), parallel over
   // its rows; true when every pass is done.
-  bool runSlice(int64_t maxSamples) { return passes_.runSlice(maxSamples); }
+  bool runSlice(int64_t maxSamples, const Deadline* stop = nullptr) { return passes_.runSlice(maxSamples, stop); }
   int64_t lastSliceSamples() const { return passes_.lastSliceSamples(); }
   // After the last slice: grid.velocity becomes the advected velocity.
   void finish();
@@ -170,7 +170,7 @@ class ScalarAdvectionSlices {
                int conservedField = -1, int levelSetField = -1);
   // Runs the next slice of at most maxSamples cell samples (one row at least), parallel over
   // its rows; true when every pass is done.
-  bool runSlice(int64_t maxSamples) { return passes_.runSlice(maxSamples); }
+  bool runSlice(int64_t maxSamples, const Deadline* stop = nullptr) { return passes_.runSlice(maxSamples, stop); }
   int64_t lastSliceSamples() const { return passes_.lastSliceSamples(); }
 
  private:

@@ -114,9 +114,9 @@ void PressureProjectionRun::appendSetup(const PressureSolveSettings& settings, b
   });
 }
 
-bool PressureProjectionRun::advanceSetup() { return passes_.runSlice(samplesPerSlice_); }
+bool PressureProjectionRun::advanceSetup(const Deadline* stop) { return passes_.runSlice(samplesPerSlice_, stop); }
 
-bool PressureProjectionRun::advanceFinish() {
+bool PressureProjectionRun::advanceFinish(const Deadline* stop) {
   if (!finishing_) {
     finishing_ = true;
     passes_.reset(*tasks_);
@@ -126,7 +126,7 @@ bool PressureProjectionRun::advanceFinish() {
                           [this, a](int64_t begin, int64_t end) { updateVelocityRows(a, begin, end); });
     }
   }
-  return passes_.runSlice(samplesPerSlice_);
+  return passes_.runSlice(samplesPerSlice_, stop);
 }
 
 // Face by face (gpu_kernels/pressure_update_kernels.h).

@@ -120,13 +120,14 @@ class PressureProjectionRun {
   Status prepare(TaskSystem& tasks, MacGrid& grid, const FaceFractionField& fractions, double dt, double density,
                  const PressureSolveSettings& settings, PressureState& state, const double* liquidPhi,
                  int64_t samplesPerSlice);
-  // One setup slice; true when the setup is done (the CG has started).
-  bool advanceSetup();
+  // One setup slice; true when the setup is done (the CG has started). `stop` as in
+  // SlabPasses::runSlice.
+  bool advanceSetup(const Deadline* stop = nullptr);
   // One CG iteration; true when the solve has ended.
   bool iterate() { return cg_->iterate(); }
   bool solved() const { return cg_ != nullptr && cg_->finished(); }
   // One finish slice (after the solve); true when the velocity is updated.
-  bool advanceFinish();
+  bool advanceFinish(const Deadline* stop = nullptr);
   // After the finish (budgetCut is the caller's, false here).
   PressureSolveStats stats() const;
   // Of the last setup or finish slice: its samples, and the units of passes it ran. A slice
