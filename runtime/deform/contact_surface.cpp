@@ -57,5 +57,4 @@ ContactSurface::NodeList ContactSurface::neighbourList(int32_t a) const {
   return {neighbourList_.data() + neighbourStart_[a], neighbourList_.data() + neighbourStart_[a + 1]};
 }
 
-
 }  // namespace vp
