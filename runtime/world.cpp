@@ -472,14 +472,15 @@ bool World::stepDeformables(double dt, const Deadline& frame, StepStats* stats) 
     input.dt = s.pendingDt;
     input.pairContacts = &pairContacts;
     input.pairBody = i;
+    ActorStats& a = actors[i];
+    const double start = frame.elapsedMs();
     if (fluids_.size() > 0) {  // a world without fluids pays nothing for them
       setFluidLoads(handles[i], body);
       body.applyFluidLoads(input.dt, config_.gravity);
+      a.phase(Phase::Coupling).ms += frame.elapsedMs() - start;
     }
     input.deadline = deadlines[i].share;
     input.floorDeadline = deadlines[i].floor;
-    ActorStats& a = actors[i];
-    const double start = frame.elapsedMs();
     try {
       body.step(input, &a);
     } catch (const std::bad_alloc&) {
@@ -529,7 +530,7 @@ bool World::stepDeformables(double dt, const Deadline& frame, StepStats* stats) 
   return std::find(missed.begin(), missed.end(), true) == missed.end();
 }
 
-std::vector<Filtered<FluidCollider>> World::fluidSolids() {
+std::vector<Filtered<FluidCollider>> World::fluidSolids(const Deadline& frame, StepStats* stats) {
   std::vector<Filtered<FluidCollider>> solids;
   if (fluids_.size() == 0) return solids;
   colliders_.forEach([&](ColliderHandle h, const Collider& c) {
@@ -537,13 +538,30 @@ std::vector<Filtered<FluidCollider>> World::fluidSolids() {
       solids.push_back({c.filter(), FluidCollider{h.index1, h.generation, c.geometry(), c.sharedGeometry(),
                                                   c.bodyType() == BodyType::Dynamic}});
   });
-  std::vector<Aabb> domains;
-  fluids_.forEach([&](FluidHandle, const FluidActor& f) { domains.push_back(f.domainBounds()); });
-  // A deformable far from every fluid is left out rather than kept up to date for nothing.
+  struct Domain {
+    Aabb bounds;
+    CollisionFilter filter;
+  };
+  std::vector<Domain> domains;
+  fluids_.forEach([&](FluidHandle, const FluidActor& f) { domains.push_back({f.domainBounds(), f.desc().filter}); });
+  // A deformable that no fluid both reaches and sees is left out rather than kept up to date
+  // for nothing.
   deformables_.forEach([&](DeformableHandle h, DeformableBody& body) {
     const Aabb bounds = body.bounds();
-    if (std::none_of(domains.begin(), domains.end(), [&](const Aabb& d) { return d.overlaps(bounds); })) return;
+    if (std::none_of(domains.begin(), domains.end(), [&](const Domain& d) {
+          return d.bounds.overlaps(bounds) && d.filter.meets(body.desc().filter);
+        }))
+      return;
+    // The surface's refresh is the deformable's coupling work, and one slice of the frame.
+    const double start = frame.elapsedMs();
     std::shared_ptr<const PreparedCollider> surface = body.fluidSurface();
+    const double ms = frame.elapsedMs() - start;
+    stats->maxSliceMs = std::max(stats->maxSliceMs, ms);
+    for (ActorStats& a : stats->actors)
+      if (a.kind == ActorKind::Deformable && a.index1 == h.index1 && a.generation == h.generation) {
+        a.phase(Phase::Coupling).ms += ms;
+        a.totalMs += ms;
+      }
     solids.push_back({body.desc().filter, FluidCollider{h.index1, h.generation | kDeformableSolidBit, surface.get(),
                                                         surface, true}});
   });
@@ -561,7 +579,7 @@ void World::setFluidLoads(DeformableHandle handle, DeformableBody& body) const {
 }
 
 void World::stepFluids(double dt, const Deadline& frame, bool floorsHeld, StepStats* stats) {
-  const std::vector<Filtered<FluidCollider>> colliders = fluidSolids();
+  const std::vector<Filtered<FluidCollider>> colliders = fluidSolids(frame, stats);
   const std::vector<FluidHandle> handles = fluidHandles();
   std::vector<int> priorities;
   for (FluidHandle h : handles) priorities.push_back(fluid(h)->desc().priority);

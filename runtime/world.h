@@ -133,7 +133,7 @@ class World {
   void stepFluids(double dt, const Deadline& frame, bool floorsHeld, StepStats* stats);
   // What the fluids see as solids: the colliders with exact geometry and the surfaces of the
   // deformables that reach into some fluid's domain (deform/fluid_immersion.h).
-  std::vector<Filtered<FluidCollider>> fluidSolids();
+  std::vector<Filtered<FluidCollider>> fluidSolids(const Deadline& frame, StepStats* stats);
   // The fluids' loads on a deformable, from their last completed steps, set before its step.
   void setFluidLoads(DeformableHandle handle, DeformableBody& body) const;
   void finishStats(const Deadline& frame, StepStats* stats);

@@ -151,7 +151,7 @@ typedef struct ActorColumns {
 
 static const ActorColumns kActorColumns[] = {
     {vpActorKind_Deformable, vpPhase_Solve,
-     {vpPhase_Corotate, vpPhase_Assemble, vpPhase_Contacts, vpPhase_Solve, vpPhase_Embed}, 5},
+     {vpPhase_Corotate, vpPhase_Assemble, vpPhase_Contacts, vpPhase_Solve, vpPhase_Embed, vpPhase_Coupling}, 6},
     {vpActorKind_Fluid, vpPhase_Pressure,
      {vpPhase_Advect, vpPhase_Forces, vpPhase_Viscosity, vpPhase_Fractions, vpPhase_Pressure, vpPhase_Surface,
       vpPhase_Coupling},

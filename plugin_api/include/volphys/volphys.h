@@ -308,7 +308,9 @@ typedef enum vpPhase {
   vpPhase_Viscosity = 11, /* fluids with a kinematic viscosity > 0: the implicit diffusion solve */
   vpPhase_Coupling = 12, /* fluids: the two-way coupling's work, the face fractions of deformables
                             that moved and the loads on dynamic bodies and deformables (the
-                            fractions of rigid colliders stay in vpPhase_Fractions) */
+                            fractions of rigid colliders stay in vpPhase_Fractions);
+                            deformables: taking the fluids' loads and refreshing the surface the
+                            fluids see */
   vpPhase_Count = 13
 } vpPhase;
 
