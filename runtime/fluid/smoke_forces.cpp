@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/parallel_for.h"
+#include "fluid/cell_lattice.h"
 #include "gpu_kernels/smoke_force_kernels.h"
 
 namespace vp {
@@ -12,18 +13,6 @@ namespace {
 
 constexpr int64_t kRowGrain = 8;
 constexpr int64_t kValueGrain = 4096;
-
-kernels::CellLattice cellLattice(const MacGridSpec& s) {
-  kernels::CellLattice g;
-  g.n[0] = s.nx;
-  g.n[1] = s.ny;
-  g.n[2] = s.nz;
-  g.stride[0] = 1;
-  g.stride[1] = s.nx;
-  g.stride[2] = static_cast<int64_t>(s.nx) * s.ny;
-  g.h = s.h;
-  return g;
-}
 
 // body(i, j, k, cell index) for every cell: a pass over cell rows.
 template <class Body>

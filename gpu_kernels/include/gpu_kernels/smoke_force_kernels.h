@@ -10,15 +10,10 @@
 #include <cmath>
 #include <cstdint>
 
+#include "gpu_kernels/cell_lattice.h"
 #include "gpu_kernels/kernel_support.h"
 
 namespace vp::kernels {
-
-struct CellLattice {
-  int n[3];
-  int64_t stride[3];  // 1, nx, nx ny
-  double h;
-};
 
 // Offsets of the two cells of the central difference along a at cell coordinate `at`, and
 // the distance between their centres (0 with one cell along a).

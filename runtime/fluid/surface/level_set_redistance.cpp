@@ -7,7 +7,9 @@
 
 #include "core/parallel_for.h"
 #include "core/slab_passes.h"
+#include "fluid/cell_lattice.h"
 #include "fluid/surface/free_surface.h"
+#include "gpu_kernels/level_set_kernels.h"
 
 namespace vp {
 namespace {
@@ -15,7 +17,6 @@ namespace {
 constexpr int64_t kCellGrain = 8192;
 constexpr int64_t kListGrain = 2048;
 constexpr uint8_t kOutside = 255;
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 struct Lattice {
   int64_t nx, ny, nz, sy, sz;
@@ -47,19 +48,6 @@ struct MaxDrop {
     return *this;
   }
 };
-
-// Godunov upwind solution of |grad d| = 1 from the smaller neighbour value along each axis.
-double eikonalUpdate(double a, double b, double c, double h) {
-  if (a > b) std::swap(a, b);
-  if (b > c) std::swap(b, c);
-  if (a > b) std::swap(a, b);
-  double d = a + h;
-  if (d <= b) return d;
-  d = 0.5 * (a + b + std::sqrt(2.0 * h * h - (a - b) * (a - b)));
-  if (d <= c) return d;
-  const double s = a + b + c;
-  return (s + std::sqrt(s * s - 3.0 * (a * a + b * b + c * c - h * h))) / 3.0;
-}
 
 }  // namespace
 
@@ -165,7 +153,7 @@ void RedistanceRun::detectSurface(int64_t begin, int64_t end) {
         bool surface = false;
         lat.forNeighbours(c, [&](int64_t n) { surface = surface || isLiquid(phi[n]) != liquid; });
         if (!surface) {
-          dist[c] = kInfinity;
+          dist[c] = kernels::unreachedDistance();
           layer[c] = kOutside;
           continue;
         }
@@ -231,32 +219,14 @@ int64_t RedistanceRun::claimBand(int64_t budget) {
 // 3. Red-black Gauss-Seidel on the eikonal equation: entries [begin, end) of the running
 // half-sweep's colour. Returns their largest drop.
 double RedistanceRun::sweepSlab(int64_t begin, int64_t end) {
-  const Lattice lat(grid_);
-  const double h = grid_.h, clamp = settings_.bandCells * h;
+  const kernels::CellLattice lattice = cellLattice(grid_);
+  const double clamp = settings_.bandCells * grid_.h;
   double* dist = ws_->distance.data();
   const int32_t* list = ws_->band[colour_].data() + begin;
   return parallelReduce<MaxDrop>(*tasks_, end - begin, kListGrain, [&](int64_t first, int64_t last) {
     MaxDrop part;
-    for (int64_t b = first; b < last; ++b) {
-      const int64_t c = list[b];
-      int64_t ijk[3];
-      lat.coordinates(c, &ijk[0], &ijk[1], &ijk[2]);
-      const int64_t n[3] = {lat.nx, lat.ny, lat.nz}, stride[3] = {1, lat.sy, lat.sz};
-      double upwind[3];
-      for (int a = 0; a < 3; ++a) {
-        const double minus = ijk[a] > 0 ? dist[c - stride[a]] : kInfinity;
-        const double plus = ijk[a] + 1 < n[a] ? dist[c + stride[a]] : kInfinity;
-        upwind[a] = std::min(minus, plus);
-      }
-      if (std::isinf(std::min({upwind[0], upwind[1], upwind[2]}))) continue;  // not reached yet
-      const double updated = eikonalUpdate(upwind[0], upwind[1], upwind[2], h);
-      if (updated < dist[c]) {
-        // Only values under the clamp count: a cell's update reads only smaller neighbours, so
-        // values at or above it never reach one under it, nor the clamped result.
-        if (updated < clamp) part.value = std::isinf(dist[c]) ? kInfinity : std::max(part.value, dist[c] - updated);
-        dist[c] = updated;
-      }
-    }
+    for (int64_t b = first; b < last; ++b)
+      part.value = std::max(part.value, kernels::redistanceSweepCell(lattice, list[b], clamp, dist));
     return part;
   }).value;
 }
@@ -278,10 +248,7 @@ void RedistanceRun::writeSlab(int64_t begin, int64_t end) {
   const double* dist = ws_->distance.data();
   double* phi = phi_;
   parallelFor(*tasks_, end - begin, kCellGrain, [&](int64_t first, int64_t last) {
-    for (int64_t c = begin + first; c < begin + last; ++c) {
-      const double d = std::min(dist[c], clamp);
-      phi[c] = isLiquid(phi[c]) ? -d : d;
-    }
+    for (int64_t c = begin + first; c < begin + last; ++c) kernels::writeSignedDistance(c, dist[c], clamp, phi);
   });
 }
 

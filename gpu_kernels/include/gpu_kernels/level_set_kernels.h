@@ -1,0 +1,62 @@
+// Kernel bodies of the liquid level set's redistancing (runtime/fluid/surface/
+// level_set_redistance.h): the Godunov upwind update of |grad d| = 1, one cell's update in a
+// red-black Gauss-Seidel sweep over the band, and the signed, clamped result.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+#include "gpu_kernels/cell_lattice.h"
+#include "gpu_kernels/kernel_support.h"
+#include "gpu_kernels/pressure_update_kernels.h"
+
+namespace vp::kernels {
+
+// +inf: a distance not reached yet.
+VP_HOST_DEVICE inline double unreachedDistance() { return HUGE_VAL; }
+
+// d with |grad d| = 1 from the smaller neighbour value along each axis (a, b, c), spacing h.
+VP_HOST_DEVICE inline double eikonalUpdate(double a, double b, double c, double h) {
+  double t;
+  if (a > b) t = a, a = b, b = t;
+  if (b > c) t = b, b = c, c = t;
+  if (a > b) t = a, a = b, b = t;
+  double d = a + h;
+  if (d <= b) return d;
+  d = 0.5 * (a + b + std::sqrt(2.0 * h * h - (a - b) * (a - b)));
+  if (d <= c) return d;
+  const double s = a + b + c;
+  return (s + std::sqrt(s * s - 3.0 * (a * a + b * b + c * c - h * h))) / 3.0;
+}
+
+// Cell c's update in a sweep: the upwind value from its neighbours inside the grid, kept
+// when smaller. Returns how much it dropped where the new value lies under `clamp` (values
+// at or above it never reach one under it), +inf for a first value under it, else 0.
+VP_HOST_DEVICE inline double redistanceSweepCell(const CellLattice& g, int64_t c, double clamp, double* distance) {
+  int64_t ijk[3];
+  g.coordinates(c, ijk);
+  const double unreached = unreachedDistance();
+  double upwind[3];
+  for (int a = 0; a < 3; ++a) {
+    const double minus = ijk[a] > 0 ? distance[c - g.stride[a]] : unreached;
+    const double plus = ijk[a] + 1 < g.n[a] ? distance[c + g.stride[a]] : unreached;
+    upwind[a] = plus < minus ? plus : minus;
+  }
+  const double lowestXY = upwind[1] < upwind[0] ? upwind[1] : upwind[0];
+  const double lowest = upwind[2] < lowestXY ? upwind[2] : lowestXY;
+  if (lowest == unreached) return 0.0;  // no neighbour reached yet
+  const double updated = eikonalUpdate(upwind[0], upwind[1], upwind[2], g.h);
+  if (!(updated < distance[c])) return 0.0;
+  const double before = distance[c];
+  distance[c] = updated;
+  if (!(updated < clamp)) return 0.0;
+  return before == unreached ? unreached : before - updated;
+}
+
+// The level set at cell c from its unsigned distance: the sign phi had, the size clamped.
+VP_HOST_DEVICE inline void writeSignedDistance(int64_t c, double distance, double clamp, double* phi) {
+  const double d = clamp < distance ? clamp : distance;
+  phi[c] = isLiquid(phi[c]) ? -d : d;
+}
+
+}  // namespace vp::kernels
