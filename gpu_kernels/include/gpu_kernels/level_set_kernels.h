@@ -1,6 +1,8 @@
-// Kernel bodies of the liquid level set's redistancing (runtime/fluid/surface/
-// level_set_redistance.h): the Godunov upwind update of |grad d| = 1, one cell's update in a
-// red-black Gauss-Seidel sweep over the band, and the signed, clamped result.
+// Kernel bodies of the liquid level set's upkeep: redistancing (runtime/fluid/surface/
+// level_set_redistance.h: the Godunov upwind update of |grad d| = 1, one cell's update in a
+// red-black Gauss-Seidel sweep over the band, the signed, clamped result) and the volume
+// measure its correction keeps (runtime/fluid/surface/liquid_volume.h: the smoothed Heaviside
+// and its slope).
 #pragma once
 
 #include <cmath>
@@ -57,6 +59,20 @@ VP_HOST_DEVICE inline double redistanceSweepCell(const CellLattice& g, int64_t c
 VP_HOST_DEVICE inline void writeSignedDistance(int64_t c, double distance, double clamp, double* phi) {
   const double d = clamp < distance ? clamp : distance;
   phi[c] = isLiquid(phi[c]) ? -d : d;
+}
+
+// H(phi), the smoothed liquid fraction of a cell for half-width `width` (metres): 1 for
+// phi <= -width, 0 for phi >= width, (1 - phi/width - sin(pi phi/width)/pi) / 2 between.
+VP_HOST_DEVICE inline double smoothedLiquidFraction(double phi, double width) {
+  if (phi <= -width) return 1.0;
+  if (phi >= width) return 0.0;
+  return 0.5 * (1.0 - phi / width - std::sin(M_PI * phi / width) / M_PI);
+}
+
+// dH/dphi.
+VP_HOST_DEVICE inline double liquidFractionSlope(double phi, double width) {
+  if (phi <= -width || phi >= width) return 0.0;
+  return -0.5 * (1.0 + std::cos(M_PI * phi / width)) / width;
 }
 
 }  // namespace vp::kernels

@@ -14,11 +14,6 @@ namespace {
 
 constexpr int64_t kCellGrain = 8192;
 
-double fractionSlope(double phi, double width) {
-  if (phi <= -width || phi >= width) return 0.0;
-  return -0.5 * (1.0 + std::cos(M_PI * phi / width)) / width;
-}
-
 // Adds the slab [begin, end) of a sum over [0, n) that parallelReduce would cut into chunks
 // of kCellGrain: accumulate(b, e, acc) adds [b, e) onto acc in index order. The chunks the slab
 // completes go to sum.total in chunk order; one it leaves unfinished waits in sum.open, so
@@ -47,12 +42,6 @@ void addSlab(TaskSystem& tasks, int64_t n, int64_t begin, int64_t end, const Acc
 }
 
 }  // namespace
-
-double smoothedLiquidFraction(double phi, double width) {
-  if (phi <= -width) return 1.0;
-  if (phi >= width) return 0.0;
-  return 0.5 * (1.0 - phi / width - std::sin(M_PI * phi / width) / M_PI);
-}
 
 double liquidVolume(TaskSystem& tasks, const MacGridSpec& grid, const double* phi, const double* cellWeight,
                     double widthCells) {
@@ -206,7 +195,7 @@ int64_t VolumeCorrectionRun::step(int64_t budget) {
         for (int64_t b = first; b < last; ++b) {
           const double p = band.phi[static_cast<size_t>(b)] + shift_, w = band.weight[static_cast<size_t>(b)];
           part.volume += w * smoothedLiquidFraction(p, width);
-          part.slope += w * fractionSlope(p, width);
+          part.slope += w * kernels::liquidFractionSlope(p, width);
         }
       }, sums_);
       if (end == passLength) evaluated();

@@ -31,13 +31,14 @@
 #include "core/status.h"
 #include "core/task_system.h"
 #include "fluid/solids/face_fraction_field.h"
+#include "gpu_kernels/level_set_kernels.h"
 
 namespace vp {
 
 constexpr double kDefaultHeavisideWidthCells = 1.5;
 
-// H(phi) of the header for half-width `width` (metres).
-double smoothedLiquidFraction(double phi, double width);
+// H(phi) of the header for half-width `width` (metres), a kernel body.
+using kernels::smoothedLiquidFraction;
 
 double liquidVolume(TaskSystem& tasks, const MacGridSpec& grid, const double* phi, const double* cellWeight,
                     double widthCells = kDefaultHeavisideWidthCells);
