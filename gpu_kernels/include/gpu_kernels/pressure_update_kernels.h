@@ -31,6 +31,19 @@ VP_HOST_DEVICE inline double freeSurfaceTheta(double phiLiquid, double phiAir) {
   return theta > kMinFreeSurfaceTheta ? theta : kMinFreeSurfaceTheta;
 }
 
+// Open fractions below this count as closed. The exact coverage paths leave round-off
+// (~1e-15) on faces deep inside a solid; taken literally those make cells inside the solid
+// "fluid" with diagonals ~1e-15, which the CG cannot resolve (their pressure and the velocity
+// of their faces become garbage). 1e-6 of a face is far above any round-off and far below
+// any opening that carries a meaningful flux.
+constexpr double kMinOpenFraction = 1e-6;
+
+// A face's collider open fraction as the operator, the right-hand side and the velocity update
+// use it (domain Wall faces aside): 0 below kMinOpenFraction.
+VP_HOST_DEVICE inline double openedFraction(double fraction) {
+  return fraction < kMinOpenFraction ? 0.0 : fraction;
+}
+
 // What every face of the update reads.
 struct PressureUpdateFields {
   const double* open;           // the face's collider open fraction
@@ -38,7 +51,6 @@ struct PressureUpdateFields {
   const double* pressure;       // per cell
   const double* liquidPhi;      // per cell; nullptr for smoke
   double gradientScale;         // dt / (rho h)
-  double minOpenFraction;       // open fractions below it count as closed
 };
 
 // Face f between cells cellLow and cellHigh along its axis (-1: beyond an Open domain side,
@@ -51,8 +63,7 @@ VP_HOST_DEVICE inline void pressureUpdateFace(const PressureUpdateFields& in, in
     u[f] = 0.0;
     return;
   }
-  const double open = in.open[f] < in.minOpenFraction ? 0.0 : in.open[f];
-  if (!(open > 0.0)) {
+  if (!(openedFraction(in.open[f]) > 0.0)) {
     u[f] = in.solidVelocity[f];
     return;
   }

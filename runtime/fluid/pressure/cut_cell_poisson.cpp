@@ -90,7 +90,7 @@ void buildCouplingRows(const MacGrid& grid, const FaceFractionField& fractions, 
     const int64_t cell0 = nx * (j + ny * k);  // the high cell of face i is cell0 + i
     for (int64_t i = i0; i < i1; ++i) {
       // effectiveOpenFraction of an interior face (never a Wall face).
-      const double open = fraction[f0 + i] < kMinOpenFraction ? 0.0 : fraction[f0 + i];
+      const double open = openedFraction(fraction[f0 + i]);
       if (liquidPhi != nullptr) {
         openFraction[f0 + i] = open;
         // Only liquid-liquid faces couple; a liquid-air face is a diagonal term below.
@@ -123,7 +123,7 @@ struct CellFaces {
       const bool atSide = high ? index[a] + 1 == cells[a] : index[a] == 0;
       const bool wall = atSide && grid.side(a, high) == DomainSide::Wall;
       const double fraction = fractions.open[a][static_cast<size_t>(face[f])];
-      open[f] = wall || fraction < kMinOpenFraction ? 0.0 : fraction;
+      open[f] = wall ? 0.0 : openedFraction(fraction);
       neighbour[f] = atSide ? -1 : high ? c + step[a] : c - step[a];
     }
   }

@@ -38,6 +38,7 @@
 #include "core/task_system.h"
 #include "fluid/mac_grid.h"
 #include "fluid/solids/face_fraction_field.h"
+#include "gpu_kernels/pressure_update_kernels.h"
 
 namespace vp {
 
@@ -79,12 +80,10 @@ struct CutCellPoisson : PoissonCoefficients<double> {
   bool isFluid(size_t cell) const { return region[cell] >= 0; }
 };
 
-// Open fractions below this count as closed. The exact coverage paths leave round-off
-// (~1e-15) on faces deep inside a solid; taken literally those make cells inside the solid
-// "fluid" with diagonals ~1e-15, which the CG cannot resolve (their pressure and the velocity
-// of their faces become garbage). 1e-6 of a face is far above any round-off and far below
-// any opening that carries a meaningful flux.
-constexpr double kMinOpenFraction = 1e-6;
+// Open fractions below kMinOpenFraction count as closed (gpu_kernels/pressure_update_kernels.h
+// says why).
+using kernels::kMinOpenFraction;
+using kernels::openedFraction;
 
 // The fraction the operator, the right-hand side and the velocity update use for a face: the
 // collider open fraction, forced to 0 on domain Wall faces and below kMinOpenFraction.
@@ -93,8 +92,7 @@ constexpr double kMinOpenFraction = 1e-6;
 inline double effectiveOpenFraction(const MacGrid& grid, const FaceFractionField& fractions, int axis, int i, int j,
                                     int k) {
   if (grid.isWallFace(axis, i, j, k)) return 0.0;
-  const double open = fractions.open[axis][grid.faceIndex(axis, i, j, k)];
-  return open < kMinOpenFraction ? 0.0 : open;
+  return openedFraction(fractions.open[axis][grid.faceIndex(axis, i, j, k)]);
 }
 
 // Builds the couplings, diagonal and fluid regions. The fractions must belong to grid.spec.

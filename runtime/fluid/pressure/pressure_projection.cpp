@@ -134,8 +134,7 @@ void PressureProjectionRun::updateVelocityRows(int a, int64_t begin, int64_t end
   const MacGrid& grid = *grid_;
   const MacGridSpec& g = grid.spec;
   const kernels::PressureUpdateFields fields{fractions_->open[a].data(), fractions_->solidVelocity[a].data(),
-                                             state_->pressure.data(), liquidPhi_, dt_ / (density_ * g.h),
-                                             kMinOpenFraction};
+                                             state_->pressure.data(), liquidPhi_, dt_ / (density_ * g.h)};
   const Eigen::Vector3i d = grid.faceDims(a);
   const int cellsAlong = a == 0 ? g.nx : a == 1 ? g.ny : g.nz;
   double* u = grid_->velocity[a].data();
