@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <condition_variable>
+#include <exception>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -65,10 +66,11 @@ class HostTaskSystem final : public TaskSystem {
 // A small pool: the calling thread works too (as worker 0) and the others grab blocks of
 // items from an atomic counter. Solver loops dispatch many short jobs (a CG iteration is a
 // handful of vector passes), so waking a sleeping thread for each would cost more than the
-// job: workers spin briefly on the job counter before they block on a condition variable,
-// and the caller spins for the stragglers. Hand-written because the host-hook path needs
-// the same item semantics, and neither OpenMP nor TBB lets a host replace the scheduler per
-// world.
+// job: workers spin briefly on the job counter before they block on a condition variable.
+// The caller waits for the job's items, not for the workers: a worker that the OS has not
+// run since the job began holds nothing and is not waited for. Hand-written because the
+// host-hook path needs the same item semantics, and neither OpenMP nor TBB lets a host
+// replace the scheduler per world.
 class ThreadPool final : public TaskSystem {
  public:
   // Throws std::system_error when a thread cannot be started, after stopping those that were.
@@ -92,23 +94,22 @@ class ThreadPool final : public TaskSystem {
       task(0, itemCount, 0, context);
       return;
     }
-    task_ = task;
-    context_ = context;
-    itemCount_ = itemCount;
-    block_ = block;
-    next_.store(0, std::memory_order_relaxed);
-    activeWorkers_.store(static_cast<int>(threads_.size()), std::memory_order_relaxed);
-    {
-      // Under the lock so a worker about to sleep cannot miss the new serial.
-      std::lock_guard<std::mutex> lock(mutex_);
-      jobSerial_.fetch_add(1, std::memory_order_release);
-    }
-    if (sleepers_.load(std::memory_order_acquire) > 0) wake_.notify_all();
+    openJob(task, itemCount, block, context);
     t_insideTask = true;
-    drain(0);
+    std::exception_ptr failure;
+    try {
+      drain(0);
+    } catch (...) {
+      // The blocks no one has claimed are dropped; the workers' blocks in flight still
+      // read the job, so it stays open until they end.
+      failure = std::current_exception();
+      const int32_t unclaimed = itemCount - std::min(itemCount, next_.exchange(itemCount));
+      if (unclaimed > 0) finishItems(unclaimed);
+    }
     t_insideTask = false;
-    for (int spin = 0; activeWorkers_.load(std::memory_order_acquire) != 0; ++spin)
-      if (spin > kSpinLimit) std::this_thread::yield();
+    waitForItems();
+    open_.store(false, std::memory_order_seq_cst);
+    if (failure) std::rethrow_exception(failure);
   }
 
   int workerCount() const override { return enabled_ ? workers_ : 1; }
@@ -129,12 +130,61 @@ class ThreadPool final : public TaskSystem {
   // shorter than anything a game frame would notice as burnt time.
   static constexpr int kSpinLimit = 20000;
 
+  // The job's fields change only while no worker is attached (`attached_` is zero) and the
+  // job is closed; a worker attaches before it reads them and drains only an open job. The
+  // seq_cst pairs (close, then read attached_ / attach, then read open_) mean a worker either
+  // sees the job closed or is seen attached.
+  void openJob(TaskFn task, int32_t itemCount, int32_t block, void* context) {
+    while (attached_.load(std::memory_order_seq_cst) != 0) std::this_thread::yield();
+    task_ = task;
+    context_ = context;
+    itemCount_ = itemCount;
+    block_ = block;
+    next_.store(0, std::memory_order_relaxed);
+    itemsDone_.store(0, std::memory_order_relaxed);
+    open_.store(true, std::memory_order_seq_cst);
+    {
+      // Under the lock so a worker about to sleep cannot miss the new serial.
+      std::lock_guard<std::mutex> lock(mutex_);
+      jobSerial_.fetch_add(1, std::memory_order_release);
+    }
+    if (sleepers_.load(std::memory_order_acquire) > 0) wake_.notify_all();
+  }
+
+  // Spins briefly, then sleeps until the last block reports. Sleeping matters where the
+  // machine has no spare core: a worker preempted inside its block needs the CPU a spinning
+  // (or yielding) caller holds, and would wait out the caller's whole time slice for it.
+  void waitForItems() {
+    for (int spin = 0; spin < kSpinLimit; ++spin)
+      if (itemsDone_.load(std::memory_order_acquire) == itemCount_) return;
+    std::unique_lock<std::mutex> lock(mutex_);
+    callerWaiting_.store(true, std::memory_order_seq_cst);
+    itemsFinished_.wait(lock, [&] { return itemsDone_.load(std::memory_order_seq_cst) == itemCount_; });
+    callerWaiting_.store(false, std::memory_order_relaxed);
+  }
+
+  // Runs blocks until none is left. A block counts as finished even when its task throws.
   void drain(uint32_t worker) {
     for (;;) {
-      int32_t start = next_.fetch_add(block_, std::memory_order_relaxed);
+      const int32_t start = next_.fetch_add(block_, std::memory_order_relaxed);
       if (start >= itemCount_) return;
-      task_(start, std::min(itemCount_, start + block_), worker, context_);
+      const int32_t end = std::min(itemCount_, start + block_);
+      struct Finished {
+        ThreadPool* pool;
+        int32_t items;
+        ~Finished() { pool->finishItems(items); }
+      } finished{this, end - start};
+      task_(start, end, worker, context_);
     }
+  }
+
+  // The thread that finishes the job's last item wakes a sleeping caller (seq_cst with
+  // waitForItems: the caller sees the count complete or this sees the caller waiting).
+  void finishItems(int32_t items) {
+    if (itemsDone_.fetch_add(items, std::memory_order_seq_cst) + items != itemCount_) return;
+    if (!callerWaiting_.load(std::memory_order_seq_cst)) return;
+    std::lock_guard<std::mutex> lock(mutex_);
+    itemsFinished_.notify_one();
   }
 
   void workerLoop(uint32_t worker) {
@@ -154,17 +204,16 @@ class ThreadPool final : public TaskSystem {
       }
       if (stopping_.load()) return;
       seen = jobSerial_.load(std::memory_order_acquire);
-      t_insideTask = true;
-      drain(worker);
-      t_insideTask = false;
-      activeWorkers_.fetch_sub(1, std::memory_order_acq_rel);
+      attached_.fetch_add(1, std::memory_order_seq_cst);
+      if (open_.load(std::memory_order_seq_cst)) {
+        t_insideTask = true;
+        drain(worker);
+        t_insideTask = false;
+      }
+      attached_.fetch_sub(1, std::memory_order_release);
     }
   }
 
-  int workers_;
-  bool enabled_ = true;  // set by the calling thread between runs
-  std::vector<RunDelayReader> delays_;  // per worker; [0] (the caller) unused
-  std::atomic<int> started_{0};
   void stop() {
     {
       std::lock_guard<std::mutex> lock(mutex_);
@@ -175,18 +224,27 @@ class ThreadPool final : public TaskSystem {
     threads_.clear();
   }
 
+  int workers_;
+  bool enabled_ = true;  // set by the calling thread between runs
+  std::vector<RunDelayReader> delays_;  // per worker; [0] (the caller) unused
+  std::atomic<int> started_{0};
   std::vector<std::thread> threads_;
   std::mutex mutex_;
-  std::condition_variable wake_;
+  std::condition_variable wake_;           // workers sleep here between jobs
+  std::condition_variable itemsFinished_;  // the caller sleeps here for a job's last items
   std::atomic<bool> stopping_{false};
   std::atomic<uint64_t> jobSerial_{0};
   std::atomic<int> sleepers_{0};
-  std::atomic<int> activeWorkers_{0};
+  std::atomic<bool> callerWaiting_{false};
+  std::atomic<bool> open_{false};
+  std::atomic<int> attached_{0};
+  // The open job.
   TaskFn task_ = nullptr;
   void* context_ = nullptr;
   int32_t itemCount_ = 0;
   int32_t block_ = 1;
   std::atomic<int32_t> next_{0};
+  std::atomic<int32_t> itemsDone_{0};
 };
 
 }  // namespace

@@ -2,7 +2,9 @@
 
 #include <atomic>
 #include <cmath>
+#include <chrono>
 #include <cstring>
+#include <stdexcept>
 #include <thread>
 #include <vector>
 
@@ -126,6 +128,56 @@ TEST(ParallelFor, NestedLoopsRunInline) {
       parallelFor(*tasks, 100, 10, [&](int64_t b2, int64_t e2) { total += e2 - b2; });
   });
   EXPECT_EQ(total.load(), 1600);
+}
+
+// A block the calling thread runs throws: run() rethrows once the workers' blocks in flight
+// have ended, drops the blocks nobody claimed, and the pool runs the next job whole.
+TEST(ParallelFor, AnExceptionOnTheCallingThreadEndsTheJobAndThePoolGoesOn) {
+  auto tasks = TaskSystem::create(TaskHooks{}, 2);
+  struct Job {
+    std::atomic<bool> callerFailed{false};
+    std::atomic<int> workerBlocks{0};
+  } job;
+  // Workers hold their first block until the caller has failed, so the caller surely claims one.
+  auto task = [](int32_t, int32_t, uint32_t worker, void* p) {
+    auto* j = static_cast<Job*>(p);
+    if (worker == 0) {
+      j->callerFailed = true;
+      throw std::runtime_error("block failed");
+    }
+    while (!j->callerFailed) std::this_thread::yield();
+    ++j->workerBlocks;
+  };
+  EXPECT_THROW(tasks->run(task, 64, 1, &job), std::runtime_error);
+  EXPECT_TRUE(job.callerFailed);
+  const int afterReturn = job.workerBlocks.load();
+  std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  EXPECT_EQ(job.workerBlocks.load(), afterReturn);  // nothing of the failed job runs after run()
+
+  std::vector<std::atomic<int>> hits(5000);
+  parallelFor(*tasks, 5000, 7, [&](int64_t b, int64_t e) {
+    for (int64_t i = b; i < e; ++i) hits[static_cast<size_t>(i)]++;
+  });
+  for (auto& h : hits) ASSERT_EQ(h.load(), 1);
+}
+
+// The caller sleeps for a slow worker's block and wakes when it ends; and many short jobs in a
+// row (the solvers' pattern, which the caller's spin covers) each run every index once.
+TEST(ParallelFor, EveryJobEndsWithAllItsItemsRunWhetherTheCallerSpinsOrSleeps) {
+  auto tasks = TaskSystem::create(TaskHooks{}, 3);
+  std::atomic<int> slowDone{0};
+  parallelFor(*tasks, 12, 1, [&](int64_t b, int64_t e) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    slowDone += static_cast<int>(e - b);
+  });
+  EXPECT_EQ(slowDone.load(), 12);
+  std::vector<int> counts(64, 0);
+  for (int job = 0; job < 20000; ++job) {
+    parallelFor(*tasks, 64, 1, [&](int64_t b, int64_t e) {
+      for (int64_t i = b; i < e; ++i) ++counts[static_cast<size_t>(i)];
+    });
+  }
+  for (int c : counts) ASSERT_EQ(c, 20000);
 }
 
 TEST(ParallelFor, EmptyRangeDoesNothing) {
