@@ -5,6 +5,10 @@
 //   deform_residual_p95  95th percentile of the deformables' final relative residual
 //   fluid_rate           simulated seconds per frame second, mean over the fluids
 //   max_slice_ms         the longest single slice of work seen
+//   max_slice_p99_ms     99th percentile over the frames of each frame's longest slice, and
+//   slice_over_frac      the frames whose longest slice took more than a quarter of the
+//                        budget: with max_slice_ms they tell a slice's own cost (every frame
+//                        has several of similar size) from a rare preemption of a thread
 //   fluid_interval_max   the largest number of frames a fluid step spanned
 // BM_FrameBudgetLoaded runs the same while one extra process keeps a core busy (started and
 // stopped by the benchmark): the budget must hold on a busier machine too.
@@ -59,7 +63,7 @@ void runDefaultScene(benchmark::State& state, double budgetMs) {
     std::unique_ptr<World> world = bench::defaultSceneWorld();
     if (!world) return state.SkipWithError(lastError());
     world->setFrameBudget(budgetMs);
-    std::vector<double> ms, residuals;
+    std::vector<double> ms, residuals, frameSlices;
     double maxSlice = 0.0, fluidSimulated = 0.0;
     int fluidCount = 0, fluidIntervalMax = 1;
     for (int f = 0; f < frames; ++f) {
@@ -67,6 +71,7 @@ void runDefaultScene(benchmark::State& state, double budgetMs) {
       const StepStats& s = world->lastStats();
       ms.push_back(s.totalMs);
       maxSlice = std::max(maxSlice, s.maxSliceMs);
+      frameSlices.push_back(s.maxSliceMs);
       for (const ActorStats& a : s.actors)
         if (a.kind == ActorKind::Deformable && a.completedStep) {
           residuals.push_back(a.residual);
@@ -83,6 +88,9 @@ void runDefaultScene(benchmark::State& state, double budgetMs) {
     state.counters["deform_residual_p95"] = percentile(residuals, 0.95);
     state.counters["fluid_rate"] = fluidCount ? fluidSimulated / fluidCount / (frames * dt) : 1.0;
     state.counters["max_slice_ms"] = maxSlice;
+    state.counters["max_slice_p99_ms"] = percentile(frameSlices, 0.99);
+    state.counters["slice_over_frac"] =
+        double(std::count_if(frameSlices.begin(), frameSlices.end(), [&](double m) { return m > budgetMs / 4; })) / frames;
     state.counters["fluid_interval_max"] = fluidIntervalMax;
   }
 }
