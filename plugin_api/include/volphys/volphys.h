@@ -235,9 +235,9 @@ typedef struct vpWorldDef {
   int32_t workerCount;         /* worker threads incl. the caller, 1..64; default 1. The built-in
                                   pool stops handing work to its other threads while the machine
                                   has no core free for them (other processes busy; Linux, from
-                                  the threads' scheduler run delay) and tries again later, so a
-                                  preempted worker never holds up a frame; results are the same
-                                  either way. */
+                                  the threads' scheduler run delay) and tries again later, so
+                                  preempted workers do not hold up frame after frame; results
+                                  are the same either way. */
   float frameBudgetMs;         /* wall time one vpWorldStep may take; 0 = unlimited; default 16.
                                   The frame plan (docs/choices.md, "Frame budget"): the Bullet step runs
                                   first (not divisible). Deformables then run by priority (higher
@@ -258,7 +258,9 @@ typedef struct vpWorldDef {
                                   cannot be cut, and when the floors and the rate caps cannot
                                   fit (a fluid step spanning 8 frames must finish; a deformable
                                   at k = 8 reaches its floor), the step overruns and
-                                  vpStepStats.budgetInfeasible says so. */
+                                  vpStepStats.budgetInfeasible says so. Time the threads wait
+                                  for a CPU (other processes busy) stretches a slice and is not
+                                  bounded. */
   float rigidMaxSubstep;       /* Bullet sub-step length bound in seconds; default 1/120 */
   vpEnqueueTaskFn* enqueueTask;/* both NULL: built-in thread pool with workerCount threads */
   vpFinishTaskFn* finishTask;
