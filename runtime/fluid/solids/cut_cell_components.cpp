@@ -273,16 +273,20 @@ class SplitCellPass {
     apply_ = cellBoxAround(g, box, 0);
     sampled_ = cellBoxAround(g, box, 1);
     const int rows = apply_.empty() ? 0 : (sampled_.hi[1] - sampled_.lo[1] + 1) * (sampled_.hi[2] - sampled_.lo[2] + 1);
-    rowSplits_.resize(static_cast<size_t>(rows));
-    rowCut_.assign(static_cast<size_t>(rows), 0);
+    rowCandidates_.resize(static_cast<size_t>(rows));
     thin_.resize(static_cast<size_t>(count));
     for (int c = 0; c < count; ++c)
       thin_[static_cast<size_t>(c)] = minWidthLowerBound(*colliders[c]) < kThickWidthCells * g.h;
   }
-  int64_t rows() const { return static_cast<int64_t>(rowSplits_.size()); }
+  int64_t rows() const { return static_cast<int64_t>(rowCandidates_.size()); }
   int rowLength() const { return sampled_.hi[0] - sampled_.lo[0] + 1; }
+  int64_t candidates() const { return static_cast<int64_t>(candidates_.size()); }
 
-  void sampleRows(int64_t begin, int64_t end);
+  // Lists the rows' cells that need sampling (rowCandidates_).
+  void findCandidates(int64_t beginRow, int64_t endRow);
+  // Joins the rows' lists in row order (so in cell order) and sizes the samples' results.
+  void gatherCandidates();
+  void sampleCandidates(int64_t begin, int64_t end);
   void closeMinorPieces();
 
  private:
@@ -291,6 +295,9 @@ class SplitCellPass {
                                [](const SplitCell& s, int64_t c) { return s.cell < c; });
     return it != split_.end() && it->cell == cell ? &*it : nullptr;
   }
+  // The colliders whose bounds meet cell (i, j, k), at most kMaxColliders; anyThin: one of
+  // them is thin.
+  int nearColliders(int i, int j, int k, const PreparedCollider** near, bool* anyThin) const;
 
   const PreparedCollider* const* colliders_;
   int count_;
@@ -298,18 +305,37 @@ class SplitCellPass {
   CutCellComponentStats* stats_;
   CellBox apply_, sampled_;
   Array<uint8_t> thin_;
-  std::vector<Array<SplitCell>> rowSplits_;
-  Array<int64_t> rowCut_;
+  std::vector<Array<int64_t>> rowCandidates_;
+  Array<int64_t> candidates_;
+  Array<SplitCell> samples_;
+  Array<uint8_t> isSplit_;
   Array<SplitCell> split_;
 };
 
-void SplitCellPass::sampleRows(int64_t begin, int64_t end) {
+int SplitCellPass::nearColliders(int i, int j, int k, const PreparedCollider** near, bool* anyThin) const {
+  const MacGridSpec& g = field_->grid;
+  Aabb cellBounds;
+  cellBounds.lo = g.origin + g.h * Eigen::Vector3d(i, j, k);
+  cellBounds.hi = g.origin + g.h * Eigen::Vector3d(i + 1, j + 1, k + 1);
+  int n = 0;
+  *anyThin = false;
+  for (int c = 0; c < count_ && n < kMaxColliders; ++c)
+    if (colliders_[c]->bounds.overlaps(cellBounds)) {
+      near[n++] = colliders_[c];
+      *anyThin = *anyThin || thin_[static_cast<size_t>(c)];
+    }
+  return n;
+}
+
+void SplitCellPass::findCandidates(int64_t beginRow, int64_t endRow) {
   const MacGridSpec& g = field_->grid;
   FaceFractionField& f = *field_;
   const PreparedCollider* near[kMaxColliders];
-  for (int64_t row = begin; row < end; ++row) {
+  for (int64_t row = beginRow; row < endRow; ++row) {
     const int j = sampled_.lo[1] + static_cast<int>(row % (sampled_.hi[1] - sampled_.lo[1] + 1));
     const int k = sampled_.lo[2] + static_cast<int>(row / (sampled_.hi[1] - sampled_.lo[1] + 1));
+    Array<int64_t>& list = rowCandidates_[static_cast<size_t>(row)];
+    list.clear();
     for (int i = sampled_.lo[0]; i <= sampled_.hi[0]; ++i) {
       bool allOpen = true, allClosed = true;
       for (int face = 0; face < 6; ++face) {
@@ -318,40 +344,50 @@ void SplitCellPass::sampleRows(int64_t begin, int64_t end) {
         allClosed = allClosed && o <= 0.0;
       }
       if (allOpen || allClosed) continue;
-      const Eigen::Vector3d low = g.origin + g.h * Eigen::Vector3d(i, j, k);
-      Aabb cellBounds;
-      cellBounds.lo = low;
-      cellBounds.hi = g.origin + g.h * Eigen::Vector3d(i + 1, j + 1, k + 1);
-      int n = 0;
       bool anyThin = false;
-      for (int c = 0; c < count_ && n < kMaxColliders; ++c)
-        if (colliders_[c]->bounds.overlaps(cellBounds)) {
-          near[n++] = colliders_[c];
-          anyThin = anyThin || thin_[static_cast<size_t>(c)];
-        }
+      const int n = nearColliders(i, j, k, near, &anyThin);
       // One thick collider splits the cell only around one of its edges (kThickWidthCells),
       // unless a domain side closes the way round; several colliders can meet in a thin wall.
       const bool onDomainSide = i == 0 || j == 0 || k == 0 || i == g.nx - 1 || j == g.ny - 1 || k == g.nz - 1;
       if (n == 0 || (n == 1 && !anyThin && !onDomainSide)) continue;
+      const Eigen::Vector3d low = g.origin + g.h * Eigen::Vector3d(i, j, k);
       if (n == 1 && near[0]->shape.kind != ShapeKind::TriangleMesh && convexLeavesOnePiece(*near[0], low, g.h))
         continue;
-      ++rowCut_[static_cast<size_t>(row)];
-      SplitCell s;
-      s.cell = static_cast<int64_t>(cellIndex(g, i, j, k));
-      if (sampleSplitCell(near, n, g, Eigen::Vector3d(i, j, k), &s)) rowSplits_[static_cast<size_t>(row)].push_back(s);
+      list.push_back(static_cast<int64_t>(cellIndex(g, i, j, k)));
     }
+  }
+}
+
+void SplitCellPass::gatherCandidates() {
+  candidates_.clear();
+  for (const Array<int64_t>& list : rowCandidates_) candidates_.insert(candidates_.end(), list.begin(), list.end());
+  samples_.resize(candidates_.size());
+  isSplit_.resize(candidates_.size());
+}
+
+void SplitCellPass::sampleCandidates(int64_t begin, int64_t end) {
+  const MacGridSpec& g = field_->grid;
+  const PreparedCollider* near[kMaxColliders];
+  for (int64_t c = begin; c < end; ++c) {
+    const int64_t cell = candidates_[static_cast<size_t>(c)];
+    const int i = static_cast<int>(cell % g.nx), j = static_cast<int>((cell / g.nx) % g.ny),
+              k = static_cast<int>(cell / (static_cast<int64_t>(g.nx) * g.ny));
+    bool anyThin = false;
+    const int n = nearColliders(i, j, k, near, &anyThin);
+    SplitCell& s = samples_[static_cast<size_t>(c)];
+    s.cell = cell;
+    isSplit_[static_cast<size_t>(c)] = sampleSplitCell(near, n, g, Eigen::Vector3d(i, j, k), &s) ? 1 : 0;
   }
 }
 
 void SplitCellPass::closeMinorPieces() {
   const MacGridSpec& g = field_->grid;
   FaceFractionField& f = *field_;
-  // Rows are in cell order (k, then j, then i), so the concatenation is sorted by cell.
-  int64_t cut = 0;
-  for (size_t r = 0; r < rowSplits_.size(); ++r) {
-    split_.insert(split_.end(), rowSplits_[r].begin(), rowSplits_[r].end());
-    cut += rowCut_[r];
-  }
+  // The candidates are in cell order, so split_ is sorted by cell.
+  split_.clear();
+  for (size_t c = 0; c < candidates_.size(); ++c)
+    if (isSplit_[c]) split_.push_back(samples_[c]);
+  const int64_t cut = candidates();
   int64_t closed = 0, splitApplied = 0;
   const int cells[3] = {g.nx, g.ny, g.nz};
   for (const SplitCell& s : split_) {
@@ -394,9 +430,14 @@ Status checkSplitCellArgs(int count, const PreparedCollider* const* colliders, c
   return Status::Ok;
 }
 
-// A cell costs about this many of the samples that bound a slice when it is only checked
-// for cut faces; the few sampled on the node lattice cost far more, spread over the rows.
-constexpr int64_t kSamplesPerCell = 32;
+// Checking a cell for cut faces and near colliders costs about this many of the samples that
+// bound a slice (an advection sample); sampling a listed cell on the node lattice costs
+// kSamplesPerSampledCell. The sampled cells are a pass of their own, so that a slice's samples
+// stand for its cost: spread over the rows, a few rows along a mesh cost many slices' worth.
+constexpr int64_t kSamplesPerCheckedCell = 2;
+constexpr int64_t kSamplesPerSampledCell = 8192;
+constexpr int64_t kCheckedRowGrain = 4;
+constexpr int64_t kSampledCellGrain = 1;
 
 }  // namespace
 
@@ -415,9 +456,15 @@ Status addSplitCellPasses(SlabPasses& passes, const PreparedCollider* const* col
   if (count == 0 || box.empty()) return Status::Ok;
   auto pass = std::make_shared<SplitCellPass>(colliders, count, box, field, stats);
   if (pass->rows() == 0) return Status::Ok;
-  passes.addParallel(pass->rows(), pass->rowLength() * kSamplesPerCell, 4,
-                     [pass](int64_t begin, int64_t end) { pass->sampleRows(begin, end); });
-  passes.addWhole(pass->rowLength() * pass->rows(), [pass] { pass->closeMinorPieces(); });
+  passes.addParallel(pass->rows(), pass->rowLength() * kSamplesPerCheckedCell, kCheckedRowGrain,
+                     [pass](int64_t begin, int64_t end) { pass->findCandidates(begin, end); });
+  SlabPasses* list = &passes;
+  passes.addStep([pass, list] {
+    pass->gatherCandidates();
+    list->addParallel(pass->candidates(), kSamplesPerSampledCell, kSampledCellGrain,
+                      [pass](int64_t begin, int64_t end) { pass->sampleCandidates(begin, end); });
+    list->addWhole(pass->rowLength() * pass->rows(), [pass] { pass->closeMinorPieces(); });
+  });
   return Status::Ok;
 }
 
