@@ -127,7 +127,8 @@ TEST(FluidPoissonRows, OperatorAndResidualRowsEqualTheCellFormulas) {
     for (int k = 0; k < nz; ++k)
       for (int j = 0; j < ny; ++j) {
         poisson_rows::applyRow(sd, j, k, xd.data(), apply.data());
-        poisson_rows::residualRow(sf, j, k, bf.data(), xf.data(), residual.data());
+        const size_t rowStart = static_cast<size_t>(nx) * (static_cast<size_t>(j) + static_cast<size_t>(ny) * k);
+        poisson_rows::residualRow(sf, j, k, bf.data(), xf.data(), residual.data() + rowStart);
         for (int i = 0; i < nx; ++i) {
           const size_t c = static_cast<size_t>(ld.cell(i, j, k));
           const double d = ld.op.diagonal[c];

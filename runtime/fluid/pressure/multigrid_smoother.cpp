@@ -193,7 +193,7 @@ void appendFindBoundaryCells(const CutCellPoisson& op, double fullCoupling, Boun
 template <class T>
 void computeResidual(TaskSystem& tasks, const PoissonCoefficients<T>& op, const T* b, const T* x, T* r) {
   const Stencil<T> s(op);
-  forEachRow(tasks, s, [&](int64_t j, int64_t k, int64_t) { residualRow(s, j, k, b, x, r); });
+  forEachRow(tasks, s, [&](int64_t j, int64_t k, int64_t first) { residualRow(s, j, k, b, x, r + first); });
 }
 
 #define VP_INSTANTIATE_SMOOTHERS(T)                                                                         \

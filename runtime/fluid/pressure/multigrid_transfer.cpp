@@ -8,11 +8,14 @@
 
 #include "core/isa_clones.h"
 #include "core/parallel_for.h"
+#include "fluid/pressure/poisson_rows.h"
 
 namespace vp {
 namespace {
 
 constexpr int64_t kRowGrain = 16;
+// Fine rows up to this long take their residual in a buffer on the stack.
+constexpr int64_t kStackRow = 1024;
 
 // The two coarse cells fine index i interpolates from along one axis, with their weights. A
 // neighbour outside [0, coarseCount) is a ghost: behind a Wall side it is dropped (weight 0, a
@@ -276,7 +279,8 @@ void prolongateAdd(TaskSystem& tasks, const CutCellPoisson& fine, const CutCellP
 
 template <class T>
 void restrictResidual(TaskSystem& tasks, const CutCellPoisson& fine, const CutCellPoisson& coarse,
-                      const TransferSides& sides, const T* scale, const T* fineR, T* coarseB, Array<T>* scratch) {
+                      const TransferSides& sides, const T* scale, const LevelResidual<T>& residual, T* coarseB,
+                      Array<T>* scratch) {
   const int64_t nx = fine.grid.nx, ny = fine.grid.ny, nz = fine.grid.nz;
   const int64_t cx = coarse.grid.nx, cy = coarse.grid.ny, cz = coarse.grid.nz;
   // R is P^T with P's weights a product over the axes, so it runs as three 1D gathers (x, then
@@ -291,9 +295,16 @@ void restrictResidual(TaskSystem& tasks, const CutCellPoisson& fine, const CutCe
   T* alongX = scratch->data();           // cx * ny * nz
   T* alongY = alongX + cx * ny * nz;     // cx * cy * nz
   const XWeights<T> xw(std::move(wx), nx);
+  const poisson_rows::Stencil<T> stencil(*residual.op);
   parallelFor(tasks, ny * nz, kRowGrain, [&](int64_t begin, int64_t end) {
-    for (int64_t row = begin; row < end; ++row)
-      restrictRowAlongX(xw, scale + nx * row, fineR + nx * row, alongX + cx * row);
+    T onStack[kStackRow];
+    Array<T> onHeap;
+    if (nx > kStackRow) onHeap.resize(static_cast<size_t>(nx));
+    T* r = nx > kStackRow ? onHeap.data() : onStack;
+    for (int64_t row = begin; row < end; ++row) {
+      poisson_rows::residualRow(stencil, row % ny, row / ny, residual.b, residual.x, r);
+      restrictRowAlongX(xw, scale + nx * row, r, alongX + cx * row);
+    }
   });
   parallelFor(tasks, cy * nz, kRowGrain, [&](int64_t begin, int64_t end) {
     for (int64_t row = begin; row < end; ++row) {
@@ -318,7 +329,7 @@ void restrictResidual(TaskSystem& tasks, const CutCellPoisson& fine, const CutCe
   template void prolongateAdd<T>(TaskSystem&, const CutCellPoisson&, const CutCellPoisson&, const TransferSides&, \
                                  const T*, const T*, T*);                                                      \
   template void restrictResidual<T>(TaskSystem&, const CutCellPoisson&, const CutCellPoisson&,                   \
-                                    const TransferSides&, const T*, const T*, T*, Array<T>*);
+                                    const TransferSides&, const T*, const LevelResidual<T>&, T*, Array<T>*);
 VP_INSTANTIATE_TRANSFERS(double)
 VP_INSTANTIATE_TRANSFERS(float)
 #undef VP_INSTANTIATE_TRANSFERS

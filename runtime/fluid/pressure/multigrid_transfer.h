@@ -43,9 +43,19 @@ template <class T>
 void prolongateAdd(TaskSystem& tasks, const CutCellPoisson& fine, const CutCellPoisson& coarse,
                    const TransferSides& sides, const T* scale, const T* coarseX, T* fineX);
 
-// coarseB = P^T fineR. `scratch` holds the partial sums (resized, so reuse it across calls).
+// The residual r = b - A x of a level (op: its coefficients in the V-cycle's precision), which
+// the restriction computes a row at a time where it reads it: the V-cycle never stores it.
+template <class T>
+struct LevelResidual {
+  const PoissonCoefficients<T>* op;
+  const T* b;
+  const T* x;
+};
+
+// coarseB = P^T (b - A x). `scratch` holds the partial sums (resized, so reuse it across calls).
 template <class T>
 void restrictResidual(TaskSystem& tasks, const CutCellPoisson& fine, const CutCellPoisson& coarse,
-                      const TransferSides& sides, const T* scale, const T* fineR, T* coarseB, Array<T>* scratch);
+                      const TransferSides& sides, const T* scale, const LevelResidual<T>& residual, T* coarseB,
+                      Array<T>* scratch);
 
 }  // namespace vp

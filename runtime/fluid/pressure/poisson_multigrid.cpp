@@ -162,11 +162,9 @@ void applyPoissonMultigrid(TaskSystem& tasks, const CutCellPoisson& fine, Poisso
   // Every level's x starts from 0; the first smoothing sweep clears it (smooth, fromZero).
   for (int l = 0; l + 1 < levels; ++l) {
     smoothLevel(tasks, single(l), s, mg.boundaryCells[static_cast<size_t>(l)], bOf(l), xOf(l), scratchOf(l), false);
-    float* residual = scratchOf(l).data();
-    computeResidual(tasks, single(l), bOf(l), xOf(l), residual);
     float* coarseB = bOf(l + 1);
-    restrictResidual(tasks, op(l), op(l + 1), mg.sides, mg.prolongScale[static_cast<size_t>(l)].data(), residual,
-                     coarseB, &mg.restrictScratch);
+    restrictResidual(tasks, op(l), op(l + 1), mg.sides, mg.prolongScale[static_cast<size_t>(l)].data(),
+                     LevelResidual<float>{&single(l), bOf(l), xOf(l)}, coarseB, &mg.restrictScratch);
     filter(l + 1, coarseB);
   }
   const int last = levels - 1;

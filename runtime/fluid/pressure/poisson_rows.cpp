@@ -39,12 +39,11 @@ VP_CLONE_INLINE inline auto fromNeighbourSums(const Row<T>& r, const Value& valu
   };
 }
 
-// Row `row` of `out`: compute's values on its fluid cells, 0 on its other cells (outside its
-// span too).
+// Row `row`'s values o (its first cell): compute's values on its fluid cells, 0 on its other
+// cells (outside its span too).
 template <class T, class Compute>
-VP_CLONE_INLINE inline void storeFluidRow(const Stencil<T>& s, const Row<T>& r, int64_t row, T* out,
+VP_CLONE_INLINE inline void storeFluidRow(const Stencil<T>& s, const Row<T>& r, int64_t row, T* o,
                                           const Compute& compute) {
-  T* o = out + s.nx * row;
   clearOutsideSpan(s, row, o);
   forSpanInChunks<1, T>(s.spanBegin(row), s.spanEnd(row), compute,
                         [&](int64_t i, T value) VP_CLONE_INLINE { o[i] = r.diagonal[i] > T(0) ? value : T(0); });
@@ -53,18 +52,19 @@ VP_CLONE_INLINE inline void storeFluidRow(const Stencil<T>& s, const Row<T>& r, 
 template <class T>
 VP_CLONE_INLINE inline void applyRowBody(const Stencil<T>& s, int64_t j, int64_t k, const T* x, T* out) {
   const Row<T> r(s, j, k, x);
-  storeFluidRow(s, r, j + s.ny * k, out, fromNeighbourSums<1>(r, [&r](int64_t i, T sum) VP_CLONE_INLINE {
+  const int64_t row = j + s.ny * k;
+  storeFluidRow(s, r, row, out + s.nx * row, fromNeighbourSums<1>(r, [&r](int64_t i, T sum) VP_CLONE_INLINE {
                   return r.diagonal[i] * r.x[i] - sum;
                 }));
 }
 
 template <class T>
 VP_CLONE_INLINE inline void residualRowBody(const Stencil<T>& s, int64_t j, int64_t k, const T* b, const T* x,
-                                            T* residual) {
+                                            T* rowResidual) {
   const Row<T> r(s, j, k, x);
   const int64_t row = j + s.ny * k;
   const T* br = b + s.nx * row;
-  storeFluidRow(s, r, row, residual, fromNeighbourSums<1>(r, [&r, br](int64_t i, T sum) VP_CLONE_INLINE {
+  storeFluidRow(s, r, row, rowResidual, fromNeighbourSums<1>(r, [&r, br](int64_t i, T sum) VP_CLONE_INLINE {
                   return br[i] + sum - r.diagonal[i] * r.x[i];
                 }));
 }
@@ -76,12 +76,12 @@ VP_CLONE_INLINE inline void jacobiRowBody(const Stencil<T>& s, int64_t j, int64_
   const int64_t row = j + s.ny * k;
   const T* br = b + s.nx * row;
   if (in == nullptr) {
-    storeFluidRow(s, r, row, out, [&](int64_t first, int64_t count, T* values) VP_CLONE_INLINE {
+    storeFluidRow(s, r, row, out + s.nx * row, [&](int64_t first, int64_t count, T* values) VP_CLONE_INLINE {
       for (int64_t m = 0; m < count; ++m) values[m] = weight * br[first + m] / r.diagonal[first + m];
     });
     return;
   }
-  storeFluidRow(s, r, row, out, fromNeighbourSums<1>(r, [&r, br, weight](int64_t i, T sum) VP_CLONE_INLINE {
+  storeFluidRow(s, r, row, out + s.nx * row, fromNeighbourSums<1>(r, [&r, br, weight](int64_t i, T sum) VP_CLONE_INLINE {
                   return r.x[i] + weight * (br[i] + sum - r.diagonal[i] * r.x[i]) / r.diagonal[i];
                 }));
 }
@@ -122,13 +122,14 @@ void applyRow(const Stencil<double>& s, int64_t j, int64_t k, const double* x, d
 }
 
 VP_ISA_CLONES
-void residualRow(const Stencil<float>& s, int64_t j, int64_t k, const float* b, const float* x, float* r) {
-  residualRowBody(s, j, k, b, x, r);
+void residualRow(const Stencil<float>& s, int64_t j, int64_t k, const float* b, const float* x, float* rowResidual) {
+  residualRowBody(s, j, k, b, x, rowResidual);
 }
 
 VP_ISA_CLONES
-void residualRow(const Stencil<double>& s, int64_t j, int64_t k, const double* b, const double* x, double* r) {
-  residualRowBody(s, j, k, b, x, r);
+void residualRow(const Stencil<double>& s, int64_t j, int64_t k, const double* b, const double* x,
+                 double* rowResidual) {
+  residualRowBody(s, j, k, b, x, rowResidual);
 }
 
 VP_ISA_CLONES

@@ -62,9 +62,11 @@ VP_CLONE_INLINE inline void forEachNeighbourSum(const Row<T>& row, int64_t first
 // out = A x: the CG's operator.
 void applyRow(const Stencil<double>& s, int64_t j, int64_t k, const double* x, double* out);
 
-// r = b - A x: the multigrid's residual.
-void residualRow(const Stencil<float>& s, int64_t j, int64_t k, const float* b, const float* x, float* r);
-void residualRow(const Stencil<double>& s, int64_t j, int64_t k, const double* b, const double* x, double* r);
+// r = b - A x: the multigrid's residual, row (j, k) of it into rowResidual (nx values), so that
+// the restriction can take it a row at a time without storing the whole residual.
+void residualRow(const Stencil<float>& s, int64_t j, int64_t k, const float* b, const float* x, float* rowResidual);
+void residualRow(const Stencil<double>& s, int64_t j, int64_t k, const double* b, const double* x,
+                 double* rowResidual);
 
 // out = in + w D^-1 (b - A in): a damped Jacobi sweep's row (in == nullptr: from in = 0, so
 // out = w D^-1 b); out must not alias in.
