@@ -152,10 +152,11 @@ void expectSameOperator(const CutCellPoisson& a, const CutCellPoisson& b) {
 
 void expectSameBoundaryCells(const BoundaryCellLists& a, const BoundaryCellLists& b) {
   for (size_t colour = 0; colour < 2; ++colour) {
-    ASSERT_EQ(a[colour].size(), b[colour].size());
-    for (size_t e = 0; e < a[colour].size(); ++e)
-      EXPECT_EQ(std::memcmp(&a[colour][e], &b[colour][e], sizeof(BoundaryCell)), 0) << "entry " << e;
+    ASSERT_EQ(a.byColour[colour].size(), b.byColour[colour].size());
+    for (size_t e = 0; e < a.byColour[colour].size(); ++e)
+      EXPECT_EQ(std::memcmp(&a.byColour[colour][e], &b.byColour[colour][e], sizeof(BoundaryCell)), 0) << "entry " << e;
   }
+  EXPECT_EQ(a.reads, b.reads);
 }
 
 void expectSameSolverState(const PressureState& a, const PressureState& b, PressureSolver solver) {

@@ -104,39 +104,98 @@ void smoothJacobi(TaskSystem& tasks, const PoissonCoefficients<T>& op, const T* 
   }
 }
 
-void smoothRedBlackCells(TaskSystem& tasks, const PoissonCoefficients<float>& op, const BoundaryCellLists& byColour,
-                         const float* b, float* x, bool reverse) {
+void smoothBoundaryCells(TaskSystem& tasks, const PoissonCoefficients<float>& op, const BoundaryCellLists& cells,
+                         const float* b, float* x, bool reverse, int sweeps, BoundarySweepValues* scratch) {
+  const int64_t count = cells.count();
+  if (count == 0 || sweeps <= 0) return;
   const int64_t nx = op.grid.nx, sz = nx * op.grid.ny;
   const int64_t step[6] = {-1, 1, -nx, nx, -sz, sz};
-  for (int half = 0; half < 2; ++half) {
-    const Array<BoundaryCell>& list = byColour[static_cast<size_t>(reverse ? 1 - half : half)];
+  const int64_t offset[2] = {0, static_cast<int64_t>(cells.byColour[0].size())};
+  scratch->values.resize(static_cast<size_t>(7 * count));
+  scratch->rhs.resize(static_cast<size_t>(count));
+  float* values = scratch->values.data();
+  float* rhs = scratch->rhs.data();
+  const int32_t* reads = cells.reads.data();
+  auto forEachEntry = [&](int colour, const auto& body) {
+    const Array<BoundaryCell>& list = cells.byColour[static_cast<size_t>(colour)];
     parallelFor(tasks, static_cast<int64_t>(list.size()), kBoundaryCellsPerChunk, [&](int64_t begin, int64_t end) {
-      for (int64_t n = begin; n < end; ++n) {
-        const BoundaryCell& e = list[static_cast<size_t>(n)];
-        const int64_t c = e.cell;
-        float sum = 0.0f;
-        for (int f = 0; f < 6; ++f) sum += e.coupling[f] * x[e.coupling[f] != 0.0f ? c + step[f] : c];
-        x[c] = (b[c] + sum) * e.inverseDiagonal;
+      for (int64_t n = begin; n < end; ++n) body(list[static_cast<size_t>(n)], offset[colour] + n);
+    });
+  };
+  for (int colour = 0; colour < 2; ++colour)
+    forEachEntry(colour, [&](const BoundaryCell& e, int64_t entry) {
+      values[entry] = x[e.cell];
+      rhs[entry] = b[e.cell];
+      for (int f = 0; f < 6; ++f) {
+        const int32_t at = reads[6 * entry + f];
+        if (at >= count) values[at] = x[e.cell + step[f]];
       }
     });
+  for (int sweep = 0; sweep < sweeps; ++sweep)
+    for (int half = 0; half < 2; ++half)
+      forEachEntry(reverse ? 1 - half : half, [&](const BoundaryCell& e, int64_t entry) {
+        const int32_t* at = reads + 6 * entry;
+        float sum = 0.0f;
+        for (int f = 0; f < 6; ++f) sum += e.coupling[f] * values[at[f]];
+        values[entry] = (rhs[entry] + sum) * e.inverseDiagonal;
+      });
+  for (int colour = 0; colour < 2; ++colour)
+    forEachEntry(colour, [&](const BoundaryCell& e, int64_t entry) { x[e.cell] = values[entry]; });
+}
+
+namespace {
+
+// BoundaryCellLists::reads of entries [begin, end) of one colour's list, from the lists. A
+// face couples cells of different colours, so a listed neighbour is in the other list; both
+// lists are in cell order, so each face's neighbours are found by one walk along the other list.
+void linkBoundaryCells(const Stencil<double>& s, int colour, BoundaryCellLists* cells, int64_t begin, int64_t end) {
+  if (begin >= end) return;
+  const int64_t count = cells->count(), reds = static_cast<int64_t>(cells->byColour[0].size());
+  const int64_t step[6] = {-1, 1, -s.nx, s.nx, -s.sz, s.sz};
+  const Array<BoundaryCell>& own = cells->byColour[static_cast<size_t>(colour)];
+  const Array<BoundaryCell>& other = cells->byColour[static_cast<size_t>(1 - colour)];
+  const int64_t ownOffset = colour == 0 ? 0 : reds, otherOffset = colour == 0 ? reds : 0;
+  auto cellAfter = [](const BoundaryCell& c, int64_t cell) { return c.cell < cell; };
+  for (int f = 0; f < 6; ++f) {
+    auto walk =
+        std::lower_bound(other.begin(), other.end(), own[static_cast<size_t>(begin)].cell + step[f], cellAfter);
+    for (int64_t n = begin; n < end; ++n) {
+      const BoundaryCell& e = own[static_cast<size_t>(n)];
+      const int64_t entry = ownOffset + n;
+      int64_t at = count + 6 * entry + f;
+      if (e.coupling[f] == 0.0f) {
+        at = entry;
+      } else {
+        const int64_t neighbour = e.cell + step[f];
+        while (walk != other.end() && walk->cell < neighbour) ++walk;
+        if (walk != other.end() && walk->cell == neighbour) at = otherOffset + (walk - other.begin());
+      }
+      cells->reads[static_cast<size_t>(6 * entry + f)] = static_cast<int32_t>(at);
+    }
   }
 }
 
+// Linking a listed cell (six steps of walks along a list) costs about this many samples.
+constexpr int64_t kSamplesPerLinkedCell = 4;
+constexpr int64_t kLinkGrain = 256;
+
+}  // namespace
+
 void findBoundaryCells(TaskSystem& tasks, const CutCellPoisson& op, double fullCoupling,
-                       BoundaryCellLists* byColour) {
+                       BoundaryCellLists* cells) {
   SlabPasses passes(tasks);
   Array<uint8_t> cut;
-  appendFindBoundaryCells(op, fullCoupling, byColour, &cut, &passes);
+  appendFindBoundaryCells(op, fullCoupling, cells, &cut, &passes);
   passes.runAll();
 }
 
-void appendFindBoundaryCells(const CutCellPoisson& op, double fullCoupling, BoundaryCellLists* byColour,
+void appendFindBoundaryCells(const CutCellPoisson& op, double fullCoupling, BoundaryCellLists* cells,
                              Array<uint8_t>* cutCells, SlabPasses* passes) {
   const CutCellPoisson* level = &op;
-  passes->addStep([level, fullCoupling, byColour, cutCells, passes] {
+  passes->addStep([level, fullCoupling, cells, cutCells, passes] {
     const Stencil<double> s(*level);
     cutCells->resize(static_cast<size_t>(s.rows() * s.nx));
-    for (Array<BoundaryCell>& list : *byColour) list.clear();
+    for (Array<BoundaryCell>& list : cells->byColour) list.clear();
     uint8_t* cut = cutCells->data();
     passes->addParallel(s.rows(), s.nx, s.rowGrain(), [s, cut, fullCoupling](int64_t begin, int64_t end) {
       for (int64_t row = begin; row < end; ++row) {
@@ -165,7 +224,7 @@ void appendFindBoundaryCells(const CutCellPoisson& op, double fullCoupling, Boun
     });
     // Serial, rows in order, so the lists (and the sweeps' results) never depend on the workers
     // or on the slabs.
-    passes->addSerial(s.rows(), s.nx, [s, cut, byColour](int64_t begin, int64_t end) {
+    passes->addSerial(s.rows(), s.nx, [s, cut, cells](int64_t begin, int64_t end) {
       const int64_t step[6] = {-1, 1, -s.nx, s.nx, -s.sz, s.sz};
       for (int64_t row = begin; row < end; ++row) {
         const int64_t j = row % s.ny, k = row / s.ny;
@@ -183,9 +242,17 @@ void appendFindBoundaryCells(const CutCellPoisson& op, double fullCoupling, Boun
           // Domain-side faces hold coupling 0 already (cut_cell_poisson.h); `inside` makes sure.
           for (int f = 0; f < 6; ++f) e.coupling[f] = inside[f] ? static_cast<float>(faces[f]) : 0.0f;
           e.inverseDiagonal = static_cast<float>(1.0 / s.diagonal[c]);
-          (*byColour)[static_cast<size_t>((i + j + k) & 1)].push_back(e);
+          cells->byColour[static_cast<size_t>((i + j + k) & 1)].push_back(e);
         }
       }
+    });
+    passes->addStep([s, cells, passes] {
+      cells->reads.resize(static_cast<size_t>(6 * cells->count()));
+      for (int colour = 0; colour < 2; ++colour)
+        passes->addParallel(static_cast<int64_t>(cells->byColour[static_cast<size_t>(colour)].size()),
+                            kSamplesPerLinkedCell, kLinkGrain, [s, colour, cells](int64_t begin, int64_t end) {
+                              linkBoundaryCells(s, colour, cells, begin, end);
+                            });
     });
   });
 }

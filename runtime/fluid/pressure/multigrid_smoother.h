@@ -54,18 +54,37 @@ void smoothJacobi(TaskSystem& tasks, const PoissonCoefficients<T>& op, const T* 
 // by colour (red list then black list; black then red when `reverse`), so it parallelizes like
 // the full sweep and its reverse is its adjoint.
 // A listed cell carries its own coefficients, packed at build time in the V-cycle's single
-// precision, and the inverse of its diagonal, so a sweep reads the list and x (and b) only; a
-// face with coupling 0 (closed, or a domain side) reads the cell itself, so no neighbour outside
-// the grid is ever read.
+// precision, and the inverse of its diagonal; a face with coupling 0 (closed, or a domain side)
+// reads the cell itself, so no neighbour outside the grid is ever read.
 struct BoundaryCell {
   int32_t cell;
   float coupling[6];  // faces -x, +x, -y, +y, -z, +z
   float inverseDiagonal;
 };
-using BoundaryCellLists = std::array<Array<BoundaryCell>, 2>;  // red, black
 
-void smoothRedBlackCells(TaskSystem& tasks, const PoissonCoefficients<float>& op, const BoundaryCellLists& byColour,
-                         const float* b, float* x, bool reverse);
+// A level's listed cells and what each of their faces reads during the sweeps. The sweeps of
+// one smoothing change only listed cells, so a face reading an unlisted cell reads a constant:
+// the sweeps run on compact copies (BoundarySweepValues) instead of reaching across the grid
+// for every face of every listed cell in every sweep.
+struct BoundaryCellLists {
+  std::array<Array<BoundaryCell>, 2> byColour;  // red, black
+  // Per listed cell (entry e: the red list's cells, then the black's) and face f, where in
+  // BoundarySweepValues::values the face's value is: the entry of the listed cell it reads
+  // (itself when the coupling is 0), else count() + 6 e + f, a constant.
+  Array<int32_t> reads;
+  int64_t count() const { return static_cast<int64_t>(byColour[0].size() + byColour[1].size()); }
+};
+
+// What one smoothing's boundary sweeps work on: the listed cells' x, then the constants.
+struct BoundarySweepValues {
+  Array<float> values;
+  Array<float> rhs;  // b of the listed cells
+};
+
+// `sweeps` boundary sweeps of x: the same values, bit for bit, as that many sweeps reading and
+// writing x in place.
+void smoothBoundaryCells(TaskSystem& tasks, const PoissonCoefficients<float>& op, const BoundaryCellLists& cells,
+                         const float* b, float* x, bool reverse, int sweeps, BoundarySweepValues* scratch);
 
 // The fluid cells within one face step of a cut cell, split by colour: red cells in
 // byColour[0], black in byColour[1], each in cell order. A cell is cut when a face inside the
@@ -74,11 +93,11 @@ void smoothRedBlackCells(TaskSystem& tasks, const PoissonCoefficients<float>& op
 // degrades with resolution without these sweeps: sliver cells (open fractions near 0) are
 // poorly represented by the coarse levels, and their number grows with the surface.
 void findBoundaryCells(TaskSystem& tasks, const CutCellPoisson& op, double fullCoupling,
-                       BoundaryCellLists* byColour);
+                       BoundaryCellLists* cells);
 // The same as passes (core/slab_passes.h): the cut flags (into `cut`, one per
-// cell) in slabs of rows, then the lists in rows taken in order. Nothing is read before the
-// first pass runs; the arguments must outlive the passes.
-void appendFindBoundaryCells(const CutCellPoisson& op, double fullCoupling, BoundaryCellLists* byColour,
+// cell) in slabs of rows, then the lists in rows taken in order, then the faces' reads.
+// Nothing is read before the first pass runs; the arguments must outlive the passes.
+void appendFindBoundaryCells(const CutCellPoisson& op, double fullCoupling, BoundaryCellLists* cells,
                              Array<uint8_t>* cut, SlabPasses* passes);
 
 // r = b - A x on fluid cells, 0 elsewhere.

@@ -27,9 +27,9 @@ void smooth(TaskSystem& tasks, const PoissonCoefficients<float>& op, const Multi
 // reverse order.
 void smoothLevel(TaskSystem& tasks, const PoissonCoefficients<float>& op, const MultigridSettings& s,
                  const BoundaryCellLists& boundary, const float* b, float* x, Array<float>& scratch,
-                 bool post) {
+                 BoundarySweepValues* boundaryValues, bool post) {
   if (!post) smooth(tasks, op, s, b, x, scratch, s.sweeps, false, true);
-  for (int i = 0; i < s.boundarySweeps; ++i) smoothRedBlackCells(tasks, op, boundary, b, x, post);
+  smoothBoundaryCells(tasks, op, boundary, b, x, post, s.boundarySweeps, boundaryValues);
   if (post) smooth(tasks, op, s, b, x, scratch, s.sweeps, true, false);
 }
 
@@ -161,7 +161,8 @@ void applyPoissonMultigrid(TaskSystem& tasks, const CutCellPoisson& fine, Poisso
 
   // Every level's x starts from 0; the first smoothing sweep clears it (smooth, fromZero).
   for (int l = 0; l + 1 < levels; ++l) {
-    smoothLevel(tasks, single(l), s, mg.boundaryCells[static_cast<size_t>(l)], bOf(l), xOf(l), scratchOf(l), false);
+    smoothLevel(tasks, single(l), s, mg.boundaryCells[static_cast<size_t>(l)], bOf(l), xOf(l), scratchOf(l),
+                &mg.boundaryValues, false);
     float* coarseB = bOf(l + 1);
     restrictResidual(tasks, op(l), op(l + 1), mg.sides, mg.prolongScale[static_cast<size_t>(l)].data(),
                      LevelResidual<float>{&single(l), bOf(l), xOf(l)}, coarseB, &mg.restrictScratch);
@@ -174,7 +175,8 @@ void applyPoissonMultigrid(TaskSystem& tasks, const CutCellPoisson& fine, Poisso
   for (int l = last - 1; l >= 0; --l) {
     prolongateAdd(tasks, op(l), op(l + 1), mg.sides, mg.prolongScale[static_cast<size_t>(l)].data(), xOf(l + 1),
                   xOf(l));
-    smoothLevel(tasks, single(l), s, mg.boundaryCells[static_cast<size_t>(l)], bOf(l), xOf(l), scratchOf(l), true);
+    smoothLevel(tasks, single(l), s, mg.boundaryCells[static_cast<size_t>(l)], bOf(l), xOf(l), scratchOf(l),
+                &mg.boundaryValues, true);
     filter(l, xOf(l));
   }
   convertVector(tasks, fineCells, xOf(0), z);

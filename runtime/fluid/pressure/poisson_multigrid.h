@@ -75,6 +75,7 @@ struct PoissonMultigrid {
   Array<double> scaleScratch;
   CoarseningScratch coarseningScratch;
   Array<uint8_t> boundaryScratch;
+  BoundarySweepValues boundaryValues;  // the boundary sweeps' values, one level at a time
 
   int levelCount() const { return 1 + static_cast<int>(coarse.size()); }
 };
