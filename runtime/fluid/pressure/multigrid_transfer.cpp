@@ -17,55 +17,21 @@ constexpr int64_t kRowGrain = 16;
 // Fine rows up to this long take their residual in a buffer on the stack.
 constexpr int64_t kStackRow = 1024;
 
-// The two coarse cells fine index i interpolates from along one axis, with their weights. A
-// neighbour outside [0, coarseCount) is a ghost: behind a Wall side it is dropped (weight 0, a
-// valid index so it can be read); behind an Open side it is the Dirichlet ghost -x_parent, which
-// puts the zero at the domain face, so it becomes weight -1/4 on the parent. `presence` is the
-// weight the renormalization counts (the ghost is there, only with a mirrored value).
-struct AxisStencil {
-  int64_t index[2];
-  double weight[2];
-  double presence[2];
-  AxisStencil(int64_t i, int64_t coarseCount, const TransferSides& sides, int axis) {
-    const int64_t parent = i >> 1, side = (i & 1) ? parent + 1 : parent - 1;
-    index[0] = parent;
-    weight[0] = presence[0] = 0.75;
-    const bool inside = side >= 0 && side < coarseCount;
-    const bool dirichlet = !inside && sides.open[2 * axis + (side < 0 ? 0 : 1)];
-    index[1] = inside ? side : parent;
-    weight[1] = inside ? 0.25 : dirichlet ? -0.25 : 0.0;
-    presence[1] = inside || dirichlet ? 0.25 : 0.0;
-  }
-};
+using kernels::AxisStencil;
+using kernels::AxisWeights;
 
-// The transpose of AxisStencil along one axis: the weights P gives coarse index I at the fine
-// indices first .. first + 3 (= 2I - 1 .. 2I + 2), 0 for fine indices outside the grid.
-struct AxisWeights {
-  int64_t first;
-  double weight[4];
-  AxisWeights(int64_t I, int64_t fineCount, int64_t coarseCount, const TransferSides& sides, int axis)
-      : first(2 * I - 1) {
-    for (int x = 0; x < 4; ++x) {
-      weight[x] = 0.0;
-      const int64_t i = first + x;
-      if (i < 0 || i >= fineCount) continue;
-      const AxisStencil s(i, coarseCount, sides, axis);
-      for (int e = 0; e < 2; ++e)
-        if (s.index[e] == I) weight[x] += s.weight[e];
-    }
-  }
-};
-
-// out = sum_t w.weight[t] * line(w.first + t), over rows of `count` values: one pass of the
-// separable restriction along y or z.
-template <class T, class Line>
-void gatherRows(const AxisWeights& w, int64_t count, const Line& line, T* out) {
+// out[I] = kernels::restrictAlong for each of `count` values of a row, a tap at a time over
+// the whole row (the same operations per value, in the same order; the loop over I
+// vectorizes): one pass of the separable restriction along y or z (in: the row at fine index
+// 0 of the axis).
+template <class T>
+void gatherRows(const AxisWeights& w, int64_t count, const T* in, int64_t stride, T* out) {
   for (int64_t I = 0; I < count; ++I) out[I] = T(0);
   for (int t = 0; t < 4; ++t) {
     if (w.weight[t] == 0.0) continue;
     const T weight = static_cast<T>(w.weight[t]);
-    const T* in = line(w.first + t);
-    for (int64_t I = 0; I < count; ++I) out[I] += weight * in[I];
+    const T* line = in + (w.first + t) * stride;
+    for (int64_t I = 0; I < count; ++I) out[I] += weight * line[I];
   }
 }
 
@@ -98,7 +64,8 @@ struct ProlongationRow {
   T* fineX;        // the row's
 };
 
-// A fine cell 2I or 2I + 1 with both its coarse neighbours inside takes I and I - 1 or I + 1:
+// kernels::prolongateCell for the cells of one row, in the same order of operations: a fine
+// cell 2I or 2I + 1 with both its coarse neighbours inside takes I and I - 1 or I + 1:
 // those cells go in pairs per coarse I, their values into a buffer (contiguous coarse loads, no
 // branch), then stored where the cell's scale is not 0 (a cell of scale 0, non-fluid or without
 // a fluid coarse neighbour, keeps its value). The few cells at the row's ends go one by one
@@ -179,11 +146,7 @@ template <class T>
 VP_CLONE_INLINE inline void restrictRowAlongXBody(const XWeights<T>& xw, const T* scale, const T* r, T* out) {
   const int64_t cx = static_cast<int64_t>(xw.all.size());
   auto atEnd = [&](int64_t I) VP_CLONE_INLINE {
-    const AxisWeights& w = xw.all[static_cast<size_t>(I)];
-    T sum = T(0);
-    for (int x = 0; x < 4; ++x)
-      if (w.weight[x] != 0.0) sum += static_cast<T>(w.weight[x]) * scale[w.first + x] * r[w.first + x];
-    out[I] = sum;
+    out[I] = kernels::restrictAlongX(xw.all[static_cast<size_t>(I)], scale, r);
   };
   for (int64_t I = 0; I < xw.innerBegin; ++I) atEnd(I);
   const T *w0 = xw.weight[0].data(), *w1 = xw.weight[1].data(), *w2 = xw.weight[2].data(), *w3 = xw.weight[3].data();
@@ -309,15 +272,14 @@ void restrictResidual(TaskSystem& tasks, const CutCellPoisson& fine, const CutCe
   parallelFor(tasks, cy * nz, kRowGrain, [&](int64_t begin, int64_t end) {
     for (int64_t row = begin; row < end; ++row) {
       const int64_t J = row % cy, k = row / cy;
-      gatherRows(wy[static_cast<size_t>(J)], cx, [&](int64_t j) { return alongX + cx * (j + ny * k); },
-                 alongY + cx * row);
+      gatherRows(wy[static_cast<size_t>(J)], cx, alongX + cx * ny * k, cx, alongY + cx * row);
     }
   });
   parallelFor(tasks, cy * cz, kRowGrain, [&](int64_t begin, int64_t end) {
     for (int64_t row = begin; row < end; ++row) {
       const int64_t J = row % cy, K = row / cy;
       T* out = coarseB + cx * row;
-      gatherRows(wz[static_cast<size_t>(K)], cx, [&](int64_t k) { return alongY + cx * (J + cy * k); }, out);
+      gatherRows(wz[static_cast<size_t>(K)], cx, alongY + cx * J, cx * cy, out);
       const double* diagonal = coarse.diagonal.data() + cx * row;
       for (int64_t I = 0; I < cx; ++I)
         if (!(diagonal[I] > 0.0)) out[I] = T(0);

@@ -14,6 +14,8 @@
 // being extrapolated flat through it.
 // R = P^T exactly is what keeps the V-cycle symmetric (multigrid_coarsening.h derives the coarse
 // operator's scaling for this R).
+// The per-value kernel bodies are in gpu_kernels/include/gpu_kernels/transfer_kernels.h; the
+// functions below run them a row at a time.
 #pragma once
 
 #include <vector>
@@ -21,13 +23,12 @@
 #include "core/allocator.h"
 #include "core/task_system.h"
 #include "fluid/pressure/cut_cell_poisson.h"
+#include "gpu_kernels/transfer_kernels.h"
 
 namespace vp {
 
 // Which domain sides are Open (Dirichlet), in MacGrid::sides order.
-struct TransferSides {
-  bool open[6] = {false, false, false, false, false, false};
-};
+using TransferSides = kernels::TransferSides;
 
 // Per fine cell: 1 / S_i, 0 on non-fluid fine cells and where no coarse neighbour is fluid.
 void computeProlongationScale(TaskSystem& tasks, const CutCellPoisson& fine, const CutCellPoisson& coarse,
