@@ -5,13 +5,13 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
-#include <random>
 #include <vector>
 
 #include "fluid/pressure/multigrid_smoother.h"
 #include "fluid/pressure/multigrid_transfer.h"
 #include "fluid_pressure_scenes.h"
 #include "gpu_kernels/transfer_kernels.h"
+#include "random_values.h"
 
 namespace vp {
 namespace {
@@ -20,13 +20,7 @@ using testscene::PressureScene;
 using testscene::PressureSceneKind;
 using testscene::SceneSolver;
 
-std::vector<float> randomValues(size_t count, uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-  std::vector<float> v(count);
-  for (float& x : v) x = u(rng);
-  return v;
-}
+using testing_values::randomValues;
 
 void expectSameBits(const std::vector<float>& expected, const std::vector<float>& actual, const char* what) {
   ASSERT_EQ(expected.size(), actual.size()) << what;
@@ -82,8 +76,8 @@ void checkEveryLevel(PressureSceneKind kind, int n) {
     const CutCellPoisson& coarse = mg.coarse[static_cast<size_t>(l)];
     const float* scale = mg.prolongScale[static_cast<size_t>(l)].data();
     const kernels::TransferDims d = dimsOf(fine, coarse);
-    const std::vector<float> coarseX = randomValues(coarse.diagonal.size(), 10 + l);
-    const std::vector<float> fineStart = randomValues(fine.diagonal.size(), 20 + l);
+    const std::vector<float> coarseX = randomValues<float>(static_cast<int64_t>(coarse.diagonal.size()), 10 + l);
+    const std::vector<float> fineStart = randomValues<float>(static_cast<int64_t>(fine.diagonal.size()), 20 + l);
 
     std::vector<float> byRows = fineStart, byCells = fineStart;
     prolongateAdd(*tasks, fine, coarse, mg.sides, scale, coarseX.data(), byRows.data());
@@ -95,8 +89,8 @@ void checkEveryLevel(PressureSceneKind kind, int n) {
     EXPECT_NE(byRows, fineStart);
 
     const PoissonCoefficients<float>& op = mg.single[static_cast<size_t>(l)];
-    const std::vector<float> b = randomValues(fine.diagonal.size(), 30 + l);
-    const std::vector<float> x = randomValues(fine.diagonal.size(), 40 + l);
+    const std::vector<float> b = randomValues<float>(static_cast<int64_t>(fine.diagonal.size()), 30 + l);
+    const std::vector<float> x = randomValues<float>(static_cast<int64_t>(fine.diagonal.size()), 40 + l);
     std::vector<float> residual(fine.diagonal.size());
     computeResidual(*tasks, op, b.data(), x.data(), residual.data());
     std::vector<float> restricted(coarse.diagonal.size(), 7.0f);

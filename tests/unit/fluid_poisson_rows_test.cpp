@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "fluid/pressure/poisson_rows.h"
+#include "random_values.h"
 
 namespace vp {
 namespace {
@@ -85,14 +86,7 @@ T neighbourSum(const Level<T>& l, const T* x, int i, int j, int k) {
          op.coupling[2][w] * value(i, j, k - 1) + op.coupling[2][w + planeStride] * value(i, j, k + 1);
 }
 
-template <class T>
-std::vector<T> randomValues(int64_t n, uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::vector<T> v(static_cast<size_t>(n));
-  for (T& x : v) x = T(u(rng));
-  return v;
-}
+using testing_values::randomValues;
 
 template <class T>
 void expectSameBits(const std::vector<T>& expected, const std::vector<T>& actual, const char* what) {

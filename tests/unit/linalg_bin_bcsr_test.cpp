@@ -11,6 +11,7 @@
 #include "deform/deformable_body.h"
 #include "geometry/box_tet_mesh.h"
 #include "linalg/bin_bcsr_matrix.h"
+#include "random_values.h"
 
 namespace vp {
 namespace {
@@ -39,13 +40,7 @@ void fillRandom(BlockSparseMatrix<Scalar>& m, unsigned seed) {
   for (Scalar& v : m.values) v = static_cast<Scalar>(u(rng));
 }
 
-std::vector<double> randomVector(size_t n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1, 1);
-  std::vector<double> v(n);
-  for (double& x : v) x = u(rng);
-  return v;
-}
+using testing_values::randomValues;
 
 bool bitwiseEqual(const std::vector<double>& a, const std::vector<double>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
@@ -54,7 +49,7 @@ bool bitwiseEqual(const std::vector<double>& a, const std::vector<double>& b) {
 template <class Scalar>
 void expectSameProducts(const BlockSparseMatrix<Scalar>& bcsr, const BinBcsrMatrix<Scalar>& bin) {
   auto tasks = TaskSystem::create(TaskHooks{}, 2);
-  const std::vector<double> x = randomVector(3 * static_cast<size_t>(bcsr.blockRows), 11);
+  const std::vector<double> x = randomValues<double>(3 * static_cast<int64_t>(bcsr.blockRows), 11);
   std::vector<double> y(x.size(), -7.0), yBin(x.size(), 7.0);
   bcsr.multiply(*tasks, x.data(), y.data());
   bin.multiply(*tasks, x.data(), yBin.data());
@@ -135,7 +130,7 @@ TEST(BinBcsr, BlockJacobiRowAppliesTheInverseDiagonalBlocks) {
     for (int i = 0; i < 3; ++i) m.values[9 * static_cast<size_t>(m.diagonal[r]) + 4 * i] += 4.0;
   Array<double> inverse;
   binnedInverseDiagonal(m, &inverse);
-  const std::vector<double> r = randomVector(3 * static_cast<size_t>(m.blockRows), 4);
+  const std::vector<double> r = randomValues<double>(3 * static_cast<int64_t>(m.blockRows), 4);
   std::vector<double> z(r.size());
   for (int32_t row = 0; row < m.blockRows; ++row) kernels::blockJacobiRow(row, inverse.data(), r.data(), z.data());
   using Mat3R = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;

@@ -81,7 +81,8 @@ VP_CLONE_INLINE inline void jacobiRowBody(const Stencil<T>& s, int64_t j, int64_
     });
     return;
   }
-  storeFluidRow(s, r, row, out + s.nx * row, fromNeighbourSums<1>(r, [&r, br, weight](int64_t i, T sum) VP_CLONE_INLINE {
+  T* rowOut = out + s.nx * row;
+  storeFluidRow(s, r, row, rowOut, fromNeighbourSums<1>(r, [&r, br, weight](int64_t i, T sum) VP_CLONE_INLINE {
                   return r.x[i] + weight * (br[i] + sum - r.diagonal[i] * r.x[i]) / r.diagonal[i];
                 }));
 }
