@@ -41,9 +41,10 @@ inline bool failed(cudaError_t e, std::string* error) {
   return true;
 }
 
+// Device time between start() and stopMs() on one stream (the legacy default stream unless named).
 class EventTimer {
  public:
-  EventTimer() {
+  explicit EventTimer(cudaStream_t stream = nullptr) : stream_(stream) {
     cudaEventCreate(&start_);
     cudaEventCreate(&stop_);
   }
@@ -51,9 +52,9 @@ class EventTimer {
     cudaEventDestroy(start_);
     cudaEventDestroy(stop_);
   }
-  void start() { cudaEventRecord(start_); }
+  void start() { cudaEventRecord(start_, stream_); }
   double stopMs() {
-    cudaEventRecord(stop_);
+    cudaEventRecord(stop_, stream_);
     cudaEventSynchronize(stop_);
     float ms = 0;
     cudaEventElapsedTime(&ms, start_, stop_);
@@ -61,6 +62,7 @@ class EventTimer {
   }
 
  private:
+  cudaStream_t stream_;
   cudaEvent_t start_{}, stop_{};
 };
 

@@ -4,7 +4,6 @@
 // sizes; and R = P^T.
 #include <gtest/gtest.h>
 
-#include <cstring>
 #include <vector>
 
 #include "fluid/pressure/multigrid_smoother.h"
@@ -12,6 +11,7 @@
 #include "fluid_pressure_scenes.h"
 #include "gpu_kernels/transfer_kernels.h"
 #include "random_values.h"
+#include "same_bits.h"
 
 namespace vp {
 namespace {
@@ -20,14 +20,8 @@ using testscene::PressureScene;
 using testscene::PressureSceneKind;
 using testscene::SceneSolver;
 
+using testing_values::expectSameBits;
 using testing_values::randomValues;
-
-void expectSameBits(const std::vector<float>& expected, const std::vector<float>& actual, const char* what) {
-  ASSERT_EQ(expected.size(), actual.size()) << what;
-  for (size_t i = 0; i < expected.size(); ++i)
-    ASSERT_EQ(std::memcmp(&expected[i], &actual[i], sizeof(float)), 0)
-        << what << " at " << i << ": " << expected[i] << " vs " << actual[i];
-}
 
 kernels::TransferDims dimsOf(const CutCellPoisson& fine, const CutCellPoisson& coarse) {
   return kernels::TransferDims{fine.grid.nx,   fine.grid.ny,   fine.grid.nz,
@@ -65,9 +59,8 @@ void checkEveryLevel(PressureSceneKind kind, int n) {
   SCOPED_TRACE(std::string(testscene::sceneName(kind)) + " at " + std::to_string(n));
   auto tasks = TaskSystem::create(TaskHooks{}, 2);
   PressureScene scene;
-  ASSERT_EQ(testscene::makePressureScene(*tasks, kind, n, &scene), Status::Ok) << lastError();
   SceneSolver solver;
-  ASSERT_EQ(solver.prepare(*tasks, scene), Status::Ok) << lastError();
+  ASSERT_EQ(testscene::makeSceneWithMultigrid(*tasks, kind, n, &scene, &solver), Status::Ok) << lastError();
   const PoissonMultigrid& mg = solver.mg;
   ASSERT_GE(mg.levelCount(), 2);
   for (int l = 0; l + 1 < mg.levelCount(); ++l) {

@@ -167,5 +167,12 @@ struct SceneSolver {
   }
 };
 
+// A scene and its cut-cell multigrid (SceneSolver's default settings), built.
+inline Status makeSceneWithMultigrid(TaskSystem& tasks, PressureSceneKind kind, int n, PressureScene* scene,
+                                     SceneSolver* solver) {
+  VP_TRY(makePressureScene(tasks, kind, n, scene));
+  return solver->prepare(tasks, *scene);
+}
+
 }  // namespace testscene
 }  // namespace vp

@@ -134,10 +134,7 @@ void smoothBoundaryCells(TaskSystem& tasks, const PoissonCoefficients<float>& op
   for (int sweep = 0; sweep < sweeps; ++sweep)
     for (int half = 0; half < 2; ++half)
       forEachEntry(reverse ? 1 - half : half, [&](const BoundaryCell& e, int64_t entry) {
-        const int32_t* at = reads + 6 * entry;
-        float sum = 0.0f;
-        for (int f = 0; f < 6; ++f) sum += e.coupling[f] * values[at[f]];
-        values[entry] = (rhs[entry] + sum) * e.inverseDiagonal;
+        values[entry] = kernels::boundaryCellUpdate(e, reads + 6 * entry, values, rhs[entry]);
       });
   for (int colour = 0; colour < 2; ++colour)
     forEachEntry(colour, [&](const BoundaryCell& e, int64_t entry) { x[e.cell] = values[entry]; });

@@ -32,6 +32,7 @@
 #include "core/allocator.h"
 #include "core/task_system.h"
 #include "fluid/pressure/cut_cell_poisson.h"
+#include "gpu_kernels/smoother_kernels.h"
 
 namespace vp {
 
@@ -53,14 +54,8 @@ void smoothJacobi(TaskSystem& tasks, const PoissonCoefficients<T>& op, const T* 
 // Boundary smoothing (McAdams et al. 2010): Gauss-Seidel restricted to the listed cells, split
 // by colour (red list then black list; black then red when `reverse`), so it parallelizes like
 // the full sweep and its reverse is its adjoint.
-// A listed cell carries its own coefficients, packed at build time in the V-cycle's single
-// precision, and the inverse of its diagonal; a face with coupling 0 (closed, or a domain side)
-// reads the cell itself, so no neighbour outside the grid is ever read.
-struct BoundaryCell {
-  int32_t cell;
-  float coupling[6];  // faces -x, +x, -y, +y, -z, +z
-  float inverseDiagonal;
-};
+// A listed cell carries its own coefficients (gpu_kernels/smoother_kernels.h).
+using BoundaryCell = kernels::BoundaryCell;
 
 // A level's listed cells and what each of their faces reads during the sweeps. The sweeps of
 // one smoothing change only listed cells, so a face reading an unlisted cell reads a constant:
