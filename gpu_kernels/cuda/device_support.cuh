@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <string>
+#include <utility>
 
 namespace vp::gpu {
 
@@ -24,6 +25,10 @@ class DeviceArray {
     cudaError_t e = allocate(n);
     if (e != cudaSuccess || n == 0) return e;
     return cudaMemcpy(data_, host, n * sizeof(T), cudaMemcpyHostToDevice);
+  }
+  void swap(DeviceArray& other) {
+    std::swap(data_, other.data_);
+    std::swap(size_, other.size_);
   }
   T* get() const { return data_; }
   size_t size() const { return size_; }

@@ -175,4 +175,45 @@ VP_HOST_DEVICE inline void traceToLattice(const MacVelocityView& v, const double
   latticeCoordinate(v, latticeAxis, end, g);
 }
 
+// A trilinear sample of `values` (a lattice of dims samples per axis) at lattice coordinate g;
+// lo/hi (optional, together) receive the range of the 8 samples used.
+VP_HOST_DEVICE inline double sampleLattice(const double* values, const int dims[3], const double g[3],
+                                           double* lo = nullptr, double* hi = nullptr) {
+  const LatticeSteps st = latticeSteps(dims);
+  int base[3];
+  double w[3];
+  for (int d = 0; d < 3; ++d) latticeSpan(g[d], dims[d], &base[d], &w[d]);
+  const int64_t index = base[0] * st.stride[0] + base[1] * st.stride[1] + base[2] * st.stride[2];
+  return trilinear(values + index, st.step, w[0], w[1], w[2], lo, hi);
+}
+
+// The semi-Lagrangian value of a-face `at` over dt: `field` (a lattice of a-faces) sampled where
+// the face's centre came from through v's velocity; lo/hi (optional) the stencil's range.
+VP_HOST_DEVICE inline double advectFace(const MacVelocityView& v, int a, const int at[3], double dt,
+                                        const double* field, double* lo = nullptr, double* hi = nullptr) {
+  double x[3], u0[3], g[3];
+  sampleCentre(v, a, at, x);
+  velocityAtSample(v, a, at, u0);
+  traceToLattice(v, x, u0, dt, a, g);
+  return sampleLattice(field, v.faceDims[a], g, lo, hi);
+}
+
+// MacCormack's value from the forward (semi-Lagrangian) value, the old one, the forward field
+// traced back again, and the range [lo, hi] of the samples the forward step read. Where the
+// correction leaves that range the forward value is kept (Selle et al.'s own limiter) rather
+// than the correction clamped to it: clamped, every such face took the extreme of its stencil,
+// which near a free surface (extrapolated air velocities in the stencil) pumped energy in step
+// after step, and a stirred tank ran away (fluid_paddle_buoy_test.cpp).
+VP_HOST_DEVICE inline double maccormackValue(double forward, double old, double backAgain, double lo, double hi) {
+  const double corrected = forward + 0.5 * (old - backAgain);
+  return corrected >= lo && corrected <= hi ? corrected : forward;
+}
+
+// MacCormack's value of a-face `at` (index f in its lattice) over dt: `forward` holds every
+// a-face's advectFace over dt, lo/hi this face's range from it.
+VP_HOST_DEVICE inline double maccormackFace(const MacVelocityView& v, int a, const int at[3], int64_t f, double dt,
+                                            const double* old, const double* forward, double lo, double hi) {
+  return maccormackValue(forward[f], old[f], advectFace(v, a, at, -dt, forward), lo, hi);
+}
+
 }  // namespace vp::kernels

@@ -251,14 +251,7 @@ void VelocityAdvectionSlices::correctionPass(const AdvectionRows& slab) {
         sampleAtPoints(fwd, dims, ahead, backAgain);
         for (int s = 0; s < starts.count; ++s) {
           const size_t f = rowStart + static_cast<size_t>(starts.i[s]);
-          // Where the correction leaves the range of the samples the forward step read, the
-          // semi-Lagrangian value is kept (Selle et al.'s own limiter) rather than the
-          // correction clamped to the range: clamped, every such face took the extreme of its
-          // stencil, which near a free surface (extrapolated air velocities in the stencil)
-          // pumped energy in step after step, and a stirred tank ran away
-          // (fluid_paddle_buoy_test.cpp).
-          const double corrected = fwd[f] + 0.5 * (old[f] - backAgain[s]);
-          out[f] = corrected >= lo[f] && corrected <= hi[f] ? corrected : fwd[f];
+          out[f] = kernels::maccormackValue(fwd[f], old[f], backAgain[s], lo[f], hi[f]);
         }
       });
 }
