@@ -42,6 +42,17 @@ __global__ void cgStepKernel(int64_t n, double alpha, const double* p, const dou
   addBlockSum(i < n ? kernels::cgStepRange(i, i + 1, alpha, p, q, x, r) : 0.0, rr);
 }
 
+// r = b - q
+__global__ void residualKernel(int64_t n, const double* b, const double* q, double* r) {
+  const int64_t i = threadIndex();
+  if (i < n) r[i] = b[i] - q[i];
+}
+
+__global__ void subtractKernel(int64_t n, const double* v, double* x) {
+  const int64_t i = threadIndex();
+  if (i < n) x[i] -= v[i];
+}
+
 __global__ void xpbyKernel(int64_t n, const double* x, double b, double* y) {
   const int64_t i = threadIndex();
   if (i < n) kernels::xpbyItem(i, x, b, y);
@@ -80,6 +91,12 @@ struct DevicePressureSolver::Impl {
     return !failed(cudaMemcpyAsync(rr, scalars.get(), sizeof(double), cudaMemcpyDeviceToHost, stream), error) &&
            !failed(cudaStreamSynchronize(stream), error);
   }
+  // x -= filter(x): what the filter removes stays, as the CPU's CG does when b vanishes.
+  void removeFreePart() {
+    cudaMemcpyAsync(z.get(), x.get(), bytes(), cudaMemcpyDeviceToDevice, stream);
+    filter.apply(z.get(), stream);
+    subtractKernel<<<blocksFor(cells()), kThreads, 0, stream>>>(cells(), z.get(), x.get());
+  }
   // z = filter(M r)
   void precondition() {
     multigrid.launch(stream);
@@ -88,21 +105,28 @@ struct DevicePressureSolver::Impl {
   bool solve(double tolerance, int maxIterations, DevicePressureResult* result, std::string* error);
 };
 
-// The CPU's ConjugateGradientRun from x = 0 (linalg/conjugate_gradient.cpp): r = filtered b.
+// The CPU's ConjugateGradientRun (linalg/conjugate_gradient.cpp) from the guess in x.
 bool DevicePressureSolver::Impl::solve(double tolerance, int maxIterations, DevicePressureResult* result,
                                        std::string* error) {
   *result = DevicePressureResult{};
-  cudaMemsetAsync(x.get(), 0, bytes(), stream);
-  cudaMemcpyAsync(r.get(), b.get(), bytes(), cudaMemcpyDeviceToDevice, stream);
-  filter.apply(r.get(), stream);
+  // |filtered b| is the scale the tolerance is relative to.
+  cudaMemcpyAsync(z.get(), b.get(), bytes(), cudaMemcpyDeviceToDevice, stream);
+  filter.apply(z.get(), stream);
   double bb = 0.0;
-  if (!dot(r.get(), r.get(), &bb, error)) return false;
+  if (!dot(z.get(), z.get(), &bb, error)) return false;
   const double bNorm = std::sqrt(bb);
+  apply(x.get(), q.get());
+  residualKernel<<<blocksFor(cells()), kThreads, 0, stream>>>(cells(), b.get(), q.get(), r.get());
+  filter.apply(r.get(), stream);
+  double rr = 0.0;
+  if (!dot(r.get(), r.get(), &rr, error)) return false;
   if (bNorm == 0.0) {
+    // Nothing drives the system: x = 0 in the free subspace is the exact answer.
+    if (rr != 0.0) removeFreePart();
     result->converged = true;
     return true;
   }
-  result->relativeResidual = 1.0;
+  result->relativeResidual = std::sqrt(rr) / bNorm;
   if (result->relativeResidual <= tolerance) {
     result->converged = true;
     return true;
@@ -179,15 +203,27 @@ bool DevicePressureSolver::solve(const double* b, double* x, double tolerance, i
                                  DevicePressureResult* result, std::string* error) {
   Impl& d = *impl_;
   if (failed(cudaMemcpyAsync(d.b.get(), b, d.bytes(), cudaMemcpyHostToDevice, d.stream), error) ||
+      failed(cudaMemcpyAsync(d.x.get(), x, d.bytes(), cudaMemcpyHostToDevice, d.stream), error) ||
       failed(cudaStreamSynchronize(d.stream), error))
     return false;
+  return solveResident(tolerance, maxIterations, result, error) &&
+         !failed(cudaMemcpyAsync(x, d.x.get(), d.bytes(), cudaMemcpyDeviceToHost, d.stream), error) &&
+         !failed(cudaStreamSynchronize(d.stream), error);
+}
+
+bool DevicePressureSolver::solveResident(double tolerance, int maxIterations, DevicePressureResult* result,
+                                         std::string* error) {
+  Impl& d = *impl_;
+  if (failed(cudaDeviceSynchronize(), error)) return false;  // the caller's work on the legacy stream
   EventTimer timer(d.stream);
   timer.start();
   const bool solved = d.solve(tolerance, maxIterations, result, error);
   result->ms = timer.stopMs();
-  return solved && !failed(cudaMemcpyAsync(x, d.x.get(), d.bytes(), cudaMemcpyDeviceToHost, d.stream), error) &&
-         !failed(cudaStreamSynchronize(d.stream), error);
+  return solved;
 }
+
+double* DevicePressureSolver::rhs() const { return impl_->b.get(); }
+double* DevicePressureSolver::solution() const { return impl_->x.get(); }
 
 bool DevicePressureSolver::timeVcycle(int repeats, double* msPerCycle, double* msPerApply, std::string* error) {
   Impl& d = *impl_;

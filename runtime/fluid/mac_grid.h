@@ -21,6 +21,7 @@
 #include "core/allocator.h"
 #include "core/status.h"
 #include "fluid/solids/face_fraction_field.h"
+#include "gpu_kernels/mac_layout.h"
 
 namespace vp {
 
@@ -54,6 +55,12 @@ struct MacGrid {
     return c;
   }
   DomainSide side(int axis, bool highSide) const { return sides[2 * axis + (highSide ? 1 : 0)]; }
+  // The layout kernel bodies index with (gpu_kernels/mac_layout.h).
+  kernels::MacLayout layout() const {
+    kernels::MacLayout l{spec.nx, spec.ny, spec.nz, {}};
+    for (int s = 0; s < 6; ++s) l.wall[s] = sides[static_cast<size_t>(s)] == DomainSide::Wall;
+    return l;
+  }
   // True for a face on the domain boundary whose side is a Wall.
   bool isWallFace(int axis, int i, int j, int k) const {
     const int index = axis == 0 ? i : axis == 1 ? j : k;

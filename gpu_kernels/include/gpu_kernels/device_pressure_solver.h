@@ -63,9 +63,16 @@ class DevicePressureSolver {
 
   // z = M r (one V-cycle) for host vectors of the fine grid's cell count.
   bool vcycle(const double* r, double* z, std::string* error);
-  // MGPCG from x = 0 until |r| <= tolerance |filtered b| or maxIterations, host vectors.
+  // MGPCG from the guess in x (the CPU's warm start) until |r| <= tolerance |filtered b| or
+  // maxIterations, host vectors.
   bool solve(const double* b, double* x, double tolerance, int maxIterations, DevicePressureResult* result,
              std::string* error);
+  // The same on the resident vectors: b in rhs(), the guess and the solution in solution()
+  // (device pointers of the fine grid's cell count, on the legacy default stream's side:
+  // work queued there before the call is done before the solve reads them).
+  bool solveResident(double tolerance, int maxIterations, DevicePressureResult* result, std::string* error);
+  double* rhs() const;
+  double* solution() const;
   // Device milliseconds per V-cycle and per fine operator application, resident vectors.
   bool timeVcycle(int repeats, double* msPerCycle, double* msPerApply, std::string* error);
 

@@ -11,6 +11,7 @@
 #include <cstdint>
 
 #include "gpu_kernels/kernel_support.h"
+#include "gpu_kernels/mac_layout.h"
 
 namespace vp::kernels {
 
@@ -80,6 +81,15 @@ VP_HOST_DEVICE inline void pressureUpdateFace(const PressureUpdateFields& in, in
       pLow = pHigh * (1.0 - 1.0 / freeSurfaceTheta(in.liquidPhi[cellHigh], in.liquidPhi[cellLow]));
   }
   u[f] -= in.gradientScale * (pHigh - pLow);
+}
+
+// pressureUpdateFace for a-face (i, j, k) of a grid with layout g.
+VP_HOST_DEVICE inline void pressureUpdateFaceAt(const PressureUpdateFields& in, const MacLayout& g, int a, int64_t i,
+                                                int64_t j, int64_t k, double* u) {
+  const int64_t along = a == 0 ? i : a == 1 ? j : k;
+  const int64_t cellLow = along > 0 ? g.cellIndex(i - (a == 0), j - (a == 1), k - (a == 2)) : -1;
+  const int64_t cellHigh = along < g.cells(a) ? g.cellIndex(i, j, k) : -1;
+  pressureUpdateFace(in, g.faceIndex(a, i, j, k), g.isWall(a, along), cellLow, cellHigh, u);
 }
 
 }  // namespace vp::kernels

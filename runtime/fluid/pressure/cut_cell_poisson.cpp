@@ -13,17 +13,6 @@ namespace {
 
 constexpr int64_t kCellGrain = 4096;
 
-// Calls visit(axis, highSide, i, j, k of the face, i, j, k of the neighbour cell) for the six faces.
-template <class Visit>
-void forEachFace(int i, int j, int k, const Visit& visit) {
-  visit(0, false, i, j, k, i - 1, j, k);
-  visit(0, true, i + 1, j, k, i + 1, j, k);
-  visit(1, false, i, j, k, i, j - 1, k);
-  visit(1, true, i, j + 1, k, i, j + 1, k);
-  visit(2, false, i, j, k, i, j, k - 1);
-  visit(2, true, i, j, k + 1, i, j, k + 1);
-}
-
 // (i, j, k) of the cell after (i, j, k) in cell order.
 void nextCell(const MacGridSpec& g, int* i, int* j, int* k) {
   if (++*i < g.nx) return;
@@ -418,28 +407,24 @@ void computeNetOutflow(TaskSystem& tasks, const MacGrid& grid, const FaceFractio
   });
 }
 
+kernels::NetOutflowFields netOutflowFields(const MacGrid& grid, const FaceFractionField& fractions) {
+  kernels::NetOutflowFields in;
+  for (int a = 0; a < 3; ++a) {
+    in.open[a] = fractions.open[a].data();
+    in.solidVelocity[a] = fractions.solidVelocity[a].data();
+    in.velocity[a] = grid.velocity[a].data();
+  }
+  in.grid = grid.layout();
+  return in;
+}
+
 void computeNetOutflowCells(const MacGrid& grid, const FaceFractionField& fractions, const CutCellPoisson& op,
                             int64_t begin, int64_t end, double* outflow) {
-  const MacGridSpec& g = grid.spec;
-  for (int64_t c = begin; c < end; ++c) {
-    if (op.region[static_cast<size_t>(c)] < 0) {
-      outflow[c] = 0.0;
-      continue;
-    }
-    const int i = static_cast<int>(c % g.nx), j = static_cast<int>((c / g.nx) % g.ny),
-              k = static_cast<int>(c / (static_cast<int64_t>(g.nx) * g.ny));
-    double sum = 0.0;
-    forEachFace(i, j, k, [&](int a, bool high, int fi, int fj, int fk, int, int, int) {
-      const size_t f = grid.faceIndex(a, fi, fj, fk);
-      const bool wall = grid.isWallFace(a, fi, fj, fk);
-      const double open =
-          wall ? std::clamp(fractions.open[a][f], 0.0, 1.0) : effectiveOpenFraction(grid, fractions, a, fi, fj, fk);
-      const double fluidVelocity = wall ? 0.0 : grid.velocity[a][f];
-      const double flux = open * fluidVelocity + (1.0 - open) * fractions.solidVelocity[a][f];
-      sum += high ? flux : -flux;
-    });
-    outflow[c] = sum;
-  }
+  const kernels::NetOutflowFields in = netOutflowFields(grid, fractions);
+  for (int64_t c = begin; c < end; ++c)
+    outflow[c] = op.region[static_cast<size_t>(c)] < 0 ? 0.0
+                                                      : kernels::netOutflowCell(in, c % in.grid.nx, (c / in.grid.nx) % in.grid.ny,
+                                                                                c / (in.grid.nx * in.grid.ny));
 }
 
 }  // namespace vp

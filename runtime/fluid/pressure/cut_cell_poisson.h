@@ -38,6 +38,7 @@
 #include "core/task_system.h"
 #include "fluid/mac_grid.h"
 #include "fluid/solids/face_fraction_field.h"
+#include "gpu_kernels/net_outflow_kernels.h"
 #include "gpu_kernels/pressure_update_kernels.h"
 
 namespace vp {
@@ -157,6 +158,8 @@ void filterCutCellPoisson(TaskSystem& tasks, const CutCellPoisson& op, T* values
 // and the explicit coupling threw it at 20+ m/s).
 void computeNetOutflow(TaskSystem& tasks, const MacGrid& grid, const FaceFractionField& fractions,
                        const CutCellPoisson& op, double* outflow);
+// The kernel body's view of the grid's velocity and the fractions (net_outflow_kernels.h).
+kernels::NetOutflowFields netOutflowFields(const MacGrid& grid, const FaceFractionField& fractions);
 // The same on cells [begin, end) only, on the calling thread.
 void computeNetOutflowCells(const MacGrid& grid, const FaceFractionField& fractions, const CutCellPoisson& op,
                             int64_t begin, int64_t end, double* outflow);

@@ -54,4 +54,17 @@ Status makePressureSolveView(const CutCellPoisson& fine, const PoissonMultigrid&
   return Status::Ok;
 }
 
+Status makeProjectionView(const MacGrid& grid, const FaceFractionField& fractions, const CutCellPoisson& fine,
+                          const PoissonMultigrid& multigrid, const double* liquidPhi, gpu::ProjectionView* view) {
+  if (view == nullptr) return fail(Status::InvalidArgument, "projection view: output is null");
+  if (!sameGrid(grid.spec, fractions.grid) || !sameGrid(grid.spec, fine.grid))
+    return fail(Status::InvalidArgument, "projection view: the fractions or the operator belong to another grid");
+  *view = gpu::ProjectionView{};
+  VP_TRY(makePressureSolveView(fine, multigrid, &view->solve));
+  view->fractions = netOutflowFields(grid, fractions);
+  view->h = grid.spec.h;
+  view->liquidPhi = liquidPhi;
+  return Status::Ok;
+}
+
 }  // namespace vp

@@ -132,24 +132,13 @@ bool PressureProjectionRun::advanceFinish(const Deadline* stop) {
 // Face by face (gpu_kernels/pressure_update_kernels.h).
 void PressureProjectionRun::updateVelocityRows(int a, int64_t begin, int64_t end) {
   const MacGrid& grid = *grid_;
-  const MacGridSpec& g = grid.spec;
   const kernels::PressureUpdateFields fields{fractions_->open[a].data(), fractions_->solidVelocity[a].data(),
-                                             state_->pressure.data(), liquidPhi_, dt_ / (density_ * g.h)};
+                                             state_->pressure.data(), liquidPhi_, dt_ / (density_ * grid.spec.h)};
+  const kernels::MacLayout layout = grid.layout();
   const Eigen::Vector3i d = grid.faceDims(a);
-  const int cellsAlong = a == 0 ? g.nx : a == 1 ? g.ny : g.nz;
   double* u = grid_->velocity[a].data();
-  for (int64_t row = begin; row < end; ++row) {
-    const int j = static_cast<int>(row % d.y()), k = static_cast<int>(row / d.y());
-    for (int i = 0; i < d.x(); ++i) {
-      const int along = a == 0 ? i : a == 1 ? j : k;
-      Eigen::Vector3i low(i, j, k);
-      low[a] -= 1;
-      const int64_t cellLow = along > 0 ? static_cast<int64_t>(grid.cellIndex(low.x(), low.y(), low.z())) : -1;
-      const int64_t cellHigh = along < cellsAlong ? static_cast<int64_t>(grid.cellIndex(i, j, k)) : -1;
-      kernels::pressureUpdateFace(fields, static_cast<int64_t>(grid.faceIndex(a, i, j, k)), grid.isWallFace(a, i, j, k),
-                                  cellLow, cellHigh, u);
-    }
-  }
+  for (int64_t row = begin; row < end; ++row)
+    for (int i = 0; i < d.x(); ++i) kernels::pressureUpdateFaceAt(fields, layout, a, i, row % d.y(), row / d.y(), u);
 }
 
 PressureSolveStats PressureProjectionRun::stats() const {
