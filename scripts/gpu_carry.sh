@@ -4,7 +4,7 @@
 # already-built tree, the shared libraries they load that are not part of the base system,
 # gpu_check.sh, and run.sh, which runs the checks there:
 #   scripts/gpu_carry.sh [BUILD_DIR (build/release)] [OUT (.devcarry)]
-# then, with OUT ignored by git (.git/info/exclude) and named in the device tool's carry:
+# then, with OUT (ignored by git: .gitignore) named in the device tool's carry:
 #   bash .devcarry/run.sh ['BENCHMARK_FILTER']     (results under $OUT on that machine)
 set -euo pipefail
 cd "$(dirname "$0")/.."
