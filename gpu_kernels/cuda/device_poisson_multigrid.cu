@@ -26,8 +26,9 @@ __global__ void halfSweepKernel(kernels::PoissonStencil<float> s, const float* b
     kernels::gaussSeidelCell(s, cell, b, x);
 }
 
-__global__ void oneBlockSweepsKernel(kernels::PoissonStencil<float> s, const float* b, float* x, int sweeps,
-                                     bool reverse) {
+// Launch bounds: a block of kOneBlockThreads must fit the registers of one multiprocessor.
+__global__ void __launch_bounds__(kOneBlockThreads)
+    oneBlockSweepsKernel(kernels::PoissonStencil<float> s, const float* b, float* x, int sweeps, bool reverse) {
   const int64_t threads = (s.nx + 1) / 2 * s.ny * s.nz;
   for (int sweep = 0; sweep < sweeps; ++sweep)
     for (int half = 0; half < 2; ++half) {
@@ -68,8 +69,8 @@ __global__ void boundaryHalfKernel(BoundaryLists l, int colour, float* values, c
   if (e < end) values[e] = kernels::boundaryCellUpdate(l.cells[e], l.reads + 6 * e, values, rhs[e]);
 }
 
-__global__ void oneBlockBoundarySweepsKernel(BoundaryLists l, int sweeps, bool reverse, float* values,
-                                             const float* rhs) {
+__global__ void __launch_bounds__(kOneBlockThreads)
+    oneBlockBoundarySweepsKernel(BoundaryLists l, int sweeps, bool reverse, float* values, const float* rhs) {
   for (int sweep = 0; sweep < sweeps; ++sweep)
     for (int half = 0; half < 2; ++half) {
       const int colour = reverse ? 1 - half : half;
