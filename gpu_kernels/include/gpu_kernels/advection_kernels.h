@@ -187,6 +187,74 @@ VP_HOST_DEVICE inline double sampleLattice(const double* values, const int dims[
   return trilinear(values + index, st.step, w[0], w[1], w[2], lo, hi);
 }
 
+// Which faces of each cell of a cell-centred lattice are open, for sampling that does not
+// interpolate across solids (connectedSample):
+//   faces[c]      bit 2 * axis + high: that face of cell c is open; bit kCellIsFluid: c has an
+//                 open face at all
+//   blockOpen[c]  1 when the 2 x 2 x 2 block whose lowest cell is c has all its inner faces
+//                 open (12, fewer along an axis with one cell), i.e. it interpolates as usual
+constexpr uint8_t kCellIsFluid = 1 << 6;
+
+// Trilinear interpolation at lattice coordinate g restricted to the samples that the open faces
+// connect, inside the 2 x 2 x 2 block, to the fluid sample with the largest weight (the
+// "anchor"; the lowest corner among equal weights); the weights of the connected samples are
+// renormalized and lo/hi (optional, together) cover them only. A block with every inner face
+// open gives sampleLattice's value; a block with no fluid cell interpolates as usual (its
+// values are the solid ones).
+VP_HOST_DEVICE inline double connectedSample(const double* values, const int dims[3], const double g[3],
+                                             const uint8_t* faces, const uint8_t* blockOpen, double* lo = nullptr,
+                                             double* hi = nullptr) {
+  const LatticeSteps st = latticeSteps(dims);
+  int corner[3];
+  double w[3];
+  int64_t base = 0;
+  for (int d = 0; d < 3; ++d) {
+    latticeSpan(g[d], dims[d], &corner[d], &w[d]);
+    base += corner[d] * st.stride[d];
+  }
+  if (blockOpen[base]) return trilinear(values + base, st.step, w[0], w[1], w[2], lo, hi);
+  int64_t index[8];
+  double weight[8];
+  int anchor = -1;
+  for (int q = 0; q < 8; ++q) {
+    index[q] = base + ((q & 1) ? st.step[0] : 0) + ((q & 2) ? st.step[1] : 0) + ((q & 4) ? st.step[2] : 0);
+    weight[q] = ((q & 1) ? w[0] : 1.0 - w[0]) * ((q & 2) ? w[1] : 1.0 - w[1]) * ((q & 4) ? w[2] : 1.0 - w[2]);
+    if ((faces[index[q]] & kCellIsFluid) && (anchor < 0 || weight[q] > weight[anchor])) anchor = q;
+  }
+  if (anchor < 0) return trilinear(values + base, st.step, w[0], w[1], w[2], lo, hi);
+  // Flood fill over the block's corners through open inner faces (8 corners, 12 faces).
+  unsigned reached = 1u << anchor;
+  int stack[8], top = 0;
+  stack[top++] = anchor;
+  while (top > 0) {
+    const int q = stack[--top];
+    for (int a = 0; a < 3; ++a) {
+      const int other = q ^ (1 << a);
+      if (reached & (1u << other)) continue;
+      // q's face towards `other`: its high face when q is the lower corner along a.
+      const bool open = st.step[a] == 0 || (faces[index[q]] & (1u << (2 * a + ((q >> a) & 1 ? 0 : 1)))) != 0;
+      if (open) {
+        reached |= 1u << other;
+        stack[top++] = other;
+      }
+    }
+  }
+  double sum = 0.0, weightSum = 0.0;
+  double low = values[index[anchor]], high = low;
+  for (int q = 0; q < 8; ++q) {
+    if (!(reached & (1u << q))) continue;
+    const double v = values[index[q]];
+    sum += weight[q] * v;
+    weightSum += weight[q];
+    low = v < low ? v : low;
+    high = high < v ? v : high;
+  }
+  if (lo != nullptr) *lo = low, *hi = high;
+  // Zero weight on every connected sample: the point sits on a sample that is not connected
+  // (a solid cell's centre); the anchor's value is the nearest connected one.
+  return weightSum > 0.0 ? sum / weightSum : values[index[anchor]];
+}
+
 // The semi-Lagrangian value of a-face `at` over dt: `field` (a lattice of a-faces) sampled where
 // the face's centre came from through v's velocity; lo/hi (optional) the stencil's range.
 VP_HOST_DEVICE inline double advectFace(const MacVelocityView& v, int a, const int at[3], double dt,
