@@ -161,7 +161,8 @@ bool DeviceRegionFilter::upload(const RegionView& view, int64_t cells, std::stri
   if (failed(region_.upload(view.region, static_cast<size_t>(cells)), error)) return false;
   if (!anyFloating_) return true;
   std::vector<double> inverse(static_cast<size_t>(regions_));
-  for (size_t r = 0; r < inverse.size(); ++r) inverse[r] = 1.0 / static_cast<double>(std::max<int64_t>(1, view.cellCount[r]));
+  for (size_t r = 0; r < inverse.size(); ++r)
+    inverse[r] = 1.0 / static_cast<double>(std::max<int64_t>(1, view.cellCount[r]));
   return !failed(floating_.upload(view.floating, static_cast<size_t>(regions_)), error) &&
          !failed(inverseCount_.upload(inverse.data(), inverse.size()), error) &&
          !failed(sum_.allocate(static_cast<size_t>(regions_)), error);
@@ -238,7 +239,8 @@ bool DeviceMultigrid::upload(const PressureSolveView& view, std::string* error) 
     }
     d.lists = BoundaryLists{d.boundary.get(), d.reads.get(), in.boundaryCount[0], count, in.op.nx, in.op.nx * in.op.ny};
     if (l + 1 < view.levels.size()) {
-      const size_t cx = static_cast<size_t>(view.levels[l + 1].op.nx), cy = static_cast<size_t>(view.levels[l + 1].op.ny);
+      const kernels::PoissonStencil<float>& next = view.levels[l + 1].op;
+      const size_t cx = static_cast<size_t>(next.nx), cy = static_cast<size_t>(next.ny);
       scratch = std::max(scratch, std::max(cx * ny * nz, cx * cy * nz));
     }
     levels_.push_back(std::move(level));

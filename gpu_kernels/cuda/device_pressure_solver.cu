@@ -177,7 +177,8 @@ std::unique_ptr<DevicePressureSolver> DevicePressureSolver::create(const Pressur
     return nullptr;
   for (DeviceArray<double>* v : {&d->b, &d->x, &d->r, &d->z, &d->p, &d->q})
     if (failed(v->allocate(cells), error)) return nullptr;
-  if (failed(d->scalars.allocate(4), error) || !d->filter.upload(view.fineRegions, static_cast<int64_t>(cells), error) ||
+  if (failed(d->scalars.allocate(4), error) ||
+      !d->filter.upload(view.fineRegions, static_cast<int64_t>(cells), error) ||
       !d->multigrid.upload(view, error) || !d->multigrid.record(d->r.get(), d->z.get(), d->stream, error))
     return nullptr;
   d->op = s;

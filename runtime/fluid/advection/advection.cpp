@@ -9,6 +9,7 @@
 #include "fluid/advection/advection_rows.h"
 #include "fluid/advection/grid_sampling.h"
 #include "fluid/pressure/cut_cell_poisson.h"
+#include "gpu_kernels/scalar_advection_kernels.h"
 
 namespace vp {
 namespace {
@@ -85,35 +86,21 @@ void latticeDims(const Eigen::Vector3i& d, int (&out)[3]) {
   for (int e = 0; e < 3; ++e) out[e] = d[e];
 }
 
-// What a scalar pass asks of a cell besides its trace: is it solid (no open face: it is not
-// advected and holds the solid value), does it keep its value (keepBeyond); and how the old
-// field is sampled (through open faces only, or plainly).
-struct ScalarCellRules {
-  const uint8_t* faces;  // null: no open-face masks
-  const uint8_t* blockOpen;
-  const uint8_t* kept;  // null: keepBeyond off
-  const double* solidValue;  // null: solid cells keep their values
-  Eigen::Vector3i dims;
+using kernels::ScalarCellRules;  // gpu_kernels/scalar_advection_kernels.h
 
-  bool solid(size_t c) const { return faces != nullptr && !(faces[c] & kCellIsFluid); }
-  bool keeps(size_t c) const { return kept != nullptr && kept[c]; }
-  double solidResult(const Array<double>& old, size_t c) const {
-    return solidValue != nullptr ? *solidValue : old[c];
-  }
-  bool advected(size_t c) const { return !solid(c) && !keeps(c); }
-  // values at the traced points of the batch's cells (traces: the trace array's entries of the
-  // row's cells); lo/hi (optional) the ranges of the samples used.
-  void sample(const double* values, const TraceStarts& cells, const Eigen::Vector3d* traces, double* out,
-              double* lo, double* hi) const {
-    PointBatch at;
-    at.count = cells.count;
-    for (int s = 0; s < cells.count; ++s)
-      for (int d = 0; d < 3; ++d) at.at[d][s] = traces[cells.i[s]][d];
-    const int n[3] = {dims.x(), dims.y(), dims.z()};
-    if (faces != nullptr) sampleConnectedAtPoints(values, n, at, faces, blockOpen, out, lo, hi);
-    else sampleAtPoints(values, n, at, out, lo, hi);
-  }
-};
+// rules.sample at the traced points of the batch's cells (traces: the trace array's entries of
+// the row's cells), in a batch; lo/hi (optional) the ranges of the samples used.
+void sampleCells(const ScalarCellRules& rules, const double* values, const TraceStarts& cells,
+                 const Eigen::Vector3d* traces, double* out, double* lo, double* hi) {
+  PointBatch at;
+  at.count = cells.count;
+  for (int s = 0; s < cells.count; ++s)
+    for (int d = 0; d < 3; ++d) at.at[d][s] = traces[cells.i[s]][d];
+  if (rules.faces != nullptr)
+    sampleConnectedAtPoints(values, rules.dims, at, rules.faces, rules.blockOpen, out, lo, hi);
+  else
+    sampleAtPoints(values, rules.dims, at, out, lo, hi);
+}
 
 ScalarCellRules scalarCellRules(const AdvectionRows& slab, const CellOpenFaces* openFaces,
                                 const Array<double>& solidValues, double keepBeyond,
@@ -123,33 +110,14 @@ ScalarCellRules scalarCellRules(const AdvectionRows& slab, const CellOpenFaces* 
   rules.blockOpen = openFaces != nullptr ? openFaces->blockOpen.data() : nullptr;
   rules.kept = keepBeyond > 0.0 ? work.kept.data() : nullptr;
   rules.solidValue = solidValues.empty() ? nullptr : &solidValues[static_cast<size_t>(slab.target)];
-  rules.dims = slab.dims;
+  latticeDims(slab.dims, rules.dims);
   return rules;
 }
 
-// What the outward velocities of the open domain sides carry out of their boundary cells'
-// values over dt, in value x cells (a face passes u dt h^2 of volume, a cell holds h^3).
+// kernels::openSideOutflow of a grid's velocity.
 double openSideOutflow(const MacGrid& grid, const double* values, double dt) {
-  const MacGridSpec& s = grid.spec;
-  const int n[3] = {s.nx, s.ny, s.nz};
-  double out = 0.0;
-  for (int a = 0; a < 3; ++a)
-    for (int high = 0; high < 2; ++high) {
-      if (grid.side(a, high != 0) != DomainSide::Open) continue;
-      const int b = (a + 1) % 3, c = (a + 2) % 3;
-      for (int q = 0; q < n[c]; ++q)
-        for (int p = 0; p < n[b]; ++p) {
-          int face[3], cell[3];
-          face[a] = high ? n[a] : 0;
-          cell[a] = high ? n[a] - 1 : 0;
-          face[b] = cell[b] = p;
-          face[c] = cell[c] = q;
-          const double u = grid.velocity[a][grid.faceIndex(a, face[0], face[1], face[2])];
-          const double outward = high ? u : -u;
-          if (outward > 0.0) out += outward * dt / s.h * values[grid.cellIndex(cell[0], cell[1], cell[2])];
-        }
-    }
-  return out;
+  const double* const velocity[3] = {grid.velocity[0].data(), grid.velocity[1].data(), grid.velocity[2].data()};
+  return kernels::openSideOutflow(grid.layout(), velocity, values, dt, grid.spec.h);
 }
 
 // How far (metres) a point of the cell-centred lattice lies beyond the domain's Open sides,
@@ -359,12 +327,8 @@ void ScalarAdvectionSlices::addRowSumPass(int field) {
   rowSums_.resize(static_cast<size_t>(rowCount(d)));
   addRowPass(passes_, field, d, [this](const AdvectionRows& rows) {
     const double* values = fields_[static_cast<size_t>(rows.target)]->data();
-    for (int64_t row = rows.rowBegin; row < rows.rowEnd; ++row) {
-      const double* v = values + row * rows.dims.x();
-      double sum = 0.0;
-      for (int i = 0; i < rows.dims.x(); ++i) sum += v[i];
-      rowSums_[static_cast<size_t>(row)] = sum;
-    }
+    for (int64_t row = rows.rowBegin; row < rows.rowEnd; ++row)
+      rowSums_[static_cast<size_t>(row)] = kernels::cellRowSum(values, rows.dims.x(), row);
   });
 }
 
@@ -385,7 +349,7 @@ void ScalarAdvectionSlices::addRescalePasses(int field) {
   addRowSumPass(field);
   passes_.addStep([this] {
     const double total = rowSumTotal();
-    scale_ = total > 0.0 ? std::max(targetTotal_, 0.0) / total : 1.0;
+    scale_ = kernels::conservationScale(targetTotal_, total);
   });
   const Eigen::Vector3i d(grid_->spec.nx, grid_->spec.ny, grid_->spec.nz);
   addRowPass(passes_, field, d, [this](const AdvectionRows& rows) {
@@ -431,13 +395,13 @@ void ScalarAdvectionSlices::forwardPass(const AdvectionRows& slab) {
   forEachSampleBatch(
       slab, 3, [&](size_t c) { return rules.advected(c); },
       [&](size_t c) {
-        fwd[c] = rules.solid(c) ? rules.solidResult(old, c) : old[c];
+        fwd[c] = rules.unadvected(old.data(), static_cast<int64_t>(c));
         if (maccormack) lo[c] = hi[c] = fwd[c];
       },
       [&](const TraceStarts& cells, size_t rowStart) {
         double value[kTraceBatch], low[kTraceBatch], high[kTraceBatch];
-        rules.sample(old.data(), cells, work.cellTrace.data() + rowStart, value, maccormack ? low : nullptr,
-                     maccormack ? high : nullptr);
+        sampleCells(rules, old.data(), cells, work.cellTrace.data() + rowStart, value, maccormack ? low : nullptr,
+                    maccormack ? high : nullptr);
         keepAirBeyondOpenSides(slab, cells, work.cellTrace.data() + rowStart, value, maccormack ? high : nullptr);
         scatterBatch(cells, value, fwd + rowStart);
         if (!maccormack) return;
@@ -457,10 +421,10 @@ void ScalarAdvectionSlices::correctionPass(const AdvectionRows& slab) {
       slab, 3, [&](size_t c) { return rules.advected(c); }, [&](size_t c) { out[c] = fwd[c]; },
       [&](const TraceStarts& batch, size_t rowStart) {
         double backAgain[kTraceBatch], corrected[kTraceBatch];
-        rules.sample(fwd, batch, work.cellTrace.data() + cells + rowStart, backAgain, nullptr, nullptr);
+        sampleCells(rules, fwd, batch, work.cellTrace.data() + cells + rowStart, backAgain, nullptr, nullptr);
         for (int s = 0; s < batch.count; ++s) {
           const size_t c = rowStart + static_cast<size_t>(batch.i[s]);
-          corrected[s] = std::clamp(fwd[c] + 0.5 * (old[c] - backAgain[s]), work.rangeLo[c], work.rangeHi[c]);
+          corrected[s] = kernels::maccormackClamped(fwd[c], old[c], backAgain[s], work.rangeLo[c], work.rangeHi[c]);
         }
         keepAirBeyondOpenSides(slab, batch, work.cellTrace.data() + rowStart, corrected, nullptr);
         scatterBatch(batch, corrected, out + rowStart);

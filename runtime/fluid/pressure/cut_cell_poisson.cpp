@@ -421,10 +421,11 @@ kernels::NetOutflowFields netOutflowFields(const MacGrid& grid, const FaceFracti
 void computeNetOutflowCells(const MacGrid& grid, const FaceFractionField& fractions, const CutCellPoisson& op,
                             int64_t begin, int64_t end, double* outflow) {
   const kernels::NetOutflowFields in = netOutflowFields(grid, fractions);
+  const kernels::MacLayout& g = in.grid;
   for (int64_t c = begin; c < end; ++c)
-    outflow[c] = op.region[static_cast<size_t>(c)] < 0 ? 0.0
-                                                      : kernels::netOutflowCell(in, c % in.grid.nx, (c / in.grid.nx) % in.grid.ny,
-                                                                                c / (in.grid.nx * in.grid.ny));
+    outflow[c] = op.region[static_cast<size_t>(c)] < 0
+                     ? 0.0
+                     : kernels::netOutflowCell(in, c % g.nx, (c / g.nx) % g.ny, c / (g.nx * g.ny));
 }
 
 }  // namespace vp
