@@ -1,7 +1,7 @@
 // Velocity advection of an n^3 MAC grid by itself (the pressure scenes' swirl velocity), one
 // step of dt = 0.5 h (half a cell at unit speed):
 //   BM_GpuVelocityAdvection/{semi_lagrangian,maccormack}/{128,256}   one thread per face on the
-//       device (gpu::DeviceVelocityAdvection), device events over a batch of steps;
+//       device (gpu::DeviceAdvection), device events over a batch of steps;
 //   BM_CpuVelocityAdvection/{semi_lagrangian,maccormack}/128   advectVelocity, 2 worker
 //       threads, the same run.
 // Counters: ms per step, mfaces_per_s (faces of the three axes per second).
@@ -15,7 +15,7 @@
 #include "fluid/advection/advection_rows.h"
 #include "fluid_pressure_scenes.h"
 #include "gpu_kernels/device_query.h"
-#include "gpu_kernels/device_velocity_advection.h"
+#include "gpu_kernels/device_advection.h"
 
 namespace vp::gpu_test {
 namespace {
@@ -37,7 +37,7 @@ void BM_GpuVelocityAdvection(benchmark::State& state, bool maccormack, int n) {
   if (gpu::cudaDeviceCount() == 0) return state.SkipWithError("no CUDA device");
   const MacGrid grid = swirlCube(n);
   std::string error;
-  auto device = gpu::DeviceVelocityAdvection::create(macVelocityView(grid), &error);
+  auto device = gpu::DeviceAdvection::create(macVelocityView(grid), grid.layout(), &error);
   if (!device) return state.SkipWithError(error.c_str());
   double ms = 0.0;
   for (auto _ : state) {
