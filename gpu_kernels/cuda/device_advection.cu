@@ -12,8 +12,6 @@
 namespace vp::gpu {
 namespace {
 
-constexpr int kThreads = 256;
-
 // Face f of the a-lattice as (i, j, k).
 __device__ bool faceOf(const kernels::MacVelocityView& v, int a, int64_t f, int at[3]) {
   const int* d = v.faceDims[a];
@@ -26,21 +24,19 @@ __device__ bool faceOf(const kernels::MacVelocityView& v, int a, int64_t f, int 
 
 // The semi-Lagrangian pass of axis a: into out (and, for MacCormack, the stencil's range).
 __global__ void forwardKernel(kernels::MacVelocityView v, int a, double dt, double* out, double* lo, double* hi) {
-  const int64_t f = blockIdx.x * int64_t(blockDim.x) + threadIdx.x;
+  const int64_t f = launch::index();
   int at[3];
   if (!faceOf(v, a, f, at)) return;
   out[f] = lo != nullptr ? kernels::advectFace(v, a, at, dt, v.u[a], lo + f, hi + f)
                          : kernels::advectFace(v, a, at, dt, v.u[a]);
 }
 
-__global__ void correctionKernel(kernels::MacVelocityView v, int a, double dt, const double* forward,
-                                 const double* lo, const double* hi, double* out) {
-  const int64_t f = blockIdx.x * int64_t(blockDim.x) + threadIdx.x;
+__global__ void correctionKernel(kernels::MacVelocityView v, int a, double dt, const double* forward, const double* lo,
+                                 const double* hi, double* out) {
+  const int64_t f = launch::index();
   int at[3];
   if (faceOf(v, a, f, at)) out[f] = kernels::maccormackFace(v, a, at, f, dt, v.u[a], forward, lo[f], hi[f]);
 }
-
-unsigned blocksFor(int64_t n) { return static_cast<unsigned>((n + kThreads - 1) / kThreads); }
 
 // Cell c of the cell lattice as (i, j, k).
 __device__ bool cellOf(const kernels::MacLayout& g, int64_t c, int at[3]) {
@@ -54,7 +50,7 @@ __device__ bool cellOf(const kernels::MacLayout& g, int64_t c, int at[3]) {
 // Every cell's trace back over dt, and for MacCormack (ahead not null) forward.
 __global__ void traceCellsKernel(kernels::MacVelocityView v, kernels::MacLayout g, double dt, double* back,
                                  double* ahead) {
-  const int64_t c = blockIdx.x * int64_t(blockDim.x) + threadIdx.x;
+  const int64_t c = launch::index();
   int at[3];
   if (!cellOf(g, c, at)) return;
   kernels::traceCell(v, at, dt, back + 3 * c);
@@ -63,19 +59,19 @@ __global__ void traceCellsKernel(kernels::MacVelocityView v, kernels::MacLayout 
 
 __global__ void scalarForwardKernel(kernels::ScalarCellRules rules, int64_t cells, const double* old,
                                     const double* back, double* forward, double* lo, double* hi) {
-  const int64_t c = blockIdx.x * int64_t(blockDim.x) + threadIdx.x;
+  const int64_t c = launch::index();
   if (c < cells) kernels::scalarForwardCell(rules, old, c, back + 3 * c, forward, lo, hi);
 }
 
 __global__ void scalarCorrectionKernel(kernels::ScalarCellRules rules, int64_t cells, const double* old,
-                                       const double* forward, const double* ahead, const double* lo,
-                                       const double* hi, double* out) {
-  const int64_t c = blockIdx.x * int64_t(blockDim.x) + threadIdx.x;
+                                       const double* forward, const double* ahead, const double* lo, const double* hi,
+                                       double* out) {
+  const int64_t c = launch::index();
   if (c < cells) out[c] = kernels::scalarCorrectionCell(rules, old, forward, c, ahead + 3 * c, lo[c], hi[c]);
 }
 
 __global__ void rowSumKernel(const double* values, int64_t nx, int64_t rows, double* rowSums) {
-  const int64_t row = blockIdx.x * int64_t(blockDim.x) + threadIdx.x;
+  const int64_t row = launch::index();
   if (row < rows) rowSums[row] = kernels::cellRowSum(values, nx, row);
 }
 
@@ -90,7 +86,7 @@ __global__ void totalKernel(const double* rowSums, int64_t rows, kernels::MacLay
 }
 
 __global__ void rescaleKernel(int64_t cells, const double* target, const double* total, double* values) {
-  const int64_t c = blockIdx.x * int64_t(blockDim.x) + threadIdx.x;
+  const int64_t c = launch::index();
   if (c < cells) values[c] *= kernels::conservationScale(*target, *total);
 }
 
@@ -107,13 +103,13 @@ struct DeviceAdvection::Impl {
   // As advectVelocity: every axis reads the old velocity; the new one is swapped in at the end.
   void advect(double dt, bool maccormack) {
     for (int a = 0; a < 3; ++a) {
-      const unsigned blocks = static_cast<unsigned>((faces(a) + kThreads - 1) / kThreads);
+      const unsigned blocks = launch::blocks(static_cast<int64_t>(faces(a)));
       if (!maccormack) {
-        forwardKernel<<<blocks, kThreads>>>(view, a, dt, advected[a].get(), nullptr, nullptr);
+        forwardKernel<<<blocks, launch::kThreads>>>(view, a, dt, advected[a].get(), nullptr, nullptr);
         continue;
       }
-      forwardKernel<<<blocks, kThreads>>>(view, a, dt, forward.get(), lo.get(), hi.get());
-      correctionKernel<<<blocks, kThreads>>>(view, a, dt, forward.get(), lo.get(), hi.get(), advected[a].get());
+      forwardKernel<<<blocks, launch::kThreads>>>(view, a, dt, forward.get(), lo.get(), hi.get());
+      correctionKernel<<<blocks, launch::kThreads>>>(view, a, dt, forward.get(), lo.get(), hi.get(), advected[a].get());
     }
     for (int a = 0; a < 3; ++a) {
       u[a].swap(advected[a]);
@@ -157,12 +153,16 @@ bool DeviceAdvection::advectScalars(double* const* fields, int count, double dt,
   const int64_t cells = g.nx * g.ny * g.nz, rows = g.ny * g.nz;
   const size_t n = static_cast<size_t>(cells), bytes = n * sizeof(double);
   std::vector<DeviceArray<double>> values(static_cast<size_t>(count));
-  DeviceArray<double> out, forward, lo, hi, back, ahead, rowSums, sums, solid;
+  // The velocity's MacCormack scratch (sized for the largest face lattice, more than the cells)
+  // serves the scalars too.
+  DeviceArray<double>& forward = impl_->forward;
+  DeviceArray<double>& lo = impl_->lo;
+  DeviceArray<double>& hi = impl_->hi;
+  DeviceArray<double> out, back, ahead, rowSums, sums, solid;
   DeviceArray<uint8_t> faces, blockOpen;
   for (int f = 0; f < count; ++f)
     if (failed(values[static_cast<size_t>(f)].upload(fields[f], n), error)) return false;
-  if (failed(out.allocate(n), error) || failed(forward.allocate(n), error) || failed(lo.allocate(n), error) ||
-      failed(hi.allocate(n), error) || failed(back.allocate(3 * n), error) ||
+  if (failed(out.allocate(n), error) || failed(back.allocate(3 * n), error) ||
       failed(ahead.allocate(maccormack ? 3 * n : 1), error) ||
       failed(rowSums.allocate(static_cast<size_t>(rows)), error) || failed(sums.allocate(2), error))
     return false;
@@ -173,27 +173,30 @@ bool DeviceAdvection::advectScalars(double* const* fields, int count, double dt,
     return false;
   const bool conserve = options.conservedField >= 0 && options.conservedField < count;
   auto total = [&](const double* field, bool outflow, double* into) {
-    rowSumKernel<<<blocksFor(rows), kThreads>>>(field, g.nx, rows, rowSums.get());
+    rowSumKernel<<<launch::blocks(rows), launch::kThreads>>>(field, g.nx, rows, rowSums.get());
     totalKernel<<<1, 1>>>(rowSums.get(), rows, g, impl_->view, outflow, field, dt, into);
   };
   if (conserve) total(values[static_cast<size_t>(options.conservedField)].get(), true, sums.get());
-  traceCellsKernel<<<blocksFor(cells), kThreads>>>(impl_->view, g, dt, back.get(), maccormack ? ahead.get() : nullptr);
+  traceCellsKernel<<<launch::blocks(cells), launch::kThreads>>>(impl_->view, g, dt, back.get(),
+                                                                maccormack ? ahead.get() : nullptr);
   for (int f = 0; f < count; ++f) {
     double* field = values[static_cast<size_t>(f)].get();
-    const kernels::ScalarCellRules rules{faces.get(), options.faces ? blockOpen.get() : nullptr, nullptr,
+    const kernels::ScalarCellRules rules{faces.get(),
+                                         options.faces ? blockOpen.get() : nullptr,
+                                         nullptr,
                                          options.solidValues ? solid.get() + f : nullptr,
                                          {static_cast<int>(g.nx), static_cast<int>(g.ny), static_cast<int>(g.nz)}};
     double* fwd = maccormack ? forward.get() : out.get();
     double* low = maccormack ? lo.get() : nullptr;
     double* high = maccormack ? hi.get() : nullptr;
-    scalarForwardKernel<<<blocksFor(cells), kThreads>>>(rules, cells, field, back.get(), fwd, low, high);
+    scalarForwardKernel<<<launch::blocks(cells), launch::kThreads>>>(rules, cells, field, back.get(), fwd, low, high);
     if (maccormack)
-      scalarCorrectionKernel<<<blocksFor(cells), kThreads>>>(rules, cells, field, forward.get(), ahead.get(), lo.get(),
-                                                             hi.get(), out.get());
+      scalarCorrectionKernel<<<launch::blocks(cells), launch::kThreads>>>(rules, cells, field, forward.get(),
+                                                                          ahead.get(), lo.get(), hi.get(), out.get());
     if (failed(cudaMemcpy(field, out.get(), bytes, cudaMemcpyDeviceToDevice), error)) return false;
     if (conserve && f == options.conservedField) {
       total(field, false, sums.get() + 1);
-      rescaleKernel<<<blocksFor(cells), kThreads>>>(cells, sums.get(), sums.get() + 1, field);
+      rescaleKernel<<<launch::blocks(cells), launch::kThreads>>>(cells, sums.get(), sums.get() + 1, field);
     }
   }
   for (int f = 0; f < count; ++f)
@@ -209,8 +212,7 @@ bool DeviceAdvection::download(double* const u[3], std::string* error) {
   return true;
 }
 
-bool DeviceAdvection::timeAdvect(int repeats, double dt, bool maccormack, double* msPerAdvect,
-                                         std::string* error) {
+bool DeviceAdvection::timeAdvect(int repeats, double dt, bool maccormack, double* msPerAdvect, std::string* error) {
   const int n = repeats > 0 ? repeats : 1;
   impl_->advect(dt, maccormack);  // warm-up
   EventTimer timer;

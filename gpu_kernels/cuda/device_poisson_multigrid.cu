@@ -5,31 +5,23 @@
 namespace vp::gpu {
 namespace {
 
-constexpr int kThreads = 256;
 // Levels (and boundary lists) this small are swept by one thread block that runs all of a
 // smoothing's sweeps, synchronizing between half-sweeps, instead of two launches per sweep:
 // there a launch costs more than the sweep.
 constexpr int64_t kOneBlockCells = 4096;
 constexpr int kOneBlockThreads = 1024;
 
-unsigned blocksFor(int64_t n) { return static_cast<unsigned>(std::max<int64_t>(1, (n + kThreads - 1) / kThreads)); }
-
-__device__ int64_t threadIndex() { return blockIdx.x * int64_t(blockDim.x) + threadIdx.x; }
-
-// Threads of a half-sweep: rows of ceil(nx / 2) (kernels::colourCell).
-int64_t halfSweepThreads(const kernels::PoissonStencil<float>& s) { return (s.nx + 1) / 2 * s.ny * s.nz; }
-
 __global__ void halfSweepKernel(kernels::PoissonStencil<float> s, const float* b, float* x, int colour) {
   int64_t cell;
-  const int64_t t = threadIndex();
-  if (t < (s.nx + 1) / 2 * s.ny * s.nz && kernels::colourCell(s, t, colour, &cell))
+  const int64_t t = launch::index();
+  if (t < kernels::colourThreads(s) && kernels::colourCell(s, t, colour, &cell))
     kernels::gaussSeidelCell(s, cell, b, x);
 }
 
 // Launch bounds: a block of kOneBlockThreads must fit the registers of one multiprocessor.
 __global__ void __launch_bounds__(kOneBlockThreads)
     oneBlockSweepsKernel(kernels::PoissonStencil<float> s, const float* b, float* x, int sweeps, bool reverse) {
-  const int64_t threads = (s.nx + 1) / 2 * s.ny * s.nz;
+  const int64_t threads = kernels::colourThreads(s);
   for (int sweep = 0; sweep < sweeps; ++sweep)
     for (int half = 0; half < 2; ++half) {
       const int colour = reverse ? 1 - half : half;
@@ -51,7 +43,7 @@ struct BoundaryLists {
 };
 
 __global__ void boundaryGatherKernel(BoundaryLists l, const float* b, const float* x, float* values, float* rhs) {
-  const int64_t e = threadIndex();
+  const int64_t e = launch::index();
   if (e >= l.count) return;
   const int64_t step[6] = {-1, 1, -l.nx, l.nx, -l.sz, l.sz};
   const int32_t cell = l.cells[e].cell;
@@ -65,7 +57,7 @@ __global__ void boundaryGatherKernel(BoundaryLists l, const float* b, const floa
 
 __global__ void boundaryHalfKernel(BoundaryLists l, int colour, float* values, const float* rhs) {
   const int64_t begin = colour == 0 ? 0 : l.reds, end = colour == 0 ? l.reds : l.count;
-  const int64_t e = begin + threadIndex();
+  const int64_t e = begin + launch::index();
   if (e < end) values[e] = kernels::boundaryCellUpdate(l.cells[e], l.reads + 6 * e, values, rhs[e]);
 }
 
@@ -82,19 +74,19 @@ __global__ void __launch_bounds__(kOneBlockThreads)
 }
 
 __global__ void boundaryScatterKernel(BoundaryLists l, const float* values, float* x) {
-  const int64_t e = threadIndex();
+  const int64_t e = launch::index();
   if (e < l.count) x[l.cells[e].cell] = values[e];
 }
 
 __global__ void residualKernel(kernels::PoissonStencil<float> s, const float* b, const float* x, float* r) {
-  const int64_t c = threadIndex();
+  const int64_t c = launch::index();
   if (c < s.nx * s.ny * s.nz) r[c] = kernels::residualCell(s, c, b, x);
 }
 
 // The restriction's three one-dimensional gathers (multigrid_transfer.h).
 __global__ void restrictXKernel(kernels::TransferDims d, kernels::TransferSides sides, const float* scale,
                                 const float* r, float* alongX) {
-  const int64_t t = threadIndex();
+  const int64_t t = launch::index();
   if (t >= d.cx * d.ny * d.nz) return;
   const int64_t I = t % d.cx, row = t / d.cx;
   const kernels::AxisWeights w(I, d.nx, d.cx, sides, 0);
@@ -103,7 +95,7 @@ __global__ void restrictXKernel(kernels::TransferDims d, kernels::TransferSides 
 
 __global__ void restrictYKernel(kernels::TransferDims d, kernels::TransferSides sides, const float* alongX,
                                 float* alongY) {
-  const int64_t t = threadIndex();
+  const int64_t t = launch::index();
   if (t >= d.cx * d.cy * d.nz) return;
   const int64_t I = t % d.cx, J = (t / d.cx) % d.cy, k = t / (d.cx * d.cy);
   const kernels::AxisWeights w(J, d.ny, d.cy, sides, 1);
@@ -112,7 +104,7 @@ __global__ void restrictYKernel(kernels::TransferDims d, kernels::TransferSides 
 
 __global__ void restrictZKernel(kernels::TransferDims d, kernels::TransferSides sides, const float* alongY,
                                 const float* coarseDiagonal, float* coarseB) {
-  const int64_t t = threadIndex();
+  const int64_t t = launch::index();
   if (t >= d.cx * d.cy * d.cz) return;
   const int64_t I = t % d.cx, J = (t / d.cx) % d.cy, K = t / (d.cx * d.cy);
   const kernels::AxisWeights w(K, d.nz, d.cz, sides, 2);
@@ -122,21 +114,21 @@ __global__ void restrictZKernel(kernels::TransferDims d, kernels::TransferSides 
 
 __global__ void prolongateKernel(kernels::TransferDims d, kernels::TransferSides sides, const float* scale,
                                  const float* coarseX, float* fineX) {
-  const int64_t c = threadIndex();
+  const int64_t c = launch::index();
   if (c >= d.nx * d.ny * d.nz) return;
   kernels::prolongateCell(d, sides, c % d.nx, (c / d.nx) % d.ny, c / (d.nx * d.ny), scale, coarseX, fineX);
 }
 
 template <class From, class To>
 __global__ void convertKernel(int64_t n, const From* from, To* to) {
-  const int64_t i = threadIndex();
+  const int64_t i = launch::index();
   if (i < n) to[i] = static_cast<To>(from[i]);
 }
 
 template <class T>
 __global__ void regionSumKernel(int64_t cells, const int32_t* region, const uint8_t* floating, const T* v,
                                 double* sum) {
-  const int64_t c = threadIndex();
+  const int64_t c = launch::index();
   if (c >= cells) return;
   const int32_t r = region[c];
   if (r >= 0 && floating[r]) atomicAdd(sum + r, static_cast<double>(v[c]));
@@ -145,11 +137,13 @@ __global__ void regionSumKernel(int64_t cells, const int32_t* region, const uint
 template <class T>
 __global__ void regionFilterKernel(int64_t cells, const int32_t* region, const uint8_t* floating,
                                    const double* inverseCount, const double* sum, T* v) {
-  const int64_t c = threadIndex();
+  const int64_t c = launch::index();
   if (c >= cells) return;
   const int32_t r = region[c];
-  if (r < 0) v[c] = T(0);
-  else if (floating != nullptr && floating[r]) v[c] = static_cast<T>(v[c] - sum[r] * inverseCount[r]);
+  if (r < 0)
+    v[c] = T(0);
+  else if (floating != nullptr && floating[r])
+    v[c] = static_cast<T>(v[c] - sum[r] * inverseCount[r]);
 }
 
 }  // namespace
@@ -172,10 +166,10 @@ template <class T>
 void DeviceRegionFilter::run(T* values, cudaStream_t stream) {
   if (anyFloating_) {
     cudaMemsetAsync(sum_.get(), 0, static_cast<size_t>(regions_) * sizeof(double), stream);
-    regionSumKernel<<<blocksFor(cells_), kThreads, 0, stream>>>(cells_, region_.get(), floating_.get(), values,
-                                                                  sum_.get());
+    regionSumKernel<<<launch::blocks(cells_), launch::kThreads, 0, stream>>>(cells_, region_.get(), floating_.get(),
+                                                                             values, sum_.get());
   }
-  regionFilterKernel<<<blocksFor(cells_), kThreads, 0, stream>>>(
+  regionFilterKernel<<<launch::blocks(cells_), launch::kThreads, 0, stream>>>(
       cells_, region_.get(), anyFloating_ ? floating_.get() : nullptr, inverseCount_.get(), sum_.get(), values);
 }
 
@@ -253,29 +247,30 @@ void DeviceMultigrid::sweeps(Level& level, int count, bool reverse, cudaStream_t
     oneBlockSweepsKernel<<<1, kOneBlockThreads, 0, stream>>>(level.op, level.b.get(), level.x.get(), count, reverse);
     return;
   }
-  const unsigned blocks = blocksFor(halfSweepThreads(level.op));
+  const unsigned blocks = launch::blocks(kernels::colourThreads(level.op));
   for (int sweep = 0; sweep < count; ++sweep)
     for (int half = 0; half < 2; ++half)
-      halfSweepKernel<<<blocks, kThreads, 0, stream>>>(level.op, level.b.get(), level.x.get(),
-                                                       reverse ? 1 - half : half);
+      halfSweepKernel<<<blocks, launch::kThreads, 0, stream>>>(level.op, level.b.get(), level.x.get(),
+                                                               reverse ? 1 - half : half);
 }
 
 void DeviceMultigrid::boundarySweeps(Level& level, bool reverse, cudaStream_t stream) {
   const BoundaryLists& l = level.lists;
   if (l.count == 0 || boundarySweeps_ <= 0) return;
   float* values = level.values.get();
-  boundaryGatherKernel<<<blocksFor(l.count), kThreads, 0, stream>>>(l, level.b.get(), level.x.get(), values,
-                                                                    level.rhs.get());
+  boundaryGatherKernel<<<launch::blocks(l.count), launch::kThreads, 0, stream>>>(l, level.b.get(), level.x.get(),
+                                                                                 values, level.rhs.get());
   if (l.count <= kOneBlockCells) {
     oneBlockBoundarySweepsKernel<<<1, kOneBlockThreads, 0, stream>>>(l, boundarySweeps_, reverse, values,
                                                                      level.rhs.get());
   } else {
-    const unsigned blocks = blocksFor(std::max(l.reds, l.count - l.reds));
+    const unsigned blocks = launch::blocks(std::max(l.reds, l.count - l.reds));
     for (int sweep = 0; sweep < boundarySweeps_; ++sweep)
       for (int half = 0; half < 2; ++half)
-        boundaryHalfKernel<<<blocks, kThreads, 0, stream>>>(l, reverse ? 1 - half : half, values, level.rhs.get());
+        boundaryHalfKernel<<<blocks, launch::kThreads, 0, stream>>>(l, reverse ? 1 - half : half, values,
+                                                                    level.rhs.get());
   }
-  boundaryScatterKernel<<<blocksFor(l.count), kThreads, 0, stream>>>(l, values, level.x.get());
+  boundaryScatterKernel<<<launch::blocks(l.count), launch::kThreads, 0, stream>>>(l, values, level.x.get());
 }
 
 // As the CPU's smoothLevel: pre-smoothing from zero, full sweeps then boundary sweeps; the
@@ -297,24 +292,27 @@ kernels::TransferDims dims(const kernels::PoissonStencil<float>& fine, const ker
 
 void DeviceMultigrid::restrictResidual(Level& fine, Level& coarse, cudaStream_t stream) {
   const kernels::TransferDims d = dims(fine.op, coarse.op);
-  residualKernel<<<blocksFor(fine.cells()), kThreads, 0, stream>>>(fine.op, fine.b.get(), fine.x.get(), fine.r.get());
-  restrictXKernel<<<blocksFor(d.cx * d.ny * d.nz), kThreads, 0, stream>>>(d, sides_, fine.scale.get(), fine.r.get(),
-                                                                          alongX_.get());
-  restrictYKernel<<<blocksFor(d.cx * d.cy * d.nz), kThreads, 0, stream>>>(d, sides_, alongX_.get(), alongY_.get());
-  restrictZKernel<<<blocksFor(coarse.cells()), kThreads, 0, stream>>>(d, sides_, alongY_.get(), coarse.diagonal.get(),
-                                                                      coarse.b.get());
+  residualKernel<<<launch::blocks(fine.cells()), launch::kThreads, 0, stream>>>(fine.op, fine.b.get(), fine.x.get(),
+                                                                                fine.r.get());
+  restrictXKernel<<<launch::blocks(d.cx * d.ny * d.nz), launch::kThreads, 0, stream>>>(d, sides_, fine.scale.get(),
+                                                                                       fine.r.get(), alongX_.get());
+  restrictYKernel<<<launch::blocks(d.cx * d.cy * d.nz), launch::kThreads, 0, stream>>>(d, sides_, alongX_.get(),
+                                                                                       alongY_.get());
+  restrictZKernel<<<launch::blocks(coarse.cells()), launch::kThreads, 0, stream>>>(
+      d, sides_, alongY_.get(), coarse.diagonal.get(), coarse.b.get());
 }
 
 void DeviceMultigrid::prolongateAdd(Level& fine, Level& coarse, cudaStream_t stream) {
-  prolongateKernel<<<blocksFor(fine.cells()), kThreads, 0, stream>>>(dims(fine.op, coarse.op), sides_,
-                                                                     fine.scale.get(), coarse.x.get(), fine.x.get());
+  prolongateKernel<<<launch::blocks(fine.cells()), launch::kThreads, 0, stream>>>(
+      dims(fine.op, coarse.op), sides_, fine.scale.get(), coarse.x.get(), fine.x.get());
 }
 
 // The CPU's applyPoissonMultigrid, stage for stage.
 void DeviceMultigrid::enqueueCycle(const double* r, double* z, cudaStream_t stream) {
   const int last = static_cast<int>(levels_.size()) - 1;
   auto level = [&](int l) -> Level& { return *levels_[static_cast<size_t>(l)]; };
-  convertKernel<<<blocksFor(level(0).cells()), kThreads, 0, stream>>>(level(0).cells(), r, level(0).b.get());
+  convertKernel<<<launch::blocks(level(0).cells()), launch::kThreads, 0, stream>>>(level(0).cells(), r,
+                                                                                   level(0).b.get());
   for (int l = 0; l < last; ++l) {
     smoothLevel(level(l), false, stream);
     restrictResidual(level(l), level(l + 1), stream);
@@ -330,7 +328,8 @@ void DeviceMultigrid::enqueueCycle(const double* r, double* z, cudaStream_t stre
     smoothLevel(level(l), true, stream);
     if (level(l).filtered) level(l).filter.apply(level(l).x.get(), stream);
   }
-  convertKernel<<<blocksFor(level(0).cells()), kThreads, 0, stream>>>(level(0).cells(), level(0).x.get(), z);
+  convertKernel<<<launch::blocks(level(0).cells()), launch::kThreads, 0, stream>>>(level(0).cells(), level(0).x.get(),
+                                                                                   z);
 }
 
 bool DeviceMultigrid::record(const double* r, double* z, cudaStream_t stream, std::string* error) {

@@ -20,7 +20,6 @@ class DeviceRegionFilter {
   bool upload(const RegionView& view, int64_t cells, std::string* error);
   void apply(float* values, cudaStream_t stream);
   void apply(double* values, cudaStream_t stream);
-  bool anyFloating() const { return anyFloating_; }
 
  private:
   template <class T>

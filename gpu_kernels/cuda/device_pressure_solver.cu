@@ -12,12 +12,7 @@
 namespace vp::gpu {
 namespace {
 
-constexpr int kThreads = 256;
-using BlockReduce = cub::BlockReduce<double, kThreads>;
-
-unsigned blocksFor(int64_t n) { return static_cast<unsigned>((n + kThreads - 1) / kThreads); }
-
-__device__ int64_t threadIndex() { return blockIdx.x * int64_t(blockDim.x) + threadIdx.x; }
+using BlockReduce = cub::BlockReduce<double, launch::kThreads>;
 
 __device__ void addBlockSum(double value, double* target) {
   __shared__ typename BlockReduce::TempStorage storage;
@@ -26,35 +21,35 @@ __device__ void addBlockSum(double value, double* target) {
 }
 
 __global__ void applyKernel(kernels::PoissonStencil<double> s, const double* x, double* y) {
-  const int64_t c = threadIndex();
+  const int64_t c = launch::index();
   if (c < s.nx * s.ny * s.nz) y[c] = kernels::poissonApplyCell(s, c, x);
 }
 
 __global__ void dotKernel(int64_t n, const double* a, const double* b, double* target) {
-  const int64_t i = threadIndex();
+  const int64_t i = launch::index();
   addBlockSum(i < n ? a[i] * b[i] : 0.0, target);
 }
 
 // x += alpha p, r -= alpha q, and r . r.
 __global__ void cgStepKernel(int64_t n, double alpha, const double* p, const double* q, double* x, double* r,
                              double* rr) {
-  const int64_t i = threadIndex();
+  const int64_t i = launch::index();
   addBlockSum(i < n ? kernels::cgStepRange(i, i + 1, alpha, p, q, x, r) : 0.0, rr);
 }
 
 // r = b - q
 __global__ void residualKernel(int64_t n, const double* b, const double* q, double* r) {
-  const int64_t i = threadIndex();
+  const int64_t i = launch::index();
   if (i < n) r[i] = b[i] - q[i];
 }
 
 __global__ void subtractKernel(int64_t n, const double* v, double* x) {
-  const int64_t i = threadIndex();
+  const int64_t i = launch::index();
   if (i < n) x[i] -= v[i];
 }
 
 __global__ void xpbyKernel(int64_t n, const double* x, double b, double* y) {
-  const int64_t i = threadIndex();
+  const int64_t i = launch::index();
   if (i < n) kernels::xpbyItem(i, x, b, y);
 }
 
@@ -75,19 +70,19 @@ struct DevicePressureSolver::Impl {
   size_t bytes() const { return static_cast<size_t>(cells()) * sizeof(double); }
 
   void apply(const double* in, double* out) {
-    applyKernel<<<blocksFor(cells()), kThreads, 0, stream>>>(op, in, out);
+    applyKernel<<<launch::blocks(cells()), launch::kThreads, 0, stream>>>(op, in, out);
   }
   // a . b, read back (the host decides the CG's next step from it).
   bool dot(const double* a, const double* bv, double* out, std::string* error) {
     cudaMemsetAsync(scalars.get(), 0, sizeof(double), stream);
-    dotKernel<<<blocksFor(cells()), kThreads, 0, stream>>>(cells(), a, bv, scalars.get());
+    dotKernel<<<launch::blocks(cells()), launch::kThreads, 0, stream>>>(cells(), a, bv, scalars.get());
     return !failed(cudaMemcpyAsync(out, scalars.get(), sizeof(double), cudaMemcpyDeviceToHost, stream), error) &&
            !failed(cudaStreamSynchronize(stream), error);
   }
   bool cgStep(double alpha, double* rr, std::string* error) {
     cudaMemsetAsync(scalars.get(), 0, sizeof(double), stream);
-    cgStepKernel<<<blocksFor(cells()), kThreads, 0, stream>>>(cells(), alpha, p.get(), q.get(), x.get(), r.get(),
-                                                              scalars.get());
+    cgStepKernel<<<launch::blocks(cells()), launch::kThreads, 0, stream>>>(cells(), alpha, p.get(), q.get(), x.get(),
+                                                                           r.get(), scalars.get());
     return !failed(cudaMemcpyAsync(rr, scalars.get(), sizeof(double), cudaMemcpyDeviceToHost, stream), error) &&
            !failed(cudaStreamSynchronize(stream), error);
   }
@@ -95,7 +90,7 @@ struct DevicePressureSolver::Impl {
   void removeFreePart() {
     cudaMemcpyAsync(z.get(), x.get(), bytes(), cudaMemcpyDeviceToDevice, stream);
     filter.apply(z.get(), stream);
-    subtractKernel<<<blocksFor(cells()), kThreads, 0, stream>>>(cells(), z.get(), x.get());
+    subtractKernel<<<launch::blocks(cells()), launch::kThreads, 0, stream>>>(cells(), z.get(), x.get());
   }
   // z = filter(M r)
   void precondition() {
@@ -116,7 +111,7 @@ bool DevicePressureSolver::Impl::solve(double tolerance, int maxIterations, Devi
   if (!dot(z.get(), z.get(), &bb, error)) return false;
   const double bNorm = std::sqrt(bb);
   apply(x.get(), q.get());
-  residualKernel<<<blocksFor(cells()), kThreads, 0, stream>>>(cells(), b.get(), q.get(), r.get());
+  residualKernel<<<launch::blocks(cells()), launch::kThreads, 0, stream>>>(cells(), b.get(), q.get(), r.get());
   filter.apply(r.get(), stream);
   double rr = 0.0;
   if (!dot(r.get(), r.get(), &rr, error)) return false;
@@ -154,7 +149,7 @@ bool DevicePressureSolver::Impl::solve(double tolerance, int maxIterations, Devi
     precondition();
     double rzNext = 0.0;
     if (!dot(r.get(), z.get(), &rzNext, error)) return false;
-    xpbyKernel<<<blocksFor(cells()), kThreads, 0, stream>>>(cells(), z.get(), rzNext / rz, p.get());
+    xpbyKernel<<<launch::blocks(cells()), launch::kThreads, 0, stream>>>(cells(), z.get(), rzNext / rz, p.get());
     rz = rzNext;
   }
 }
@@ -178,8 +173,8 @@ std::unique_ptr<DevicePressureSolver> DevicePressureSolver::create(const Pressur
   for (DeviceArray<double>* v : {&d->b, &d->x, &d->r, &d->z, &d->p, &d->q})
     if (failed(v->allocate(cells), error)) return nullptr;
   if (failed(d->scalars.allocate(4), error) ||
-      !d->filter.upload(view.fineRegions, static_cast<int64_t>(cells), error) ||
-      !d->multigrid.upload(view, error) || !d->multigrid.record(d->r.get(), d->z.get(), d->stream, error))
+      !d->filter.upload(view.fineRegions, static_cast<int64_t>(cells), error) || !d->multigrid.upload(view, error) ||
+      !d->multigrid.record(d->r.get(), d->z.get(), d->stream, error))
     return nullptr;
   d->op = s;
   d->op.cu = d->cu.get();

@@ -9,16 +9,12 @@
 namespace vp::gpu {
 namespace {
 
-constexpr int kThreads = 256;
-
-unsigned blocksFor(int64_t n) { return static_cast<unsigned>((n + kThreads - 1) / kThreads); }
-
 // b = -(rho h / dt) netOutflow(u*) on fluid cells; non-fluid cells get b = 0 and p = 0 (no
 // stale pressure leaks into an open face's gradient).
 __global__ void rhsKernel(kernels::NetOutflowFields in, const int32_t* region, double scale, double* b,
                           double* pressure) {
   const kernels::MacLayout& g = in.grid;
-  const int64_t c = blockIdx.x * int64_t(blockDim.x) + threadIdx.x;
+  const int64_t c = launch::index();
   if (c >= g.nx * g.ny * g.nz) return;
   const bool fluid = region[c] >= 0;
   b[c] = (fluid ? kernels::netOutflowCell(in, c % g.nx, (c / g.nx) % g.ny, c / (g.nx * g.ny)) : 0.0) * scale;
@@ -27,7 +23,7 @@ __global__ void rhsKernel(kernels::NetOutflowFields in, const int32_t* region, d
 
 __global__ void updateKernel(kernels::PressureUpdateFields in, kernels::MacLayout g, int a, double* u) {
   const int64_t fx = g.nx + (a == 0), fy = g.ny + (a == 1), fz = g.nz + (a == 2);
-  const int64_t f = blockIdx.x * int64_t(blockDim.x) + threadIdx.x;
+  const int64_t f = launch::index();
   if (f < fx * fy * fz) kernels::pressureUpdateFaceAt(in, g, a, f % fx, (f / fx) % fy, f / (fx * fy), u);
 }
 
@@ -81,15 +77,16 @@ bool DeviceProjection::project(double* const u[3], double* pressure, double dt, 
       return false;
   double* p = d.solver->solution();
   if (failed(cudaMemcpy(p, pressure, cellBytes, cudaMemcpyHostToDevice), error)) return false;
-  rhsKernel<<<blocksFor(d.cells()), kThreads>>>(d.fields, d.region.get(), -density * d.h / dt, d.solver->rhs(), p);
+  rhsKernel<<<launch::blocks(d.cells()), launch::kThreads>>>(d.fields, d.region.get(), -density * d.h / dt,
+                                                             d.solver->rhs(), p);
   if (!d.solver->solveResident(tolerance, maxIterations, result, error)) return false;
   const kernels::PressureUpdateFields update{nullptr, nullptr, p, d.liquidPhi.get(), dt / (density * d.h)};
   for (int a = 0; a < 3; ++a) {
     kernels::PressureUpdateFields in = update;
     in.open = d.open[a].get();
     in.solidVelocity = d.solidVelocity[a].get();
-    updateKernel<<<blocksFor(static_cast<int64_t>(d.faces(a))), kThreads>>>(in, d.fields.grid, a,
-                                                                            d.velocity[a].get());
+    updateKernel<<<launch::blocks(static_cast<int64_t>(d.faces(a))), launch::kThreads>>>(in, d.fields.grid, a,
+                                                                                         d.velocity[a].get());
   }
   for (int a = 0; a < 3; ++a)
     if (failed(cudaMemcpy(u[a], d.velocity[a].get(), d.faces(a) * sizeof(double), cudaMemcpyDeviceToHost), error))

@@ -1,10 +1,11 @@
 // What the CUDA sources share: device arrays that free themselves, a CUDA error turned into
-// false with its text, and an event timer.
+// false with its text, an event timer, and the launch geometry of one thread per item.
 #pragma once
 
 #include <cuda_runtime.h>
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <utility>
 
@@ -37,6 +38,18 @@ class DeviceArray {
   T* data_ = nullptr;
   size_t size_ = 0;
 };
+
+// One thread per item, launch::kThreads to a block.
+namespace launch {
+constexpr int kThreads = 256;
+// Blocks for `items` threads (at least one, so a launch over nothing stays valid).
+inline unsigned blocks(int64_t items) {
+  const int64_t b = (items + kThreads - 1) / kThreads;
+  return static_cast<unsigned>(b > 0 ? b : 1);
+}
+// The calling thread's item.
+__device__ inline int64_t index() { return blockIdx.x * int64_t(blockDim.x) + threadIdx.x; }
+}  // namespace launch
 
 inline bool failed(cudaError_t e, std::string* error) {
   if (e == cudaSuccess) e = cudaGetLastError();

@@ -25,7 +25,7 @@ using testing_values::randomValues;
 
 // One sweep by the kernel bodies: every thread of the first colour, then of the second.
 void sweepByCells(const kernels::PoissonStencil<float>& s, const float* b, float* x, bool reverse) {
-  const int64_t threads = (s.nx + 1) / 2 * s.ny * s.nz;
+  const int64_t threads = kernels::colourThreads(s);
   for (int half = 0; half < 2; ++half) {
     const int colour = reverse ? 1 - half : half;
     for (int64_t t = 0; t < threads; ++t) {

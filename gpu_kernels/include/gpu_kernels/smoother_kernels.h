@@ -30,6 +30,12 @@ VP_HOST_DEVICE inline float boundaryCellUpdate(const BoundaryCell& e, const int3
   return (rhs + sum) * e.inverseDiagonal;
 }
 
+// Threads of a half-sweep: rows of ceil(nx / 2) (colourCell).
+template <class T>
+VP_HOST_DEVICE inline int64_t colourThreads(const PoissonStencil<T>& s) {
+  return (s.nx + 1) / 2 * s.ny * s.nz;
+}
+
 // The cell of colour `colour` ((i + j + k + colour) even) that thread `t` of a half-sweep owns:
 // rows of ceil(nx / 2) threads; false when the thread has no cell (the row's odd end).
 template <class T>

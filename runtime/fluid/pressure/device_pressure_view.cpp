@@ -41,14 +41,12 @@ Status makePressureSolveView(const CutCellPoisson& fine, const PoissonMultigrid&
     level.op = poisson_rows::Stencil<float>(mg.single[at]);
     if (l + 1 < levels) level.prolongScale = mg.prolongScale[at].data();
     if (l > 0) level.regions = regionView(mg.coarse[at - 1]);
-    if (at < mg.boundaryCells.size()) {
-      const BoundaryCellLists& lists = mg.boundaryCells[at];
-      for (int c = 0; c < 2; ++c) {
-        level.boundary[c] = lists.byColour[static_cast<size_t>(c)].data();
-        level.boundaryCount[c] = static_cast<int64_t>(lists.byColour[static_cast<size_t>(c)].size());
-      }
-      level.boundaryReads = lists.reads.data();
+    const BoundaryCellLists& lists = mg.boundaryCells[at];
+    for (int c = 0; c < 2; ++c) {
+      level.boundary[c] = lists.byColour[static_cast<size_t>(c)].data();
+      level.boundaryCount[c] = static_cast<int64_t>(lists.byColour[static_cast<size_t>(c)].size());
     }
+    level.boundaryReads = lists.reads.data();
     view->levels.push_back(level);
   }
   return Status::Ok;
