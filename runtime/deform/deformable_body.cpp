@@ -18,10 +18,9 @@
 #include "deform/deformation_gradient.h"
 #include "deform/degree_hierarchy.h"
 #include "deform/degree_level_assembly.h"
-#include "deform/polar_decomposition.h"
 #include "deform/pair_contact_terms.h"
 #include "geometry/tet_mesh_boundary.h"
-#include "deform/linear_tet_corotation.h"
+#include "gpu_kernels/linear_tet_kernels.h"
 #include "phase_timer.h"
 
 namespace vp {
@@ -359,7 +358,7 @@ void DeformableBody::energyRotation(int64_t e, const double F[9], double R[9]) c
   // Warm-started from the element's last corotation (the energy is evaluated at or near the
   // positions it was computed at), which costs a fraction of the SVD; the warm start is kept.
   double quat[4] = {rotations_[4 * e], rotations_[4 * e + 1], rotations_[4 * e + 2], rotations_[4 * e + 3]};
-  if (polarRotationIterative(F, quat, R, kEnergyPolarIterations, kEnergyPolarTolerance) < 0)
+  if (kernels::polarRotationIterative(F, quat, R, kEnergyPolarIterations, kEnergyPolarTolerance) < 0)
     for (int i = 0; i < 9; ++i) R[i] = (i % 4 == 0) ? 1.0 : 0.0;  // non-finite F: the energy is too
 }
 
@@ -491,12 +490,12 @@ void DeformableBody::corotateAndAssemble(TaskSystem& tasks, double stiffnessScal
       double x[12];
       for (int a = 0; a < 4; ++a)
         for (int i = 0; i < 3; ++i) x[3 * a + i] = x_[3 * nodes[a] + i];
-      corotateLinearTet(x, &restGradients_[12 * e], restVolume_[e], lambda_, mu_, &rotations_[4 * e],
+      kernels::corotateLinearTet(x, &restGradients_[12 * e], restVolume_[e], lambda_, mu_, &rotations_[4 * e],
                         &elementForce_[12 * e], &rotatedGradients_[12 * e]);
     }
   });
   gatherRows(tasks, 256, [&](int64_t e, int a, int b, double* block) {
-    addLinearTetBlock(&rotatedGradients_[12 * e], &restGradients_[12 * e], a, b, restVolume_[e], lambda_, mu_,
+    kernels::addLinearTetBlock(&rotatedGradients_[12 * e], &restGradients_[12 * e], a, b, restVolume_[e], lambda_, mu_,
                       stiffnessScale, block);
   });
 }
@@ -514,7 +513,8 @@ void DeformableBody::corotateAndAssembleBB(TaskSystem& tasks, double stiffnessSc
       for (int a = 0; a < N; ++a)
         for (int i = 0; i < 3; ++i) x[3 * a + i] = x_[3 * nodes[a] + i], x0[3 * a + i] = restX_[3 * nodes[a] + i];
       bbAverageDeformationGradient(degree_, x, &restGradients_[12 * e], F);
-      if (polarRotationIterative(F, &rotations_[4 * e], R, 20, 1e-6) < 0)
+      if (kernels::polarRotationIterative(F, &rotations_[4 * e], R, kernels::kCorotationIterations,
+                                          kernels::kCorotationTolerance) < 0)
         for (int i = 0; i < 9; ++i) R[i] = (i % 4 == 0) ? 1.0 : 0.0;  // non-finite: the guard reports it
       corotatedForce(N, &elementStiffness_[K * e], x0, x, R, &elementForce_[3 * N * e]);
       bbRotatedGradientPairs(degree_, R, &restGradients_[12 * e], restVolume_[e], lambda_, mu_, stiffnessScale,

@@ -7,6 +7,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <vector>
 
@@ -14,7 +15,8 @@
 #include "deform/bb_evaluation.h"
 #include "deform/bb_multi_index.h"
 #include "deform/deformation_gradient.h"
-#include "deform/polar_decomposition.h"
+#include "gpu_kernels/linear_tet_kernels.h"
+#include "gpu_kernels/polar_kernels.h"
 #include "deform_test_util.h"
 
 namespace vp {
@@ -67,7 +69,7 @@ Eigen::Matrix3d averageF(const Element& e, const VectorXd& x) {
 Eigen::Matrix3d rotationOf(const Element& e, const VectorXd& x) {
   const Mat3R f = averageF(e, x);
   Mat3R r;
-  EXPECT_TRUE(polarRotationSvd(f.data(), r.data()));
+  EXPECT_TRUE(kernels::polarRotationSvd(f.data(), r.data()));
   return r;
 }
 
@@ -264,6 +266,53 @@ TEST(DeformCorotatedElement, CollapsedElementGivesFiniteRestoringForce) {
     VectorXd target(x.size());
     for (int k = 0; k < e.nodes; ++k) target.segment<3>(3 * k) = r * e.rest.segment<3>(3 * k);
     EXPECT_GT(f.dot(target - x), 0.0) << "n=" << n;
+  }
+}
+
+// The linear-tet kernel body (gpu_kernels/linear_tet_kernels.h) against the generic path at
+// degree 1: the same F bit for bit, the force of the generic −R K (Rᵀx − x0) and the blocks of
+// R K Rᵀ. The rotations differ only by the iteration's stopping tolerance
+// (kCorotationTolerance), so the force agrees to that relative to the stress it rotates.
+TEST(DeformCorotatedElement, LinearTetKernelEqualsTheGenericPath) {
+  std::mt19937 rng(58);
+  std::uniform_real_distribution<double> u(-0.3, 0.3);
+  const double lambda = 2.0e5, mu = 8.0e4;
+  for (int trial = 0; trial < 50; ++trial) {
+    const Element e = makeElement(rng, 1);
+    const Eigen::Matrix3d q = randomRotation(rng);
+    VectorXd x = affine(e, q, Eigen::Vector3d(1, 2, 3));
+    for (int i = 0; i < x.size(); ++i) x[i] += u(rng) * std::cbrt(e.volume);
+    Mat3R generic;
+    bbAverageDeformationGradient(1, x.data(), e.baryGrad, generic.data());
+    Mat3R f;
+    kernels::linearTetDeformationGradient(x.data(), e.baryGrad, f.data());
+    EXPECT_EQ(std::memcmp(f.data(), generic.data(), sizeof(double) * 9), 0);
+
+    // Warm-started as a step is: from the element's rigid part.
+    const Eigen::Quaterniond start(q);
+    double quat[4] = {start.w(), start.x(), start.y(), start.z()}, got[12], rotatedGrad[12];
+    kernels::corotateLinearTet(x.data(), e.baryGrad, e.volume, lambda, mu, quat, got, rotatedGrad);
+    const Eigen::Matrix3d r = rotationOf(e, x);
+    const VectorXd expected = force(e, x, r);
+    const double stress = e.k.cwiseAbs().maxCoeff() * (x - e.rest).cwiseAbs().maxCoeff();
+    EXPECT_LT((Eigen::Map<const VectorXd>(got, 12) - expected).cwiseAbs().maxCoeff(),
+              10 * kernels::kCorotationTolerance * stress)
+        << "trial " << trial;
+
+    // Blocks with the kernel's own rotation, so they are compared to round-off.
+    Mat3R own;
+    kernels::rotationFromQuaternion(quat, own.data());
+    std::vector<double> rotated(144);
+    corotatedStiffness(4, e.stiffness.data(), own.data(), rotated.data());
+    const double scale = e.k.cwiseAbs().maxCoeff();
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b) {
+        double block[9] = {};
+        kernels::addLinearTetBlock(rotatedGrad, e.baryGrad, a, b, e.volume, lambda, mu, 1.0, block);
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j)
+            EXPECT_NEAR(block[3 * i + j], rotated[12 * (3 * a + i) + 3 * b + j], 1e-12 * scale);
+      }
   }
 }
 
