@@ -20,6 +20,7 @@
 #include "deform/degree_level_assembly.h"
 #include "deform/pair_contact_terms.h"
 #include "geometry/tet_mesh_boundary.h"
+#include "gpu_kernels/element_gather_kernels.h"
 #include "gpu_kernels/linear_tet_kernels.h"
 #include "phase_timer.h"
 
@@ -456,28 +457,18 @@ void DeformableBody::contactImpulses(TaskSystem& tasks, Array<Vec3>* impulses) {
   }
 }
 
-// Pass 2 of assembly, per node: one matrix block row each, so no two tasks write the same
-// memory and the sum order is fixed (deterministic for any worker count). Gathers the forces
-// and, through addBlock(element, corner a, corner b, block), the stiffness blocks of the
-// incident elements. Gathering keeps the writes in matrix order; scattering element by element
-// touched the 20 MB matrix of a large mesh at random.
+// Pass 2 of assembly, per node: one matrix block row each (gpu_kernels/element_gather_kernels.h),
+// gathering the forces and, through addBlock(element, corner a, corner b, block), the stiffness
+// blocks of the incident elements. Gathering keeps the writes in matrix order; scattering
+// element by element touched the 20 MB matrix of a large mesh at random.
 template <class AddBlock>
 void DeformableBody::gatherRows(TaskSystem& tasks, int64_t grain, const AddBlock& addBlock) {
-  const int N = nodesPerElement_;
+  const kernels::ElementIncidenceView incidence{incidence_.start.data(), incidence_.element.data(),
+                                                incidence_.corner.data()};
   parallelFor(tasks, nodeCount_, grain, [&](int64_t begin, int64_t end) {
-    for (int64_t i = begin; i < end; ++i) {
-      double f[3] = {0.0, 0.0, 0.0};
-      for (int32_t k = matrix_.rowStart[i]; k < matrix_.rowStart[i + 1]; ++k)
-        std::fill_n(&matrix_.values[9 * static_cast<int64_t>(k)], 9, 0.0);
-      for (int32_t k = incidence_.start[i]; k < incidence_.start[i + 1]; ++k) {
-        const int64_t e = incidence_.element[k];
-        const int a = incidence_.corner[k];
-        for (int c = 0; c < 3; ++c) f[c] += elementForce_[3 * (N * e + a) + c];
-        for (int b = 0; b < N; ++b)
-          addBlock(e, a, b, &matrix_.values[9 * static_cast<int64_t>(scatter_[N * N * e + N * a + b])]);
-      }
-      for (int c = 0; c < 3; ++c) force_[3 * i + c] = f[c];
-    }
+    for (int64_t i = begin; i < end; ++i)
+      kernels::gatherElementRow(i, nodesPerElement_, matrix_.rowStart.data(), incidence, scatter_.data(),
+                                elementForce_.data(), addBlock, matrix_.values.data(), force_.data());
   });
 }
 
