@@ -472,6 +472,21 @@ void DeformableBody::gatherRows(TaskSystem& tasks, int64_t grain, const AddBlock
   });
 }
 
+gpu::LinearTetAssemblyView DeformableBody::linearTetAssemblyView() const {
+  gpu::LinearTetAssemblyView view;
+  view.nodes = nodeCount_;
+  view.elements = elementCount();
+  view.elementNodes = elementNodes_.data();
+  view.restGradients = restGradients_.data();
+  view.restVolume = restVolume_.data();
+  view.lambda = lambda_;
+  view.mu = mu_;
+  view.rowStart = matrix_.rowStart.data();
+  view.incidence = {incidence_.start.data(), incidence_.element.data(), incidence_.corner.data()};
+  view.scatter = scatter_.data();
+  return view;
+}
+
 void DeformableBody::corotateAndAssemble(TaskSystem& tasks, double stiffnessScale) {
   if (degree_ > 1) return corotateAndAssembleBB(tasks, stiffnessScale);
   // Pass 1, per element: rotation, force and rotated gradients into element buffers.
