@@ -8,11 +8,12 @@
 // of a rotated quadratic / cubic K); a block then costs 1 to 9 terms of 9 flops, and the
 // assembly no longer reads the stored rest K (7 KB / 29 KB per element) a second time.
 //
-// Arrays: R 3x3 row-major, grad 4x3 rest barycentric gradients, pairs 16 x 9 (pair c·4+d,
-// row-major 3x3), block 3x3 row-major.
+// The pairs and the block sums are kernel bodies (gpu_kernels/bb_element_kernels.h:
+// kernels::bbRotatedGradientPairs, kernels::addBBRotatedBlock); the terms are built here.
 #pragma once
 
 #include "core/allocator.h"
+#include "gpu_kernels/bb_element_kernels.h"
 
 #include <cstdint>
 #include <vector>
@@ -26,24 +27,11 @@ struct BBStiffnessTerms {
   Array<int32_t> start;
   Array<uint8_t> pair;
   Array<double> weight;
+
+  kernels::BBStiffnessTermsView view() const { return {start.data(), pair.data(), weight.data()}; }
 };
 
 // degree must be 1..3.
 BBStiffnessTerms bbStiffnessTerms(int degree);
-
-// pairs = the 16 P_cd above, with s = scale · 3n / (4n² − 1).
-void bbRotatedGradientPairs(int degree, const double R[9], const double grad[12], double volume, double lambda,
-                            double mu, double scale, double pairs[144]);
-
-// block += R K_ab Rᵀ (times the scale the pairs carry).
-inline void addBBRotatedBlock(const BBStiffnessTerms& terms, const double pairs[144], int nodeCount, int a, int b,
-                              double block[9]) {
-  const int32_t k = a * nodeCount + b;
-  for (int32_t t = terms.start[k]; t < terms.start[k + 1]; ++t) {
-    const double w = terms.weight[t];
-    const double* p = pairs + 9 * terms.pair[t];
-    for (int i = 0; i < 9; ++i) block[i] += w * p[i];
-  }
-}
 
 }  // namespace vp

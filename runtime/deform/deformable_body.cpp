@@ -472,8 +472,9 @@ void DeformableBody::gatherRows(TaskSystem& tasks, int64_t grain, const AddBlock
   });
 }
 
-gpu::LinearTetAssemblyView DeformableBody::linearTetAssemblyView() const {
-  gpu::LinearTetAssemblyView view;
+gpu::ElementAssemblyView DeformableBody::elementAssemblyView() const {
+  gpu::ElementAssemblyView view;
+  view.degree = degree_;
   view.nodes = nodeCount_;
   view.elements = elementCount();
   view.elementNodes = elementNodes_.data();
@@ -484,6 +485,12 @@ gpu::LinearTetAssemblyView DeformableBody::linearTetAssemblyView() const {
   view.rowStart = matrix_.rowStart.data();
   view.incidence = {incidence_.start.data(), incidence_.element.data(), incidence_.corner.data()};
   view.scatter = scatter_.data();
+  if (degree_ > 1) {
+    view.restPositions = restX_.data();
+    view.elementStiffness = elementStiffness_.data();
+    view.nodeCorners = bbNodeCornerMasks(degree_);
+    view.terms = stiffnessTerms_.view();
+  }
   return view;
 }
 
@@ -509,26 +516,24 @@ void DeformableBody::corotateAndAssemble(TaskSystem& tasks, double stiffnessScal
 void DeformableBody::corotateAndAssembleBB(TaskSystem& tasks, double stiffnessScale) {
   const int N = nodesPerElement_;
   const int64_t K = 9 * N * N;
+  const uint8_t* nodeCorners = bbNodeCornerMasks(degree_);
+  const kernels::BBStiffnessTermsView terms = stiffnessTerms_.view();
   // Pass 1, per element: one rotation from the volume-averaged deformation gradient and the
   // corotated force −R K (Rᵀ x − x0) from the stored rest K, and the 16 rotated gradient-pair
   // matrices the gather sums into each R K_ab Rᵀ (deform/bb_rotated_stiffness.h).
   parallelFor(tasks, elementCount(), 64, [&](int64_t begin, int64_t end) {
     for (int64_t e = begin; e < end; ++e) {
       const int32_t* nodes = &elementNodes_[N * e];
-      double x[3 * kBBMaxNodes], x0[3 * kBBMaxNodes], F[9], R[9];
+      double x[3 * kBBMaxNodes], x0[3 * kBBMaxNodes];
       for (int a = 0; a < N; ++a)
         for (int i = 0; i < 3; ++i) x[3 * a + i] = x_[3 * nodes[a] + i], x0[3 * a + i] = restX_[3 * nodes[a] + i];
-      bbAverageDeformationGradient(degree_, x, &restGradients_[12 * e], F);
-      if (kernels::polarRotationIterative(F, &rotations_[4 * e], R, kernels::kCorotationIterations,
-                                          kernels::kCorotationTolerance) < 0)
-        for (int i = 0; i < 9; ++i) R[i] = (i % 4 == 0) ? 1.0 : 0.0;  // non-finite: the guard reports it
-      corotatedForce(N, &elementStiffness_[K * e], x0, x, R, &elementForce_[3 * N * e]);
-      bbRotatedGradientPairs(degree_, R, &restGradients_[12 * e], restVolume_[e], lambda_, mu_, stiffnessScale,
-                             &gradientPairs_[144 * e]);
+      kernels::corotateBBElement(degree_, nodeCorners, x, x0, &restGradients_[12 * e], &elementStiffness_[K * e],
+                                 restVolume_[e], lambda_, mu_, stiffnessScale, &rotations_[4 * e],
+                                 &elementForce_[3 * N * e], &gradientPairs_[144 * e]);
     }
   });
   gatherRows(tasks, 64, [&](int64_t e, int a, int b, double* block) {
-    addBBRotatedBlock(stiffnessTerms_, &gradientPairs_[144 * e], N, a, b, block);
+    kernels::addBBRotatedBlock(terms, &gradientPairs_[144 * e], N, a, b, block);
   });
 }
 

@@ -26,7 +26,7 @@
 #include "deform/contact_surface.h"
 #include "deform/deformable_contacts.h"
 #include "deform/device_step_solve.h"
-#include "gpu_kernels/device_linear_tet_assembly.h"
+#include "gpu_kernels/device_element_assembly.h"
 #include "deform/node_constraints.h"
 #include "deform/pair_contacts.h"
 #include "deform/step_preconditioner.h"
@@ -169,9 +169,9 @@ class DeformableBody {
   // stiffness scale (deform/bb_rotated_stiffness.h); p-multigrid's re-discretized levels are
   // assembled from them (deform/degree_level_assembly.h).
   const Array<double>& elementGradientPairs() const { return gradientPairs_; }
-  // Degree 1: the mesh and the step matrix's pattern as a device assembly reads them
-  // (gpu_kernels/device_linear_tet_assembly.h), and the elements' rotations (w, x, y, z).
-  gpu::LinearTetAssemblyView linearTetAssemblyView() const;
+  // The mesh and the step matrix's pattern as a device assembly reads them
+  // (gpu_kernels/device_element_assembly.h), and the elements' rotations (w, x, y, z).
+  gpu::ElementAssemblyView elementAssemblyView() const;
   const Array<double>& elementRotations() const { return rotations_; }
 
  private:

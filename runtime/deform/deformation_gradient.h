@@ -17,11 +17,18 @@
 // Array shapes: x N x 3 current node positions (node order of bb_multi_index.h),
 // baryGrad 4 x 3 rest ∇λ_c (bbBarycentricGradients), F 3 x 3 row-major, F[3a+j] = ∂x_a/∂X_j.
 // Pure, no allocation; degree must be 1..3 (asserted in debug builds).
+// The computation is a kernel body (gpu_kernels/bb_element_kernels.h), which reads which
+// corners each node's multi-index touches as bit masks.
 #pragma once
+
+#include <cstdint>
 
 namespace vp {
 
 void bbAverageDeformationGradient(int degree, const double* x, const double baryGrad[12],
                                   double F[9]);
+
+// Per node of the degree (bb_multi_index.h order), bit c set when the node's α_c >= 1.
+const uint8_t* bbNodeCornerMasks(int degree);
 
 }  // namespace vp

@@ -34,6 +34,7 @@ void DegreeLevelAssembly::build(const DegreeLevel& level, int fineDegree, const 
 
 void DegreeLevelAssembly::assemble(TaskSystem& tasks, const double* gradientPairs, double massScale) {
   const int N = nodesPerElement_;
+  const kernels::BBStiffnessTermsView terms = terms_.view();
   parallelFor(tasks, matrix_.blockRows, 64, [&](int64_t begin, int64_t end) {
     for (int64_t i = begin; i < end; ++i) {
       std::fill(matrix_.values.begin() + 9 * static_cast<int64_t>(matrix_.rowStart[i]),
@@ -43,7 +44,7 @@ void DegreeLevelAssembly::assemble(TaskSystem& tasks, const double* gradientPair
         const int a = incidence_.corner[k];
         const int32_t* scatter = &scatter_[N * N * e + N * a];
         for (int b = 0; b < N; ++b)
-          addBBRotatedBlock(terms_, gradientPairs + 144 * e, N, a, b,
+          kernels::addBBRotatedBlock(terms, gradientPairs + 144 * e, N, a, b,
                             &matrix_.values[9 * static_cast<int64_t>(scatter[b])]);
       }
       double* diagonal = &matrix_.values[9 * static_cast<int64_t>(matrix_.diagonal[i])];

@@ -31,12 +31,12 @@ TEST(DeformBBRotatedStiffness, GradientPairsReproduceTheRotatedRestStiffness) {
       const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> R = deform_test::randomRotation(rng);
       corotatedStiffness(N, K.data(), R.data(), rotated.data());
       double pairs[144];
-      bbRotatedGradientPairs(degree, R.data(), grad, volume, lambda, mu, scale, pairs);
+      kernels::bbRotatedGradientPairs(degree, R.data(), grad, volume, lambda, mu, scale, pairs);
       double worst = 0.0, largest = 0.0;
       for (int a = 0; a < N; ++a)
         for (int b = 0; b < N; ++b) {
           double block[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-          addBBRotatedBlock(terms, pairs, N, a, b, block);
+          kernels::addBBRotatedBlock(terms.view(), pairs, N, a, b, block);
           for (int i = 0; i < 3; ++i)
             for (int j = 0; j < 3; ++j) {
               const double expected = scale * rotated[(3 * a + i) * dim + 3 * b + j];

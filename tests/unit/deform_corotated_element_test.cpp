@@ -15,6 +15,7 @@
 #include "deform/bb_evaluation.h"
 #include "deform/bb_multi_index.h"
 #include "deform/deformation_gradient.h"
+#include "gpu_kernels/bb_element_kernels.h"
 #include "gpu_kernels/linear_tet_kernels.h"
 #include "gpu_kernels/polar_kernels.h"
 #include "deform_test_util.h"
@@ -76,7 +77,7 @@ Eigen::Matrix3d rotationOf(const Element& e, const VectorXd& x) {
 VectorXd force(const Element& e, const VectorXd& x, const Eigen::Matrix3d& r) {
   const Mat3R rr = r;
   VectorXd f(x.size());
-  corotatedForce(e.nodes, e.stiffness.data(), e.rest.data(), x.data(), rr.data(), f.data());
+  kernels::corotatedForce(e.nodes, e.stiffness.data(), e.rest.data(), x.data(), rr.data(), f.data());
   return f;
 }
 

@@ -19,11 +19,6 @@
 
 namespace vp::kernels {
 
-// Iteration limit and step tolerance (radians) of the element rotation: warm-started from the
-// last step's rotation it converges in two or three iterations.
-constexpr int kCorotationIterations = 20;
-constexpr double kCorotationTolerance = 1e-6;
-
 // F = Σ_a x_a g_aᵀ, the deformation gradient of a linear tet (runtime/deform/
 // deformation_gradient.h at degree 1, same order of sums).
 VP_HOST_DEVICE inline void linearTetDeformationGradient(const double x[12], const double grad[12], double F[9]) {

@@ -97,6 +97,11 @@ constexpr int kJacobiSweeps = 20;
 
 }  // namespace polar_detail
 
+// Iteration limit and step tolerance (radians) of an element's rotation in a corotated step:
+// warm-started from the last step's rotation it converges in two or three iterations.
+constexpr int kCorotationIterations = 20;
+constexpr double kCorotationTolerance = 1e-6;
+
 // Eigen's Quaternion::toRotationMatrix, term for term.
 VP_HOST_DEVICE inline void rotationFromQuaternion(const double quat[4], double R[9]) {
   const double w = quat[0], x = quat[1], y = quat[2], z = quat[3];

@@ -1,0 +1,122 @@
+// The per-element kernel bodies of corotational Bernstein–Bézier elements of any degree, which
+// a CPU loop and a CUDA thread run alike: the averaged deformation gradient the rotation is
+// taken from (runtime/deform/deformation_gradient.h has the derivation), the corotated force
+// (runtime/deform/corotated_element.h) and the rotated stiffness as 16 gradient-pair matrices
+// (runtime/deform/bb_rotated_stiffness.h) with its block sums.
+//
+// Arrays: x, restPositions, force N x 3 (node order of runtime/deform/bb_multi_index.h);
+// grad 4 x 3 rest barycentric gradients; stiffness the rest K_e, 3N x 3N row-major; R 3 x 3
+// row-major; pairs 16 x 9 (pair c·4+d, row-major 3x3); block 3x3 row-major.
+#pragma once
+
+#include <cstdint>
+
+#include "gpu_kernels/kernel_support.h"
+#include "gpu_kernels/polar_kernels.h"
+
+namespace vp::kernels {
+
+constexpr int kMaxElementNodes = 20;  // nodes of a cubic element
+
+// F̄ = Σ_c y_c ⊗ ∇λ_c with y_c = (n / C(n+2, 3)) Σ_{α: α_c >= 1} x_α. nodeCorners[k] has bit c
+// set when node k's multi-index has α_c >= 1.
+VP_HOST_DEVICE inline void bbAverageDeformationGradient(int degree, const uint8_t* nodeCorners, const double* x,
+                                                        const double baryGrad[12], double F[9]) {
+  const int nodes = (degree + 1) * (degree + 2) * (degree + 3) / 6;
+  // n / C(n+2, 3): 1, 1/2, 3/10 for n = 1, 2, 3.
+  const double weight = degree * 6.0 / (degree * (degree + 1.0) * (degree + 2.0));
+  double y[4][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+  for (int k = 0; k < nodes; ++k)
+    for (int c = 0; c < 4; ++c)
+      if (nodeCorners[k] & (1u << c))
+        for (int a = 0; a < 3; ++a) y[c][a] += x[3 * k + a];
+  for (int a = 0; a < 3; ++a)
+    for (int j = 0; j < 3; ++j) {
+      double s = 0.0;
+      for (int c = 0; c < 4; ++c) s += y[c][a] * baryGrad[3 * c + j];
+      F[3 * a + j] = weight * s;
+    }
+}
+
+// force = −R K_e (Rᵀ x − x0); nodeCount 1..kMaxElementNodes.
+VP_HOST_DEVICE inline void corotatedForce(int nodeCount, const double* stiffness, const double* restPositions,
+                                          const double* positions, const double R[9], double* force) {
+  const int dim = 3 * nodeCount;
+  // Unrotated displacement u = Rᵀ x − x0, computed once per node rather than per block.
+  double u[3 * kMaxElementNodes];
+  for (int k = 0; k < nodeCount; ++k)
+    for (int a = 0; a < 3; ++a) {
+      const double* x = positions + 3 * k;
+      u[3 * k + a] = R[a] * x[0] + R[3 + a] * x[1] + R[6 + a] * x[2] - restPositions[3 * k + a];
+    }
+  for (int k = 0; k < nodeCount; ++k) {
+    double g[3];
+    for (int a = 0; a < 3; ++a) {
+      const double* row = stiffness + (3 * k + a) * dim;
+      double s = 0.0;
+      for (int j = 0; j < dim; ++j) s += row[j] * u[j];
+      g[a] = s;
+    }
+    for (int a = 0; a < 3; ++a) force[3 * k + a] = -(R[3 * a] * g[0] + R[3 * a + 1] * g[1] + R[3 * a + 2] * g[2]);
+  }
+}
+
+// pairs = the 16 P_cd = s V [λ h_c h_dᵀ + μ h_d h_cᵀ + μ (g_c·g_d) I], h = R g,
+// s = scale · 3n / (4n² − 1).
+VP_HOST_DEVICE inline void bbRotatedGradientPairs(int degree, const double R[9], const double grad[12], double volume,
+                                                  double lambda, double mu, double scale, double pairs[144]) {
+  const int n = degree;
+  const double s = scale * 3.0 * n * volume / (4.0 * n * n - 1.0);
+  double h[12];
+  for (int c = 0; c < 4; ++c)
+    for (int i = 0; i < 3; ++i)
+      h[3 * c + i] = R[3 * i] * grad[3 * c] + R[3 * i + 1] * grad[3 * c + 1] + R[3 * i + 2] * grad[3 * c + 2];
+  for (int c = 0; c < 4; ++c)
+    for (int d = 0; d < 4; ++d) {
+      const double* hc = h + 3 * c;
+      const double* hd = h + 3 * d;
+      const double* gc = grad + 3 * c;
+      const double* gd = grad + 3 * d;
+      const double shear = mu * (gc[0] * gd[0] + gc[1] * gd[1] + gc[2] * gd[2]);
+      double* p = pairs + 9 * (4 * c + d);
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+          p[3 * i + j] = s * (lambda * hc[i] * hd[j] + mu * hd[i] * hc[j] + (i == j ? shear : 0.0));
+    }
+}
+
+// The G_{n−1} weights of every node pair (a, b) of a degree: terms of pair (a, b) are
+// [start[a·N+b], start[a·N+b+1]), each a gradient pair (c·4+d) and its weight.
+struct BBStiffnessTermsView {
+  const int32_t* start = nullptr;
+  const uint8_t* pair = nullptr;
+  const double* weight = nullptr;
+};
+
+// block += R K_ab Rᵀ (times the scale the pairs carry).
+VP_HOST_DEVICE inline void addBBRotatedBlock(const BBStiffnessTermsView& terms, const double pairs[144], int nodeCount,
+                                             int a, int b, double block[9]) {
+  const int32_t k = a * nodeCount + b;
+  for (int32_t t = terms.start[k]; t < terms.start[k + 1]; ++t) {
+    const double w = terms.weight[t];
+    const double* p = pairs + 9 * terms.pair[t];
+    for (int i = 0; i < 9; ++i) block[i] += w * p[i];
+  }
+}
+
+// One element's pass of a corotated step: the rotation from the averaged F (warm-started from
+// and written to quat), the corotated force, and the gradient pairs with the stiffness scale.
+VP_HOST_DEVICE inline void corotateBBElement(int degree, const uint8_t* nodeCorners, const double* x,
+                                             const double* restPositions, const double grad[12],
+                                             const double* stiffness, double volume, double lambda, double mu,
+                                             double scale, double quat[4], double* force, double pairs[144]) {
+  double F[9], R[9];
+  bbAverageDeformationGradient(degree, nodeCorners, x, grad, F);
+  // A non-finite F: the identity, and the divergence guard reports the body.
+  if (polarRotationIterative(F, quat, R, kCorotationIterations, kCorotationTolerance) < 0)
+    for (int i = 0; i < 9; ++i) R[i] = (i % 4 == 0) ? 1.0 : 0.0;
+  corotatedForce((degree + 1) * (degree + 2) * (degree + 3) / 6, stiffness, restPositions, x, R, force);
+  bbRotatedGradientPairs(degree, R, grad, volume, lambda, mu, scale, pairs);
+}
+
+}  // namespace vp::kernels
