@@ -355,15 +355,19 @@ double DeformableBody::kineticEnergy() const {
   return e;
 }
 
-void DeformableBody::energyRotation(int64_t e, const double F[9], double R[9]) const {
+void DeformableBody::energyRotation(int64_t e, const double F[9], double R[9], double* keptRotation) const {
   // Warm-started from the element's last corotation (the energy is evaluated at or near the
-  // positions it was computed at), which costs a fraction of the SVD; the warm start is kept.
+  // positions it was computed at), which costs a fraction of the SVD.
   double quat[4] = {rotations_[4 * e], rotations_[4 * e + 1], rotations_[4 * e + 2], rotations_[4 * e + 3]};
-  if (kernels::polarRotationIterative(F, quat, R, kEnergyPolarIterations, kEnergyPolarTolerance) < 0)
+  if (kernels::polarRotationIterative(F, quat, R, kEnergyPolarIterations, kEnergyPolarTolerance) < 0) {
     for (int i = 0; i < 9; ++i) R[i] = (i % 4 == 0) ? 1.0 : 0.0;  // non-finite F: the energy is too
+    return;
+  }
+  if (keptRotation)
+    for (int i = 0; i < 4; ++i) keptRotation[i] = quat[i];
 }
 
-double DeformableBody::elementElasticEnergy(int64_t e) const {
+double DeformableBody::elementElasticEnergy(int64_t e, double* keptRotation) const {
   if (degree_ > 1) {
     // ½ uᵀ K u with u = Rᵀ x − x0 in the element's unrotated frame.
     const int N = nodesPerElement_;
@@ -371,7 +375,7 @@ double DeformableBody::elementElasticEnergy(int64_t e) const {
     for (int a = 0; a < N; ++a)
       for (int i = 0; i < 3; ++i) x[3 * a + i] = x_[3 * elementNodes_[N * e + a] + i];
     bbAverageDeformationGradient(degree_, x, &restGradients_[12 * e], F);
-    energyRotation(e, F, R);
+    energyRotation(e, F, R, keptRotation);
     Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3 * kBBMaxNodes, 1> u(3 * N);
     for (int a = 0; a < N; ++a)
       for (int i = 0; i < 3; ++i)
@@ -385,7 +389,7 @@ double DeformableBody::elementElasticEnergy(int64_t e) const {
   for (int a = 0; a < 4; ++a)
     for (int i = 0; i < 3; ++i) x[3 * a + i] = x_[3 * elementNodes_[4 * e + a] + i];
   bbAverageDeformationGradient(1, x, &restGradients_[12 * e], F);
-  energyRotation(e, F, R);
+  energyRotation(e, F, R, keptRotation);
   double eps[9];
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
@@ -403,6 +407,15 @@ double DeformableBody::elasticEnergy(TaskSystem& tasks) const {
   return parallelReduce<double>(tasks, elementCount(), 256, [&](int64_t begin, int64_t end) {
     double sum = 0.0;
     for (int64_t e = begin; e < end; ++e) sum += elementElasticEnergy(e);
+    return sum;
+  });
+}
+
+double DeformableBody::elasticEnergyKeepingRotations(TaskSystem& tasks) {
+  // The same chunks and sum order as elasticEnergy; each element writes only its own rotation.
+  return parallelReduce<double>(tasks, elementCount(), 256, [&](int64_t begin, int64_t end) {
+    double sum = 0.0;
+    for (int64_t e = begin; e < end; ++e) sum += elementElasticEnergy(e, &rotations_[4 * e]);
     return sum;
   });
 }
@@ -606,7 +619,7 @@ StepEnergy DeformableBody::solvedStepEnergy(TaskSystem& tasks, double h, const V
 bool DeformableBody::stepBlewUp(TaskSystem& tasks, StepEnergy energy, bool solveReachedFloor) {
   for (double v : v_)
     if (!std::isfinite(v) || std::abs(v) > kMaxSpeed) return true;
-  energy.elasticEnd = elasticEnergy(tasks);
+  energy.elasticEnd = elasticEnergyKeepingRotations(tasks);
   // A solve cut short above its floor is inexact by the budget's choice, not blown up.
   if (solveReachedFloor && StepEnergyGuard::blewUp(energy, totalMass_)) {
     log(LogLevel::Warning, "deformable step blew up: its energy rose %g J beyond the %g J its work explains "

@@ -179,8 +179,12 @@ class DeformableBody {
   Status elementStiffnessMatrices(double lambda, double mu, Array<double>* out) const;
   // x and v back to the step's start; rotations to identity.
   void restoreStepStart();
-  double elementElasticEnergy(int64_t element) const;
-  void energyRotation(int64_t element, const double F[9], double R[9]) const;
+  // keptRotation non-null: the element's rotation at the current positions is written there.
+  double elementElasticEnergy(int64_t element, double* keptRotation = nullptr) const;
+  void energyRotation(int64_t element, const double F[9], double R[9], double* keptRotation) const;
+  // elasticEnergy, keeping each element's rotation at the current positions as the warm start
+  // of the next corotation (at the end of a step: the next step corotates at these positions).
+  double elasticEnergyKeepingRotations(TaskSystem& tasks);
   // The energies and works of the step just solved (vNext_), all but the elastic energy at
   // its end (core/step_energy.h).
   StepEnergy solvedStepEnergy(TaskSystem& tasks, double h, const Vec3& gravity, const std::vector<PairContact>* pairs,
