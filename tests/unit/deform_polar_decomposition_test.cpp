@@ -5,6 +5,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <cstring>
 #include <random>
 
 #include "deform_test_util.h"
@@ -84,6 +85,31 @@ TEST(DeformPolarDecomposition, AgreesWithEigensSvd) {
     EXPECT_LT(difference.cwiseAbs().maxCoeff(), 1e-13 / conditioning) << "trial " << trial;
   }
   EXPECT_GT(compared, 300);
+}
+
+// The SVD works on F scaled to a largest entry of order 1: the rotation of F times a power of
+// two is the same bits, and F of any finite magnitude gives a proper rotation (its squared
+// column norms would overflow past 1e154 and underflow below 1e-154 unscaled).
+TEST(DeformPolarDecomposition, SvdRotationDoesNotDependOnFsMagnitude) {
+  std::mt19937 rng(49);
+  for (int trial = 0; trial < 100; ++trial) {
+    const Mat3R f = randomMatrix(rng, -2.0, 2.0);
+    Mat3R reference;
+    ASSERT_TRUE(polarRotationSvd(f.data(), reference.data()));
+    for (int power : {-1000, -600, -1, 1, 600, 1000}) {
+      const Mat3R scaled = f * std::ldexp(1.0, power);
+      Mat3R r;
+      ASSERT_TRUE(polarRotationSvd(scaled.data(), r.data()));
+      EXPECT_EQ(std::memcmp(r.data(), reference.data(), sizeof(double) * 9), 0) << "2^" << power;
+    }
+    for (double magnitude : {1e-300, 1e300}) {
+      const Mat3R scaled = f * magnitude;
+      Mat3R r;
+      ASSERT_TRUE(polarRotationSvd(scaled.data(), r.data()));
+      expectProperRotation(r, "extreme magnitude");
+      EXPECT_LT((r - reference).cwiseAbs().maxCoeff(), 1e-12) << magnitude;
+    }
+  }
 }
 
 TEST(DeformPolarDecomposition, PureRotationIsReturnedUnchanged) {

@@ -155,8 +155,19 @@ VP_HOST_DEVICE inline bool polarRotationSvd(const double F[9], double R[9]) {
     setIdentity(R);
     return false;
   }
+  // A = F scaled by a power of two to a largest entry in [1/2, 1), so that no squared column
+  // norm overflows or underflows whatever F's magnitude; the scaling is exact and every step
+  // below is homogeneous, so R's bits do not depend on it.
+  double largest = 0.0;
+  for (int i = 0; i < 9; ++i) largest = std::fmax(largest, std::fabs(F[i]));
+  if (largest == 0.0) {
+    setIdentity(R);
+    return true;
+  }
+  int exponent = 0;
+  std::frexp(largest, &exponent);
   double A[9], V[9];
-  for (int i = 0; i < 9; ++i) A[i] = F[i];
+  for (int i = 0; i < 9; ++i) A[i] = std::ldexp(F[i], -exponent);
   setIdentity(V);
   const int pairs[3][2] = {{0, 1}, {0, 2}, {1, 2}};
   for (int sweep = 0; sweep < kJacobiSweeps; ++sweep) {
