@@ -4,6 +4,7 @@
 #include <functional>
 #include <vector>
 
+#include "core/allocator.h"
 #include "core/budget_clock.h"
 #include "core/task_system.h"
 
@@ -69,7 +70,7 @@ class SlabPasses {
   void add(Pass pass);
 
   TaskSystem* tasks_ = nullptr;
-  std::vector<Pass> passes_;
+  Array<Pass> passes_;
   size_t next_ = 0;      // the pass running or next to run
   int64_t nextUnit_ = 0;  // its first unit not yet run
   size_t insertAt_ = 0;  // while a step runs: where the passes it adds go

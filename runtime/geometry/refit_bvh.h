@@ -94,8 +94,8 @@ class RefitBvh {
   int build(const Array<Vec3>& centroids, int first, int count, int depth);
   static bool rayMeetsBox(const Vec3& origin, const Vec3& inverse, double limit, const Vec3& lo, const Vec3& hi);
 
-  std::vector<Node> nodes_;
-  std::vector<int32_t> order_;  // triangle ids in leaf order
+  Array<Node> nodes_;
+  Array<int32_t> order_;  // triangle ids in leaf order
   Array<Box> triangleBoxes_;  // in leaf order: a leaf's box is not tight on each triangle
 };
 
