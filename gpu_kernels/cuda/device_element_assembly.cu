@@ -25,9 +25,9 @@ struct MeshArrays {
   kernels::ElementIncidenceView incidence;
   const int32_t* scatter;
   const double* restPositions;
-  const double* elementStiffness;
   const uint8_t* nodeCorners;
   kernels::BBStiffnessTermsView terms;
+  kernels::BBStiffnessStructureView structure;
 };
 
 // The element's node positions (and, with rest != null, rest positions) from the node arrays.
@@ -61,9 +61,9 @@ __global__ void __launch_bounds__(launch::kThreads)
   const int N = m.nodesPerElement;
   double x[3 * kernels::kMaxElementNodes], x0[3 * kernels::kMaxElementNodes];
   gatherCorners(m, e, positions, x, x0);
-  kernels::corotateBBElement(m.degree, m.nodeCorners, x, x0, &m.restGradients[12 * e],
-                             &m.elementStiffness[9 * N * N * e], m.restVolume[e], m.lambda, m.mu, stiffnessScale,
-                             &quat[4 * e], &elementForce[3 * N * e], &pairs[144 * e]);
+  kernels::corotateBBElement(m.degree, m.nodeCorners, m.structure, x, x0, &m.restGradients[12 * e], m.restVolume[e],
+                             m.lambda, m.mu, stiffnessScale, &quat[4 * e], &elementForce[3 * N * e],
+                             &pairs[144 * e]);
 }
 
 // A thread per node row; the blocks of degree 1 from the rotated gradients (the scale applied
@@ -95,7 +95,8 @@ struct DeviceElementAssembly::Impl {
   int64_t blocks = 0;
   DeviceArray<int32_t> elementNodes, rowStart, incidenceStart, incidenceElement, scatter, termStart;
   DeviceArray<uint8_t> incidenceCorner, nodeCorners, termPair;
-  DeviceArray<double> restGradients, restVolume, restPositions, elementStiffness, termWeight;
+  DeviceArray<int8_t> raised, lowered;
+  DeviceArray<double> restGradients, restVolume, restPositions, termWeight, gram;
   // Per step: positions, rotations, element forces, the elements' rotated gradients (degree 1)
   // or gradient pairs, the block values and the node forces.
   DeviceArray<double> positions, quat, elementForce, elementTerms, values, force;
@@ -144,12 +145,15 @@ std::unique_ptr<DeviceElementAssembly> DeviceElementAssembly::create(const Eleme
     return nullptr;
   if (view.degree > 1) {
     const size_t terms = static_cast<size_t>(view.terms.start[N * N]);
+    const int lower = view.structure.lowerCount;
     if (failed(d->restPositions.upload(view.restPositions, 3 * nodes), error) ||
-        failed(d->elementStiffness.upload(view.elementStiffness, static_cast<size_t>(9) * N * N * elements), error) ||
         failed(d->nodeCorners.upload(view.nodeCorners, N), error) ||
         failed(d->termStart.upload(view.terms.start, static_cast<size_t>(N) * N + 1), error) ||
         failed(d->termPair.upload(view.terms.pair, terms), error) ||
-        failed(d->termWeight.upload(view.terms.weight, terms), error))
+        failed(d->termWeight.upload(view.terms.weight, terms), error) ||
+        failed(d->gram.upload(view.structure.gram, static_cast<size_t>(lower) * lower), error) ||
+        failed(d->raised.upload(view.structure.raised, 4 * static_cast<size_t>(lower)), error) ||
+        failed(d->lowered.upload(view.structure.lowered, 4 * static_cast<size_t>(N)), error))
       return nullptr;
   }
   MeshArrays& m = d->mesh;
@@ -166,9 +170,9 @@ std::unique_ptr<DeviceElementAssembly> DeviceElementAssembly::create(const Eleme
   m.incidence = {d->incidenceStart.get(), d->incidenceElement.get(), d->incidenceCorner.get()};
   m.scatter = d->scatter.get();
   m.restPositions = d->restPositions.get();
-  m.elementStiffness = d->elementStiffness.get();
   m.nodeCorners = d->nodeCorners.get();
   m.terms = {d->termStart.get(), d->termPair.get(), d->termWeight.get()};
+  m.structure = {view.structure.lowerCount, d->gram.get(), d->raised.get(), d->lowered.get()};
   return std::unique_ptr<DeviceElementAssembly>(new DeviceElementAssembly(std::move(d)));
 }
 

@@ -34,4 +34,18 @@ struct BBStiffnessTerms {
 // degree must be 1..3.
 BBStiffnessTerms bbStiffnessTerms(int degree);
 
+// What kernels::bbStiffnessApply reads to apply a degree's rest K_e without storing it (the
+// layout of kernels::BBStiffnessStructureView).
+struct BBStiffnessStructure {
+  int lowerCount = 0;
+  Array<double> gram;
+  Array<int8_t> raised;
+  Array<int8_t> lowered;
+
+  kernels::BBStiffnessStructureView view() const { return {lowerCount, gram.data(), raised.data(), lowered.data()}; }
+};
+
+// degree must be 1..3.
+BBStiffnessStructure bbStiffnessStructure(int degree);
+
 }  // namespace vp

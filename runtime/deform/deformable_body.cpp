@@ -115,7 +115,6 @@ Status DeformableBody::create(DeformableDesc desc, std::unique_ptr<DeformableBod
     double* r = &b.rotations_[4 * e];
     r[0] = q.w(), r[1] = q.x(), r[2] = q.y(), r[3] = q.z();
   }
-  if (degree > 1) VP_TRY(b.elementStiffnessMatrices(b.lambda_, b.mu_, &b.elementStiffness_));
   // Node -> (element, corner) incidence, in element order, for the gather assembly.
   b.incidence_.build(b.nodeCount_, b.elementNodes_.data(), elements, N);
   b.elementForce_.resize(3 * static_cast<size_t>(N * elements));
@@ -123,6 +122,7 @@ Status DeformableBody::create(DeformableDesc desc, std::unique_ptr<DeformableBod
   else {
     b.gradientPairs_.resize(144 * static_cast<size_t>(elements));
     b.stiffnessTerms_ = bbStiffnessTerms(degree);
+    b.stiffnessStructure_ = bbStiffnessStructure(degree);
   }
   buildElementPattern(b.nodeCount_, b.elementNodes_.data(), elements, N, &b.matrix_, &b.scatter_);
   StepPreconditioner::Mesh pcMesh{degree, b.elementNodes_.data(), elements, b.nodeCount_, b.restVolume_.data(),
@@ -232,26 +232,8 @@ Status DeformableBody::setPositions(const double* positions, int64_t count) {
   return Status::Ok;
 }
 
-Status DeformableBody::elementStiffnessMatrices(double lambda, double mu, Array<double>* out) const {
-  const int64_t elements = elementCount();
-  const int N = nodesPerElement_;
-  out->resize(static_cast<size_t>(9 * N * N * elements));
-  for (int64_t e = 0; e < elements; ++e) {
-    double corners[12];  // the element's vertices are its first four nodes
-    for (int a = 0; a < 4; ++a)
-      for (int k = 0; k < 3; ++k) corners[3 * a + k] = restX_[3 * elementNodes_[N * e + a] + k];
-    VP_TRY(bbStiffnessMatrix(degree_, corners, lambda, mu, &(*out)[9 * N * N * e]));
-  }
-  return Status::Ok;
-}
-
 Status DeformableBody::setMaterial(const DeformableMaterial& material) {
   VP_TRY(validateDeformableMaterial(material));
-  if (degree_ > 1) {
-    Array<double> stiffness;  // computed in full before anything changes
-    VP_TRY(elementStiffnessMatrices(material.lameLambda(), material.lameMu(), &stiffness));
-    elementStiffness_ = std::move(stiffness);
-  }
   lambda_ = material.lameLambda();
   mu_ = material.lameMu();
   const double densityRatio = material.density / desc_.material.density;
@@ -371,19 +353,21 @@ double DeformableBody::elementElasticEnergy(int64_t e, double* keptRotation) con
   if (degree_ > 1) {
     // ½ uᵀ K u with u = Rᵀ x − x0 in the element's unrotated frame.
     const int N = nodesPerElement_;
-    double x[3 * kBBMaxNodes] = {}, F[9], R[9];  // zeroed: GCC cannot see that 3N entries are set
+    double x[3 * kBBMaxNodes] = {}, x0[3 * kBBMaxNodes] = {}, F[9], R[9];  // zeroed: GCC cannot see that 3N are set
     for (int a = 0; a < N; ++a)
-      for (int i = 0; i < 3; ++i) x[3 * a + i] = x_[3 * elementNodes_[N * e + a] + i];
+      for (int i = 0; i < 3; ++i) {
+        x[3 * a + i] = x_[3 * elementNodes_[N * e + a] + i];
+        x0[3 * a + i] = restX_[3 * elementNodes_[N * e + a] + i];
+      }
     bbAverageDeformationGradient(degree_, x, &restGradients_[12 * e], F);
     energyRotation(e, F, R, keptRotation);
-    Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3 * kBBMaxNodes, 1> u(3 * N);
-    for (int a = 0; a < N; ++a)
-      for (int i = 0; i < 3; ++i)
-        u[3 * a + i] = R[i] * x[3 * a] + R[3 + i] * x[3 * a + 1] + R[6 + i] * x[3 * a + 2] -
-                       restX_[3 * elementNodes_[N * e + a] + i];
-    const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> Ke(
-        &elementStiffness_[9 * N * N * e], 3 * N, 3 * N);
-    return 0.5 * u.dot(Ke * u);
+    double u[3 * kBBMaxNodes], Ku[3 * kBBMaxNodes];
+    kernels::unrotatedDisplacement(N, R, x, x0, u);
+    kernels::bbStiffnessApply(degree_, stiffnessStructure_.view(), &restGradients_[12 * e], restVolume_[e], lambda_,
+                              mu_, u, Ku);
+    double uKu = 0.0;
+    for (int i = 0; i < 3 * N; ++i) uKu += u[i] * Ku[i];
+    return 0.5 * uKu;
   }
   double x[12], F[9], R[9];
   for (int a = 0; a < 4; ++a)
@@ -500,7 +484,7 @@ gpu::ElementAssemblyView DeformableBody::elementAssemblyView() const {
   view.scatter = scatter_.data();
   if (degree_ > 1) {
     view.restPositions = restX_.data();
-    view.elementStiffness = elementStiffness_.data();
+    view.structure = stiffnessStructure_.view();
     view.nodeCorners = bbNodeCornerMasks(degree_);
     view.terms = stiffnessTerms_.view();
   }
@@ -528,11 +512,11 @@ void DeformableBody::corotateAndAssemble(TaskSystem& tasks, double stiffnessScal
 
 void DeformableBody::corotateAndAssembleBB(TaskSystem& tasks, double stiffnessScale) {
   const int N = nodesPerElement_;
-  const int64_t K = 9 * N * N;
   const uint8_t* nodeCorners = bbNodeCornerMasks(degree_);
   const kernels::BBStiffnessTermsView terms = stiffnessTerms_.view();
+  const kernels::BBStiffnessStructureView structure = stiffnessStructure_.view();
   // Pass 1, per element: one rotation from the volume-averaged deformation gradient and the
-  // corotated force −R K (Rᵀ x − x0) from the stored rest K, and the 16 rotated gradient-pair
+  // corotated force −R K (Rᵀ x − x0) with the rest K applied unstored, and the 16 rotated gradient-pair
   // matrices the gather sums into each R K_ab Rᵀ (deform/bb_rotated_stiffness.h).
   parallelFor(tasks, elementCount(), 64, [&](int64_t begin, int64_t end) {
     for (int64_t e = begin; e < end; ++e) {
@@ -540,9 +524,9 @@ void DeformableBody::corotateAndAssembleBB(TaskSystem& tasks, double stiffnessSc
       double x[3 * kBBMaxNodes], x0[3 * kBBMaxNodes];
       for (int a = 0; a < N; ++a)
         for (int i = 0; i < 3; ++i) x[3 * a + i] = x_[3 * nodes[a] + i], x0[3 * a + i] = restX_[3 * nodes[a] + i];
-      kernels::corotateBBElement(degree_, nodeCorners, x, x0, &restGradients_[12 * e], &elementStiffness_[K * e],
-                                 restVolume_[e], lambda_, mu_, stiffnessScale, &rotations_[4 * e],
-                                 &elementForce_[3 * N * e], &gradientPairs_[144 * e]);
+      kernels::corotateBBElement(degree_, nodeCorners, structure, x, x0, &restGradients_[12 * e], restVolume_[e],
+                                 lambda_, mu_, stiffnessScale, &rotations_[4 * e], &elementForce_[3 * N * e],
+                                 &gradientPairs_[144 * e]);
     }
   });
   gatherRows(tasks, 64, [&](int64_t e, int a, int b, double* block) {

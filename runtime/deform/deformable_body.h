@@ -175,8 +175,6 @@ class DeformableBody {
   const Array<double>& elementRotations() const { return rotations_; }
 
  private:
-  // The degree > 1 element stiffness matrices of the rest shape for Lamé parameters (λ, μ).
-  Status elementStiffnessMatrices(double lambda, double mu, Array<double>* out) const;
   // x and v back to the step's start; rotations to identity.
   void restoreStepStart();
   // keptRotation non-null: the element's rotation at the current positions is written there.
@@ -235,9 +233,9 @@ class DeformableBody {
   // Per node: the global vertices an edge/face control point lies on (-1: unused; all -1 for
   // vertex nodes).
   Array<std::array<int32_t, 3>> nodeSupport_;
-  Array<double> elementStiffness_;  // degree > 1: rest K_e, 3N x 3N row-major per element
   Array<double> gradientPairs_;     // degree > 1: 16 rotated 3x3 gradient pairs per element, this step
   BBStiffnessTerms stiffnessTerms_;
+  BBStiffnessStructure stiffnessStructure_;  // degree > 1: applies the rest K_e unstored
   Array<double> restGradients_;     // 12 per element
   Array<double> restVolume_;
   Array<double> rotations_;         // 4 per element, quaternion (w,x,y,z) warm start

@@ -77,7 +77,7 @@ Eigen::Matrix3d rotationOf(const Element& e, const VectorXd& x) {
 VectorXd force(const Element& e, const VectorXd& x, const Eigen::Matrix3d& r) {
   const Mat3R rr = r;
   VectorXd f(x.size());
-  kernels::corotatedForce(e.nodes, e.stiffness.data(), e.rest.data(), x.data(), rr.data(), f.data());
+  corotatedForce(e.nodes, e.stiffness.data(), e.rest.data(), x.data(), rr.data(), f.data());
   return f;
 }
 

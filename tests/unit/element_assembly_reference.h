@@ -38,9 +38,9 @@ inline ElementAssembly elementAssembly(const gpu::ElementAssemblyView& m, const 
       kernels::corotateLinearTet(corners, &m.restGradients[12 * e], m.restVolume[e], m.lambda, m.mu, &out.quat[4 * e],
                                  &elementForce[12 * e], &terms[12 * e]);
     } else {
-      kernels::corotateBBElement(m.degree, m.nodeCorners, corners, rest, &m.restGradients[12 * e],
-                                 &m.elementStiffness[9 * N * N * e], m.restVolume[e], m.lambda, m.mu, scale,
-                                 &out.quat[4 * e], &elementForce[3 * N * e], &terms[144 * e]);
+      kernels::corotateBBElement(m.degree, m.nodeCorners, m.structure, corners, rest, &m.restGradients[12 * e],
+                                 m.restVolume[e], m.lambda, m.mu, scale, &out.quat[4 * e], &elementForce[3 * N * e],
+                                 &terms[144 * e]);
     }
   }
   out.values.resize(9 * static_cast<size_t>(m.rowStart[m.nodes]));

@@ -30,12 +30,12 @@ struct ElementAssemblyView {
   const int32_t* rowStart = nullptr;        // BCSR, nodes + 1
   kernels::ElementIncidenceView incidence;  // node -> (element, corner)
   const int32_t* scatter = nullptr;         // N x N block indices per element
-  // Degree > 1 only: rest node positions (3 per node), rest K_e (9 N² per element), the
-  // nodes' corner masks (N) and the stiffness terms (N² + 1 starts).
+  // Degree > 1 only: rest node positions (3 per node), the nodes' corner masks (N), the
+  // stiffness terms (N² + 1 starts) and the rest stiffness's structure.
   const double* restPositions = nullptr;
-  const double* elementStiffness = nullptr;
   const uint8_t* nodeCorners = nullptr;
   kernels::BBStiffnessTermsView terms;
+  kernels::BBStiffnessStructureView structure;
 };
 
 inline int nodesPerElement(int degree) { return (degree + 1) * (degree + 2) * (degree + 3) / 6; }
