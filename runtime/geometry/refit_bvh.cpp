@@ -6,18 +6,24 @@
 namespace vp {
 
 void RefitBvh::rebuild(const Array<Vec3>& positions, const Array<Triangle>& triangles) {
-  nodes_.clear();
-  order_.resize(triangles.size());
+  // Built apart and swapped in: a refused allocation (the host allocator may refuse any) leaves
+  // this tree as it was instead of half built, with inner nodes whose children were never set.
+  RefitBvh fresh;
+  fresh.order_.resize(triangles.size());
   Array<Vec3> centroids(triangles.size());
   for (size_t t = 0; t < triangles.size(); ++t) {
-    order_[t] = static_cast<int32_t>(t);
+    fresh.order_[t] = static_cast<int32_t>(t);
     const Triangle& tri = triangles[t];
     centroids[t] = (positions[tri[0]] + positions[tri[1]] + positions[tri[2]]) / 3.0;
   }
-  if (triangles.empty()) return;
-  nodes_.reserve(2 * (triangles.size() / kLeafSize + 1));
-  build(centroids, 0, static_cast<int>(triangles.size()), 0);
-  refit(positions, triangles);
+  if (!triangles.empty()) {
+    fresh.nodes_.reserve(2 * (triangles.size() / kLeafSize + 1));
+    fresh.build(centroids, 0, static_cast<int>(triangles.size()), 0);
+    fresh.refit(positions, triangles);
+  }
+  nodes_.swap(fresh.nodes_);
+  order_.swap(fresh.order_);
+  triangleBoxes_.swap(fresh.triangleBoxes_);
 }
 
 int RefitBvh::build(const Array<Vec3>& centroids, int first, int count, int depth) {
