@@ -125,7 +125,7 @@ std::unique_ptr<DeviceElementAssembly> DeviceElementAssembly::create(const Eleme
     return nullptr;
   }
   auto d = std::make_unique<Impl>();
-  const int N = nodesPerElement(view.degree);
+  const int N = kernels::elementNodeCount(view.degree);
   const size_t nodes = static_cast<size_t>(view.nodes), elements = static_cast<size_t>(view.elements);
   const size_t pairs = static_cast<size_t>(view.incidence.start[view.nodes]);
   d->blocks = view.rowStart[view.nodes];

@@ -22,7 +22,7 @@ struct ElementAssembly {
 // row at a time: quat (4 per element) is the rotations' warm start, scale the stiffness scale.
 inline ElementAssembly elementAssembly(const gpu::ElementAssemblyView& m, const double* x, std::vector<double> quat,
                                        double scale) {
-  const int N = gpu::nodesPerElement(m.degree);
+  const int N = kernels::elementNodeCount(m.degree);
   ElementAssembly out;
   out.quat = std::move(quat);
   std::vector<double> elementForce(3 * N * m.elements), terms((m.degree == 1 ? 12 : 144) * m.elements);

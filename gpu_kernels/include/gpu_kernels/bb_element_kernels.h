@@ -19,11 +19,14 @@ namespace vp::kernels {
 
 constexpr int kMaxElementNodes = 20;  // nodes of a cubic element
 
+// (n+1)(n+2)(n+3)/6: the nodes of a degree-n element (runtime/deform/bb_multi_index.h).
+VP_HOST_DEVICE constexpr int elementNodeCount(int degree) { return (degree + 1) * (degree + 2) * (degree + 3) / 6; }
+
 // F̄ = Σ_c y_c ⊗ ∇λ_c with y_c = (n / C(n+2, 3)) Σ_{α: α_c >= 1} x_α. nodeCorners[k] has bit c
 // set when node k's multi-index has α_c >= 1.
 VP_HOST_DEVICE inline void bbAverageDeformationGradient(int degree, const uint8_t* nodeCorners, const double* x,
                                                         const double baryGrad[12], double F[9]) {
-  const int nodes = (degree + 1) * (degree + 2) * (degree + 3) / 6;
+  const int nodes = elementNodeCount(degree);
   // n / C(n+2, 3): 1, 1/2, 3/10 for n = 1, 2, 3.
   const double weight = degree * 6.0 / (degree * (degree + 1.0) * (degree + 2.0));
   double y[4][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
@@ -61,7 +64,7 @@ constexpr int kMaxLowerIndices = 10;  // multi-indices of degree 2, those of a c
 VP_HOST_DEVICE inline void bbStiffnessApply(int degree, const BBStiffnessStructureView& k, const double grad[12],
                                             double volume, double lambda, double mu, const double* u, double* Ku) {
   const int M = k.lowerCount;
-  const int N = (degree + 1) * (degree + 2) * (degree + 3) / 6;
+  const int N = elementNodeCount(degree);
   double sigma[9 * kMaxLowerIndices];
   for (int g = 0; g < M; ++g) {
     double D[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
@@ -159,7 +162,7 @@ VP_HOST_DEVICE inline void corotateBBElement(int degree, const uint8_t* nodeCorn
                                              const double* restPositions, const double grad[12], double volume,
                                              double lambda, double mu, double scale, double quat[4], double* force,
                                              double pairs[144]) {
-  const int N = (degree + 1) * (degree + 2) * (degree + 3) / 6;
+  const int N = elementNodeCount(degree);
   double F[9], R[9];
   bbAverageDeformationGradient(degree, nodeCorners, x, grad, F);
   // A non-finite F: the identity, and the divergence guard reports the body.

@@ -23,7 +23,7 @@ struct ElementAssemblyView {
   int degree = 1;
   int32_t nodes = 0;
   int64_t elements = 0;
-  const int32_t* elementNodes = nullptr;    // nodesPerElement(degree) per element
+  const int32_t* elementNodes = nullptr;    // kernels::elementNodeCount(degree) per element
   const double* restGradients = nullptr;    // 12 per element
   const double* restVolume = nullptr;       // per element
   double lambda = 0.0, mu = 0.0;            // Lamé parameters
@@ -37,8 +37,6 @@ struct ElementAssemblyView {
   kernels::BBStiffnessTermsView terms;
   kernels::BBStiffnessStructureView structure;
 };
-
-inline int nodesPerElement(int degree) { return (degree + 1) * (degree + 2) * (degree + 3) / 6; }
 
 class DeviceElementAssembly {
  public:
