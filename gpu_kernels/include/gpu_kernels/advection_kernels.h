@@ -44,27 +44,41 @@ VP_HOST_DEVICE inline LatticeSteps latticeSteps(const int dims[3]) {
   return s;
 }
 
-// Trilinear interpolation of the 8 samples from p with the upper samples' weights w0, w1, w2
-// (x first, then y, then z). lo/hi (optional) receive the smallest and largest sample.
-VP_HOST_DEVICE inline double trilinear(const double* p, const int64_t step[3], double w0, double w1, double w2,
-                                       double* lo = nullptr, double* hi = nullptr) {
-  const double c000 = p[0], c100 = p[step[0]], c010 = p[step[1]], c110 = p[step[0] + step[1]];
-  const double c001 = p[step[2]], c101 = p[step[0] + step[2]], c011 = p[step[1] + step[2]],
-               c111 = p[step[0] + step[1] + step[2]];
-  if (lo != nullptr) {
-    double l = c000, h = c000;
-    const double rest[7] = {c100, c010, c110, c001, c101, c011, c111};
-    for (int q = 0; q < 7; ++q) {
-      l = rest[q] < l ? rest[q] : l;
-      h = h < rest[q] ? rest[q] : h;
-    }
-    *lo = l;
-    *hi = h;
+// A trilinear stencil's 8 samples are corner q = x + 2 y + 4 z: the offset of corner q from the
+// lowest one.
+VP_HOST_DEVICE inline int64_t cornerOffset(int q, const int64_t step[3]) {
+  return ((q & 1) ? step[0] : 0) + ((q & 2) ? step[1] : 0) + ((q & 4) ? step[2] : 0);
+}
+
+// The smallest and largest of 8 corner values (in corner order, so signed zeros compare the
+// same way whoever calls it).
+VP_HOST_DEVICE inline void cornerRange(const double c[8], double* lo, double* hi) {
+  double l = c[0], h = c[0];
+  for (int q = 1; q < 8; ++q) {
+    l = c[q] < l ? c[q] : l;
+    h = h < c[q] ? c[q] : h;
   }
-  const double x00 = c000 + w0 * (c100 - c000), x10 = c010 + w0 * (c110 - c010);
-  const double x01 = c001 + w0 * (c101 - c001), x11 = c011 + w0 * (c111 - c011);
+  *lo = l;
+  *hi = h;
+}
+
+// Trilinear interpolation of 8 corner values with the upper corners' weights w0, w1, w2 (x
+// first, then y, then z).
+VP_HOST_DEVICE inline double trilinearCorners(const double c[8], double w0, double w1, double w2) {
+  const double x00 = c[0] + w0 * (c[1] - c[0]), x10 = c[2] + w0 * (c[3] - c[2]);
+  const double x01 = c[4] + w0 * (c[5] - c[4]), x11 = c[6] + w0 * (c[7] - c[6]);
   const double y0 = x00 + w1 * (x10 - x00), y1 = x01 + w1 * (x11 - x01);
   return y0 + w2 * (y1 - y0);
+}
+
+// Trilinear interpolation of the 8 samples from p with the upper samples' weights w0, w1, w2.
+// lo/hi (optional) receive the smallest and largest sample.
+VP_HOST_DEVICE inline double trilinear(const double* p, const int64_t step[3], double w0, double w1, double w2,
+                                       double* lo = nullptr, double* hi = nullptr) {
+  double c[8];
+  for (int q = 0; q < 8; ++q) c[q] = p[cornerOffset(q, step)];
+  if (lo != nullptr) cornerRange(c, lo, hi);
+  return trilinearCorners(c, w0, w1, w2);
 }
 
 // A MAC grid's velocity as plain arrays: u[a] holds the a-faces, faceDims[a] their lattice
@@ -108,21 +122,39 @@ VP_HOST_DEVICE inline void velocityAt(const MacVelocityView& v, const double x[3
   for (int a = 0; a < 3; ++a) out[a] = velocityComponent(v, a, base, weight);
 }
 
+// Index of sample `at` in a lattice of dims samples per axis.
+VP_HOST_DEVICE inline int64_t latticeIndex(const int dims[3], const int at[3]) {
+  return at[0] + at[1] * static_cast<int64_t>(dims[0]) + at[2] * (static_cast<int64_t>(dims[0]) * dims[1]);
+}
+
 // Component b (!= a) at the centre of a-face (i, j, k): the mean of the four b-faces around it
 // (what trilinear sampling gives there, without its cost); at the domain's a-sides the face has
-// cells on one side only and takes that side's pair.
-VP_HOST_DEVICE inline double otherComponentAtFace(const MacVelocityView& v, int a, int b, const int face[3]) {
+// cells on one side only and takes that side's pair. In two parts, so a batch can run each over
+// many faces in turn: where the four lie (the first one's index in u[b], the two pairs' distance
+// along a in *shift; a pair's second face is one b-step further), then their mean.
+VP_HOST_DEVICE inline int64_t faceMeanFirst(const MacVelocityView& v, int a, int b, const int face[3],
+                                            int64_t* shift) {
   const int* d = v.faceDims[b];
-  const int64_t stride[3] = {1, d[0], static_cast<int64_t>(d[0]) * d[1]};
   const int cellsA = d[a];  // b-faces have as many entries along a as there are cells
   const int lo = face[a] - 1 > 0 ? face[a] - 1 : 0;
   const int hi = face[a] < cellsA - 1 ? face[a] : cellsA - 1;
   int c[3] = {face[0], face[1], face[2]};
   c[a] = lo;
-  const int64_t shift = (hi - lo) * stride[a];
-  const double* p = v.u[b] + (c[0] * stride[0] + c[1] * stride[1] + c[2] * stride[2]);
-  return 0.25 * (p[0] + p[stride[b]] + p[shift] + p[shift + stride[b]]);
+  const int64_t strideA = a == 0 ? 1 : a == 1 ? d[0] : static_cast<int64_t>(d[0]) * d[1];
+  *shift = (hi - lo) * strideA;
+  return latticeIndex(d, c);
 }
+VP_HOST_DEVICE inline double faceMean(const double* p, int64_t stepB, int64_t shift) {
+  return 0.25 * (p[0] + p[stepB] + p[shift] + p[shift + stepB]);
+}
+VP_HOST_DEVICE inline double otherComponentAtFace(const MacVelocityView& v, int a, int b, const int face[3]) {
+  int64_t shift;
+  const int64_t first = faceMeanFirst(v, a, b, face, &shift);
+  return faceMean(v.u[b] + first, latticeSteps(v.faceDims[b]).stride[b], shift);
+}
+
+// Component b at the centre of a cell whose lower b-face is p: the mean of its two b-faces.
+VP_HOST_DEVICE inline double cellMean(const double* p, int64_t stepB) { return 0.5 * (p[0] + p[stepB]); }
 
 // The velocity at the centre of a-face `at` (a = 3: of cell `at`): a face has its own
 // component and otherComponentAtFace for the other two; a cell the mean of its two faces per
@@ -134,10 +166,8 @@ VP_HOST_DEVICE inline void velocityAtSample(const MacVelocityView& v, int a, con
       continue;
     }
     // A cell's b-faces, or the face's own: `at` indexes the b-face lattice.
-    const int* n = v.faceDims[b];
-    const int64_t stride[3] = {1, n[0], static_cast<int64_t>(n[0]) * n[1]};
-    const double* p = v.u[b] + (at[0] + at[1] * stride[1] + at[2] * stride[2]);
-    u[b] = a == 3 ? 0.5 * (p[0] + p[stride[b]]) : p[0];
+    const double* p = v.u[b] + latticeIndex(v.faceDims[b], at);
+    u[b] = a == 3 ? cellMean(p, latticeSteps(v.faceDims[b]).stride[b]) : p[0];
   }
 }
 
@@ -217,7 +247,7 @@ VP_HOST_DEVICE inline double connectedSample(const double* values, const int dim
   double weight[8];
   int anchor = -1;
   for (int q = 0; q < 8; ++q) {
-    index[q] = base + ((q & 1) ? st.step[0] : 0) + ((q & 2) ? st.step[1] : 0) + ((q & 4) ? st.step[2] : 0);
+    index[q] = base + cornerOffset(q, st.step);
     weight[q] = ((q & 1) ? w[0] : 1.0 - w[0]) * ((q & 2) ? w[1] : 1.0 - w[1]) * ((q & 4) ? w[2] : 1.0 - w[2]);
     if ((faces[index[q]] & kCellIsFluid) && (anchor < 0 || weight[q] > weight[anchor])) anchor = q;
   }

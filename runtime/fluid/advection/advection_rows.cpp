@@ -24,6 +24,34 @@ void spansAt(const double (&g)[3][kTraceBatch], int count, const int samples[3],
   }
 }
 
+// Trilinear samples of `values` at a batch of stencils (lowest corners index, upper weights w0,
+// w1, w2): each corner's loads as a loop of their own, which the compiler turns into vector
+// gathers, then the interpolation (kernels::trilinearCorners) over the batch. lo/hi (optional,
+// together) receive each stencil's range.
+VP_CLONE_INLINE inline void trilinearBatch(const double* values, const int64_t step[3], const int64_t* index,
+                                           const double* w0, const double* w1, const double* w2, int count,
+                                           double* out, double* lo = nullptr, double* hi = nullptr) {
+  double corners[8][kTraceBatch];
+  for (int q = 0; q < 8; ++q) {
+    const int64_t offset = kernels::cornerOffset(q, step);
+    double* c = corners[q];
+    for (int s = 0; s < count; ++s) c[s] = values[index[s] + offset];
+  }
+  for (int s = 0; s < count; ++s) {
+    double c[8];
+    for (int q = 0; q < 8; ++q) c[q] = corners[q][s];
+    if (lo != nullptr) kernels::cornerRange(c, &lo[s], &hi[s]);
+    out[s] = kernels::trilinearCorners(c, w0[s], w1[s], w2[s]);
+  }
+}
+
+// The lowest corners of a batch's stencils.
+VP_CLONE_INLINE inline void stencilIndices(const SpanBatch& x, const SpanBatch& y, const SpanBatch& z,
+                                           const int64_t stride[3], int count, int64_t* index) {
+  for (int s = 0; s < count; ++s)
+    index[s] = x.base[0][s] * stride[0] + y.base[1][s] * stride[1] + z.base[2][s] * stride[2];
+}
+
 }  // namespace
 
 kernels::MacVelocityView macVelocityView(const MacGrid& grid) {
@@ -43,17 +71,47 @@ kernels::MacVelocityView macVelocityView(const MacGrid& grid) {
 // the view's origin and spacing, so through a reference every store would force them (and the
 // loop-invariant strides derived from them) to be reloaded.
 
+// kernels::sampleCentre and kernels::velocityAtSample, stage by stage: per axis the row's
+// coordinate or each sample's, then per component the samples' first face index (and, for a
+// mean of four faces, the pairs' distance), then the values.
 VP_ISA_CLONES
 void fillTraceStarts(const kernels::MacVelocityView& view, TraceStarts* t) {
   const kernels::MacVelocityView v = view;
   const int a = t->axis, count = t->count;
   t->x.count = t->u0.count = count;
+  const int* i = t->i;
+  const double half = 0.5 * v.h;
   for (int s = 0; s < count; ++s) {
-    const int at[3] = {t->i[s], t->j, t->k};
-    double x[3], u0[3];
-    kernels::sampleCentre(v, a, at, x);
-    kernels::velocityAtSample(v, a, at, u0);
-    for (int d = 0; d < 3; ++d) t->x.at[d][s] = x[d], t->u0.at[d][s] = u0[d];
+    t->x.at[0][s] = v.origin[0] + v.h * (i[s] + 0.5);
+    if (a == 0) t->x.at[0][s] -= half;
+  }
+  for (int d = 1; d < 3; ++d) {
+    double x = v.origin[d] + v.h * ((d == 1 ? t->j : t->k) + 0.5);
+    if (a == d) x -= half;
+    for (int s = 0; s < count; ++s) t->x.at[d][s] = x;
+  }
+  for (int b = 0; b < 3; ++b) {
+    const double* u = v.u[b];
+    const int64_t stepB = kernels::latticeSteps(v.faceDims[b]).stride[b];
+    double* out = t->u0.at[b];
+    int64_t first[kTraceBatch], shift[kTraceBatch];
+    if (a != 3 && b != a) {
+      for (int s = 0; s < count; ++s) {
+        const int face[3] = {i[s], t->j, t->k};
+        first[s] = kernels::faceMeanFirst(v, a, b, face, &shift[s]);
+      }
+      for (int s = 0; s < count; ++s) out[s] = kernels::faceMean(u + first[s], stepB, shift[s]);
+      continue;
+    }
+    for (int s = 0; s < count; ++s) {
+      const int at[3] = {i[s], t->j, t->k};
+      first[s] = kernels::latticeIndex(v.faceDims[b], at);
+    }
+    if (a == 3) {
+      for (int s = 0; s < count; ++s) out[s] = kernels::cellMean(u + first[s], stepB);
+    } else {
+      for (int s = 0; s < count; ++s) out[s] = u[first[s]];
+    }
   }
 }
 
@@ -79,12 +137,8 @@ void velocityAtPoints(const kernels::MacVelocityView& view, const PointBatch& po
     const SpanBatch& y = spans[a == 1];
     const SpanBatch& z = spans[a == 2];
     int64_t index[kTraceBatch];
-    for (int s = 0; s < count; ++s)
-      index[s] = x.base[0][s] * st.stride[0] + y.base[1][s] * st.stride[1] + z.base[2][s] * st.stride[2];
-    const double* u = v.u[a];
-    double* result = out->at[a];
-    for (int s = 0; s < count; ++s)
-      result[s] = kernels::trilinear(u + index[s], st.step, x.weight[0][s], y.weight[1][s], z.weight[2][s]);
+    stencilIndices(x, y, z, st.stride, count, index);
+    trilinearBatch(v.u[a], st.step, index, x.weight[0], y.weight[1], z.weight[2], count, out->at[a]);
   }
 }
 
@@ -119,17 +173,9 @@ void sampleAtPoints(const double* values, const int dims[3], const PointBatch& a
   SpanBatch spans;
   spansAt(at.at, at.count, dims, &spans);
   const kernels::LatticeSteps st = kernels::latticeSteps(dims);
-  for (int s = 0; s < at.count; ++s) {
-    const int64_t index =
-        spans.base[0][s] * st.stride[0] + spans.base[1][s] * st.stride[1] + spans.base[2][s] * st.stride[2];
-    const double* p = values + index;
-    if (lo != nullptr) {
-      out[s] = kernels::trilinear(p, st.step, spans.weight[0][s], spans.weight[1][s], spans.weight[2][s], &lo[s],
-                                  &hi[s]);
-    } else {
-      out[s] = kernels::trilinear(p, st.step, spans.weight[0][s], spans.weight[1][s], spans.weight[2][s]);
-    }
-  }
+  int64_t index[kTraceBatch];
+  stencilIndices(spans, spans, spans, st.stride, at.count, index);
+  trilinearBatch(values, st.step, index, spans.weight[0], spans.weight[1], spans.weight[2], at.count, out, lo, hi);
 }
 
 VP_ISA_CLONES
@@ -139,14 +185,12 @@ void sampleConnectedAtPoints(const double* values, const int dims[3], const Poin
   spansAt(at.at, at.count, dims, &spans);
   const kernels::LatticeSteps st = kernels::latticeSteps(dims);
   const Eigen::Vector3i lattice(dims[0], dims[1], dims[2]);
+  int64_t index[kTraceBatch];
+  stencilIndices(spans, spans, spans, st.stride, at.count, index);
+  // Every stencil as if its block were open, then the others sampled through their open faces.
+  trilinearBatch(values, st.step, index, spans.weight[0], spans.weight[1], spans.weight[2], at.count, out, lo, hi);
   for (int s = 0; s < at.count; ++s) {
-    const int64_t index =
-        spans.base[0][s] * st.stride[0] + spans.base[1][s] * st.stride[1] + spans.base[2][s] * st.stride[2];
-    if (blockOpen[index]) {
-      out[s] = kernels::trilinear(values + index, st.step, spans.weight[0][s], spans.weight[1][s], spans.weight[2][s],
-                                  lo != nullptr ? &lo[s] : nullptr, lo != nullptr ? &hi[s] : nullptr);
-      continue;
-    }
+    if (blockOpen[index[s]]) continue;
     SampleRange range;
     out[s] = connectedTrilinearSample(values, lattice, Eigen::Vector3d(at.at[0][s], at.at[1][s], at.at[2][s]), faces,
                                       blockOpen, lo != nullptr ? &range : nullptr);
