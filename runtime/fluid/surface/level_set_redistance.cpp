@@ -108,6 +108,13 @@ bool RedistanceRun::advance() {
 
 int64_t RedistanceRun::step(int64_t budget) {
   if (pass_ == Pass::Band) return claimBand(budget);
+  if (pass_ == Pass::List) {
+    const int64_t begin = position_, end = begin + std::min(budget, cells_ - begin);
+    listBand(begin, end);
+    position_ = end;
+    if (end == cells_) pass_ = Pass::Sweep, position_ = 0;
+    return end - begin;
+  }
   const int64_t length = pass_ == Pass::Sweep ? static_cast<int64_t>(ws_->band[colour_].size()) : cells_;
   const int64_t begin = position_, end = begin + std::min(budget, length - begin);
   position_ = end;
@@ -204,16 +211,42 @@ int64_t RedistanceRun::claimBand(int64_t budget) {
       if (layer[n] != kOutside) return;
       layer[n] = static_cast<uint8_t>(next);
       queue.push_back(static_cast<int32_t>(n));
-      int64_t i, j, k;
-      lat.coordinates(n, &i, &j, &k);
-      ws_->band[(i + j + k) & 1].push_back(static_cast<int32_t>(n));
     });
   }
   if (position_ == static_cast<int64_t>(queue.size())) {
-    pass_ = Pass::Sweep;
+    pass_ = Pass::List;
     position_ = 0;
   }
   return done;
+}
+
+// The band cells of [begin, end) (layers 1 and up), appended to their colour's list in cell
+// order: a sweep then walks the grid's memory in order instead of the search's.
+void RedistanceRun::listBand(int64_t begin, int64_t end) {
+  const Lattice lat(grid_);
+  const uint8_t* layer = ws_->layer.data();
+  const int64_t chunks = (end - begin + kCellGrain - 1) / kCellGrain;
+  std::vector<Array<int32_t>>& found = ws_->chunkBand;
+  if (static_cast<int64_t>(found.size()) < 2 * chunks) found.resize(static_cast<size_t>(2 * chunks));
+  parallelFor(*tasks_, chunks, 1, [&](int64_t first, int64_t last) {
+    for (int64_t chunk = first; chunk < last; ++chunk) {
+      Array<int32_t>* out = &found[static_cast<size_t>(2 * chunk)];
+      out[0].clear();
+      out[1].clear();
+      const int64_t chunkEnd = std::min(end, begin + (chunk + 1) * kCellGrain);
+      for (int64_t c = begin + chunk * kCellGrain; c < chunkEnd; ++c) {
+        if (layer[c] == 0 || layer[c] == kOutside) continue;
+        int64_t i, j, k;
+        lat.coordinates(c, &i, &j, &k);
+        out[(i + j + k) & 1].push_back(static_cast<int32_t>(c));
+      }
+    }
+  });
+  for (int64_t part = 0; part < 2 * chunks; ++part) {
+    const Array<int32_t>& cells = found[static_cast<size_t>(part)];
+    Array<int32_t>& band = ws_->band[part & 1];
+    band.insert(band.end(), cells.begin(), cells.end());
+  }
 }
 
 // 3. Red-black Gauss-Seidel on the eikonal equation: entries [begin, end) of the running

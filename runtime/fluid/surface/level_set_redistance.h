@@ -22,7 +22,8 @@
 //    at W h (advection only reads phi within a few cells of the surface).
 //
 // Cost is linear in the band (about 2 sqrt(3) W cells per surface cell), not in the grid,
-// except two cheap whole-grid passes (surface detection, final write).
+// except three cheap whole-grid passes (surface detection, listing the band in cell order so
+// the sweeps walk memory in order, final write).
 #pragma once
 
 #include <cstdint>
@@ -53,6 +54,7 @@ struct RedistanceWorkspace {
   Array<int32_t> surface, band[2];  // band[0] red, band[1] black (i + j + k parity)
   Array<int32_t> reached;  // breadth-first queue: surface cells, then band cells as claimed
   std::vector<Array<int32_t>> chunkSurface;  // surface cells found per chunk of a slab
+  std::vector<Array<int32_t>> chunkBand;     // band cells per chunk of a slab and colour
 };
 
 // phi: cellCount values in cell order, rewritten in place. Needs at least one sign change to
@@ -63,11 +65,12 @@ Status redistanceLevelSet(TaskSystem& tasks, const MacGridSpec& grid, double* ph
 // redistanceLevelSet in slices, bitwise the same result however it is sliced and on any
 // number of workers. A slice does at most samplesPerSlice samples of work (one at least) and
 // runs on into the next pass when one ends, so slices cost about the same throughout:
-// - surface detection (1) and the final write (4): cells, in slabs of consecutive cells; a
-//   cell's result depends on phi alone.
+// - surface detection (1), the band's lists (2) and the final write (4): cells, in slabs of
+//   consecutive cells; a cell's result depends on phi alone, and the lists are appended in
+//   cell order.
 // - band layers (2): entries of the breadth-first queue, consecutive ones taken by the same
 //   serial loop. The search is order-dependent (a cell joins the layer of whichever neighbour
-//   reaches it first, and the band lists keep that order), so only the serial order keeps it.
+//   reaches it first), so only the serial order keeps it.
 // - the eikonal iteration (3): one colour's band entries in slabs. A red cell reads only
 //   black ones and vice versa, so within a half-sweep no result depends on the order; the
 //   half-sweep's largest drop is a max, exact in any order, kept across its slabs.
@@ -85,10 +88,11 @@ class RedistanceRun {
   const RedistanceStats& stats() const { return stats_; }  // once done
 
  private:
-  enum class Pass : uint8_t { Surface, Band, Sweep, Write, Done };
+  enum class Pass : uint8_t { Surface, Band, List, Sweep, Write, Done };
   int64_t step(int64_t budget);  // part of the current pass; returns the samples it did
   void detectSurface(int64_t begin, int64_t end);
   int64_t claimBand(int64_t budget);
+  void listBand(int64_t begin, int64_t end);
   double sweepSlab(int64_t begin, int64_t end);
   void finishSweep();
   void writeSlab(int64_t begin, int64_t end);
