@@ -47,14 +47,15 @@ __device__ bool cellOf(const kernels::MacLayout& g, int64_t c, int at[3]) {
   return true;
 }
 
-// Every cell's trace back over dt, and for MacCormack (ahead not null) forward.
+// Every cell's trace back over dt, and for MacCormack (ahead not null) where its backward step
+// samples.
 __global__ void traceCellsKernel(kernels::MacVelocityView v, kernels::MacLayout g, double dt, double* back,
                                  double* ahead) {
   const int64_t c = launch::index();
   int at[3];
   if (!cellOf(g, c, at)) return;
   kernels::traceCell(v, at, dt, back + 3 * c);
-  if (ahead != nullptr) kernels::traceCell(v, at, -dt, ahead + 3 * c);
+  if (ahead != nullptr) kernels::reflectThrough(at, back + 3 * c, ahead + 3 * c);
 }
 
 __global__ void scalarForwardKernel(kernels::ScalarCellRules rules, int64_t cells, const double* old,

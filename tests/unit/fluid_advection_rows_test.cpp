@@ -286,8 +286,9 @@ TEST(FluidAdvectionRows, ScalarAdvectionEqualsThePerCellKernels) {
         for (int64_t c = 0; c < static_cast<int64_t>(cells); ++c) {
           const int at[3] = {static_cast<int>(c % old.spec.nx), static_cast<int>(c / old.spec.nx % old.spec.ny),
                              static_cast<int>(c / old.spec.nx / old.spec.ny)};
-          double ahead[3];
-          kernels::traceCell(v, at, -dt, ahead);
+          double back[3], ahead[3];
+          kernels::traceCell(v, at, dt, back);
+          kernels::reflectThrough(at, back, ahead);
           expected[size_t(c)] = maccormack ? kernels::scalarCorrectionCell(rules, before, forward.data(), c, ahead,
                                                                            lo[size_t(c)], hi[size_t(c)])
                                            : forward[size_t(c)];

@@ -70,7 +70,7 @@ AdvectionWorkspace staleWorkspace() {
   w.forward.assign(big, nan);
   w.rangeLo.assign(big, nan);
   w.rangeHi.assign(big, nan);
-  w.cellTrace.assign(big, Eigen::Vector3d::Constant(nan));
+  w.traces.assign(big, Eigen::Vector3d::Constant(nan));
   w.kept.assign(big, 1);
   return w;
 }

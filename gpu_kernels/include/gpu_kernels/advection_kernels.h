@@ -205,6 +205,14 @@ VP_HOST_DEVICE inline void traceToLattice(const MacVelocityView& v, const double
   latticeCoordinate(v, latticeAxis, end, g);
 }
 
+// MacCormack's backward step samples the forward field where a sample goes over dt. It is taken
+// as the sample's back-trace g reflected through the sample's own lattice coordinate `at`
+// (2 at - g), not as a second trace forward in time: the two differ by dt^2 (u . grad) u, the
+// order of the midpoint rule's own error, and the reflection needs no velocity samples.
+VP_HOST_DEVICE inline void reflectThrough(const int at[3], const double g[3], double ahead[3]) {
+  for (int d = 0; d < 3; ++d) ahead[d] = 2.0 * at[d] - g[d];
+}
+
 // A trilinear sample of `values` (a lattice of dims samples per axis) at lattice coordinate g;
 // lo/hi (optional, together) receive the range of the 8 samples used.
 VP_HOST_DEVICE inline double sampleLattice(const double* values, const int dims[3], const double g[3],
@@ -285,14 +293,21 @@ VP_HOST_DEVICE inline double connectedSample(const double* values, const int dim
   return weightSum > 0.0 ? sum / weightSum : values[index[anchor]];
 }
 
-// The semi-Lagrangian value of a-face `at` over dt: `field` (a lattice of a-faces) sampled where
-// the face's centre came from through v's velocity; lo/hi (optional) the stencil's range.
-VP_HOST_DEVICE inline double advectFace(const MacVelocityView& v, int a, const int at[3], double dt,
-                                        const double* field, double* lo = nullptr, double* hi = nullptr) {
-  double x[3], u0[3], g[3];
+// Where a-face `at`'s centre came from over dt through v's velocity, as a coordinate of the
+// a-face lattice.
+VP_HOST_DEVICE inline void traceFace(const MacVelocityView& v, int a, const int at[3], double dt, double g[3]) {
+  double x[3], u0[3];
   sampleCentre(v, a, at, x);
   velocityAtSample(v, a, at, u0);
   traceToLattice(v, x, u0, dt, a, g);
+}
+
+// The semi-Lagrangian value of a-face `at` over dt: `field` (a lattice of a-faces) sampled where
+// the face's centre came from; lo/hi (optional) the stencil's range.
+VP_HOST_DEVICE inline double advectFace(const MacVelocityView& v, int a, const int at[3], double dt,
+                                        const double* field, double* lo = nullptr, double* hi = nullptr) {
+  double g[3];
+  traceFace(v, a, at, dt, g);
   return sampleLattice(field, v.faceDims[a], g, lo, hi);
 }
 
@@ -308,10 +323,14 @@ VP_HOST_DEVICE inline double maccormackValue(double forward, double old, double 
 }
 
 // MacCormack's value of a-face `at` (index f in its lattice) over dt: `forward` holds every
-// a-face's advectFace over dt, lo/hi this face's range from it.
+// a-face's advectFace over dt, lo/hi this face's range from it; the backward step samples it at
+// the back-trace's reflection (reflectThrough).
 VP_HOST_DEVICE inline double maccormackFace(const MacVelocityView& v, int a, const int at[3], int64_t f, double dt,
                                             const double* old, const double* forward, double lo, double hi) {
-  return maccormackValue(forward[f], old[f], advectFace(v, a, at, -dt, forward), lo, hi);
+  double g[3], ahead[3];
+  traceFace(v, a, at, dt, g);
+  reflectThrough(at, g, ahead);
+  return maccormackValue(forward[f], old[f], sampleLattice(forward, v.faceDims[a], ahead), lo, hi);
 }
 
 }  // namespace vp::kernels

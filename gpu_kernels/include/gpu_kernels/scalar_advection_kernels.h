@@ -14,8 +14,7 @@
 
 namespace vp::kernels {
 
-// Where cell `at`'s centre came from over dt (negative dt: where it goes), in cell-lattice
-// coordinates.
+// Where cell `at`'s centre came from over dt, in cell-lattice coordinates.
 VP_HOST_DEVICE inline void traceCell(const MacVelocityView& v, const int at[3], double dt, double g[3]) {
   double x[3], u0[3];
   sampleCentre(v, 3, at, x);

@@ -88,14 +88,42 @@ void latticeDims(const Eigen::Vector3i& d, int (&out)[3]) {
 
 using kernels::ScalarCellRules;  // gpu_kernels/scalar_advection_kernels.h
 
-// rules.sample at the traced points of the batch's cells (traces: the trace array's entries of
-// the row's cells), in a batch; lo/hi (optional) the ranges of the samples used.
-void sampleCells(const ScalarCellRules& rules, const double* values, const TraceStarts& cells,
-                 const Eigen::Vector3d* traces, double* out, double* lo, double* hi) {
-  PointBatch at;
-  at.count = cells.count;
-  for (int s = 0; s < cells.count; ++s)
-    for (int d = 0; d < 3; ++d) at.at[d][s] = traces[cells.i[s]][d];
+// Back-traces kept from the forward pass for the correction: stored at, and loaded from, the
+// entries of a row's array (traces) at the samples' positions.
+void storeTraces(const PointBatch& at, const TraceStarts& samples, Eigen::Vector3d* traces) {
+  for (int s = 0; s < samples.count; ++s)
+    traces[samples.i[s]] = Eigen::Vector3d(at.at[0][s], at.at[1][s], at.at[2][s]);
+}
+void loadTraces(const TraceStarts& samples, const Eigen::Vector3d* traces, PointBatch* at) {
+  at->count = samples.count;
+  for (int s = 0; s < samples.count; ++s)
+    for (int d = 0; d < 3; ++d) at->at[d][s] = traces[samples.i[s]][d];
+}
+
+// Where MacCormack's backward step samples: each sample's back-trace reflected through it
+// (kernels::reflectThrough), from the row's kept traces.
+void aheadOfTraces(const TraceStarts& samples, const Eigen::Vector3d* traces, PointBatch* ahead) {
+  ahead->count = samples.count;
+  for (int s = 0; s < samples.count; ++s) {
+    const int at[3] = {samples.i[s], samples.j, samples.k};
+    double g[3];
+    kernels::reflectThrough(at, traces[samples.i[s]].data(), g);
+    for (int d = 0; d < 3; ++d) ahead->at[d][s] = g[d];
+  }
+}
+
+// The entries of the workspace's trace array: a back-trace per face of the largest face
+// lattice, which also holds one per cell, so velocities and scalars share it unresized.
+size_t traceEntries(const MacGrid& grid) {
+  size_t n = 0;
+  for (int a = 0; a < 3; ++a) n = std::max(n, grid.velocity[a].size());
+  return n;
+}
+
+// rules.sample at the points of `at` (the batch's cells' traces), in a batch; lo/hi (optional)
+// the ranges of the samples used.
+void sampleCells(const ScalarCellRules& rules, const double* values, const PointBatch& at, double* out, double* lo,
+                 double* hi) {
   if (rules.faces != nullptr)
     sampleConnectedAtPoints(values, rules.dims, at, rules.faces, rules.blockOpen, out, lo, hi);
   else
@@ -157,6 +185,7 @@ void VelocityAdvectionSlices::prepare(TaskSystem& tasks, MacGrid& grid, double d
   }
   // The axes take turns with the MacCormack arrays: an axis is done before the next starts.
   if (maccormack_) {
+    if (work.traces.size() < traceEntries(grid)) work.traces.resize(traceEntries(grid));
     work.forward.resize(largestAxis);
     work.rangeLo.resize(largestAxis);
     work.rangeHi.resize(largestAxis);
@@ -175,6 +204,7 @@ void VelocityAdvectionSlices::forwardPass(const AdvectionRows& slab) {
   double* fwd = maccormack ? work.forward.data() : work.advected[a].data();
   double* lo = maccormack ? work.rangeLo.data() : nullptr;
   double* hi = maccormack ? work.rangeHi.data() : nullptr;
+  Eigen::Vector3d* traces = maccormack ? work.traces.data() : nullptr;
   int dims[3];
   latticeDims(slab.dims, dims);
   forEachTraceBatch(
@@ -192,29 +222,29 @@ void VelocityAdvectionSlices::forwardPass(const AdvectionRows& slab) {
         if (!maccormack) return;
         scatterBatch(starts, low, lo + rowStart);
         scatterBatch(starts, high, hi + rowStart);
+        storeTraces(from, starts, traces + rowStart);
       });
 }
 
 void VelocityAdvectionSlices::correctionPass(const AdvectionRows& slab) {
   AdvectionWorkspace& work = *work_;
   const int a = slab.target;
-  const kernels::MacVelocityView v = macVelocityView(*grid_);
   const double* old = grid_->velocity[a].data();
   const uint8_t* marks = skip_.marks != nullptr ? skip_.marks[a].data() : nullptr;
   const uint8_t skipMark = skip_.skipMark;
-  const double dt = dt_;
   const double* fwd = work.forward.data();
   const double* lo = work.rangeLo.data();
   const double* hi = work.rangeHi.data();
+  const Eigen::Vector3d* traces = work.traces.data();
   double* out = work.advected[a].data();
   int dims[3];
   latticeDims(slab.dims, dims);
-  forEachTraceBatch(
-      v, slab, a, [&](size_t f) { return marks == nullptr || marks[f] != skipMark; },
+  forEachSampleBatch(
+      slab, a, [&](size_t f) { return marks == nullptr || marks[f] != skipMark; },
       [&](size_t f) { out[f] = old[f]; },
       [&](const TraceStarts& starts, size_t rowStart) {
         PointBatch ahead;
-        traceBatch(v, starts, -dt, a, &ahead);
+        aheadOfTraces(starts, traces + rowStart, &ahead);
         double backAgain[kTraceBatch];
         sampleAtPoints(fwd, dims, ahead, backAgain);
         for (int s = 0; s < starts.count; ++s) {
@@ -299,9 +329,9 @@ void ScalarAdvectionSlices::prepare(TaskSystem& tasks, const MacGrid& grid, doub
   if (fields_.empty()) return;
   const Eigen::Vector3i d(grid.spec.nx, grid.spec.ny, grid.spec.nz);
   const size_t cells = static_cast<size_t>(grid.cellCount());
-  // Both traces are shared by all fields: back (where the value comes from) and, for
-  // MacCormack, ahead (where the backward step samples the forward result).
-  work.cellTrace.resize(maccormack_ ? 2 * cells : cells);
+  // The back-traces are shared by all fields (and, for MacCormack, reflected for the backward
+  // step).
+  if (work.traces.size() < traceEntries(grid)) work.traces.resize(traceEntries(grid));
   // Decided from the first field's old values once (trace pass): the fields are swapped as
   // they are done.
   work.kept.assign(keepBeyond > 0.0 ? cells : 0, 0);
@@ -360,26 +390,17 @@ void ScalarAdvectionSlices::addRescalePasses(int field) {
 
 void ScalarAdvectionSlices::tracePass(const AdvectionRows& slab) {
   AdvectionWorkspace& work = *work_;
-  const size_t cells = static_cast<size_t>(grid_->cellCount());
   const kernels::MacVelocityView v = macVelocityView(*grid_);
   const double* first = fields_[0]->data();
   const double keepBeyond = keepBeyond_, dt = dt_;
-  const bool maccormack = maccormack_;
-  Eigen::Vector3d* traces = work.cellTrace.data();
-  auto store = [](const PointBatch& at, const TraceStarts& starts, Eigen::Vector3d* into) {
-    for (int s = 0; s < starts.count; ++s)
-      into[starts.i[s]] = Eigen::Vector3d(at.at[0][s], at.at[1][s], at.at[2][s]);
-  };
+  Eigen::Vector3d* traces = work.traces.data();
   forEachTraceBatch(
       v, slab, 3, [&](size_t c) { return !(keepBeyond > 0.0 && std::abs(first[c]) >= keepBeyond); },
       [&](size_t c) { work.kept[c] = 1; },
       [&](const TraceStarts& starts, size_t rowStart) {
         PointBatch at;
         traceBatch(v, starts, dt, 3, &at);
-        store(at, starts, traces + rowStart);
-        if (!maccormack) return;
-        traceBatch(v, starts, -dt, 3, &at);
-        store(at, starts, traces + cells + rowStart);
+        storeTraces(at, starts, traces + rowStart);
       });
 }
 
@@ -400,9 +421,10 @@ void ScalarAdvectionSlices::forwardPass(const AdvectionRows& slab) {
       },
       [&](const TraceStarts& cells, size_t rowStart) {
         double value[kTraceBatch], low[kTraceBatch], high[kTraceBatch];
-        sampleCells(rules, old.data(), cells, work.cellTrace.data() + rowStart, value, maccormack ? low : nullptr,
-                    maccormack ? high : nullptr);
-        keepAirBeyondOpenSides(slab, cells, work.cellTrace.data() + rowStart, value, maccormack ? high : nullptr);
+        PointBatch back;
+        loadTraces(cells, work.traces.data() + rowStart, &back);
+        sampleCells(rules, old.data(), back, value, maccormack ? low : nullptr, maccormack ? high : nullptr);
+        keepAirBeyondOpenSides(slab, cells, work.traces.data() + rowStart, value, maccormack ? high : nullptr);
         scatterBatch(cells, value, fwd + rowStart);
         if (!maccormack) return;
         scatterBatch(cells, low, lo + rowStart);
@@ -414,19 +436,20 @@ void ScalarAdvectionSlices::correctionPass(const AdvectionRows& slab) {
   AdvectionWorkspace& work = *work_;
   const ScalarCellRules rules = scalarCellRules(slab, openFaces_, solidValues_, keepBeyond_, work);
   const Array<double>& old = *fields_[static_cast<size_t>(slab.target)];
-  const size_t cells = static_cast<size_t>(grid_->cellCount());
   const double* fwd = work.forward.data();
   double* out = work.advected[0].data();
   forEachSampleBatch(
       slab, 3, [&](size_t c) { return rules.advected(c); }, [&](size_t c) { out[c] = fwd[c]; },
       [&](const TraceStarts& batch, size_t rowStart) {
         double backAgain[kTraceBatch], corrected[kTraceBatch];
-        sampleCells(rules, fwd, batch, work.cellTrace.data() + cells + rowStart, backAgain, nullptr, nullptr);
+        PointBatch ahead;
+        aheadOfTraces(batch, work.traces.data() + rowStart, &ahead);
+        sampleCells(rules, fwd, ahead, backAgain, nullptr, nullptr);
         for (int s = 0; s < batch.count; ++s) {
           const size_t c = rowStart + static_cast<size_t>(batch.i[s]);
           corrected[s] = kernels::maccormackClamped(fwd[c], old[c], backAgain[s], work.rangeLo[c], work.rangeHi[c]);
         }
-        keepAirBeyondOpenSides(slab, batch, work.cellTrace.data() + rowStart, corrected, nullptr);
+        keepAirBeyondOpenSides(slab, batch, work.traces.data() + rowStart, corrected, nullptr);
         scatterBatch(batch, corrected, out + rowStart);
       });
 }

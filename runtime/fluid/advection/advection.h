@@ -6,8 +6,11 @@
 // space, and dissipative: it smooths every step.
 //
 // MacCormack (Selle, Fedkiw, Kim, Liu, Osher 2008): a forward semi-Lagrangian step phi^,
-// a backward one from phi^ (tracing forward in time) phi~, and the corrected
-// phi^ + (phi - phi~) / 2, which cancels the leading error term. A scalar is clamped to the
+// a backward one from phi^ phi~, and the corrected phi^ + (phi - phi~) / 2, which cancels the
+// leading error term. The backward step samples phi^ at each point's back-trace reflected
+// through the point (kernels::reflectThrough), kept from the forward step, instead of tracing
+// forward in time through the velocity again: the two differ by dt^2 (u . grad) u, the order
+// of the midpoint rule's own error, and the reflection costs no velocity samples. A scalar is clamped to the
 // range of the 8 old samples that the forward step interpolated, so the correction never
 // creates new extrema (the scheme stays stable); a velocity outside that range keeps the
 // semi-Lagrangian phi^ instead (clamping it fed energy into a stirred liquid, advection.cpp).
@@ -51,7 +54,10 @@ struct TraceStarts;  // advection_rows.h
 struct AdvectionWorkspace {
   Array<double> advected[3];  // new velocity, per axis
   Array<double> forward, rangeLo, rangeHi;
-  Array<Eigen::Vector3d> cellTrace;  // per cell: where its centre came from
+  // Back-traces kept from a forward pass: per cell for scalars (shared by every field), or per
+  // face of the axis being advected for velocity MacCormack's correction (traceEntries in
+  // advection.cpp: sized once for both).
+  Array<Eigen::Vector3d> traces;
   Array<uint8_t> kept;               // per cell: left as it was (keepBeyond)
 };
 
@@ -111,8 +117,8 @@ struct AdvectionRows {
 };
 
 // One sub-step's velocity advection (advectVelocity) as a sequence of slices: for each axis,
-// for each pass (semi-Lagrangian: one; MacCormack: forward, then correction), that axis's face
-// rows, as SlabPasses (core/slab_passes.h) that a slice runs up to a bound on samples, decided
+// for each pass (semi-Lagrangian: one; MacCormack: forward, keeping each face's back-trace,
+// then correction), that axis's face rows, as SlabPasses (core/slab_passes.h) that a slice runs up to a bound on samples, decided
 // per slice (one row at least). The slices write the workspace only, so grid.velocity stays
 // the old field that every trace samples until finish() swaps the advected one in.
 //
