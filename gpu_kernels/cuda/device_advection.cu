@@ -47,15 +47,11 @@ __device__ bool cellOf(const kernels::MacLayout& g, int64_t c, int at[3]) {
   return true;
 }
 
-// Every cell's trace back over dt, and for MacCormack (ahead not null) where its backward step
-// samples.
-__global__ void traceCellsKernel(kernels::MacVelocityView v, kernels::MacLayout g, double dt, double* back,
-                                 double* ahead) {
+// Every cell's trace back over dt.
+__global__ void traceCellsKernel(kernels::MacVelocityView v, kernels::MacLayout g, double dt, double* back) {
   const int64_t c = launch::index();
   int at[3];
-  if (!cellOf(g, c, at)) return;
-  kernels::traceCell(v, at, dt, back + 3 * c);
-  if (ahead != nullptr) kernels::reflectThrough(at, back + 3 * c, ahead + 3 * c);
+  if (cellOf(g, c, at)) kernels::traceCell(v, at, dt, back + 3 * c);
 }
 
 __global__ void scalarForwardKernel(kernels::ScalarCellRules rules, int64_t cells, const double* old,
@@ -64,11 +60,17 @@ __global__ void scalarForwardKernel(kernels::ScalarCellRules rules, int64_t cell
   if (c < cells) kernels::scalarForwardCell(rules, old, c, back + 3 * c, forward, lo, hi);
 }
 
-__global__ void scalarCorrectionKernel(kernels::ScalarCellRules rules, int64_t cells, const double* old,
-                                       const double* forward, const double* ahead, const double* lo, const double* hi,
+// MacCormack's correction, sampling the forward field at each cell's back-trace reflected
+// through the cell.
+__global__ void scalarCorrectionKernel(kernels::ScalarCellRules rules, kernels::MacLayout g, const double* old,
+                                       const double* forward, const double* back, const double* lo, const double* hi,
                                        double* out) {
   const int64_t c = launch::index();
-  if (c < cells) out[c] = kernels::scalarCorrectionCell(rules, old, forward, c, ahead + 3 * c, lo[c], hi[c]);
+  int at[3];
+  if (!cellOf(g, c, at)) return;
+  double ahead[3];
+  kernels::reflectThrough(at, back + 3 * c, ahead);
+  out[c] = kernels::scalarCorrectionCell(rules, old, forward, c, ahead, lo[c], hi[c]);
 }
 
 __global__ void rowSumKernel(const double* values, int64_t nx, int64_t rows, double* rowSums) {
@@ -159,12 +161,11 @@ bool DeviceAdvection::advectScalars(double* const* fields, int count, double dt,
   DeviceArray<double>& forward = impl_->forward;
   DeviceArray<double>& lo = impl_->lo;
   DeviceArray<double>& hi = impl_->hi;
-  DeviceArray<double> out, back, ahead, rowSums, sums, solid;
+  DeviceArray<double> out, back, rowSums, sums, solid;
   DeviceArray<uint8_t> faces, blockOpen;
   for (int f = 0; f < count; ++f)
     if (failed(values[static_cast<size_t>(f)].upload(fields[f], n), error)) return false;
   if (failed(out.allocate(n), error) || failed(back.allocate(3 * n), error) ||
-      failed(ahead.allocate(maccormack ? 3 * n : 1), error) ||
       failed(rowSums.allocate(static_cast<size_t>(rows)), error) || failed(sums.allocate(2), error))
     return false;
   if (options.faces != nullptr &&
@@ -178,8 +179,7 @@ bool DeviceAdvection::advectScalars(double* const* fields, int count, double dt,
     totalKernel<<<1, 1>>>(rowSums.get(), rows, g, impl_->view, outflow, field, dt, into);
   };
   if (conserve) total(values[static_cast<size_t>(options.conservedField)].get(), true, sums.get());
-  traceCellsKernel<<<launch::blocks(cells), launch::kThreads>>>(impl_->view, g, dt, back.get(),
-                                                                maccormack ? ahead.get() : nullptr);
+  traceCellsKernel<<<launch::blocks(cells), launch::kThreads>>>(impl_->view, g, dt, back.get());
   for (int f = 0; f < count; ++f) {
     double* field = values[static_cast<size_t>(f)].get();
     const kernels::ScalarCellRules rules{faces.get(),
@@ -192,8 +192,8 @@ bool DeviceAdvection::advectScalars(double* const* fields, int count, double dt,
     double* high = maccormack ? hi.get() : nullptr;
     scalarForwardKernel<<<launch::blocks(cells), launch::kThreads>>>(rules, cells, field, back.get(), fwd, low, high);
     if (maccormack)
-      scalarCorrectionKernel<<<launch::blocks(cells), launch::kThreads>>>(rules, cells, field, forward.get(),
-                                                                          ahead.get(), lo.get(), hi.get(), out.get());
+      scalarCorrectionKernel<<<launch::blocks(cells), launch::kThreads>>>(rules, g, field, forward.get(), back.get(),
+                                                                          lo.get(), hi.get(), out.get());
     if (failed(cudaMemcpy(field, out.get(), bytes, cudaMemcpyDeviceToDevice), error)) return false;
     if (conserve && f == options.conservedField) {
       total(field, false, sums.get() + 1);

@@ -10,11 +10,11 @@
 // leading error term. The backward step samples phi^ at each point's back-trace reflected
 // through the point (kernels::reflectThrough), kept from the forward step, instead of tracing
 // forward in time through the velocity again: the two differ by dt^2 (u . grad) u, the order
-// of the midpoint rule's own error, and the reflection costs no velocity samples. A scalar is clamped to the
-// range of the 8 old samples that the forward step interpolated, so the correction never
-// creates new extrema (the scheme stays stable); a velocity outside that range keeps the
-// semi-Lagrangian phi^ instead (clamping it fed energy into a stirred liquid, advection.cpp).
-// Twice the cost, much less dissipation.
+// of the midpoint rule's own error, and the reflection costs no velocity samples. A scalar is
+// clamped to the range of the 8 old samples that the forward step interpolated, so the
+// correction never creates new extrema (the scheme stays stable); a velocity outside that
+// range keeps the semi-Lagrangian phi^ instead (clamping it fed energy into a stirred liquid,
+// advection.cpp). One more sampling pass than semi-Lagrangian, much less dissipation.
 //
 // Points traced out of the domain take the boundary's values (clamped sampling), but for a
 // liquid's level set beyond an Open side: what lies there is air (the side's p = 0 is the
@@ -118,9 +118,10 @@ struct AdvectionRows {
 
 // One sub-step's velocity advection (advectVelocity) as a sequence of slices: for each axis,
 // for each pass (semi-Lagrangian: one; MacCormack: forward, keeping each face's back-trace,
-// then correction), that axis's face rows, as SlabPasses (core/slab_passes.h) that a slice runs up to a bound on samples, decided
-// per slice (one row at least). The slices write the workspace only, so grid.velocity stays
-// the old field that every trace samples until finish() swaps the advected one in.
+// then correction), that axis's face rows, as SlabPasses (core/slab_passes.h) that a slice
+// runs up to a bound on samples, decided per slice (one row at least). The slices write the
+// workspace only, so grid.velocity stays the old field that every trace samples until
+// finish() swaps the advected one in.
 //
 // Between prepare() and finish() the grid, the workspace and the skip marks must outlive this
 // object and be left alone by everything else; the object stays where it is (its passes

@@ -108,13 +108,6 @@ bool RedistanceRun::advance() {
 
 int64_t RedistanceRun::step(int64_t budget) {
   if (pass_ == Pass::Band) return claimBand(budget);
-  if (pass_ == Pass::List) {
-    const int64_t begin = position_, end = begin + std::min(budget, cells_ - begin);
-    listBand(begin, end);
-    position_ = end;
-    if (end == cells_) pass_ = Pass::Sweep, position_ = 0;
-    return end - begin;
-  }
   const int64_t length = pass_ == Pass::Sweep ? static_cast<int64_t>(ws_->band[colour_].size()) : cells_;
   const int64_t begin = position_, end = begin + std::min(budget, length - begin);
   position_ = end;
@@ -123,6 +116,12 @@ int64_t RedistanceRun::step(int64_t budget) {
     if (end == length) {
       ws_->reached = ws_->surface;
       pass_ = Pass::Band;
+      position_ = 0;
+    }
+  } else if (pass_ == Pass::List) {
+    listBand(begin, end);
+    if (end == length) {
+      pass_ = Pass::Sweep;
       position_ = 0;
     }
   } else if (pass_ == Pass::Sweep) {
