@@ -55,6 +55,27 @@ VP_HOST_DEVICE inline double redistanceSweepCell(const CellLattice& g, int64_t c
   return before == unreached ? unreached : before - updated;
 }
 
+// redistanceSweepCell for a cell that a sweep may skip: stale[c] says whether a neighbour's
+// distance changed since c's last update. The update is a function of the neighbours and c's
+// own value, which only c changes, so a cell with no stale flag would keep its value: skipping
+// it gives the same distances, bit for bit, and a drop of 0. A cell that changes raises the
+// flags of its neighbours (the other colour, which no one reads in this half-sweep).
+VP_HOST_DEVICE inline double redistanceSweepStaleCell(const CellLattice& g, int64_t c, double clamp, double* distance,
+                                                      uint8_t* stale) {
+  if (!stale[c]) return 0.0;
+  stale[c] = 0;
+  const double before = distance[c];
+  const double drop = redistanceSweepCell(g, c, clamp, distance);
+  if (distance[c] == before) return drop;
+  int64_t ijk[3];
+  g.coordinates(c, ijk);
+  for (int a = 0; a < 3; ++a) {
+    if (ijk[a] > 0) raiseSharedFlag(&stale[c - g.stride[a]]);
+    if (ijk[a] + 1 < g.n[a]) raiseSharedFlag(&stale[c + g.stride[a]]);
+  }
+  return drop;
+}
+
 // The level set at cell c from its unsigned distance: the sign phi had, the size clamped.
 VP_HOST_DEVICE inline void writeSignedDistance(int64_t c, double distance, double clamp, double* phi) {
   const double d = clamp < distance ? clamp : distance;

@@ -87,6 +87,7 @@ Status RedistanceRun::prepare(TaskSystem& tasks, const MacGridSpec& grid, double
   layers_ = layers;
   ws.distance.resize(static_cast<size_t>(cells));
   ws.layer.resize(static_cast<size_t>(cells));
+  ws.stale.resize(static_cast<size_t>(cells));
   ws.surface.clear();
   ws.band[0].clear();
   ws.band[1].clear();
@@ -224,6 +225,7 @@ int64_t RedistanceRun::claimBand(int64_t budget) {
 void RedistanceRun::listBand(int64_t begin, int64_t end) {
   const Lattice lat(grid_);
   const uint8_t* layer = ws_->layer.data();
+  uint8_t* stale = ws_->stale.data();
   const int64_t chunks = (end - begin + kCellGrain - 1) / kCellGrain;
   std::vector<Array<int32_t>>& found = ws_->chunkBand;
   if (static_cast<int64_t>(found.size()) < 2 * chunks) found.resize(static_cast<size_t>(2 * chunks));
@@ -238,6 +240,8 @@ void RedistanceRun::listBand(int64_t begin, int64_t end) {
         int64_t i, j, k;
         lat.coordinates(c, &i, &j, &k);
         out[(i + j + k) & 1].push_back(static_cast<int32_t>(c));
+        // Only the first layer has a neighbour with a distance (a surface cell) before the sweeps.
+        stale[c] = layer[c] == 1 ? 1 : 0;
       }
     }
   });
@@ -254,11 +258,12 @@ double RedistanceRun::sweepSlab(int64_t begin, int64_t end) {
   const kernels::CellLattice lattice = cellLattice(grid_);
   const double clamp = settings_.bandCells * grid_.h;
   double* dist = ws_->distance.data();
+  uint8_t* stale = ws_->stale.data();
   const int32_t* list = ws_->band[colour_].data() + begin;
   return parallelReduce<MaxDrop>(*tasks_, end - begin, kListGrain, [&](int64_t first, int64_t last) {
     MaxDrop part;
     for (int64_t b = first; b < last; ++b)
-      part.value = std::max(part.value, kernels::redistanceSweepCell(lattice, list[b], clamp, dist));
+      part.value = std::max(part.value, kernels::redistanceSweepStaleCell(lattice, list[b], clamp, dist, stale));
     return part;
   }).value;
 }

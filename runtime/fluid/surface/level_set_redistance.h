@@ -17,7 +17,9 @@
 //    tolerance (an update reads only neighbours smaller than its result, so values at or
 //    above the clamp never move one under it, and the result clamps them). Red cells read
 //    only black neighbours, so each half-sweep is parallel and its result does not depend on
-//    the worker count.
+//    the worker count. A cell none of whose neighbours changed since its own last update is
+//    skipped (the update would give its value again): later sweeps touch only the cells where
+//    distances still move, with the same bits as full sweeps.
 // 4. phi = sign(old phi) * min(d, W h) on the band, +-W h beyond it: a signed distance clamped
 //    at W h (advection only reads phi within a few cells of the surface).
 //
@@ -51,6 +53,7 @@ struct RedistanceStats {
 struct RedistanceWorkspace {
   Array<double> distance;
   Array<uint8_t> layer;
+  Array<uint8_t> stale;  // per band cell during the sweeps: a neighbour changed since its last update
   Array<int32_t> surface, band[2];  // band[0] red, band[1] black (i + j + k parity)
   Array<int32_t> reached;  // breadth-first queue: surface cells, then band cells as claimed
   std::vector<Array<int32_t>> chunkSurface;  // surface cells found per chunk of a slab
