@@ -18,15 +18,18 @@
 namespace vp::kernels {
 
 // One axis of a trilinear stencil at lattice coordinate g over `samples` samples: the lower
-// sample and the weight of the upper one (0 on a lattice of one sample). Branch-free.
-VP_HOST_DEVICE inline void latticeSpan(double g, int samples, int* base, double* weight) {
-  g = g >= 0.0 ? g : 0.0;  // also NaN
-  const double last = static_cast<double>(samples - 1);
+// sample and the weight of the upper one (0 on a lattice of one sample). Branch-free. Real is
+// double for advection; float only in BM_AdvectionGatherPrecision (tests/bench), which
+// measures what single precision would buy.
+template <class Real>
+VP_HOST_DEVICE inline void latticeSpan(Real g, int samples, int* base, Real* weight) {
+  g = g >= Real(0) ? g : Real(0);  // also NaN
+  const Real last = static_cast<Real>(samples - 1);
   g = last < g ? last : g;
   const int lower = samples - 2 > 0 ? samples - 2 : 0;
   const int b = static_cast<int>(g) < lower ? static_cast<int>(g) : lower;
   *base = b;
-  *weight = samples > 1 ? g - b : 0.0;
+  *weight = samples > 1 ? g - static_cast<Real>(b) : Real(0);
 }
 
 // Index steps of a lattice's three axes (0 along an axis with one sample).
@@ -52,8 +55,9 @@ VP_HOST_DEVICE inline int64_t cornerOffset(int q, const int64_t step[3]) {
 
 // The smallest and largest of 8 corner values (in corner order, so signed zeros compare the
 // same way whoever calls it).
-VP_HOST_DEVICE inline void cornerRange(const double c[8], double* lo, double* hi) {
-  double l = c[0], h = c[0];
+template <class Real>
+VP_HOST_DEVICE inline void cornerRange(const Real c[8], Real* lo, Real* hi) {
+  Real l = c[0], h = c[0];
   for (int q = 1; q < 8; ++q) {
     l = c[q] < l ? c[q] : l;
     h = h < c[q] ? c[q] : h;
@@ -64,10 +68,11 @@ VP_HOST_DEVICE inline void cornerRange(const double c[8], double* lo, double* hi
 
 // Trilinear interpolation of 8 corner values with the upper corners' weights w0, w1, w2 (x
 // first, then y, then z).
-VP_HOST_DEVICE inline double trilinearCorners(const double c[8], double w0, double w1, double w2) {
-  const double x00 = c[0] + w0 * (c[1] - c[0]), x10 = c[2] + w0 * (c[3] - c[2]);
-  const double x01 = c[4] + w0 * (c[5] - c[4]), x11 = c[6] + w0 * (c[7] - c[6]);
-  const double y0 = x00 + w1 * (x10 - x00), y1 = x01 + w1 * (x11 - x01);
+template <class Real>
+VP_HOST_DEVICE inline Real trilinearCorners(const Real c[8], Real w0, Real w1, Real w2) {
+  const Real x00 = c[0] + w0 * (c[1] - c[0]), x10 = c[2] + w0 * (c[3] - c[2]);
+  const Real x01 = c[4] + w0 * (c[5] - c[4]), x11 = c[6] + w0 * (c[7] - c[6]);
+  const Real y0 = x00 + w1 * (x10 - x00), y1 = x01 + w1 * (x11 - x01);
   return y0 + w2 * (y1 - y0);
 }
 
