@@ -249,6 +249,11 @@ class ThreadPool final : public TaskSystem {
 
 }  // namespace
 
+TaskSystem& TaskSystem::callingThread() {
+  static InlineTaskSystem inlineTasks;
+  return inlineTasks;
+}
+
 std::unique_ptr<TaskSystem> TaskSystem::create(const TaskHooks& hooks, int workerCount) {
   if (hooks.enqueue && hooks.finish) return std::make_unique<HostTaskSystem>(hooks, std::max(1, workerCount));
   if (workerCount <= 1) return std::make_unique<InlineTaskSystem>();

@@ -37,6 +37,9 @@ class TaskSystem {
 
   // workerCount includes the calling thread (1 = everything inline).
   static std::unique_ptr<TaskSystem> create(const TaskHooks& hooks, int workerCount);
+  // One shared, stateless task system that runs everything on the calling thread: for loops
+  // too small to pay a dispatch to the workers (the same items, so the same results).
+  static TaskSystem& callingThread();
 };
 
 }  // namespace vp

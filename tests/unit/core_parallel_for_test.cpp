@@ -107,6 +107,28 @@ TEST(ParallelFor, WorkersOffRunInlineWithTheSameResult) {
   EXPECT_EQ(tasks->workerCount(), 2);
 }
 
+// The shared calling-thread system runs every item on the caller, from any thread at once,
+// with the pool's chunks and so its bits.
+TEST(ParallelFor, TheCallingThreadSystemRunsEverythingOnTheCaller) {
+  const std::vector<double> values = makeValues();
+  auto pool = TaskSystem::create(TaskHooks{}, 2);
+  const double pooled = chaoticSum(*pool, values);
+  TaskSystem& inlineTasks = TaskSystem::callingThread();
+  EXPECT_EQ(inlineTasks.workerCount(), 1);
+  EXPECT_EQ(&inlineTasks, &TaskSystem::callingThread());
+  std::atomic<int> elsewhere{0};
+  auto run = [&] {
+    const std::thread::id caller = std::this_thread::get_id();
+    parallelFor(inlineTasks, 1000, 1, [&](int64_t, int64_t) { elsewhere += std::this_thread::get_id() != caller; });
+    const double sum = chaoticSum(inlineTasks, values);
+    EXPECT_EQ(std::memcmp(&pooled, &sum, sizeof sum), 0);
+  };
+  std::thread other(run);
+  run();
+  other.join();
+  EXPECT_EQ(elsewhere.load(), 0);
+}
+
 #if defined(__linux__)
 // The pool's run delay (run_delay.h) is known on Linux and never decreases.
 TEST(ParallelFor, ThePoolReportsItsThreadsRunDelay) {

@@ -11,6 +11,10 @@ namespace vp {
 namespace {
 
 constexpr int64_t kValueGrain = 4096;
+// Levels with fewer cells run the V-cycle's passes on the calling thread: a pass over a level
+// this small costs less than handing it to the workers and waiting for them (the coarsest
+// level's sweeps alone are dozens of passes per cycle).
+constexpr int64_t kInlineLevelCells = 32768;
 
 // `sweeps` sweeps (adjoint order when `adjoint`); `fromZero`: x holds anything and the smoothing
 // starts from 0 (both smoothers fold the clearing into their first sweep).
@@ -152,8 +156,13 @@ void applyPoissonMultigrid(TaskSystem& tasks, const CutCellPoisson& fine, Poisso
   auto single = [&](int l) -> const PoissonCoefficients<float>& { return mg.single[static_cast<size_t>(l)]; };
   auto xOf = [&](int l) { return mg.x[static_cast<size_t>(l)].data(); };
   auto bOf = [&](int l) { return mg.b[static_cast<size_t>(l)].data(); };
+  // Passes over level l (transfers: over the finer of their two levels) run on the workers,
+  // or on the calling thread for a level under kInlineLevelCells.
+  auto on = [&](int l) -> TaskSystem& {
+    return static_cast<int64_t>(single(l).diagonal.size()) < kInlineLevelCells ? TaskSystem::callingThread() : tasks;
+  };
   auto filter = [&](int l, float* v) {
-    if (l > 0 && mg.coarseFloating[static_cast<size_t>(l - 1)]) filterCutCellPoisson(tasks, op(l), v);
+    if (l > 0 && mg.coarseFloating[static_cast<size_t>(l - 1)]) filterCutCellPoisson(on(l), op(l), v);
   };
   auto scratchOf = [&](int l) -> Array<float>& { return mg.r[static_cast<size_t>(l)]; };
   const int64_t fineCells = static_cast<int64_t>(fine.diagonal.size());
@@ -161,21 +170,21 @@ void applyPoissonMultigrid(TaskSystem& tasks, const CutCellPoisson& fine, Poisso
 
   // Every level's x starts from 0; the first smoothing sweep clears it (smooth, fromZero).
   for (int l = 0; l + 1 < levels; ++l) {
-    smoothLevel(tasks, single(l), s, mg.boundaryCells[static_cast<size_t>(l)], bOf(l), xOf(l), scratchOf(l),
+    smoothLevel(on(l), single(l), s, mg.boundaryCells[static_cast<size_t>(l)], bOf(l), xOf(l), scratchOf(l),
                 &mg.boundaryValues, false);
     float* coarseB = bOf(l + 1);
-    restrictResidual(tasks, op(l), op(l + 1), mg.sides, mg.prolongScale[static_cast<size_t>(l)].data(),
+    restrictResidual(on(l), op(l), op(l + 1), mg.sides, mg.prolongScale[static_cast<size_t>(l)].data(),
                      LevelResidual<float>{&single(l), bOf(l), xOf(l)}, coarseB, &mg.restrictScratch);
     filter(l + 1, coarseB);
   }
   const int last = levels - 1;
-  smooth(tasks, single(last), s, bOf(last), xOf(last), scratchOf(last), s.coarsestSweeps, false, true);
-  smooth(tasks, single(last), s, bOf(last), xOf(last), scratchOf(last), s.coarsestSweeps, true, false);
+  smooth(on(last), single(last), s, bOf(last), xOf(last), scratchOf(last), s.coarsestSweeps, false, true);
+  smooth(on(last), single(last), s, bOf(last), xOf(last), scratchOf(last), s.coarsestSweeps, true, false);
   filter(last, xOf(last));
   for (int l = last - 1; l >= 0; --l) {
-    prolongateAdd(tasks, op(l), op(l + 1), mg.sides, mg.prolongScale[static_cast<size_t>(l)].data(), xOf(l + 1),
+    prolongateAdd(on(l), op(l), op(l + 1), mg.sides, mg.prolongScale[static_cast<size_t>(l)].data(), xOf(l + 1),
                   xOf(l));
-    smoothLevel(tasks, single(l), s, mg.boundaryCells[static_cast<size_t>(l)], bOf(l), xOf(l), scratchOf(l),
+    smoothLevel(on(l), single(l), s, mg.boundaryCells[static_cast<size_t>(l)], bOf(l), xOf(l), scratchOf(l),
                 &mg.boundaryValues, true);
     filter(l, xOf(l));
   }
