@@ -27,11 +27,24 @@ struct Lattice {
     *j = (c / nx) % ny;
     *k = c / sz;
   }
+  // (i, j, k) of the next cell in cell order.
+  void next(int64_t* i, int64_t* j, int64_t* k) const {
+    if (++*i < nx) return;
+    *i = 0;
+    if (++*j < ny) return;
+    *j = 0;
+    ++*k;
+  }
   // visit(neighbour) for the 6-neighbours inside the grid.
   template <class Visit>
   void forNeighbours(int64_t c, const Visit& visit) const {
     int64_t i, j, k;
     coordinates(c, &i, &j, &k);
+    forNeighbours(c, i, j, k, visit);
+  }
+  // The same for cell c = (i, j, k).
+  template <class Visit>
+  void forNeighbours(int64_t c, int64_t i, int64_t j, int64_t k, const Visit& visit) const {
     if (i > 0) visit(c - 1);
     if (i + 1 < nx) visit(c + 1);
     if (j > 0) visit(c - sy);
@@ -154,18 +167,19 @@ void RedistanceRun::detectSurface(int64_t begin, int64_t end) {
     for (int64_t chunk = first; chunk < last; ++chunk) {
       Array<int32_t>& out = found[static_cast<size_t>(chunk)];
       out.clear();
-      const int64_t chunkEnd = std::min(end, begin + (chunk + 1) * kCellGrain);
-      for (int64_t c = begin + chunk * kCellGrain; c < chunkEnd; ++c) {
+      const int64_t chunkBegin = begin + chunk * kCellGrain, chunkEnd = std::min(end, chunkBegin + kCellGrain);
+      int64_t ijk[3];
+      lat.coordinates(chunkBegin, &ijk[0], &ijk[1], &ijk[2]);
+      for (int64_t c = chunkBegin; c < chunkEnd; ++c, lat.next(&ijk[0], &ijk[1], &ijk[2])) {
         const bool liquid = isLiquid(phi[c]);
         bool surface = false;
-        lat.forNeighbours(c, [&](int64_t n) { surface = surface || isLiquid(phi[n]) != liquid; });
+        lat.forNeighbours(c, ijk[0], ijk[1], ijk[2],
+                          [&](int64_t n) { surface = surface || isLiquid(phi[n]) != liquid; });
         if (!surface) {
           dist[c] = kernels::unreachedDistance();
           layer[c] = kOutside;
           continue;
         }
-        int64_t ijk[3];
-        lat.coordinates(c, &ijk[0], &ijk[1], &ijk[2]);
         const int64_t count[3] = {lat.nx, lat.ny, lat.nz}, stride[3] = {1, lat.sy, lat.sz};
         double gradient2 = 0.0;
         for (int a = 0; a < 3; ++a) {

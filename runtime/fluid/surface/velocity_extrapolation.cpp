@@ -181,30 +181,50 @@ void VelocityExtrapolationRun::markRows(int64_t begin, int64_t end) {
   const int cellsAlong = g.nx * (a == 0) + g.ny * (a == 1) + g.nz * (a == 2);
   const int64_t cellStride = a == 0 ? 1 : a == 1 ? g.nx : static_cast<int64_t>(g.nx) * g.ny;
   const double* phi = liquidPhi_;
+  const double* open = fractions_->open[a].data();
   const double minSource = settings_.minSourceOpenFraction;
   const bool intoClosed = settings_.intoClosedFaces;
   uint8_t* mark = state_->mark[a].data();
+  // Known (0) when open enough and next to the liquid; else a target when open (or closed and
+  // intoClosedFaces); else fixed.
+  auto initialMark = [minSource, intoClosed](double fraction, bool liquid) -> uint8_t {
+    const bool isOpen = fraction > 0.0;
+    if (isOpen && liquid && fraction >= minSource) return 0;
+    return isOpen || intoClosed ? kExtrapolationUnreached : kExtrapolationFixed;
+  };
   parallelFor(*tasks_, end - begin, kRowGrain, [&](int64_t first, int64_t last) {
     for (int64_t row = begin + first; row < begin + last; ++row) {
       const int j = static_cast<int>(row % d.y()), k = static_cast<int>(row / d.y());
       const int64_t f0 = d.x() * row;
       // The index of cell (i, j, k), the face's high side (read only when it is inside the grid).
       const int64_t cellRow = static_cast<int64_t>(g.nx) * (j + static_cast<int64_t>(g.ny) * k);
-      for (int i = 0; i < d.x(); ++i) {
+      // A face on a domain side may be a Wall face and has a cell on one side only.
+      auto sideFace = [&](int i) {
         const int along = a == 0 ? i : a == 1 ? j : k;
-        const int64_t f = f0 + i;
         if (grid.isWallFace(a, i, j, k)) {
-          mark[f] = kExtrapolationFixed;
-          continue;
+          mark[f0 + i] = kExtrapolationFixed;
+          return;
         }
-        const double fraction = effectiveOpenFraction(grid, *fractions_, a, i, j, k);
-        const bool open = fraction > 0.0;
         const int64_t high = cellRow + i;
         const bool liquid =
             (along > 0 && isLiquid(phi[high - cellStride])) || (along < cellsAlong && isLiquid(phi[high]));
-        if (open && liquid && fraction >= minSource) mark[f] = 0;
-        else if (open || intoClosed) mark[f] = kExtrapolationUnreached;
-        else mark[f] = kExtrapolationFixed;
+        mark[f0 + i] = initialMark(effectiveOpenFraction(grid, *fractions_, a, i, j, k), liquid);
+      };
+      const int rowAlong = a == 1 ? j : k;
+      if (a != 0 && (rowAlong == 0 || rowAlong == cellsAlong)) {
+        for (int i = 0; i < d.x(); ++i) sideFace(i);
+        continue;
+      }
+      // Interior faces: both cells exist and no face is a Wall face.
+      const int iBegin = a == 0 ? 1 : 0, iEnd = a == 0 ? d.x() - 1 : d.x();
+      for (int i = iBegin; i < iEnd; ++i) {
+        const int64_t high = cellRow + i;
+        const bool liquid = isLiquid(phi[high - cellStride]) || isLiquid(phi[high]);
+        mark[f0 + i] = initialMark(openedFraction(open[f0 + i]), liquid);
+      }
+      if (a == 0) {
+        sideFace(0);
+        sideFace(d.x() - 1);
       }
     }
   });
