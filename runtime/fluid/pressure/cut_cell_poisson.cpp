@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/parallel_for.h"
+#include "fluid/cell_lattice.h"
 #include "fluid/pressure/poisson_rows.h"
 #include "fluid/surface/free_surface.h"
 
@@ -421,11 +422,9 @@ kernels::NetOutflowFields netOutflowFields(const MacGrid& grid, const FaceFracti
 void computeNetOutflowCells(const MacGrid& grid, const FaceFractionField& fractions, const CutCellPoisson& op,
                             int64_t begin, int64_t end, double* outflow) {
   const kernels::NetOutflowFields in = netOutflowFields(grid, fractions);
-  const kernels::MacLayout& g = in.grid;
-  for (int64_t c = begin; c < end; ++c)
-    outflow[c] = op.region[static_cast<size_t>(c)] < 0
-                     ? 0.0
-                     : kernels::netOutflowCell(in, c % g.nx, (c / g.nx) % g.ny, c / (g.nx * g.ny));
+  forCellsInRange(grid.spec, begin, end, [&](int64_t c, int i, int j, int k) {
+    outflow[c] = op.region[static_cast<size_t>(c)] < 0 ? 0.0 : kernels::netOutflowCell(in, i, j, k);
+  });
 }
 
 }  // namespace vp

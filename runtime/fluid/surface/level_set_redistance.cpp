@@ -27,14 +27,6 @@ struct Lattice {
     *j = (c / nx) % ny;
     *k = c / sz;
   }
-  // (i, j, k) of the next cell in cell order.
-  void next(int64_t* i, int64_t* j, int64_t* k) const {
-    if (++*i < nx) return;
-    *i = 0;
-    if (++*j < ny) return;
-    *j = 0;
-    ++*k;
-  }
   // visit(neighbour) for the 6-neighbours inside the grid.
   template <class Visit>
   void forNeighbours(int64_t c, const Visit& visit) const {
@@ -168,18 +160,16 @@ void RedistanceRun::detectSurface(int64_t begin, int64_t end) {
       Array<int32_t>& out = found[static_cast<size_t>(chunk)];
       out.clear();
       const int64_t chunkBegin = begin + chunk * kCellGrain, chunkEnd = std::min(end, chunkBegin + kCellGrain);
-      int64_t ijk[3];
-      lat.coordinates(chunkBegin, &ijk[0], &ijk[1], &ijk[2]);
-      for (int64_t c = chunkBegin; c < chunkEnd; ++c, lat.next(&ijk[0], &ijk[1], &ijk[2])) {
+      forCellsInRange(grid_, chunkBegin, chunkEnd, [&](int64_t c, int i, int j, int k) {
         const bool liquid = isLiquid(phi[c]);
         bool surface = false;
-        lat.forNeighbours(c, ijk[0], ijk[1], ijk[2],
-                          [&](int64_t n) { surface = surface || isLiquid(phi[n]) != liquid; });
+        lat.forNeighbours(c, i, j, k, [&](int64_t n) { surface = surface || isLiquid(phi[n]) != liquid; });
         if (!surface) {
           dist[c] = kernels::unreachedDistance();
           layer[c] = kOutside;
-          continue;
+          return;
         }
+        const int64_t ijk[3] = {i, j, k};
         const int64_t count[3] = {lat.nx, lat.ny, lat.nz}, stride[3] = {1, lat.sy, lat.sz};
         double gradient2 = 0.0;
         for (int a = 0; a < 3; ++a) {
@@ -197,7 +187,7 @@ void RedistanceRun::detectSurface(int64_t begin, int64_t end) {
         dist[c] = std::min(d, h);
         layer[c] = 0;
         out.push_back(static_cast<int32_t>(c));
-      }
+      });
     }
   });
   for (int64_t chunk = 0; chunk < chunks; ++chunk) {

@@ -8,6 +8,7 @@
 
 #include "core/parallel_for.h"
 #include "core/slab_passes.h"
+#include "fluid/cell_lattice.h"
 
 namespace vp {
 namespace {
@@ -59,19 +60,22 @@ double liquidVolume(TaskSystem& tasks, const MacGridSpec& grid, const double* ph
 namespace {
 
 void cellOpenFractionRange(const FaceFractionField& fractions, int64_t begin, int64_t end, double* weights) {
+  // Face index strides per axis (the face lattice has one more entry along its own axis).
   const MacGridSpec& g = fractions.grid;
-  for (int64_t c = begin; c < end; ++c) {
-    const int i = static_cast<int>(c % g.nx), j = static_cast<int>((c / g.nx) % g.ny),
-              k = static_cast<int>(c / (static_cast<int64_t>(g.nx) * g.ny));
+  int64_t sy[3], sz[3];
+  for (int a = 0; a < 3; ++a) {
+    sy[a] = g.nx + (a == 0);
+    sz[a] = sy[a] * (g.ny + (a == 1));
+  }
+  const int64_t step[3] = {1, sy[1], sz[2]};  // to the high face along the face's own axis
+  forCellsInRange(g, begin, end, [&](int64_t c, int i, int j, int k) {
     double sum = 0.0;
     for (int a = 0; a < 3; ++a) {
-      Eigen::Vector3i high(i, j, k);
-      high[a] += 1;
-      sum += fractions.open[a][fractions.faceIndex(a, i, j, k)] +
-             fractions.open[a][fractions.faceIndex(a, high.x(), high.y(), high.z())];
+      const int64_t low = i + sy[a] * j + sz[a] * k;
+      sum += fractions.open[a][static_cast<size_t>(low)] + fractions.open[a][static_cast<size_t>(low + step[a])];
     }
     weights[c] = sum / 6.0;
-  }
+  });
 }
 
 int64_t cellCount(const MacGridSpec& g) { return static_cast<int64_t>(g.nx) * g.ny * g.nz; }
