@@ -25,6 +25,26 @@ void addCellPass(SlabPasses& passes, const MacGridSpec& s, Body body) {
   });
 }
 
+// addCellPass, but cells with neighbours on both sides along every axis get interior(c)
+// instead: the runs of them inside a row are loops without the boundary clamps.
+template <class Body, class Interior>
+void addCellPassWithInterior(SlabPasses& passes, const MacGridSpec& s, Body body, Interior interior) {
+  passes.addParallel(static_cast<int64_t>(s.ny) * s.nz, s.nx, kRowGrain,
+                     [s, body, interior](int64_t begin, int64_t end) {
+                       for (int64_t row = begin; row < end; ++row) {
+                         const int j = static_cast<int>(row % s.ny), k = static_cast<int>(row / s.ny);
+                         const int64_t c0 = s.nx * row;
+                         if (j == 0 || j + 1 == s.ny || k == 0 || k + 1 == s.nz || s.nx < 3) {
+                           for (int i = 0; i < s.nx; ++i) body(i, j, k, c0 + i);
+                           continue;
+                         }
+                         body(0, j, k, c0);
+                         for (int64_t c = c0 + 1; c + 1 < c0 + s.nx; ++c) interior(c);
+                         body(s.nx - 1, j, k, c0 + s.nx - 1);
+                       }
+                     });
+}
+
 // Adds dt times the mean of the force over each a-face's two cells (the one cell at the
 // domain's sides) to the face velocities; cellForce(c) is the force's component a at cell c.
 // A pass over the a-faces' rows.
@@ -92,13 +112,27 @@ void addVorticityConfinementPasses(SlabPasses& passes, MacGrid& grid, double eps
     const double* faces[3] = {g->velocity[0].data(), g->velocity[1].data(), g->velocity[2].data()};
     kernels::cellVelocityAt(faces, spec.nx, spec.ny, i, j, k, w->force.data() + 3 * c);
   });
-  addCellPass(passes, s, [lattice, w](int i, int j, int k, int64_t c) {
-    kernels::vorticityAt(lattice, w->force.data(), i, j, k, w->omega.data() + 3 * c);
-    w->omegaNorm[static_cast<size_t>(c)] = kernels::norm3(w->omega.data() + 3 * c);
-  });
-  addCellPass(passes, s, [lattice, w, epsilon](int i, int j, int k, int64_t c) {
-    kernels::confinementAt(lattice, w->omega.data(), w->omegaNorm.data(), epsilon, i, j, k, w->force.data() + 3 * c);
-  });
+  const double twoH = 2.0 * s.h;  // the central differences' span inside the grid
+  addCellPassWithInterior(
+      passes, s,
+      [lattice, w](int i, int j, int k, int64_t c) {
+        kernels::vorticityAt(lattice, w->force.data(), i, j, k, w->omega.data() + 3 * c);
+        w->omegaNorm[static_cast<size_t>(c)] = kernels::norm3(w->omega.data() + 3 * c);
+      },
+      [lattice, w, twoH](int64_t c) {
+        kernels::interiorVorticityAt(lattice, w->force.data(), c, twoH, w->omega.data() + 3 * c);
+        w->omegaNorm[static_cast<size_t>(c)] = kernels::norm3(w->omega.data() + 3 * c);
+      });
+  addCellPassWithInterior(
+      passes, s,
+      [lattice, w, epsilon](int i, int j, int k, int64_t c) {
+        kernels::confinementAt(lattice, w->omega.data(), w->omegaNorm.data(), epsilon, i, j, k,
+                               w->force.data() + 3 * c);
+      },
+      [lattice, w, epsilon, twoH](int64_t c) {
+        kernels::interiorConfinementAt(lattice, w->omega.data(), w->omegaNorm.data(), epsilon, c, twoH,
+                                       w->force.data() + 3 * c);
+      });
   for (int a = 0; a < 3; ++a)
     addCellForceToFaces(passes, grid, a, dt, [w, a](int64_t c) { return w->force[static_cast<size_t>(3 * c + a)]; });
 }
