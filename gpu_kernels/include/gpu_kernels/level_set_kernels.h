@@ -31,12 +31,11 @@ VP_HOST_DEVICE inline double eikonalUpdate(double a, double b, double c, double 
   return (s + std::sqrt(s * s - 3.0 * (a * a + b * b + c * c - h * h))) / 3.0;
 }
 
-// Cell c's update in a sweep: the upwind value from its neighbours inside the grid, kept
+// Cell c's (at coordinates ijk) update in a sweep: the upwind value from its neighbours inside the grid, kept
 // when smaller. Returns how much it dropped where the new value lies under `clamp` (values
 // at or above it never reach one under it), +inf for a first value under it, else 0.
-VP_HOST_DEVICE inline double redistanceSweepCell(const CellLattice& g, int64_t c, double clamp, double* distance) {
-  int64_t ijk[3];
-  g.coordinates(c, ijk);
+VP_HOST_DEVICE inline double redistanceSweepCellAt(const CellLattice& g, int64_t c, const int64_t ijk[3], double clamp,
+                                                   double* distance) {
   const double unreached = unreachedDistance();
   double upwind[3];
   for (int a = 0; a < 3; ++a) {
@@ -54,6 +53,12 @@ VP_HOST_DEVICE inline double redistanceSweepCell(const CellLattice& g, int64_t c
   if (!(updated < clamp)) return 0.0;
   return before == unreached ? unreached : before - updated;
 }
+// The same with c's coordinates worked out.
+VP_HOST_DEVICE inline double redistanceSweepCell(const CellLattice& g, int64_t c, double clamp, double* distance) {
+  int64_t ijk[3];
+  g.coordinates(c, ijk);
+  return redistanceSweepCellAt(g, c, ijk, clamp, distance);
+}
 
 // redistanceSweepCell for a cell that a sweep may skip: stale[c] says whether a neighbour's
 // distance changed since c's last update. The update is a function of the neighbours and c's
@@ -64,11 +69,11 @@ VP_HOST_DEVICE inline double redistanceSweepStaleCell(const CellLattice& g, int6
                                                       uint8_t* stale) {
   if (!stale[c]) return 0.0;
   stale[c] = 0;
-  const double before = distance[c];
-  const double drop = redistanceSweepCell(g, c, clamp, distance);
-  if (distance[c] == before) return drop;
   int64_t ijk[3];
   g.coordinates(c, ijk);
+  const double before = distance[c];
+  const double drop = redistanceSweepCellAt(g, c, ijk, clamp, distance);
+  if (distance[c] == before) return drop;
   for (int a = 0; a < 3; ++a) {
     if (ijk[a] > 0) raiseSharedFlag(&stale[c - g.stride[a]]);
     if (ijk[a] + 1 < g.n[a]) raiseSharedFlag(&stale[c + g.stride[a]]);

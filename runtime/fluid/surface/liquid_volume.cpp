@@ -9,6 +9,7 @@
 #include "core/parallel_for.h"
 #include "core/slab_passes.h"
 #include "fluid/cell_lattice.h"
+#include "gpu_kernels/mac_layout.h"
 
 namespace vp {
 namespace {
@@ -60,19 +61,14 @@ double liquidVolume(TaskSystem& tasks, const MacGridSpec& grid, const double* ph
 namespace {
 
 void cellOpenFractionRange(const FaceFractionField& fractions, int64_t begin, int64_t end, double* weights) {
-  // Face index strides per axis (the face lattice has one more entry along its own axis).
   const MacGridSpec& g = fractions.grid;
-  int64_t sy[3], sz[3];
-  for (int a = 0; a < 3; ++a) {
-    sy[a] = g.nx + (a == 0);
-    sz[a] = sy[a] * (g.ny + (a == 1));
-  }
-  const int64_t step[3] = {1, sy[1], sz[2]};  // to the high face along the face's own axis
+  const kernels::MacLayout layout{g.nx, g.ny, g.nz, {}};  // face indices only: no wall flags read
   forCellsInRange(g, begin, end, [&](int64_t c, int i, int j, int k) {
     double sum = 0.0;
     for (int a = 0; a < 3; ++a) {
-      const int64_t low = i + sy[a] * j + sz[a] * k;
-      sum += fractions.open[a][static_cast<size_t>(low)] + fractions.open[a][static_cast<size_t>(low + step[a])];
+      const int64_t low = layout.faceIndex(a, i, j, k);
+      const int64_t high = layout.faceIndex(a, i + (a == 0), j + (a == 1), k + (a == 2));
+      sum += fractions.open[a][static_cast<size_t>(low)] + fractions.open[a][static_cast<size_t>(high)];
     }
     weights[c] = sum / 6.0;
   });
