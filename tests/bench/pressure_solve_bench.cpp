@@ -32,6 +32,11 @@
 //                  same iteration: what a CG iteration pays for its preconditioner, in units of
 //                  its own operator (a well-built V-cycle costs 4 to 6)
 //   vcycle_ms, matvec_ms  the two times themselves
+//   update_ms      liquid_tank, cut-cell multigrid only: the fine operator built again after the
+//                  surface moved a tenth of a cell, recording its changed rows, and the
+//                  multigrid updated where they reach (poisson_multigrid.h), what a liquid's
+//                  projection pays for its setup; tracked_rebuild_ms: the same builds with the
+//                  multigrid rebuilt instead
 //   triad_gbps     STREAM triad a = b + s c over 3 arrays of 64 MiB each (far beyond the
 //                  last-level cache), 24 bytes per element, on the same task system, measured
 //                  in the same run
@@ -44,6 +49,7 @@
 #include <memory>
 #include <string>
 #include <thread>
+#include <utility>
 
 #include "../unit/fluid_pressure_scenes.h"
 #include "core/parallel_for.h"
@@ -89,6 +95,31 @@ const PressureScene* scene(PressureSceneKind kind, int n) {
     if (testscene::makePressureScene(benchTasks(), kind, n, slot.get()) != Status::Ok) slot.reset();
   }
   return slot.get();
+}
+
+// What a liquid's projection pays when its surface has moved: the level set shifted by
+// kSurfaceShift cells (up, then back), the fine operator built with its changed rows raised and
+// the multigrid updated (median of 4); and the same builds when the multigrid is rebuilt.
+std::pair<double, double> trackedBuilds(TaskSystem& tasks, const PressureScene& s, MultigridSettings settings) {
+  constexpr double kSurfaceShift = 0.1;
+  settings.coarsening = MultigridCoarsening::CutCell;
+  std::vector<double> phi[2] = {s.liquidPhi, s.liquidPhi};
+  for (double& v : phi[1]) v -= kSurfaceShift * s.grid.spec.h;
+  CutCellPoisson fine;
+  ChangedRows changed;
+  PoissonMultigrid mg;
+  int which = 0;
+  auto build = [&](bool update) {
+    SlabPasses passes(tasks);
+    appendBuildCutCellPoisson(s.grid, s.fractions, &fine, phi[which].data(), &passes, &changed);
+    appendBuildPoissonMultigrid(fine, s.grid.sides, settings, &mg, &passes, update ? &changed : nullptr);
+    passes.runAll();
+    which = 1 - which;
+  };
+  build(true);
+  const double update = medianSeconds(4, [&] { build(true); });
+  const double rebuild = medianSeconds(4, [&] { build(false); });
+  return {update, rebuild};
 }
 
 void BM_PressureSolve(benchmark::State& state, PressureSolver which, PoissonSmoother smoother,
@@ -143,6 +174,11 @@ void BM_PressureSolve(benchmark::State& state, PressureSolver which, PoissonSmoo
       state.counters["vcycle_per_matvec"] = vcycle / apply;
       state.counters["vcycle_ms"] = 1e3 * vcycle;
       state.counters["matvec_ms"] = 1e3 * apply;
+    }
+    if (which == PressureSolver::CutCellMgpcg && !s.liquidPhi.empty()) {
+      const std::pair<double, double> tracked = trackedBuilds(tasks, s, solver.multigrid);
+      state.counters["update_ms"] = 1e3 * tracked.first;
+      state.counters["tracked_rebuild_ms"] = 1e3 * tracked.second;
     }
     state.counters["triad_gbps"] = triadGbps(tasks);
   }

@@ -57,11 +57,12 @@ Status buildCutCellPoisson(TaskSystem& tasks, const MacGrid& grid, const FaceFra
 namespace {
 
 // Couplings (and, with a free surface, open fractions) of the faces of axis a in face rows
-// [begin, end); only interior faces couple, index 1 .. cells-1 along the axis.
+// [begin, end); only interior faces couple, index 1 .. cells-1 along the axis. `changed`
+// (optional): the rows owning faces whose values changed are raised (changed_rows.h).
 void buildCouplingRows(const MacGrid& grid, const FaceFractionField& fractions, const double* liquidPhi, int a,
-                       int64_t begin, int64_t end, CutCellPoisson* op) {
+                       int64_t begin, int64_t end, CutCellPoisson* op, ChangedRows* changed) {
   const Eigen::Vector3i d = grid.faceDims(a);
-  const int64_t nx = grid.spec.nx, ny = grid.spec.ny;
+  const int64_t nx = grid.spec.nx, ny = grid.spec.ny, nz = grid.spec.nz;
   // Cell index step along a: the face's high cell is (i, j, k), its low cell that less the step.
   const int64_t step = a == 0 ? 1 : a == 1 ? nx : nx * ny;
   double* coupling = op->coupling[a].data();
@@ -73,21 +74,28 @@ void buildCouplingRows(const MacGrid& grid, const FaceFractionField& fractions, 
     const int64_t along = a == 1 ? j : k;
     const bool interiorRow = a == 0 || (along > 0 && along < d[a] - 1);
     const int64_t i0 = !interiorRow ? d.x() : a == 0 ? 1 : 0, i1 = !interiorRow ? d.x() : a == 0 ? d.x() - 1 : d.x();
-    for (int64_t i = 0; i < d.x(); ++i) {
-      coupling[f0 + i] = 0.0;
-      if (openFraction != nullptr) openFraction[f0 + i] = 0.0;
-    }
     const int64_t cell0 = nx * (j + ny * k);  // the high cell of face i is cell0 + i
-    for (int64_t i = i0; i < i1; ++i) {
-      // effectiveOpenFraction of an interior face (never a Wall face).
-      const double open = openedFraction(fraction[f0 + i]);
-      if (liquidPhi != nullptr) {
-        openFraction[f0 + i] = open;
-        // Only liquid-liquid faces couple; a liquid-air face is a diagonal term below.
-        if (!isLiquid(liquidPhi[cell0 + i]) || !isLiquid(liquidPhi[cell0 + i - step])) continue;
+    bool rowChanged = false;
+    for (int64_t i = 0; i < d.x(); ++i) {
+      double open = 0.0, couples = 0.0;
+      if (i >= i0 && i < i1) {
+        // effectiveOpenFraction of an interior face (never a Wall face).
+        open = openedFraction(fraction[f0 + i]);
+        // With a free surface only liquid-liquid faces couple; a liquid-air face is a diagonal
+        // term (buildDiagonalCells).
+        const bool liquidBoth =
+            liquidPhi == nullptr || (isLiquid(liquidPhi[cell0 + i]) && isLiquid(liquidPhi[cell0 + i - step]));
+        couples = liquidBoth ? open : 0.0;
       }
-      coupling[f0 + i] = open;
+      if (changed != nullptr) rowChanged = rowChanged || !sameBits(coupling[f0 + i], couples);
+      coupling[f0 + i] = couples;
+      if (openFraction == nullptr) continue;
+      if (changed != nullptr) rowChanged = rowChanged || !sameBits(openFraction[f0 + i], open);
+      openFraction[f0 + i] = open;
     }
+    // The cell row owning this face row (changed_rows.h).
+    if (rowChanged)
+      changed->raise(a == 0 ? row : a == 1 ? std::min(j, ny - 1) + ny * k : j + ny * std::min(k, nz - 1));
   }
 }
 
@@ -119,42 +127,42 @@ struct CellFaces {
   }
 };
 
-// Diagonal (and, with a free surface, air flags, level set and surface terms) of cells [begin, end).
+// Diagonal (and, with a free surface, air flags, level set and surface terms) of cells
+// [begin, end); `changed` (optional) as for buildCouplingRows.
 void buildDiagonalCells(const MacGrid& grid, const FaceFractionField& fractions, const double* liquidPhi,
-                        int64_t begin, int64_t end, CutCellPoisson* op) {
+                        int64_t begin, int64_t end, CutCellPoisson* op, ChangedRows* changed) {
   const MacGridSpec& g = grid.spec;
   int i = static_cast<int>(begin % g.nx), j = static_cast<int>((begin / g.nx) % g.ny),
       k = static_cast<int>(begin / (static_cast<int64_t>(g.nx) * g.ny));
   for (int64_t c = begin; c < end; ++c, nextCell(g, &i, &j, &k)) {
-    if (liquidPhi != nullptr) {
-      op->liquidPhi[static_cast<size_t>(c)] = liquidPhi[c];
-      op->air[static_cast<size_t>(c)] = 0;
-      op->surfaceDirichlet[static_cast<size_t>(c)] = 0.0;
-    }
     const CellFaces faces(grid, fractions, i, j, k, c);
+    double sum = 0.0, surface = 0.0;
     if (liquidPhi != nullptr && !isLiquid(liquidPhi[c])) {
-      op->diagonal[static_cast<size_t>(c)] = 0.0;  // air: p = 0, no row
+      // Air: p = 0, no row.
       bool open = false;
       for (int f = 0; f < 6; ++f) open = open || faces.open[f] > 0.0;
       op->air[static_cast<size_t>(c)] = open ? 1 : 0;
-      continue;
-    }
-    double sum = 0.0, surface = 0.0;
-    for (int f = 0; f < 6; ++f) {
-      const double open = faces.open[f];
-      if (liquidPhi != nullptr && open > 0.0 && faces.neighbour[f] >= 0) {
-        const double phiNb = liquidPhi[faces.neighbour[f]];
-        if (!isLiquid(phiNb)) {
-          const double term = open / freeSurfaceTheta(liquidPhi[c], phiNb);
-          sum += term;  // summed in face order as ever, so the fine operator is bitwise unchanged
-          surface += term;
-          continue;
+    } else {
+      for (int f = 0; f < 6; ++f) {
+        const double open = faces.open[f];
+        if (liquidPhi != nullptr && open > 0.0 && faces.neighbour[f] >= 0) {
+          const double phiNb = liquidPhi[faces.neighbour[f]];
+          if (!isLiquid(phiNb)) {
+            const double term = open / freeSurfaceTheta(liquidPhi[c], phiNb);
+            sum += term;  // summed in face order as ever, so the fine operator is bitwise unchanged
+            surface += term;
+            continue;
+          }
         }
+        sum += open;
       }
-      sum += open;
+      if (liquidPhi != nullptr) op->air[static_cast<size_t>(c)] = 0;
     }
-    op->diagonal[static_cast<size_t>(c)] = sum;
-    if (liquidPhi != nullptr) op->surfaceDirichlet[static_cast<size_t>(c)] = surface;
+    const int64_t row = c / g.nx;
+    storeTracked(&op->diagonal[static_cast<size_t>(c)], sum, changed, row);
+    if (liquidPhi == nullptr) continue;
+    op->liquidPhi[static_cast<size_t>(c)] = liquidPhi[c];
+    storeTracked(&op->surfaceDirichlet[static_cast<size_t>(c)], surface, changed, row);
   }
 }
 
@@ -181,19 +189,26 @@ void sizeCutCellPoisson(const MacGridSpec& grid, bool freeSurface, bool air, Cut
 }
 
 void appendBuildCutCellPoisson(const MacGrid& grid, const FaceFractionField& fractions, CutCellPoisson* op,
-                               const double* liquidPhi, SlabPasses* passes) {
+                               const double* liquidPhi, SlabPasses* passes, ChangedRows* changed) {
   const MacGrid* g = &grid;
   const FaceFractionField* f = &fractions;
-  passes->addStep([g, f, op, liquidPhi, passes] {
+  passes->addStep([g, f, op, liquidPhi, passes, changed] {
+    const bool sameShape = sameGrid(op->grid, g->spec) && op->diagonal.size() == static_cast<size_t>(g->cellCount()) &&
+                           op->liquidPhi.empty() == (liquidPhi == nullptr);
     sizeCutCellPoisson(g->spec, liquidPhi != nullptr, liquidPhi != nullptr, op);
+    if (changed != nullptr) {
+      changed->sizeFor(static_cast<int64_t>(g->spec.ny) * g->spec.nz);
+      if (!sameShape) changed->raiseAll();
+    }
     for (int a = 0; a < 3; ++a) {
       const Eigen::Vector3i d = g->faceDims(a);
-      passes->addParallel(static_cast<int64_t>(d.z()) * d.y(), d.x(), 16, [g, f, op, liquidPhi, a](int64_t b, int64_t e) {
-        buildCouplingRows(*g, *f, liquidPhi, a, b, e, op);
-      });
+      passes->addParallel(static_cast<int64_t>(d.z()) * d.y(), d.x(), 16,
+                          [g, f, op, liquidPhi, a, changed](int64_t b, int64_t e) {
+                            buildCouplingRows(*g, *f, liquidPhi, a, b, e, op, changed);
+                          });
     }
-    passes->addParallel(g->cellCount(), 1, kCellGrain, [g, f, op, liquidPhi](int64_t b, int64_t e) {
-      buildDiagonalCells(*g, *f, liquidPhi, b, e, op);
+    passes->addParallel(g->cellCount(), 1, kCellGrain, [g, f, op, liquidPhi, changed](int64_t b, int64_t e) {
+      buildDiagonalCells(*g, *f, liquidPhi, b, e, op, changed);
     });
     appendLabelFluidRegions(op, passes);
     appendComputeRowSpans(op, passes);

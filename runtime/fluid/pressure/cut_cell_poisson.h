@@ -37,6 +37,7 @@
 #include "core/status.h"
 #include "core/task_system.h"
 #include "fluid/mac_grid.h"
+#include "fluid/pressure/changed_rows.h"
 #include "fluid/solids/face_fraction_field.h"
 #include "gpu_kernels/net_outflow_kernels.h"
 #include "gpu_kernels/pressure_update_kernels.h"
@@ -112,9 +113,11 @@ Status checkCutCellPoissonInputs(const MacGrid& grid, const FaceFractionField& f
 
 // buildCutCellPoisson as passes (inputs checked; they and op must outlive the passes): the
 // couplings in slabs of face rows per axis, the diagonal in slabs of cells, then
-// labelFluidRegions' and computeRowSpans' passes.
+// labelFluidRegions' and computeRowSpans' passes. `changed` (optional): the rows whose values
+// change are raised, all of them when op had another shape (changed_rows.h); the multigrid
+// update that consumes them clears them.
 void appendBuildCutCellPoisson(const MacGrid& grid, const FaceFractionField& fractions, CutCellPoisson* op,
-                               const double* liquidPhi, SlabPasses* passes);
+                               const double* liquidPhi, SlabPasses* passes, ChangedRows* changed = nullptr);
 
 // Per cell: diagonal minus the couplings of the cell's faces (open domain sides, free-surface
 // faces); 0 on non-fluid cells and where the difference is round-off (below 1e-12 of the

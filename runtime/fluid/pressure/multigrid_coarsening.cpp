@@ -30,11 +30,14 @@ struct Dims {
   int64_t along(int a) const { return a == 0 ? nx : a == 1 ? ny : nz; }
 };
 
-// Diagonal = couplings of the six faces + Dirichlet part, cells of rows [begin, end);
-// couplings must be set.
-void assembleDiagonalRows(const Array<double>& dirichlet, CutCellPoisson* op, int64_t begin, int64_t end) {
+// Diagonal = couplings of the six faces + Dirichlet part, cells of rows [begin, end) for which
+// `todo` is set (every row when null); couplings must be set. `changed` (optional): rows whose
+// diagonal changed are raised.
+void assembleDiagonalRows(const Array<double>& dirichlet, CutCellPoisson* op, int64_t begin, int64_t end,
+                          const uint8_t* todo = nullptr, ChangedRows* changed = nullptr) {
   const Dims d(op->grid);
   for (int64_t row = begin; row < end; ++row) {
+    if (todo != nullptr && !todo[row]) continue;
     const int64_t j = row % d.ny, k = row / d.ny;
     for (int64_t i = 0; i < d.nx; ++i) {
       const int64_t c = d.cell(i, j, k);
@@ -45,7 +48,7 @@ void assembleDiagonalRows(const Array<double>& dirichlet, CutCellPoisson* op, in
         sum += op->coupling[a][static_cast<size_t>(d.face(a, i, j, k))];
         sum += op->coupling[a][static_cast<size_t>(d.face(a, hi[0], hi[1], hi[2]))];
       }
-      op->diagonal[static_cast<size_t>(c)] = sum + dirichlet[static_cast<size_t>(c)];
+      storeTracked(&op->diagonal[static_cast<size_t>(c)], sum + dirichlet[static_cast<size_t>(c)], changed, row);
     }
   }
 }
@@ -148,15 +151,66 @@ void coarseFaceRow(const Dims& f, const Dims& c, int a, int64_t C1, int64_t C2, 
   for (int64_t I = 0; I < count; ++I) out[I] *= 0.5;
 }
 
+// The coarse faces of axis a, a pass over the rows of the coarse face lattice (it writes every
+// face, 0 on the domain's). With `todo` (per coarse cell row) only the face rows of the cell
+// rows set there, and `changed` raises the rows whose faces changed (changed_rows.h: a cell
+// row owns its cells' low y and z faces; the rows of faces on the high domain sides are always
+// closed, so an update leaves them).
 void addCoarseFacePass(SlabPasses* passes, const Dims& f, const Dims& c, int a, const Array<double>* in,
-                       const Array<double>* inner, Array<double>* out) {
-  // The pass runs over the coarse face lattice, so it writes every face (0 on the domain's).
+                       const Array<double>* inner, Array<double>* out, const uint8_t* todo, ChangedRows* changed) {
   const int64_t faces[3] = {c.nx + (a == 0), c.ny + (a == 1), c.nz + (a == 2)};
   passes->addParallel(faces[1] * faces[2], faces[0] * kChildren, kRowGrain, [=](int64_t begin, int64_t end) {
-    for (int64_t row = begin; row < end; ++row)
-      coarseFaceRow(f, c, a, row % faces[1], row / faces[1], faces[0], in->data(), inner->data(),
-                    out->data() + faces[0] * row);
+    Array<double> row(changed != nullptr ? static_cast<size_t>(faces[0]) : 0);
+    for (int64_t r = begin; r < end; ++r) {
+      const int64_t C1 = r % faces[1], C2 = r / faces[1];
+      double* values = out->data() + faces[0] * r;
+      if (todo == nullptr) {
+        coarseFaceRow(f, c, a, C1, C2, faces[0], in->data(), inner->data(), values);
+        continue;
+      }
+      if (C1 == c.ny || C2 == c.nz) continue;  // a row of faces on a high domain side
+      const int64_t owner = C1 + c.ny * C2;
+      if (!todo[owner]) continue;
+      coarseFaceRow(f, c, a, C1, C2, faces[0], in->data(), inner->data(), row.data());
+      bool same = true;
+      for (int64_t I = 0; I < faces[0]; ++I) same = same && sameBits(values[I], row[static_cast<size_t>(I)]);
+      if (same) continue;
+      std::copy(row.begin(), row.end(), values);
+      changed->raise(owner);
+    }
   });
+}
+
+// The free-surface part of coarse cell (I, J, K)'s diagonal (addCoarseFreeSurfacePasses), from
+// the coarse level set, fluid flags and open fractions already set.
+double coarseSurfaceDirichlet(const CutCellPoisson* fine, const Dims& f, const Dims& c, const CutCellPoisson& coarse,
+                              const Array<uint8_t>& fluid, int64_t I, int64_t J, int64_t K) {
+  const size_t cell = static_cast<size_t>(c.cell(I, J, K));
+  if (!fluid[cell]) return 0.0;
+  const double phi = coarse.liquidPhi[cell];
+  double surface = 0.0;
+  for (int a = 0; a < 3; ++a)
+    for (int side = 0; side < 2; ++side) {
+      int64_t nb[3] = {I, J, K};
+      nb[a] += side == 0 ? -1 : 1;
+      if (nb[a] < 0 || nb[a] >= c.along(a)) continue;
+      const size_t nbCell = static_cast<size_t>(c.cell(nb[0], nb[1], nb[2]));
+      if (fluid[nbCell]) continue;
+      int64_t high[3] = {I, J, K};
+      high[a] += side;
+      const double open = coarse.openFraction[a][static_cast<size_t>(c.face(a, high[0], high[1], high[2]))];
+      if (!(open > 0.0)) continue;
+      const double phiNb = coarse.liquidPhi[nbCell];
+      // A liquid neighbour mean without fluid children is air over solid: surface at its centre.
+      const double theta = !isLiquid(phi) ? kMinFreeSurfaceTheta
+                           : isLiquid(phiNb) ? 1.0 : freeSurfaceTheta(phi, phiNb);
+      surface += open / theta;
+    }
+  if (!(surface > 0.0)) {
+    forEachChild(f, I, J, K, [&](int64_t child) { surface += fine->surfaceDirichlet[static_cast<size_t>(child)]; });
+    surface *= 0.5;
+  }
+  return surface;
 }
 
 // The free surface of a coarse level, by the fine level's ghost-fluid rule at the coarse spacing.
@@ -172,8 +226,11 @@ void addCoarseFacePass(SlabPasses* passes, const Dims& f, const Dims& c, int a, 
 // centres lie 0.02 of a cell below the surface. Iterations to 1e-6 on the liquid tank without
 // colliders, 64/128^3: 7/7 summed, 6/6 placed again.
 // Where no such face exists (air pockets smaller than the coarse cell), the summed rule stays.
+// Both passes run over every coarse cell: the level set moves wherever the liquid does. With
+// `todo`, a row whose surface terms changed is raised in `changed` and set in todo.
 void addCoarseFreeSurfacePasses(SlabPasses* passes, const CutCellPoisson* fine, const Dims& f, const Dims& c,
-                                CutCellPoisson* coarse, Array<uint8_t>* fluidCells) {
+                                CutCellPoisson* coarse, Array<uint8_t>* fluidCells, uint8_t* todo,
+                                ChangedRows* changed) {
   addCellPass(passes, c, kChildren, [=](int64_t I, int64_t J, int64_t K) {
     double phi = 0.0;
     int children = 0;
@@ -188,44 +245,25 @@ void addCoarseFreeSurfacePasses(SlabPasses* passes, const CutCellPoisson* fine, 
     (*fluidCells)[cell] = anyFluid ? 1 : 0;
   });
   addCellPass(passes, c, 1, [=](int64_t I, int64_t J, int64_t K) {
-    const Array<uint8_t>& fluid = *fluidCells;
     const size_t cell = static_cast<size_t>(c.cell(I, J, K));
-    coarse->surfaceDirichlet[cell] = 0.0;
-    if (!fluid[cell]) return;
-    const double phi = coarse->liquidPhi[cell];
-    double surface = 0.0;
-    for (int a = 0; a < 3; ++a)
-      for (int side = 0; side < 2; ++side) {
-        int64_t nb[3] = {I, J, K};
-        nb[a] += side == 0 ? -1 : 1;
-        if (nb[a] < 0 || nb[a] >= c.along(a)) continue;
-        const size_t nbCell = static_cast<size_t>(c.cell(nb[0], nb[1], nb[2]));
-        if (fluid[nbCell]) continue;
-        int64_t high[3] = {I, J, K};
-        high[a] += side;
-        const double open = coarse->openFraction[a][static_cast<size_t>(c.face(a, high[0], high[1], high[2]))];
-        if (!(open > 0.0)) continue;
-        const double phiNb = coarse->liquidPhi[nbCell];
-        // A liquid neighbour mean without fluid children is air over solid: surface at its centre.
-        const double theta = !isLiquid(phi) ? kMinFreeSurfaceTheta
-                             : isLiquid(phiNb) ? 1.0 : freeSurfaceTheta(phi, phiNb);
-        surface += open / theta;
-      }
-    if (!(surface > 0.0)) {
-      forEachChild(f, I, J, K, [&](int64_t child) { surface += fine->surfaceDirichlet[static_cast<size_t>(child)]; });
-      surface *= 0.5;
+    const double surface = coarseSurfaceDirichlet(fine, f, c, *coarse, *fluidCells, I, J, K);
+    if (todo != nullptr && !sameBits(coarse->surfaceDirichlet[cell], surface)) {
+      changed->raise(J + c.ny * K);
+      todo[J + c.ny * K] = 1;  // the pass's rows are its units: one worker writes this row's flag
     }
     coarse->surfaceDirichlet[cell] = surface;
   });
 }
 
-// The Dirichlet parts of coarse rows [begin, end): the halved sum of the children's, less their
+// The Dirichlet parts of coarse rows [begin, end) (those set in `todo`, when given): the halved sum of the children's, less their
 // free-surface parts (placed again at this level's spacing by the free-surface passes, whose
 // result is added), summed in forEachChild's order.
 void coarseDirichletRows(const CutCellPoisson& fine, const Dims& f, const Dims& c, bool freeSurface,
-                         const CutCellPoisson& coarse, int64_t begin, int64_t end, double* dirichlet) {
+                         const CutCellPoisson& coarse, int64_t begin, int64_t end, const uint8_t* todo,
+                         double* dirichlet) {
   Array<double> parts(static_cast<size_t>(4 * f.nx));
   for (int64_t row = begin; row < end; ++row) {
+    if (todo != nullptr && !todo[row]) continue;
     const int64_t J = row % c.ny, K = row / c.ny;
     int childRows = 0;
     for (int64_t k = 2 * K; k < 2 * K + 2 && k < f.nz; ++k)
@@ -250,11 +288,32 @@ void coarseDirichletRows(const CutCellPoisson& fine, const Dims& f, const Dims& 
   }
 }
 
-// The last passes of either coarsening: the diagonal from the couplings and scratch->dirichlet,
-// then the regions and row spans.
-void addCoarseDiagonalPasses(SlabPasses* passes, const Dims& c, CutCellPoisson* coarse, CoarseningScratch* scratch) {
+// Per coarse row, whether an update recomputes it: the rows within reach of a raised fine row
+// or raised themselves (by an update stopped before it finished). Coarse row (J, K) reads fine
+// rows 2J - 1 .. 2J + 3 and 2K - 1 .. 2K + 3 at most: its children's (2J, 2J + 1), the faces
+// behind its low coarse faces (2J - 1), and for its diagonal the faces of its high coarse faces
+// (up to 2J + 3) and its children's high faces (owned by row 2J + 2, changed_rows.h).
+void addRecomputedRowsPass(SlabPasses* passes, const Dims& f, const Dims& c, const ChangedRows* fineChanged,
+                           const ChangedRows* coarseChanged, uint8_t* todo) {
+  passes->addParallel(c.ny * c.nz, kChildren, kRowGrain, [=](int64_t begin, int64_t end) {
+    for (int64_t row = begin; row < end; ++row) {
+      const int64_t J = row % c.ny, K = row / c.ny;
+      bool reached = coarseChanged->raised(row);
+      for (int64_t k = std::max<int64_t>(0, 2 * K - 1); k <= std::min(f.nz - 1, 2 * K + 3) && !reached; ++k)
+        for (int64_t j = std::max<int64_t>(0, 2 * J - 1); j <= std::min(f.ny - 1, 2 * J + 3); ++j)
+          reached = reached || fineChanged->raised(j + f.ny * k);
+      todo[row] = reached ? 1 : 0;
+    }
+  });
+}
+
+// The last passes of either coarsening: the diagonal from the couplings and scratch->dirichlet
+// (the rows set in `todo`, when given, raising those that change in `changed`), then the
+// regions and row spans.
+void addCoarseDiagonalPasses(SlabPasses* passes, const Dims& c, CutCellPoisson* coarse, CoarseningScratch* scratch,
+                             const uint8_t* todo = nullptr, ChangedRows* changed = nullptr) {
   passes->addParallel(c.ny * c.nz, c.nx, kRowGrain, [=](int64_t begin, int64_t end) {
-    assembleDiagonalRows(scratch->dirichlet, coarse, begin, end);
+    assembleDiagonalRows(scratch->dirichlet, coarse, begin, end, todo, changed);
   });
   appendLabelFluidRegions(coarse, passes);
   appendComputeRowSpans(coarse, passes);
@@ -275,7 +334,7 @@ Status coarsenCutCell(TaskSystem& tasks, const CutCellPoisson& fine, CutCellPois
   if (coarse == nullptr) return fail(Status::InvalidArgument, "multigrid coarsening: coarse is null");
   SlabPasses passes(tasks);
   CoarseningScratch scratch;
-  appendCoarsenCutCell(fine, coarse, &scratch, &passes);
+  appendCoarsenCutCell(fine, coarse, &scratch, &passes, nullptr, nullptr);
   passes.runAll();
   return Status::Ok;
 }
@@ -291,27 +350,43 @@ Status coarsenVoxel(TaskSystem& tasks, const CutCellPoisson& fine, const std::ar
 }
 
 void appendCoarsenCutCell(const CutCellPoisson& fine, CutCellPoisson* coarse, CoarseningScratch* scratch,
-                          SlabPasses* passes) {
+                          SlabPasses* passes, const ChangedRows* fineChanged, ChangedRows* coarseChanged) {
   const CutCellPoisson* fp = &fine;
-  passes->addStep([fp, coarse, scratch, passes] {
+  passes->addStep([fp, coarse, scratch, passes, fineChanged, coarseChanged] {
     const Dims f(fp->grid);
     const bool freeSurface = !fp->liquidPhi.empty();
-    sizeCutCellPoisson(coarseGridSpec(fp->grid), freeSurface, false, coarse);
+    const MacGridSpec spec = coarseGridSpec(fp->grid);
+    const bool sameShape = sameGrid(coarse->grid, spec) && coarse->liquidPhi.empty() == !freeSurface &&
+                           coarse->diagonal.size() == static_cast<size_t>(Dims(spec).cells());
+    sizeCutCellPoisson(spec, freeSurface, false, coarse);
     const Dims c(coarse->grid);
+    if (coarseChanged != nullptr) {
+      coarseChanged->sizeFor(c.ny * c.nz);
+      if (!sameShape || fineChanged == nullptr || fineChanged->all) coarseChanged->raiseAll();
+    }
+    // An update recomputes what the raised fine rows reach; otherwise everything is rebuilt.
+    const bool update = coarseChanged != nullptr && !coarseChanged->all;
+    ChangedRows* tracked = update ? coarseChanged : nullptr;
+    uint8_t* todo = nullptr;
     scratch->dirichlet.resize(static_cast<size_t>(c.cells()));
     if (freeSurface) scratch->fluid.resize(static_cast<size_t>(c.cells()));
+    if (update) {
+      scratch->recompute.resize(static_cast<size_t>(c.ny * c.nz));
+      todo = scratch->recompute.data();
+      addRecomputedRowsPass(passes, f, c, fineChanged, coarseChanged, todo);
+    }
     for (int a = 0; a < 3; ++a) {
       // Solids close a column, the free surface does not (its faces have coupling 0 only because
       // the air has no row; the coarse surface is placed by the free-surface passes).
       const Array<double>* open = freeSurface ? &fp->openFraction[a] : &fp->coupling[a];
-      addCoarseFacePass(passes, f, c, a, &fp->coupling[a], open, &coarse->coupling[a]);
-      if (freeSurface) addCoarseFacePass(passes, f, c, a, open, open, &coarse->openFraction[a]);
+      addCoarseFacePass(passes, f, c, a, &fp->coupling[a], open, &coarse->coupling[a], todo, tracked);
+      if (freeSurface) addCoarseFacePass(passes, f, c, a, open, open, &coarse->openFraction[a], todo, tracked);
     }
-    if (freeSurface) addCoarseFreeSurfacePasses(passes, fp, f, c, coarse, &scratch->fluid);
+    if (freeSurface) addCoarseFreeSurfacePasses(passes, fp, f, c, coarse, &scratch->fluid, todo, tracked);
     passes->addParallel(c.ny * c.nz, c.nx * kChildren, kRowGrain, [=](int64_t begin, int64_t end) {
-      coarseDirichletRows(*fp, f, c, freeSurface, *coarse, begin, end, scratch->dirichlet.data());
+      coarseDirichletRows(*fp, f, c, freeSurface, *coarse, begin, end, todo, scratch->dirichlet.data());
     });
-    addCoarseDiagonalPasses(passes, c, coarse, scratch);
+    addCoarseDiagonalPasses(passes, c, coarse, scratch, todo, tracked);
   });
 }
 

@@ -40,6 +40,7 @@
 #include "core/status.h"
 #include "core/task_system.h"
 #include "fluid/mac_grid.h"
+#include "fluid/pressure/changed_rows.h"
 #include "fluid/pressure/cut_cell_poisson.h"
 
 namespace vp {
@@ -57,6 +58,7 @@ Status coarsenVoxel(TaskSystem& tasks, const CutCellPoisson& fine, const std::ar
 struct CoarseningScratch {
   Array<double> dirichlet;
   Array<uint8_t> fluid;
+  Array<uint8_t> recompute;  // per coarse row, in an update: whether it is recomputed
 };
 
 // The coarsenings as passes (core/slab_passes.h), each in slabs of coarse rows
@@ -65,8 +67,18 @@ struct CoarseningScratch {
 // the diagonal and labelFluidRegions' and computeRowSpans' passes. Nothing of `fine` is read
 // before the first pass runs, so the passes before them may build it. fine, coarse and
 // scratch must outlive the passes.
+//
+// Updates (cut-cell only): given the rows of `fine` raised since `coarse` was last built from
+// it (fineChanged) and coarse's own flags (coarseChanged), the cut-cell coarsening recomputes
+// only the coarse rows those fine rows reach (and those raised in coarseChanged), except the
+// level set and free-surface terms, which it recomputes everywhere, and raises in
+// coarseChanged the rows whose values changed (changed_rows.h). The result is bit for bit that
+// of a rebuild. Without flags (either null), when fineChanged or coarseChanged says all, or
+// when coarse has another shape, it rebuilds everything and raises all of coarseChanged. The
+// caller clears the flags once every level is up to date.
 void appendCoarsenCutCell(const CutCellPoisson& fine, CutCellPoisson* coarse, CoarseningScratch* scratch,
-                          SlabPasses* passes);
+                          SlabPasses* passes, const ChangedRows* fineChanged = nullptr,
+                          ChangedRows* coarseChanged = nullptr);
 void appendCoarsenVoxel(const CutCellPoisson& fine, const std::array<DomainSide, 6>& sides, CutCellPoisson* coarse,
                         CoarseningScratch* scratch, SlabPasses* passes);
 

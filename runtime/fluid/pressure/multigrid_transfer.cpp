@@ -181,37 +181,40 @@ void computeProlongationScale(TaskSystem& tasks, const CutCellPoisson& fine, con
   passes.runAll();
 }
 
+void prolongationScaleRow(const CutCellPoisson& fine, const CutCellPoisson& coarse, const TransferSides& sides,
+                          int64_t row, double* scale) {
+  const int64_t nx = fine.grid.nx, ny = fine.grid.ny;
+  const int64_t cx = coarse.grid.nx, cy = coarse.grid.ny, cz = coarse.grid.nz;
+  const int64_t j = row % ny, k = row / ny;
+  const AxisStencil sy(j, cy, sides, 1), sz(k, cz, sides, 2);
+  // Each cell's sum of the weights of its fluid coarse neighbours (the 8 stencil entries),
+  // then its inverse.
+  for (int64_t i = 0; i < nx; ++i) {
+    const int64_t c = i + nx * row;
+    double sum = 0.0;
+    if (fine.diagonal[static_cast<size_t>(c)] > 0.0) {
+      const AxisStencil sx(i, cx, sides, 0);
+      for (int z = 0; z < 2; ++z)
+        for (int y = 0; y < 2; ++y) {
+          const double pyz = sy.presence[y] * sz.presence[z];
+          const int64_t base = cx * (sy.index[y] + cy * sz.index[z]);
+          for (int x = 0; x < 2; ++x)
+            if (coarse.diagonal[static_cast<size_t>(base + sx.index[x])] > 0.0) sum += pyz * sx.presence[x];
+        }
+    }
+    scale[i] = sum > 0.0 ? 1.0 / sum : 0.0;
+  }
+}
+
 void appendComputeProlongationScale(const CutCellPoisson& fine, const CutCellPoisson& coarse,
                                     const TransferSides& sides, Array<double>* scale, SlabPasses* passes) {
   const CutCellPoisson* fp = &fine;
   const CutCellPoisson* cp = &coarse;
   passes->addStep([fp, cp, sides, scale, passes] {
-    const int64_t nx = fp->grid.nx, ny = fp->grid.ny, nz = fp->grid.nz;
-    scale->resize(static_cast<size_t>(nx * ny * nz));
-    // Per fine row: each cell's sum of the weights of its fluid coarse neighbours (the 8
-    // stencil entries), then its inverse.
-    passes->addParallel(ny * nz, nx, kRowGrain, [=](int64_t begin, int64_t end) {
-      const int64_t cx = cp->grid.nx, cy = cp->grid.ny, cz = cp->grid.nz;
-      double* s = scale->data();
-      for (int64_t row = begin; row < end; ++row) {
-        const int64_t j = row % ny, k = row / ny;
-        const AxisStencil sy(j, cy, sides, 1), sz(k, cz, sides, 2);
-        for (int64_t i = 0; i < nx; ++i) {
-          const int64_t c = i + nx * row;
-          double sum = 0.0;
-          if (fp->diagonal[static_cast<size_t>(c)] > 0.0) {
-            const AxisStencil sx(i, cx, sides, 0);
-            for (int z = 0; z < 2; ++z)
-              for (int y = 0; y < 2; ++y) {
-                const double pyz = sy.presence[y] * sz.presence[z];
-                const int64_t base = cx * (sy.index[y] + cy * sz.index[z]);
-                for (int x = 0; x < 2; ++x)
-                  if (cp->diagonal[static_cast<size_t>(base + sx.index[x])] > 0.0) sum += pyz * sx.presence[x];
-              }
-          }
-          s[c] = sum > 0.0 ? 1.0 / sum : 0.0;
-        }
-      }
+    const int64_t nx = fp->grid.nx, rows = static_cast<int64_t>(fp->grid.ny) * fp->grid.nz;
+    scale->resize(static_cast<size_t>(nx * rows));
+    passes->addParallel(rows, nx, kRowGrain, [=](int64_t begin, int64_t end) {
+      for (int64_t row = begin; row < end; ++row) prolongationScaleRow(*fp, *cp, sides, row, scale->data() + nx * row);
     });
   });
 }

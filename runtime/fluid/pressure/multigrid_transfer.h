@@ -38,6 +38,12 @@ void computeProlongationScale(TaskSystem& tasks, const CutCellPoisson& fine, con
 void appendComputeProlongationScale(const CutCellPoisson& fine, const CutCellPoisson& coarse,
                                     const TransferSides& sides, Array<double>* scale, SlabPasses* passes);
 
+// The same for the nx cells of fine grid row `row` (j + ny k) alone, into scale[0 .. nx). It
+// reads the fine row's diagonal and the coarse diagonal in coarse rows j / 2 - 1 .. j / 2 + 1
+// and k / 2 - 1 .. k / 2 + 1.
+void prolongationScaleRow(const CutCellPoisson& fine, const CutCellPoisson& coarse, const TransferSides& sides,
+                          int64_t row, double* scale);
+
 // fineX += P coarseX.
 // T: double or float (the V-cycle's precision, poisson_multigrid.h).
 template <class T>

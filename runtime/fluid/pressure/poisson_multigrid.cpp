@@ -6,11 +6,13 @@
 
 #include "core/parallel_for.h"
 #include "fluid/pressure/multigrid_coarsening.h"
+#include "fluid/pressure/multigrid_transfer.h"
 
 namespace vp {
 namespace {
 
 constexpr int64_t kValueGrain = 4096;
+constexpr int64_t kRowGrain = 16;
 // Levels with fewer cells run the V-cycle's passes on the calling thread: a pass over a level
 // this small costs less than handing it to the workers and waiting for them (the coarsest
 // level's sweeps alone are dozens of passes per cycle).
@@ -56,13 +58,71 @@ void addConversion(SlabPasses* passes, const Array<From>* from, Array<To>* to) {
   });
 }
 
-void addSinglePrecision(SlabPasses* passes, const CutCellPoisson* in, PoissonCoefficients<float>* out) {
-  passes->addStep([passes, in, out] {
+// Converts the rows of `in` raised in `changed` (changed_rows.h: a row's diagonal, its x faces,
+// and the y and z faces it owns) into `out`; everything when `changed` is null or says all.
+void addSinglePrecision(SlabPasses* passes, const CutCellPoisson* in, PoissonCoefficients<float>* out,
+                        const ChangedRows* changed) {
+  passes->addStep([passes, in, out, changed] {
+    const bool update = changed != nullptr && !changed->all && sameGrid(out->grid, in->grid) &&
+                        out->diagonal.size() == in->diagonal.size();
     out->grid = in->grid;
     out->rowSpan = in->rowSpan;
-    for (int a = 0; a < 3; ++a) addConversion(passes, &in->coupling[a], &out->coupling[a]);
-    addConversion(passes, &in->diagonal, &out->diagonal);
+    if (!update) {
+      for (int a = 0; a < 3; ++a) addConversion(passes, &in->coupling[a], &out->coupling[a]);
+      addConversion(passes, &in->diagonal, &out->diagonal);
+      return;
+    }
+    const int64_t nx = in->grid.nx, ny = in->grid.ny, nz = in->grid.nz;
+    passes->addParallel(ny * nz, 4 * nx, kRowGrain, [=](int64_t begin, int64_t end) {
+      auto convertRow = [](const Array<double>& from, Array<float>& to, int64_t length, int64_t row) {
+        convertValues(from.data(), to.data(), length * row, length * (row + 1));
+      };
+      for (int64_t row = begin; row < end; ++row) {
+        if (!changed->raised(row)) continue;
+        const int64_t j = row % ny, k = row / ny, yRow = j + (ny + 1) * k;
+        convertRow(in->diagonal, out->diagonal, nx, row);
+        convertRow(in->coupling[0], out->coupling[0], nx + 1, row);
+        convertRow(in->coupling[1], out->coupling[1], nx, yRow);
+        if (j + 1 == ny) convertRow(in->coupling[1], out->coupling[1], nx, yRow + 1);
+        convertRow(in->coupling[2], out->coupling[2], nx, row);
+        if (k + 1 == nz) convertRow(in->coupling[2], out->coupling[2], nx, row + ny);
+      }
+    });
   });
+}
+
+// The prolongation scales of fine level `fine` (multigrid_transfer.h) in single precision:
+// the rows whose inputs changed, the fine row raised or a coarse row of its stencil; all of
+// them when either has no flags or says all.
+void addProlongationScale(SlabPasses* passes, const CutCellPoisson* fine, const CutCellPoisson* coarse,
+                          const TransferSides* sides, const ChangedRows* fineChanged,
+                          const ChangedRows* coarseChanged, Array<float>* out) {
+  passes->addStep([=] {
+    const int64_t nx = fine->grid.nx, ny = fine->grid.ny, rows = ny * fine->grid.nz;
+    const int64_t cy = coarse->grid.ny, cz = coarse->grid.nz;
+    const bool update = fineChanged != nullptr && coarseChanged != nullptr && !fineChanged->all &&
+                        !coarseChanged->all && out->size() == static_cast<size_t>(nx * rows);
+    out->resize(static_cast<size_t>(nx * rows));
+    passes->addParallel(rows, nx, kRowGrain, [=](int64_t begin, int64_t end) {
+      Array<double> scale(static_cast<size_t>(nx));
+      for (int64_t row = begin; row < end; ++row) {
+        bool reached = !update || fineChanged->raised(row);
+        const int64_t J = (row % ny) / 2, K = (row / ny) / 2;
+        for (int64_t z = std::max<int64_t>(0, K - 1); z <= std::min(cz - 1, K + 1) && !reached; ++z)
+          for (int64_t y = std::max<int64_t>(0, J - 1); y <= std::min(cy - 1, J + 1); ++y)
+            reached = reached || coarseChanged->raised(y + cy * z);
+        if (!reached) continue;
+        prolongationScaleRow(*fine, *coarse, *sides, row, scale.data());
+        convertValues(scale.data(), out->data() + nx * row, 0, nx);
+      }
+    });
+  });
+}
+
+bool sameSetup(const MultigridSettings& a, const MultigridSettings& b) {
+  return a.coarsening == b.coarsening && a.smoother == b.smoother && a.sweeps == b.sweeps &&
+         a.jacobiWeight == b.jacobiWeight && a.coarsestSize == b.coarsestSize &&
+         a.coarsestSweeps == b.coarsestSweeps && a.boundarySweeps == b.boundarySweeps;
 }
 
 bool canCoarsen(const MacGridSpec& g, int coarsestSize) {
@@ -92,21 +152,30 @@ Status buildPoissonMultigrid(TaskSystem& tasks, const CutCellPoisson& fine, cons
   if (mg == nullptr) return fail(Status::InvalidArgument, "multigrid: output is null");
   VP_TRY(checkPoissonMultigrid(fine.grid, settings));
   SlabPasses passes(tasks);
-  appendBuildPoissonMultigrid(fine, sides, settings, mg, &passes);
+  appendBuildPoissonMultigrid(fine, sides, settings, mg, &passes, nullptr);
   passes.runAll();
   return Status::Ok;
 }
 
 void appendBuildPoissonMultigrid(const CutCellPoisson& fine, const std::array<DomainSide, 6>& sides,
-                                 const MultigridSettings& settings, PoissonMultigrid* mg, SlabPasses* passes) {
+                                 const MultigridSettings& settings, PoissonMultigrid* mg, SlabPasses* passes,
+                                 ChangedRows* fineChanged) {
   const CutCellPoisson* fp = &fine;
-  passes->addStep([fp, sides, settings, mg, passes] {
+  passes->addStep([fp, sides, settings, mg, passes, fineChanged] {
+    TransferSides open;
+    for (int side = 0; side < 6; ++side) open.open[side] = sides[static_cast<size_t>(side)] == DomainSide::Open;
+    const bool sameSides = std::equal(open.open, open.open + 6, mg->sides.open);
+    // Only the cut-cell coarsening updates; other settings or sides rebuild everything.
+    const bool updatable = settings.coarsening == MultigridCoarsening::CutCell && sameSides &&
+                           sameSetup(settings, mg->settings);
+    if (fineChanged != nullptr && !updatable) fineChanged->raiseAll();
     mg->settings = settings;
-    for (int side = 0; side < 6; ++side) mg->sides.open[side] = sides[static_cast<size_t>(side)] == DomainSide::Open;
+    mg->sides = open;
     int levels = 1;
     for (MacGridSpec g = fp->grid; canCoarsen(g, settings.coarsestSize); g = coarseGridSpec(g)) ++levels;
     // resize() keeps the existing levels' buffers, so a rebuild every frame does not reallocate.
     mg->coarse.resize(static_cast<size_t>(levels - 1));
+    mg->changed.resize(static_cast<size_t>(levels - 1));
     mg->coarseFloating.assign(static_cast<size_t>(levels - 1), 0);
     mg->prolongScale.resize(static_cast<size_t>(levels - 1));
     mg->single.resize(static_cast<size_t>(levels));
@@ -115,35 +184,49 @@ void appendBuildPoissonMultigrid(const CutCellPoisson& fine, const std::array<Do
     mg->b.resize(static_cast<size_t>(levels));
     mg->r.resize(static_cast<size_t>(levels));
     auto level = [fp, mg](int l) { return l == 0 ? fp : &mg->coarse[static_cast<size_t>(l - 1)]; };
+    // Level 0's flags are the caller's (none: a rebuild).
+    auto changedOf = [fineChanged, mg](int l) { return l == 0 ? fineChanged : &mg->changed[static_cast<size_t>(l - 1)]; };
     for (int l = 1; l < levels; ++l) {
       const CutCellPoisson* from = level(l - 1);
       CutCellPoisson* to = &mg->coarse[static_cast<size_t>(l - 1)];
-      if (settings.coarsening == MultigridCoarsening::CutCell)
-        appendCoarsenCutCell(*from, to, &mg->coarseningScratch, passes);
-      else
+      ChangedRows* flags = changedOf(l);
+      if (settings.coarsening == MultigridCoarsening::CutCell) {
+        appendCoarsenCutCell(*from, to, &mg->coarseningScratch, passes, changedOf(l - 1), flags);
+      } else {
         appendCoarsenVoxel(*from, sides, to, &mg->coarseningScratch, passes);
-      appendComputeProlongationScale(*from, *to, mg->sides, &mg->scaleScratch, passes);
-      passes->addStep([mg, to, l, passes] {
+        passes->addStep([flags] { flags->raiseAll(); });
+      }
+      addProlongationScale(passes, from, to, &mg->sides, changedOf(l - 1), flags,
+                           &mg->prolongScale[static_cast<size_t>(l - 1)]);
+      passes->addStep([mg, to, l] {
         mg->coarseFloating[static_cast<size_t>(l - 1)] =
             std::any_of(to->regionFloating.begin(), to->regionFloating.end(), [](uint8_t f) { return f != 0; });
-        addConversion(passes, &mg->scaleScratch, &mg->prolongScale[static_cast<size_t>(l - 1)]);
       });
     }
-    for (int l = 0; l < levels; ++l) addSinglePrecision(passes, level(l), &mg->single[static_cast<size_t>(l)]);
+    for (int l = 0; l < levels; ++l)
+      addSinglePrecision(passes, level(l), &mg->single[static_cast<size_t>(l)], changedOf(l));
     // Full coupling doubles per level: 4 full fine faces, halved (multigrid_coarsening.h); the
-    // voxel levels' full coupling follows the same rule.
+    // voxel levels' full coupling follows the same rule. A level's lists depend on it alone.
     double fullCoupling = 1.0;
     for (int l = 0; l < levels; ++l, fullCoupling *= 2.0)
       if (settings.boundarySweeps > 0)
-        appendFindBoundaryCells(*level(l), fullCoupling, &mg->boundaryCells[static_cast<size_t>(l)],
-                                &mg->boundaryScratch, passes);
-    passes->addStep([mg, level, levels] {
+        passes->addStep([mg, level, l, fullCoupling, flags = changedOf(l), passes] {
+          if (flags == nullptr || flags->any())
+            appendFindBoundaryCells(*level(l), fullCoupling, &mg->boundaryCells[static_cast<size_t>(l)],
+                                    &mg->boundaryScratch, passes);
+        });
+    passes->addStep([mg, level, levels, fineChanged] {
       for (int l = 0; l < levels; ++l) {
         const size_t cells = level(l)->diagonal.size();
         mg->r[static_cast<size_t>(l)].resize(cells);
         mg->x[static_cast<size_t>(l)].resize(cells);
         mg->b[static_cast<size_t>(l)].resize(cells);
       }
+      // Every level is up to date. A rebuild without the caller's flags leaves the coarse
+      // levels' raised, so the next update with flags rebuilds too.
+      if (fineChanged == nullptr) return;
+      fineChanged->clear();
+      for (ChangedRows& flags : mg->changed) flags.clear();
     });
   });
 }

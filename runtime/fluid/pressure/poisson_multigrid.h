@@ -72,8 +72,8 @@ struct PoissonMultigrid {
   std::vector<BoundaryCellLists> boundaryCells;       // per level (multigrid_smoother.h)
   std::vector<Array<float>> x, b, r;            // per level; level 0: the caller's r and z
   Array<float> restrictScratch;
-  Array<double> scaleScratch;
   CoarseningScratch coarseningScratch;
+  std::vector<ChangedRows> changed;  // per coarse level: rows changed since the last update
   Array<uint8_t> boundaryScratch;
   BoundarySweepValues boundaryValues;  // the boundary sweeps' values, one level at a time
 
@@ -90,11 +90,20 @@ Status checkPoissonMultigrid(const MacGridSpec& fineGrid, const MultigridSetting
 
 // buildPoissonMultigrid as passes (core/slab_passes.h; settings checked), per
 // coarse level: its coarsening (multigrid_coarsening.h) and prolongation scales in slabs of
-// rows; then per level the single-precision copy in slabs of values and the boundary cells
-// (multigrid_smoother.h). Nothing of `fine` is read before the first pass runs, so fine may
-// be built by the passes before them; fine and multigrid must outlive the passes.
+// rows; then per level the single-precision copy in slabs of values (of rows in an update) and
+// the boundary cells (multigrid_smoother.h). Nothing of `fine` is read before the first pass
+// runs, so fine may be built by the passes before them; fine and multigrid must outlive the
+// passes.
+// An update: with `fineChanged`, the rows of fine changed since the multigrid was last built
+// from it (appendBuildCutCellPoisson raises them, changed_rows.h), the cut-cell levels are
+// brought up to date where those rows reach (each level's own flags carry it to the next),
+// and so are the single-precision copies, prolongation scales and boundary cells of the
+// levels whose rows changed; the result is bit for bit that of a rebuild. Every level is
+// rebuilt when the flags say all, the settings or sides differ from the last build's, or the
+// coarsening is Voxel. The flags are cleared once every level is up to date.
 void appendBuildPoissonMultigrid(const CutCellPoisson& fine, const std::array<DomainSide, 6>& sides,
-                                 const MultigridSettings& settings, PoissonMultigrid* multigrid, SlabPasses* passes);
+                                 const MultigridSettings& settings, PoissonMultigrid* multigrid, SlabPasses* passes,
+                                 ChangedRows* fineChanged = nullptr);
 
 // z = M r (one V-cycle); r and z have fine.cellCount entries and must not alias.
 void applyPoissonMultigrid(TaskSystem& tasks, const CutCellPoisson& fine, PoissonMultigrid& multigrid,

@@ -59,7 +59,7 @@ void PressureProjectionRun::appendSetup(const PressureSolveSettings& settings, b
   PressureState& state = *state_;
   const int64_t cells = grid_->cellCount();
   if (!keepOperator) {
-    appendBuildCutCellPoisson(*grid_, *fractions_, &state.poisson, liquidPhi_, &passes_);
+    appendBuildCutCellPoisson(*grid_, *fractions_, &state.poisson, liquidPhi_, &passes_, &state.poissonChanged);
     if (settings.solver == PressureSolver::Mic0Pcg) {
       // Mic0Settings{} is valid, so the build cannot fail.
       passes_.addWhole(cells, [&state] {
@@ -69,7 +69,7 @@ void PressureProjectionRun::appendSetup(const PressureSolveSettings& settings, b
       MultigridSettings mg = settings.multigrid;
       mg.coarsening = settings.solver == PressureSolver::VoxelMgpcg ? MultigridCoarsening::Voxel
                                                                      : MultigridCoarsening::CutCell;
-      appendBuildPoissonMultigrid(state.poisson, grid_->sides, mg, &state.multigrid, &passes_);
+      appendBuildPoissonMultigrid(state.poisson, grid_->sides, mg, &state.multigrid, &passes_, &state.poissonChanged);
     }
     passes_.addStep([&state, solver = settings.solver] {
       state.operatorBuilt = true;

@@ -71,6 +71,9 @@ struct PressureSolveStats {
 struct PressureState {
   Array<double> pressure;  // per cell; reset to 0 when the grid's cell count changes
   CutCellPoisson poisson;
+  // Rows of poisson changed since the multigrid was last brought up to date: the multigrid
+  // is updated where they reach instead of rebuilt (poisson_multigrid.h).
+  ChangedRows poissonChanged;
   Mic0Preconditioner preconditioner;
   PoissonMultigrid multigrid;
   CgWorkspace cg;
@@ -106,7 +109,8 @@ Status projectVelocity(TaskSystem& tasks, MacGrid& grid, const FaceFractionField
 //     multigrid (poisson_multigrid.h), per coarse level: its coarsening (faces per axis, free
 //                                    surface, Dirichlet parts, diagonal, regions, row spans)
 //                                    and prolongation scales: rows; then per level its single-
-//                                    precision copy: values; its boundary cells: rows
+//                                    precision copy: values (rows in an update); its boundary
+//                                    cells: rows
 //   right-hand side and the pressure cleared off fluid: cells
 //   CG start                         ONE unit of all cells: the first residual, a
 //                                    preconditioner application and the norms, like an
