@@ -167,7 +167,9 @@ TEST_P(FluidMultigridUpdate, UpdatedLevelsEqualRebuiltOnesBitForBit) {
       // The update path is the one under test: a part of the rows, not all.
       EXPECT_FALSE(t.changed.all);
       EXPECT_LT(raisedRows(t.changed), rows / 2) << "of " << rows;
-      if (step == 5 || step == 10) EXPECT_EQ(raisedRows(t.changed), 0);
+      if (step == 5 || step == 10) {
+        EXPECT_EQ(raisedRows(t.changed), 0);
+      }
     }
     SlabPasses update(*tasks);
     appendBuildPoissonMultigrid(t.fine, scene.grid.sides, settings, &t.mg, &update, &t.changed);
@@ -213,7 +215,7 @@ TEST_P(FluidMultigridUpdate, AnUpdateStoppedAfterAnySliceIsCompletedByTheNext) {
 }
 
 INSTANTIATE_TEST_SUITE_P(SmokeAndLiquid, FluidMultigridUpdate, testing::Values(false, true),
-                         [](const testing::TestParamInfo<bool>& info) { return info.param ? "Liquid" : "Smoke"; });
+                         [](const testing::TestParamInfo<bool>& param) { return param.param ? "Liquid" : "Smoke"; });
 
 }  // namespace
 }  // namespace vp

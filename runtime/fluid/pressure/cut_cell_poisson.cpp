@@ -8,20 +8,13 @@
 #include "fluid/cell_lattice.h"
 #include "fluid/pressure/poisson_rows.h"
 #include "fluid/surface/free_surface.h"
+#include "gpu_kernels/poisson_build_kernels.h"
 
 namespace vp {
 namespace {
 
 constexpr int64_t kCellGrain = 4096;
-
-// (i, j, k) of the cell after (i, j, k) in cell order.
-void nextCell(const MacGridSpec& g, int* i, int* j, int* k) {
-  if (++*i < g.nx) return;
-  *i = 0;
-  if (++*j < g.ny) return;
-  *j = 0;
-  ++*k;
-}
+constexpr int64_t kRowGrain = 16;
 
 }  // namespace
 
@@ -56,42 +49,44 @@ Status buildCutCellPoisson(TaskSystem& tasks, const MacGrid& grid, const FaceFra
 
 namespace {
 
+// What the build's kernel bodies read (gpu_kernels/poisson_build_kernels.h).
+kernels::PoissonBuildFields buildFields(const MacGrid& grid, const FaceFractionField& fractions,
+                                        const double* liquidPhi) {
+  kernels::PoissonBuildFields in;
+  for (int a = 0; a < 3; ++a) in.open[a] = fractions.open[a].data();
+  in.liquidPhi = liquidPhi;
+  in.grid = grid.layout();
+  return in;
+}
+
 // Couplings (and, with a free surface, open fractions) of the faces of axis a in face rows
 // [begin, end); only interior faces couple, index 1 .. cells-1 along the axis. `changed`
 // (optional): the rows owning faces whose values changed are raised (changed_rows.h).
-void buildCouplingRows(const MacGrid& grid, const FaceFractionField& fractions, const double* liquidPhi, int a,
-                       int64_t begin, int64_t end, CutCellPoisson* op, ChangedRows* changed) {
-  const Eigen::Vector3i d = grid.faceDims(a);
-  const int64_t nx = grid.spec.nx, ny = grid.spec.ny, nz = grid.spec.nz;
+void buildCouplingRows(const kernels::PoissonBuildFields& in, int a, int64_t begin, int64_t end, CutCellPoisson* op,
+                       ChangedRows* changed) {
+  const int64_t nx = in.grid.nx, ny = in.grid.ny, nz = in.grid.nz;
+  const int64_t rowLength = nx + (a == 0), rowsAlongY = ny + (a == 1);
   // Cell index step along a: the face's high cell is (i, j, k), its low cell that less the step.
   const int64_t step = a == 0 ? 1 : a == 1 ? nx : nx * ny;
   double* coupling = op->coupling[a].data();
-  double* openFraction = liquidPhi != nullptr ? op->openFraction[a].data() : nullptr;
-  const double* fraction = fractions.open[a].data();
+  double* openFraction = in.liquidPhi != nullptr ? op->openFraction[a].data() : nullptr;
   for (int64_t row = begin; row < end; ++row) {
-    const int64_t j = row % d.y(), k = row / d.y(), f0 = d.x() * row;
+    const int64_t j = row % rowsAlongY, k = row / rowsAlongY, f0 = rowLength * row;
     // Interior faces along a: i in [i0, i1) of the row (a = 0), or the whole row or none.
     const int64_t along = a == 1 ? j : k;
-    const bool interiorRow = a == 0 || (along > 0 && along < d[a] - 1);
-    const int64_t i0 = !interiorRow ? d.x() : a == 0 ? 1 : 0, i1 = !interiorRow ? d.x() : a == 0 ? d.x() - 1 : d.x();
+    const bool interiorRow = a == 0 || (along > 0 && along < in.grid.cells(a));
+    const int64_t i0 = !interiorRow ? rowLength : a == 0 ? 1 : 0;
+    const int64_t i1 = !interiorRow ? rowLength : a == 0 ? rowLength - 1 : rowLength;
     const int64_t cell0 = nx * (j + ny * k);  // the high cell of face i is cell0 + i
     bool rowChanged = false;
-    for (int64_t i = 0; i < d.x(); ++i) {
-      double open = 0.0, couples = 0.0;
-      if (i >= i0 && i < i1) {
-        // effectiveOpenFraction of an interior face (never a Wall face).
-        open = openedFraction(fraction[f0 + i]);
-        // With a free surface only liquid-liquid faces couple; a liquid-air face is a diagonal
-        // term (buildDiagonalCells).
-        const bool liquidBoth =
-            liquidPhi == nullptr || (isLiquid(liquidPhi[cell0 + i]) && isLiquid(liquidPhi[cell0 + i - step]));
-        couples = liquidBoth ? open : 0.0;
-      }
-      if (changed != nullptr) rowChanged = rowChanged || !sameBits(coupling[f0 + i], couples);
-      coupling[f0 + i] = couples;
+    for (int64_t i = 0; i < rowLength; ++i) {
+      kernels::FaceCoupling face{0.0, 0.0};
+      if (i >= i0 && i < i1) face = kernels::interiorFaceCoupling(in, a, f0 + i, cell0 + i - step, cell0 + i);
+      if (changed != nullptr) rowChanged = rowChanged || !sameBits(coupling[f0 + i], face.coupling);
+      coupling[f0 + i] = face.coupling;
       if (openFraction == nullptr) continue;
-      if (changed != nullptr) rowChanged = rowChanged || !sameBits(openFraction[f0 + i], open);
-      openFraction[f0 + i] = open;
+      if (changed != nullptr) rowChanged = rowChanged || !sameBits(openFraction[f0 + i], face.open);
+      openFraction[f0 + i] = face.open;
     }
     // The cell row owning this face row (changed_rows.h).
     if (rowChanged)
@@ -99,70 +94,24 @@ void buildCouplingRows(const MacGrid& grid, const FaceFractionField& fractions, 
   }
 }
 
-// The six faces of cell c = (i, j, k), in the order -x, +x, -y, +y, -z, +z: their
-// effectiveOpenFraction and the cell across each (-1 outside the grid).
-struct CellFaces {
-  double open[6];
-  int64_t neighbour[6];
-
-  CellFaces(const MacGrid& grid, const FaceFractionField& fractions, int i, int j, int k, int64_t c) {
-    const MacGridSpec& g = grid.spec;
-    const int64_t nx = g.nx, ny = g.ny, sz = nx * static_cast<int64_t>(ny);
-    // Face indices (cut_cell_poisson.h): -x face i + (nx + 1)(j + ny k) = c + j + ny k, -y face
-    // i + nx (j + (ny + 1) k) = c + nx k, -z face c; the + faces one step further along each axis.
-    const int64_t fu = c + j + ny * static_cast<int64_t>(k), fv = c + nx * k;
-    const int64_t face[6] = {fu, fu + 1, fv, fv + nx, c, c + sz};
-    const int index[3] = {i, j, k}, cells[3] = {g.nx, g.ny, g.nz};
-    const int64_t step[3] = {1, nx, sz};
-    for (int f = 0; f < 6; ++f) {
-      const int a = f / 2;
-      const bool high = (f & 1) != 0;
-      // isWallFace: the face on the domain side of a Wall.
-      const bool atSide = high ? index[a] + 1 == cells[a] : index[a] == 0;
-      const bool wall = atSide && grid.side(a, high) == DomainSide::Wall;
-      const double fraction = fractions.open[a][static_cast<size_t>(face[f])];
-      open[f] = wall ? 0.0 : openedFraction(fraction);
-      neighbour[f] = atSide ? -1 : high ? c + step[a] : c - step[a];
+// Diagonal (and, with a free surface, air flags, level set and surface terms) of the cells of
+// grid rows [begin, end); `changed` (optional) as for buildCouplingRows.
+void buildDiagonalRows(const kernels::PoissonBuildFields& in, int64_t begin, int64_t end, CutCellPoisson* op,
+                       ChangedRows* changed) {
+  const int64_t nx = in.grid.nx, ny = in.grid.ny, nz = in.grid.nz;
+  for (int64_t row = begin; row < end; ++row) {
+    const int64_t j = row % ny, k = row / ny, c0 = nx * row;
+    const bool interiorRow = j > 0 && j + 1 < ny && k > 0 && k + 1 < nz;
+    for (int64_t i = 0; i < nx; ++i) {
+      const kernels::CellDiagonal d = interiorRow && i > 0 && i + 1 < nx ? kernels::interiorCellDiagonalAt(in, i, j, k)
+                                                                          : kernels::cellDiagonalAt(in, i, j, k);
+      const size_t c = static_cast<size_t>(c0 + i);
+      storeTracked(&op->diagonal[c], d.diagonal, changed, row);
+      if (in.liquidPhi == nullptr) continue;
+      op->air[c] = d.air ? 1 : 0;
+      op->liquidPhi[c] = in.liquidPhi[c];
+      storeTracked(&op->surfaceDirichlet[c], d.surface, changed, row);
     }
-  }
-};
-
-// Diagonal (and, with a free surface, air flags, level set and surface terms) of cells
-// [begin, end); `changed` (optional) as for buildCouplingRows.
-void buildDiagonalCells(const MacGrid& grid, const FaceFractionField& fractions, const double* liquidPhi,
-                        int64_t begin, int64_t end, CutCellPoisson* op, ChangedRows* changed) {
-  const MacGridSpec& g = grid.spec;
-  int i = static_cast<int>(begin % g.nx), j = static_cast<int>((begin / g.nx) % g.ny),
-      k = static_cast<int>(begin / (static_cast<int64_t>(g.nx) * g.ny));
-  for (int64_t c = begin; c < end; ++c, nextCell(g, &i, &j, &k)) {
-    const CellFaces faces(grid, fractions, i, j, k, c);
-    double sum = 0.0, surface = 0.0;
-    if (liquidPhi != nullptr && !isLiquid(liquidPhi[c])) {
-      // Air: p = 0, no row.
-      bool open = false;
-      for (int f = 0; f < 6; ++f) open = open || faces.open[f] > 0.0;
-      op->air[static_cast<size_t>(c)] = open ? 1 : 0;
-    } else {
-      for (int f = 0; f < 6; ++f) {
-        const double open = faces.open[f];
-        if (liquidPhi != nullptr && open > 0.0 && faces.neighbour[f] >= 0) {
-          const double phiNb = liquidPhi[faces.neighbour[f]];
-          if (!isLiquid(phiNb)) {
-            const double term = open / freeSurfaceTheta(liquidPhi[c], phiNb);
-            sum += term;  // summed in face order as ever, so the fine operator is bitwise unchanged
-            surface += term;
-            continue;
-          }
-        }
-        sum += open;
-      }
-      if (liquidPhi != nullptr) op->air[static_cast<size_t>(c)] = 0;
-    }
-    const int64_t row = c / g.nx;
-    storeTracked(&op->diagonal[static_cast<size_t>(c)], sum, changed, row);
-    if (liquidPhi == nullptr) continue;
-    op->liquidPhi[static_cast<size_t>(c)] = liquidPhi[c];
-    storeTracked(&op->surfaceDirichlet[static_cast<size_t>(c)], surface, changed, row);
   }
 }
 
@@ -200,16 +149,15 @@ void appendBuildCutCellPoisson(const MacGrid& grid, const FaceFractionField& fra
       changed->sizeFor(static_cast<int64_t>(g->spec.ny) * g->spec.nz);
       if (!sameShape) changed->raiseAll();
     }
+    const kernels::PoissonBuildFields in = buildFields(*g, *f, liquidPhi);
     for (int a = 0; a < 3; ++a) {
       const Eigen::Vector3i d = g->faceDims(a);
-      passes->addParallel(static_cast<int64_t>(d.z()) * d.y(), d.x(), 16,
-                          [g, f, op, liquidPhi, a, changed](int64_t b, int64_t e) {
-                            buildCouplingRows(*g, *f, liquidPhi, a, b, e, op, changed);
-                          });
+      passes->addParallel(static_cast<int64_t>(d.z()) * d.y(), d.x(), kRowGrain, [in, op, a, changed](int64_t b, int64_t e) {
+        buildCouplingRows(in, a, b, e, op, changed);
+      });
     }
-    passes->addParallel(g->cellCount(), 1, kCellGrain, [g, f, op, liquidPhi, changed](int64_t b, int64_t e) {
-      buildDiagonalCells(*g, *f, liquidPhi, b, e, op, changed);
-    });
+    passes->addParallel(static_cast<int64_t>(g->spec.ny) * g->spec.nz, g->spec.nx, kRowGrain,
+                        [in, op, changed](int64_t b, int64_t e) { buildDiagonalRows(in, b, e, op, changed); });
     appendLabelFluidRegions(op, passes);
     appendComputeRowSpans(op, passes);
   });

@@ -112,7 +112,8 @@ void sizeCutCellPoisson(const MacGridSpec& grid, bool freeSurface, bool air, Cut
 Status checkCutCellPoissonInputs(const MacGrid& grid, const FaceFractionField& fractions);
 
 // buildCutCellPoisson as passes (inputs checked; they and op must outlive the passes): the
-// couplings in slabs of face rows per axis, the diagonal in slabs of cells, then
+// couplings in slabs of face rows per axis, the diagonal in slabs of grid rows (kernel bodies
+// in gpu_kernels/poisson_build_kernels.h), then
 // labelFluidRegions' and computeRowSpans' passes. `changed` (optional): the rows whose values
 // change are raised, all of them when op had another shape (changed_rows.h); the multigrid
 // update that consumes them clears them.
