@@ -63,6 +63,26 @@ struct TransferDims {
   int64_t cx, cy, cz;  // coarse
 };
 
+// The prolongation's scale at fine cell (i, j, k): 1 / S, S the weight of the fluid (diagonal
+// > 0) coarse cells of its stencil (presence weights, ghosts behind Open sides included); 0 on
+// a non-fluid fine cell and where no coarse neighbour is fluid.
+VP_HOST_DEVICE inline double prolongationScaleAt(const TransferDims& d, const TransferSides& sides,
+                                                 const double* fineDiagonal, const double* coarseDiagonal, int64_t i,
+                                                 int64_t j, int64_t k) {
+  double sum = 0.0;
+  if (fineDiagonal[i + d.nx * (j + d.ny * k)] > 0.0) {
+    const AxisStencil sx(i, d.cx, sides, 0), sy(j, d.cy, sides, 1), sz(k, d.cz, sides, 2);
+    for (int z = 0; z < 2; ++z)
+      for (int y = 0; y < 2; ++y) {
+        const double pyz = sy.presence[y] * sz.presence[z];
+        const int64_t base = d.cx * (sy.index[y] + d.cy * sz.index[z]);
+        for (int x = 0; x < 2; ++x)
+          if (coarseDiagonal[base + sx.index[x]] > 0.0) sum += pyz * sx.presence[x];
+      }
+  }
+  return sum > 0.0 ? 1.0 / sum : 0.0;
+}
+
 // fineX += P coarseX at fine cell (i, j, k), where scale (1 / S, multigrid_transfer.h) is not
 // 0; the cell keeps its value where it is. T: float or double.
 template <class T>

@@ -8,6 +8,7 @@
 #include "core/isa_clones.h"
 #include "core/parallel_for.h"
 #include "fluid/surface/free_surface.h"
+#include "gpu_kernels/coarsening_kernels.h"
 
 namespace vp {
 namespace {
@@ -28,6 +29,7 @@ struct Dims {
     return a == 0 ? i + (nx + 1) * (j + ny * k) : a == 1 ? i + nx * (j + (ny + 1) * k) : i + nx * (j + ny * k);
   }
   int64_t along(int a) const { return a == 0 ? nx : a == 1 ? ny : nz; }
+  kernels::CoarseDims kernelDims() const { return kernels::CoarseDims{nx, ny, nz}; }
 };
 
 // Diagonal = couplings of the six faces + Dirichlet part, cells of rows [begin, end) for which
@@ -36,19 +38,15 @@ struct Dims {
 void assembleDiagonalRows(const Array<double>& dirichlet, CutCellPoisson* op, int64_t begin, int64_t end,
                           const uint8_t* todo = nullptr, ChangedRows* changed = nullptr) {
   const Dims d(op->grid);
+  const double* const coupling[3] = {op->coupling[0].data(), op->coupling[1].data(), op->coupling[2].data()};
   for (int64_t row = begin; row < end; ++row) {
     if (todo != nullptr && !todo[row]) continue;
     const int64_t j = row % d.ny, k = row / d.ny;
     for (int64_t i = 0; i < d.nx; ++i) {
       const int64_t c = d.cell(i, j, k);
-      double sum = 0.0;
-      for (int a = 0; a < 3; ++a) {
-        int64_t hi[3] = {i, j, k};
-        ++hi[a];
-        sum += op->coupling[a][static_cast<size_t>(d.face(a, i, j, k))];
-        sum += op->coupling[a][static_cast<size_t>(d.face(a, hi[0], hi[1], hi[2]))];
-      }
-      storeTracked(&op->diagonal[static_cast<size_t>(c)], sum + dirichlet[static_cast<size_t>(c)], changed, row);
+      const double diagonal =
+          kernels::coarseDiagonalAt(d.kernelDims(), coupling, dirichlet[static_cast<size_t>(c)], i, j, k);
+      storeTracked(&op->diagonal[static_cast<size_t>(c)], diagonal, changed, row);
     }
   }
 }
@@ -105,11 +103,11 @@ void addColumnConductances(const double* in, const double* inner, int64_t first,
     if (behindHigh) {
       const double* high = low + 2 * along;
       for (int64_t m = 0; m < n; ++m)
-        term[m] = 2.0 / (0.5 / low[2 * m] + 1.0 / shared[2 * m] + 0.5 / high[2 * m]);
+        term[m] = kernels::seriesConductance(low[2 * m], shared[2 * m], high[2 * m]);
       for (int64_t m = 0; m < n; ++m)
         out[m] += (shared[2 * m] > 0.0) & (low[2 * m] > 0.0) & (high[2 * m] > 0.0) ? term[m] : 0.0;
     } else {
-      for (int64_t m = 0; m < n; ++m) term[m] = 1.5 / (0.5 / low[2 * m] + 1.0 / shared[2 * m]);
+      for (int64_t m = 0; m < n; ++m) term[m] = kernels::endConductance(low[2 * m], shared[2 * m]);
       for (int64_t m = 0; m < n; ++m) out[m] += (shared[2 * m] > 0.0) & (low[2 * m] > 0.0) ? term[m] : 0.0;
     }
   }
@@ -181,38 +179,6 @@ void addCoarseFacePass(SlabPasses* passes, const Dims& f, const Dims& c, int a, 
   });
 }
 
-// The free-surface part of coarse cell (I, J, K)'s diagonal (addCoarseFreeSurfacePasses), from
-// the coarse level set, fluid flags and open fractions already set.
-double coarseSurfaceDirichlet(const CutCellPoisson* fine, const Dims& f, const Dims& c, const CutCellPoisson& coarse,
-                              const Array<uint8_t>& fluid, int64_t I, int64_t J, int64_t K) {
-  const size_t cell = static_cast<size_t>(c.cell(I, J, K));
-  if (!fluid[cell]) return 0.0;
-  const double phi = coarse.liquidPhi[cell];
-  double surface = 0.0;
-  for (int a = 0; a < 3; ++a)
-    for (int side = 0; side < 2; ++side) {
-      int64_t nb[3] = {I, J, K};
-      nb[a] += side == 0 ? -1 : 1;
-      if (nb[a] < 0 || nb[a] >= c.along(a)) continue;
-      const size_t nbCell = static_cast<size_t>(c.cell(nb[0], nb[1], nb[2]));
-      if (fluid[nbCell]) continue;
-      int64_t high[3] = {I, J, K};
-      high[a] += side;
-      const double open = coarse.openFraction[a][static_cast<size_t>(c.face(a, high[0], high[1], high[2]))];
-      if (!(open > 0.0)) continue;
-      const double phiNb = coarse.liquidPhi[nbCell];
-      // A liquid neighbour mean without fluid children is air over solid: surface at its centre.
-      const double theta = !isLiquid(phi) ? kMinFreeSurfaceTheta
-                           : isLiquid(phiNb) ? 1.0 : freeSurfaceTheta(phi, phiNb);
-      surface += open / theta;
-    }
-  if (!(surface > 0.0)) {
-    forEachChild(f, I, J, K, [&](int64_t child) { surface += fine->surfaceDirichlet[static_cast<size_t>(child)]; });
-    surface *= 0.5;
-  }
-  return surface;
-}
-
 // The free surface of a coarse level, by the fine level's ghost-fluid rule at the coarse spacing.
 // The level set is restricted by averaging the children (exact at the coarse centre for a
 // linear phi). A coarse cell with a fluid child is fluid (as without a surface, so the
@@ -244,9 +210,16 @@ void addCoarseFreeSurfacePasses(SlabPasses* passes, const CutCellPoisson* fine, 
     coarse->liquidPhi[cell] = phi / children;
     (*fluidCells)[cell] = anyFluid ? 1 : 0;
   });
+  kernels::CoarseSurfaceFields in;
+  in.coarse = c.kernelDims();
+  in.fine = f.kernelDims();
+  in.liquidPhi = coarse->liquidPhi.data();
+  in.fluid = fluidCells->data();
+  for (int a = 0; a < 3; ++a) in.openFraction[a] = coarse->openFraction[a].data();
+  in.fineSurface = fine->surfaceDirichlet.data();
   addCellPass(passes, c, 1, [=](int64_t I, int64_t J, int64_t K) {
     const size_t cell = static_cast<size_t>(c.cell(I, J, K));
-    const double surface = coarseSurfaceDirichlet(fine, f, c, *coarse, *fluidCells, I, J, K);
+    const double surface = kernels::coarseSurfaceTerm(in, I, J, K);
     if (todo != nullptr && !sameBits(coarse->surfaceDirichlet[cell], surface)) {
       changed->raise(J + c.ny * K);
       todo[J + c.ny * K] = 1;  // the pass's rows are its units: one worker writes this row's flag
@@ -255,9 +228,9 @@ void addCoarseFreeSurfacePasses(SlabPasses* passes, const CutCellPoisson* fine, 
   });
 }
 
-// The Dirichlet parts of coarse rows [begin, end) (those set in `todo`, when given): the halved sum of the children's, less their
-// free-surface parts (placed again at this level's spacing by the free-surface passes, whose
-// result is added), summed in forEachChild's order.
+// The Dirichlet parts of coarse rows [begin, end) (those set in `todo`, when given): the halved
+// sum of the children's, less their free-surface parts (placed again at this level's spacing by
+// the free-surface passes, whose result is added), summed in forEachChild's order.
 void coarseDirichletRows(const CutCellPoisson& fine, const Dims& f, const Dims& c, bool freeSurface,
                          const CutCellPoisson& coarse, int64_t begin, int64_t end, const uint8_t* todo,
                          double* dirichlet) {

@@ -183,27 +183,11 @@ void computeProlongationScale(TaskSystem& tasks, const CutCellPoisson& fine, con
 
 void prolongationScaleRow(const CutCellPoisson& fine, const CutCellPoisson& coarse, const TransferSides& sides,
                           int64_t row, double* scale) {
-  const int64_t nx = fine.grid.nx, ny = fine.grid.ny;
-  const int64_t cx = coarse.grid.nx, cy = coarse.grid.ny, cz = coarse.grid.nz;
-  const int64_t j = row % ny, k = row / ny;
-  const AxisStencil sy(j, cy, sides, 1), sz(k, cz, sides, 2);
-  // Each cell's sum of the weights of its fluid coarse neighbours (the 8 stencil entries),
-  // then its inverse.
-  for (int64_t i = 0; i < nx; ++i) {
-    const int64_t c = i + nx * row;
-    double sum = 0.0;
-    if (fine.diagonal[static_cast<size_t>(c)] > 0.0) {
-      const AxisStencil sx(i, cx, sides, 0);
-      for (int z = 0; z < 2; ++z)
-        for (int y = 0; y < 2; ++y) {
-          const double pyz = sy.presence[y] * sz.presence[z];
-          const int64_t base = cx * (sy.index[y] + cy * sz.index[z]);
-          for (int x = 0; x < 2; ++x)
-            if (coarse.diagonal[static_cast<size_t>(base + sx.index[x])] > 0.0) sum += pyz * sx.presence[x];
-        }
-    }
-    scale[i] = sum > 0.0 ? 1.0 / sum : 0.0;
-  }
+  const kernels::TransferDims d{fine.grid.nx, fine.grid.ny, fine.grid.nz, coarse.grid.nx, coarse.grid.ny,
+                                coarse.grid.nz};
+  const int64_t j = row % d.ny, k = row / d.ny;
+  for (int64_t i = 0; i < d.nx; ++i)
+    scale[i] = kernels::prolongationScaleAt(d, sides, fine.diagonal.data(), coarse.diagonal.data(), i, j, k);
 }
 
 void appendComputeProlongationScale(const CutCellPoisson& fine, const CutCellPoisson& coarse,
