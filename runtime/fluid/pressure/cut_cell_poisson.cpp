@@ -152,9 +152,8 @@ void appendBuildCutCellPoisson(const MacGrid& grid, const FaceFractionField& fra
     const kernels::PoissonBuildFields in = buildFields(*g, *f, liquidPhi);
     for (int a = 0; a < 3; ++a) {
       const Eigen::Vector3i d = g->faceDims(a);
-      passes->addParallel(static_cast<int64_t>(d.z()) * d.y(), d.x(), kRowGrain, [in, op, a, changed](int64_t b, int64_t e) {
-        buildCouplingRows(in, a, b, e, op, changed);
-      });
+      passes->addParallel(static_cast<int64_t>(d.z()) * d.y(), d.x(), kRowGrain,
+                          [in, op, a, changed](int64_t b, int64_t e) { buildCouplingRows(in, a, b, e, op, changed); });
     }
     passes->addParallel(static_cast<int64_t>(g->spec.ny) * g->spec.nz, g->spec.nx, kRowGrain,
                         [in, op, changed](int64_t b, int64_t e) { buildDiagonalRows(in, b, e, op, changed); });

@@ -185,7 +185,9 @@ void appendBuildPoissonMultigrid(const CutCellPoisson& fine, const std::array<Do
     mg->r.resize(static_cast<size_t>(levels));
     auto level = [fp, mg](int l) { return l == 0 ? fp : &mg->coarse[static_cast<size_t>(l - 1)]; };
     // Level 0's flags are the caller's (none: a rebuild).
-    auto changedOf = [fineChanged, mg](int l) { return l == 0 ? fineChanged : &mg->changed[static_cast<size_t>(l - 1)]; };
+    auto changedOf = [fineChanged, mg](int l) {
+      return l == 0 ? fineChanged : &mg->changed[static_cast<size_t>(l - 1)];
+    };
     for (int l = 1; l < levels; ++l) {
       const CutCellPoisson* from = level(l - 1);
       CutCellPoisson* to = &mg->coarse[static_cast<size_t>(l - 1)];
