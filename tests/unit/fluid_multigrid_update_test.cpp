@@ -136,6 +136,26 @@ int64_t raisedRows(const ChangedRows& c) {
   return n;
 }
 
+// Every face row has one owning cell row, and that row lists it among the rows it owns (and
+// no row lists a face row it does not own).
+TEST(FluidMultigridChangedRows, OwnedFaceRowsInvertOwningRow) {
+  constexpr int64_t ny = 3, nz = 2;
+  for (int a = 0; a < 3; ++a) {
+    const int64_t faceRows = (ny + (a == 1)) * (nz + (a == 2));
+    std::vector<int> listed(static_cast<size_t>(faceRows), 0);
+    for (int64_t row = 0; row < ny * nz; ++row) {
+      const OwnedFaceRows owned = ownedFaceRows(a, row, ny, nz);
+      for (int r = 0; r < owned.count; ++r) {
+        ASSERT_GE(owned.row[r], 0);
+        ASSERT_LT(owned.row[r], faceRows);
+        EXPECT_EQ(owningRow(a, owned.row[r], ny, nz), row) << "axis " << a << " face row " << owned.row[r];
+        ++listed[static_cast<size_t>(owned.row[r])];
+      }
+    }
+    for (int64_t f = 0; f < faceRows; ++f) EXPECT_EQ(listed[static_cast<size_t>(f)], 1) << "axis " << a << " row " << f;
+  }
+}
+
 class FluidMultigridUpdate : public testing::TestWithParam<bool> {};
 
 TEST_P(FluidMultigridUpdate, UpdatedLevelsEqualRebuiltOnesBitForBit) {

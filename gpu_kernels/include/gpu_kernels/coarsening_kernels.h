@@ -1,27 +1,18 @@
 // Kernel bodies of the cut-cell multigrid's coarsening (runtime/fluid/pressure/
 // multigrid_coarsening.h has the rules and their reasons): a fine column's conductance under a
 // coarse face, a coarse cell's free-surface term and its diagonal. Functions of an index and
-// plain arrays; the CPU's passes (multigrid_coarsening.cpp) call them per value or, for the
-// column conductances, in row loops that compute the same operations for a whole row.
+// plain arrays (grids as MacLayout, whose wall flags they do not read); the CPU's passes
+// (multigrid_coarsening.cpp) call them per value or, for the column conductances, in row loops
+// that compute the same operations for a whole row.
 #pragma once
 
 #include <cstdint>
 
 #include "gpu_kernels/kernel_support.h"
+#include "gpu_kernels/mac_layout.h"
 #include "gpu_kernels/pressure_update_kernels.h"
 
 namespace vp::kernels {
-
-// A coarse grid's cell counts and its cell and face indices (face layouts as on the fine grid).
-struct CoarseDims {
-  int64_t nx, ny, nz;
-
-  VP_HOST_DEVICE int64_t cells(int a) const { return a == 0 ? nx : a == 1 ? ny : nz; }
-  VP_HOST_DEVICE int64_t cell(int64_t i, int64_t j, int64_t k) const { return i + nx * (j + ny * k); }
-  VP_HOST_DEVICE int64_t face(int a, int64_t i, int64_t j, int64_t k) const {
-    return i + (nx + (a == 0)) * (j + (ny + (a == 1)) * k);
-  }
-};
 
 // A fine column under a coarse face, from the centre of one coarse cell to the other's: half of
 // the fine face behind it in the low coarse cell, the shared face, half of the one behind it in
@@ -35,12 +26,12 @@ VP_HOST_DEVICE inline double endConductance(double low, double shared) { return 
 
 // Sum of values[child] over the children of coarse cell (I, J, K) that exist on the fine grid
 // `fine` (k outer, then j, then i).
-VP_HOST_DEVICE inline double sumOverChildren(const CoarseDims& fine, const double* values, int64_t I, int64_t J,
+VP_HOST_DEVICE inline double sumOverChildren(const MacLayout& fine, const double* values, int64_t I, int64_t J,
                                              int64_t K) {
   double sum = 0.0;
   for (int64_t k = 2 * K; k < 2 * K + 2 && k < fine.nz; ++k)
     for (int64_t j = 2 * J; j < 2 * J + 2 && j < fine.ny; ++j)
-      for (int64_t i = 2 * I; i < 2 * I + 2 && i < fine.nx; ++i) sum += values[fine.cell(i, j, k)];
+      for (int64_t i = 2 * I; i < 2 * I + 2 && i < fine.nx; ++i) sum += values[fine.cellIndex(i, j, k)];
   return sum;
 }
 
@@ -48,7 +39,7 @@ VP_HOST_DEVICE inline double sumOverChildren(const CoarseDims& fine, const doubl
 // and whether any child is fluid, per coarse face its open fraction; per fine cell the fine
 // free-surface terms.
 struct CoarseSurfaceFields {
-  CoarseDims coarse, fine;
+  MacLayout coarse, fine;
   const double* liquidPhi;
   const uint8_t* fluid;
   const double* openFraction[3];
@@ -61,8 +52,8 @@ struct CoarseSurfaceFields {
 // children is air over solid, the surface at its centre). Without such a face, the halved sum
 // of the children's terms. 0 off fluid.
 VP_HOST_DEVICE inline double coarseSurfaceTerm(const CoarseSurfaceFields& in, int64_t I, int64_t J, int64_t K) {
-  const CoarseDims& c = in.coarse;
-  const int64_t cell = c.cell(I, J, K);
+  const MacLayout& c = in.coarse;
+  const int64_t cell = c.cellIndex(I, J, K);
   if (!in.fluid[cell]) return 0.0;
   const double phi = in.liquidPhi[cell];
   double surface = 0.0;
@@ -71,30 +62,31 @@ VP_HOST_DEVICE inline double coarseSurfaceTerm(const CoarseSurfaceFields& in, in
       int64_t nb[3] = {I, J, K};
       nb[a] += side == 0 ? -1 : 1;
       if (nb[a] < 0 || nb[a] >= c.cells(a)) continue;
-      const int64_t nbCell = c.cell(nb[0], nb[1], nb[2]);
+      const int64_t nbCell = c.cellIndex(nb[0], nb[1], nb[2]);
       if (in.fluid[nbCell]) continue;
       int64_t high[3] = {I, J, K};
       high[a] += side;
-      const double open = in.openFraction[a][c.face(a, high[0], high[1], high[2])];
+      const double open = in.openFraction[a][c.faceIndex(a, high[0], high[1], high[2])];
       if (!(open > 0.0)) continue;
       const double phiNb = in.liquidPhi[nbCell];
       const double theta = !isLiquid(phi) ? kMinFreeSurfaceTheta : isLiquid(phiNb) ? 1.0 : freeSurfaceTheta(phi, phiNb);
       surface += open / theta;
     }
+  // surface is 0 here, or NaN, which the sum keeps.
   if (!(surface > 0.0)) surface = 0.5 * (surface + sumOverChildren(in.fine, in.fineSurface, I, J, K));
   return surface;
 }
 
 // Coarse cell (i, j, k)'s diagonal: its six faces' couplings (low then high face per axis, x,
 // y, z) plus its Dirichlet part.
-VP_HOST_DEVICE inline double coarseDiagonalAt(const CoarseDims& c, const double* const coupling[3], double dirichlet,
+VP_HOST_DEVICE inline double coarseDiagonalAt(const MacLayout& c, const double* const coupling[3], double dirichlet,
                                               int64_t i, int64_t j, int64_t k) {
   double sum = 0.0;
   for (int a = 0; a < 3; ++a) {
     int64_t hi[3] = {i, j, k};
     ++hi[a];
-    sum += coupling[a][c.face(a, i, j, k)];
-    sum += coupling[a][c.face(a, hi[0], hi[1], hi[2])];
+    sum += coupling[a][c.faceIndex(a, i, j, k)];
+    sum += coupling[a][c.faceIndex(a, hi[0], hi[1], hi[2])];
   }
   return sum + dirichlet;
 }

@@ -31,8 +31,8 @@ VP_HOST_DEVICE inline double eikonalUpdate(double a, double b, double c, double 
   return (s + std::sqrt(s * s - 3.0 * (a * a + b * b + c * c - h * h))) / 3.0;
 }
 
-// Cell c's (at coordinates ijk) update in a sweep: the upwind value from its neighbours inside the grid, kept
-// when smaller. Returns how much it dropped where the new value lies under `clamp` (values
+// Cell c's update in a sweep (ijk: its coordinates): the upwind value from its neighbours
+// inside the grid, kept when smaller. Returns how much it dropped where the new value lies under `clamp` (values
 // at or above it never reach one under it), +inf for a first value under it, else 0.
 VP_HOST_DEVICE inline double redistanceSweepCellAt(const CellLattice& g, int64_t c, const int64_t ijk[3], double clamp,
                                                    double* distance) {

@@ -44,6 +44,27 @@ struct ChangedRows {
   }
 };
 
+// The cell row owning face row `faceRow` of axis a on a grid of ny x nz cell rows (face rows
+// are the lines of faces along x: ny x nz of them for a = 0, (ny + 1) x nz for a = 1, ny x
+// (nz + 1) for a = 2): the row of the face's high cell, the last row for the high domain side.
+inline int64_t owningRow(int a, int64_t faceRow, int64_t ny, int64_t nz) {
+  if (a == 0) return faceRow;
+  if (a == 1) return std::min(faceRow % (ny + 1), ny - 1) + ny * (faceRow / (ny + 1));
+  return faceRow % ny + ny * std::min(faceRow / ny, nz - 1);
+}
+
+// The face rows of axis a that cell row `row` owns (owningRow's inverse): row[0 .. count).
+struct OwnedFaceRows {
+  int64_t row[2];
+  int count;
+};
+inline OwnedFaceRows ownedFaceRows(int a, int64_t row, int64_t ny, int64_t nz) {
+  const int64_t j = row % ny, k = row / ny;
+  if (a == 0) return OwnedFaceRows{{row, -1}, 1};
+  if (a == 1) return OwnedFaceRows{{j + (ny + 1) * k, j + 1 + (ny + 1) * k}, j + 1 == ny ? 2 : 1};
+  return OwnedFaceRows{{row, row + ny}, k + 1 == nz ? 2 : 1};
+}
+
 // Whether two doubles have the same bits (0.0 and -0.0 differ; a change of sign can change
 // what is computed from the value).
 inline bool sameBits(double a, double b) {

@@ -88,9 +88,7 @@ void buildCouplingRows(const kernels::PoissonBuildFields& in, int a, int64_t beg
       if (changed != nullptr) rowChanged = rowChanged || !sameBits(openFraction[f0 + i], face.open);
       openFraction[f0 + i] = face.open;
     }
-    // The cell row owning this face row (changed_rows.h).
-    if (rowChanged)
-      changed->raise(a == 0 ? row : a == 1 ? std::min(j, ny - 1) + ny * k : j + ny * std::min(k, nz - 1));
+    if (rowChanged) changed->raise(owningRow(a, row, ny, nz));
   }
 }
 

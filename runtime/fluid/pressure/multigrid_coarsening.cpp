@@ -29,7 +29,7 @@ struct Dims {
     return a == 0 ? i + (nx + 1) * (j + ny * k) : a == 1 ? i + nx * (j + (ny + 1) * k) : i + nx * (j + ny * k);
   }
   int64_t along(int a) const { return a == 0 ? nx : a == 1 ? ny : nz; }
-  kernels::CoarseDims kernelDims() const { return kernels::CoarseDims{nx, ny, nz}; }
+  kernels::MacLayout kernelDims() const { return kernels::MacLayout{nx, ny, nz, {}}; }
 };
 
 // Diagonal = couplings of the six faces + Dirichlet part, cells of rows [begin, end) for which
@@ -150,10 +150,8 @@ void coarseFaceRow(const Dims& f, const Dims& c, int a, int64_t C1, int64_t C2, 
 }
 
 // The coarse faces of axis a, a pass over the rows of the coarse face lattice (it writes every
-// face, 0 on the domain's). With `todo` (per coarse cell row) only the face rows of the cell
-// rows set there, and `changed` raises the rows whose faces changed (changed_rows.h: a cell
-// row owns its cells' low y and z faces; the rows of faces on the high domain sides are always
-// closed, so an update leaves them).
+// face, 0 on the domain's). With `todo` (per coarse cell row) only the face rows whose owning
+// cell rows are set there (changed_rows.h), and `changed` raises the owners of rows that changed.
 void addCoarseFacePass(SlabPasses* passes, const Dims& f, const Dims& c, int a, const Array<double>* in,
                        const Array<double>* inner, Array<double>* out, const uint8_t* todo, ChangedRows* changed) {
   const int64_t faces[3] = {c.nx + (a == 0), c.ny + (a == 1), c.nz + (a == 2)};
@@ -166,8 +164,7 @@ void addCoarseFacePass(SlabPasses* passes, const Dims& f, const Dims& c, int a, 
         coarseFaceRow(f, c, a, C1, C2, faces[0], in->data(), inner->data(), values);
         continue;
       }
-      if (C1 == c.ny || C2 == c.nz) continue;  // a row of faces on a high domain side
-      const int64_t owner = C1 + c.ny * C2;
+      const int64_t owner = owningRow(a, r, c.ny, c.nz);
       if (!todo[owner]) continue;
       coarseFaceRow(f, c, a, C1, C2, faces[0], in->data(), inner->data(), row.data());
       bool same = true;

@@ -58,8 +58,8 @@ void addConversion(SlabPasses* passes, const Array<From>* from, Array<To>* to) {
   });
 }
 
-// Converts the rows of `in` raised in `changed` (changed_rows.h: a row's diagonal, its x faces,
-// and the y and z faces it owns) into `out`; everything when `changed` is null or says all.
+// Converts the rows of `in` raised in `changed` into `out`: a cell row's diagonal and the face
+// rows it owns (changed_rows.h); everything when `changed` is null or says all.
 void addSinglePrecision(SlabPasses* passes, const CutCellPoisson* in, PoissonCoefficients<float>* out,
                         const ChangedRows* changed) {
   passes->addStep([passes, in, out, changed] {
@@ -74,18 +74,16 @@ void addSinglePrecision(SlabPasses* passes, const CutCellPoisson* in, PoissonCoe
     }
     const int64_t nx = in->grid.nx, ny = in->grid.ny, nz = in->grid.nz;
     passes->addParallel(ny * nz, 4 * nx, kRowGrain, [=](int64_t begin, int64_t end) {
-      auto convertRow = [](const Array<double>& from, Array<float>& to, int64_t length, int64_t row) {
-        convertValues(from.data(), to.data(), length * row, length * (row + 1));
-      };
       for (int64_t row = begin; row < end; ++row) {
         if (!changed->raised(row)) continue;
-        const int64_t j = row % ny, k = row / ny, yRow = j + (ny + 1) * k;
-        convertRow(in->diagonal, out->diagonal, nx, row);
-        convertRow(in->coupling[0], out->coupling[0], nx + 1, row);
-        convertRow(in->coupling[1], out->coupling[1], nx, yRow);
-        if (j + 1 == ny) convertRow(in->coupling[1], out->coupling[1], nx, yRow + 1);
-        convertRow(in->coupling[2], out->coupling[2], nx, row);
-        if (k + 1 == nz) convertRow(in->coupling[2], out->coupling[2], nx, row + ny);
+        convertValues(in->diagonal.data(), out->diagonal.data(), nx * row, nx * (row + 1));
+        for (int a = 0; a < 3; ++a) {
+          const int64_t length = nx + (a == 0);
+          const OwnedFaceRows owned = ownedFaceRows(a, row, ny, nz);
+          for (int r = 0; r < owned.count; ++r)
+            convertValues(in->coupling[a].data(), out->coupling[a].data(), length * owned.row[r],
+                          length * (owned.row[r] + 1));
+        }
       }
     });
   });
