@@ -228,8 +228,8 @@ bool FluidActor::advectScalarsSlab() {
   StepInProgress& st = *step_;
   if (!st.advecting) {
     TaskSystem& tasks = *st.input.tasks;
-    const AdvectionScheme scheme = desc_.solver.advection;
     if (desc_.kind == FluidKind::Smoke) {
+      const AdvectionScheme scheme = desc_.solver.advection;
       // Smoke and heat move through open faces only: a plain trilinear stencil reaches across
       // a plate one cell thick. Cells inside solids hold no smoke and the ambient temperature.
       if (fractionsChanged_) {
@@ -244,9 +244,10 @@ bool FluidActor::advectScalarsSlab() {
       // The level set is extended into solids on purpose (level_set_solid_extension.h) and
       // sampled as it is. Cells farther from the surface than the sub-step moves it, plus the
       // forward and backward traces' stencils, keep their sign, and redistancing rewrites them.
-      // Beyond the open sides is air.
+      // Beyond the open sides is air. Semi-Lagrangian whatever the desc's scheme
+      // (kLevelSetAdvection).
       Array<double>* scalars[1] = {&phi_};
-      st.scalarAdvection.prepare(tasks, grid_, st.h, scheme, scalars, 1, advection_, nullptr, nullptr,
+      st.scalarAdvection.prepare(tasks, grid_, st.h, kLevelSetAdvection, scalars, 1, advection_, nullptr, nullptr,
                                  st.speed * st.h + 3.0 * grid_.spec.h, /*conservedField=*/-1,
                                  /*levelSetField=*/0);
     }

@@ -52,7 +52,14 @@ struct SmokeParameters {
   double temperatureDissipation = 0.0;
 };
 
+// A liquid's level set is advected semi-Lagrangian whatever FluidSolverSettings::advection
+// says. It is redistanced and volume-corrected every sub-step, so MacCormack's sharper
+// transport buys it little, and with MacCormack a closed inviscid dam break gained energy
+// step after step and never settled (docs/choices.md, FluidLiquidEnergy.*).
+constexpr AdvectionScheme kLevelSetAdvection = AdvectionScheme::SemiLagrangian;
+
 struct FluidSolverSettings {
+  // The velocity's scheme, and smoke's density and temperature's (kLevelSetAdvection above).
   AdvectionScheme advection = AdvectionScheme::MacCormack;
   double cflNumber = 2.0;    // largest displacement per sub-step, in cells
   int maxSubsteps = 4;       // more are not taken; the scheme stays stable, only less accurate

@@ -753,7 +753,8 @@ typedef struct vpFluidDef {
   float cellSize;                   /* metres; default 1/32 */
   vpDomainSide sides[6];            /* -x, +x, -y, +y, -z, +z; default all walls */
   float density;                    /* kg/m^3 (water 1000, air 1.2); scales the forces on colliders; default 1000 */
-  vpAdvection advection;            /* default MacCormack */
+  vpAdvection advection;            /* velocity and smoke; default MacCormack. A liquid's level set
+                                       is always semi-Lagrangian (MacCormack gained energy there) */
   float cflNumber;                  /* most cells moved per sub-step, 0.1..100; default 2 */
   int32_t maxSubsteps;              /* 1..64; default 4 */
   float pressureTolerance;          /* relative residual of the pressure solve; default 1e-4 */
