@@ -10,9 +10,37 @@
 
 #include "gpu_kernels/cell_lattice.h"
 #include "gpu_kernels/kernel_support.h"
+#include "gpu_kernels/mac_layout.h"
 #include "gpu_kernels/pressure_update_kernels.h"
 
 namespace vp::kernels {
+
+// Sheets thinner than a cell, for a semi-Lagrangian level set (runtime/fluid/advection/
+// advection.h). A liquid cell whose two neighbours along an axis are air and whose two faces
+// on that axis both flow in is a sheet the projection closes from both sides; the inflows
+// average to nothing at the cell centre the level set is traced from, so the traced value
+// never sees the sheet thin, and such a sheet neither thins nor drains (one hanging from a
+// closed tank's ceiling fell in place at free-fall speed for seconds, docs/choices.md). Each of
+// its surfaces moves in at its face's inflow, so the centre's distance to the nearer one
+// shrinks at least at the smaller inflow: that speed (m/s, the largest over the axes), 0 for
+// any other cell. Cells on the domain's sides along an axis have no sheet along it.
+VP_HOST_DEVICE inline double sheetClosingSpeed(const MacLayout& g, const double* phi, const double* const u[3],
+                                               int64_t i, int64_t j, int64_t k) {
+  const int64_t c = g.cellIndex(i, j, k);
+  if (!isLiquid(phi[c])) return 0.0;
+  const int64_t at[3] = {i, j, k};
+  const int64_t stride[3] = {1, g.nx, g.nx * g.ny};
+  double speed = 0.0;
+  for (int a = 0; a < 3; ++a) {
+    if (at[a] == 0 || at[a] + 1 == g.cells(a)) continue;
+    if (isLiquid(phi[c - stride[a]]) || isLiquid(phi[c + stride[a]])) continue;
+    const double inLow = u[a][g.faceIndex(a, i, j, k)];
+    const double inHigh = -u[a][g.faceIndex(a, i + (a == 0), j + (a == 1), k + (a == 2))];
+    const double closing = inLow < inHigh ? inLow : inHigh;
+    speed = closing > speed ? closing : speed;
+  }
+  return speed;
+}
 
 // +inf: a distance not reached yet.
 VP_HOST_DEVICE inline double unreachedDistance() { return HUGE_VAL; }

@@ -9,6 +9,7 @@
 #include "fluid/advection/advection_rows.h"
 #include "fluid/advection/grid_sampling.h"
 #include "fluid/pressure/cut_cell_poisson.h"
+#include "gpu_kernels/level_set_kernels.h"
 #include "gpu_kernels/scalar_advection_kernels.h"
 
 namespace vp {
@@ -349,7 +350,27 @@ void ScalarAdvectionSlices::prepare(TaskSystem& tasks, const MacGrid& grid, doub
     if (maccormack_) addRowPass(passes_, which, d, [this](const AdvectionRows& rows) { correctionPass(rows); });
     passes_.addStep([this, which] { fields_[static_cast<size_t>(which)]->swap(work_->advected[0]); });
     if (conserve && which == conservedField) addRescalePasses(which);
+    if (which == levelSetField) addSheetClosingPasses(which);
   }
+}
+
+void ScalarAdvectionSlices::addSheetClosingPasses(int field) {
+  const Eigen::Vector3i d(grid_->spec.nx, grid_->spec.ny, grid_->spec.nz);
+  addRowPass(passes_, field, d, [this](const AdvectionRows& rows) {
+    const double* phi = fields_[static_cast<size_t>(rows.target)]->data();
+    const kernels::MacLayout layout = grid_->layout();
+    const double* const u[3] = {grid_->velocity[0].data(), grid_->velocity[1].data(), grid_->velocity[2].data()};
+    double* rise = work_->forward.data();
+    const int nx = rows.dims.x(), ny = rows.dims.y();
+    for (int64_t row = rows.rowBegin; row < rows.rowEnd; ++row)
+      for (int i = 0; i < nx; ++i)
+        rise[row * nx + i] = dt_ * kernels::sheetClosingSpeed(layout, phi, u, i, row % ny, row / ny);
+  });
+  addRowPass(passes_, field, d, [this](const AdvectionRows& rows) {
+    double* phi = fields_[static_cast<size_t>(rows.target)]->data();
+    const double* rise = work_->forward.data();
+    for (int64_t c = rows.rowBegin * rows.dims.x(); c < rows.rowEnd * rows.dims.x(); ++c) phi[c] += rise[c];
+  });
 }
 
 void ScalarAdvectionSlices::addRowSumPass(int field) {

@@ -102,7 +102,9 @@ void advectVelocity(TaskSystem& tasks, MacGrid& grid, double dt, AdvectionScheme
 // held far more smoke than it was given. A uniform scale is the correction that keeps the
 // field's shape and sign (as the liquid's volume correction is a uniform shift).
 // levelSetField (optional, >= 0): that field is a liquid level set (free_surface.h) with air
-// beyond the Open sides (see the top of this header).
+// beyond the Open sides (see the top of this header), and its sheets thinner than a cell close
+// at the rate their faces' inflow closes them (kernels::sheetClosingSpeed), which a trace from
+// the cell centre cannot see.
 void advectCellScalars(TaskSystem& tasks, const MacGrid& grid, double dt, AdvectionScheme scheme,
                        Array<double>* const* fields, int fieldCount, AdvectionWorkspace& work,
                        const CellOpenFaces* openFaces = nullptr, const double* solidValues = nullptr,
@@ -196,6 +198,10 @@ class ScalarAdvectionSlices {
   double rowSumTotal() const;
   void addTargetTotalPasses(int field);
   void addRescalePasses(int field);
+  // The level set's sheets thinner than a cell closed (kernels::sheetClosingSpeed) after its
+  // advection: each cell's rise over dt into work.forward (free once the field's own passes
+  // are done), then added, so no cell reads another's new value.
+  void addSheetClosingPasses(int field);
 
   const MacGrid* grid_ = nullptr;
   AdvectionWorkspace* work_ = nullptr;
