@@ -19,11 +19,11 @@ namespace vp::kernels {
 // advection.h). A liquid cell whose two neighbours along an axis are air and whose two faces
 // on that axis both flow in is a sheet the projection closes from both sides; the inflows
 // average to nothing at the cell centre the level set is traced from, so the traced value
-// never sees the sheet thin, and such a sheet neither thins nor drains (one hanging from a
-// closed tank's ceiling fell in place at free-fall speed for seconds, docs/choices.md). Each of
-// its surfaces moves in at its face's inflow, so the centre's distance to the nearer one
-// shrinks at least at the smaller inflow: that speed (m/s, the largest over the axes), 0 for
-// any other cell. Cells on the domain's sides along an axis have no sheet along it.
+// never sees the sheet thin, and left alone such a sheet neither thins nor drains
+// (docs/choices.md). Each of its surfaces moves in at its face's inflow, so the centre's
+// distance to the nearer one shrinks at least at the smaller inflow: that speed (m/s, the
+// largest over the axes), 0 for any other cell. Cells on the domain's sides along an axis have
+// no sheet along it.
 VP_HOST_DEVICE inline double sheetClosingSpeed(const MacLayout& g, const double* phi, const double* const u[3],
                                                int64_t i, int64_t j, int64_t k) {
   const int64_t c = g.cellIndex(i, j, k);
