@@ -10,6 +10,8 @@
 #include "core/log.h"
 #include "core/parallel_for.h"
 #include "core/run_delay.h"
+#include "deform/contact_group_solve.h"
+#include "deform/contact_groups.h"
 #include "deform/pair_contact_settlement.h"
 #include "gpu_kernels/device_query.h"
 
@@ -426,6 +428,27 @@ std::vector<PairContact> World::findDeformablePairContacts(const std::vector<Def
   return pairs;
 }
 
+void World::stepGroup(const std::vector<DeformableHandle>& handles, const std::vector<int>& members,
+                      const std::vector<DeformableStepInput>& inputs, ActorStats* actors) {
+  try {
+    if (members.size() == 1) {
+      deformable(handles[members[0]])->step(inputs[0], &actors[members[0]]);
+      return;
+    }
+    std::vector<PhaseTimer> timers;
+    timers.reserve(members.size());
+    std::vector<ContactGroupMember> group;
+    for (size_t m = 0; m < members.size(); ++m) {
+      timers.emplace_back(inputs[m].deadline, &actors[members[m]]);
+      group.push_back({deformable(handles[members[m]]), &inputs[m], &timers.back(), &actors[members[m]]});
+    }
+    stepContactGroup(group);
+  } catch (const std::bad_alloc&) {
+    for (int i : members) deformable(handles[i])->abandonStep();
+    actorOutOfMemory_ = true;
+  }
+}
+
 bool World::stepDeformables(double dt, const Deadline& frame, StepStats* stats) {
   const std::vector<Filtered<ContactCollider>> contactColliders = deformableContactColliders(colliders_);
   const std::vector<DeformableHandle> handles = deformableHandles();
@@ -441,54 +464,78 @@ bool World::stepDeformables(double dt, const Deadline& frame, StepStats* stats) 
     priorities.push_back(body.desc().priority);
     due.push_back(FramePlan::due(stats->stepIndex, static_cast<int>(i), static_cast<int>(handles.size()), s));
   }
-  // Served by priority; the due ones, and what those served after each are expected to need
-  // (infinite while one of them has not been measured: then the shares are equal).
+  // Served by priority, the due ones.
   std::vector<int> served;
   for (int i : FramePlan::byPriority(priorities))
     if (due[i]) served.push_back(i);
-  std::vector<double> laterFloorsMs(served.size() + 1, 0.0);
-  for (size_t n = served.size(); n-- > 0;) {
-    const double expected = planned[served[n]].schedule->expectedMs;
-    laterFloorsMs[n] = laterFloorsMs[n + 1] + (expected < 0.0 ? std::numeric_limits<double>::infinity()
-                                                               : FramePlan::kMargin * expected);
-  }
   std::vector<ActorStats> actors(handles.size());
   std::vector<FramePlan::DeformableDeadlines> deadlines(handles.size());
+  std::vector<ContactGroupCandidate> candidates(handles.size());
   for (size_t i = 0; i < handles.size(); ++i) {
     actors[i] = actorStats(ActorKind::Deformable, handles[i].index1, handles[i].generation, priorities[i], 0.0);
     actors[i].interval = planned[i].schedule->interval;
-  }
-  const std::vector<PairContact> pairContacts = findDeformablePairContacts(handles, dt, frame, stats);
-  // Side by side, each takes the rest of the frame (and its own floor) for itself.
-  const bool concurrent = runsConcurrently(static_cast<int>(served.size()));
-  runActors(concurrent, static_cast<int>(served.size()), [&](int n) {
-    const int i = served[static_cast<size_t>(n)];
     DeformableBody& body = *deformable(handles[i]);
-    ActorSchedule& s = body.schedule();
-    deadlines[i] = FramePlan::deformableDeadlines(frame, s, concurrent ? 0.0 : laterFloorsMs[n + 1],
-                                                  fluidsExpectedMs(priorities[i]),
-                                                  concurrent ? 1 : static_cast<int>(served.size()) - n);
-    DeformableStepInput input = deformableStepInput(body, contactColliders);
-    input.dt = s.pendingDt;
-    input.pairContacts = &pairContacts;
-    input.pairBody = i;
-    ActorStats& a = actors[i];
+    candidates[i] = ContactGroupCandidate{static_cast<bool>(due[i]), !body.solvesOnDevice(), body.schedule().pendingDt};
+  }
+  std::vector<PairContact> pairContacts = findDeformablePairContacts(handles, dt, frame, stats);
+  const std::vector<std::vector<int>> groups = formContactGroups(served, candidates, &pairContacts);
+  // What the groups served after each are expected to need (infinite while one of their
+  // bodies has not been measured: then the shares are equal).
+  std::vector<double> laterFloorsMs(groups.size() + 1, 0.0);
+  for (size_t n = groups.size(); n-- > 0;) {
+    laterFloorsMs[n] = laterFloorsMs[n + 1];
+    for (int i : groups[n]) {
+      const double expected = planned[i].schedule->expectedMs;
+      laterFloorsMs[n] += expected < 0.0 ? std::numeric_limits<double>::infinity() : FramePlan::kMargin * expected;
+    }
+  }
+  // Side by side, each group takes the rest of the frame (and its own floor) for itself.
+  const bool concurrent = runsConcurrently(static_cast<int>(groups.size()));
+  runActors(concurrent, static_cast<int>(groups.size()), [&](int n) {
+    const std::vector<int>& members = groups[static_cast<size_t>(n)];
+    const int first = members.front();
+    // The group is planned as one actor: the first member's priority, every member's tail.
+    ActorSchedule schedule = deformable(handles[first])->schedule();
+    for (int i : members) {
+      const ActorSchedule& s = deformable(handles[i])->schedule();
+      if (i != first) schedule.tailMs += std::max(s.tailMs, 0.0);
+      schedule.interval = std::max(schedule.interval, s.interval);
+    }
+    const FramePlan::DeformableDeadlines groupDeadlines = FramePlan::deformableDeadlines(
+        frame, schedule, concurrent ? 0.0 : laterFloorsMs[n + 1], fluidsExpectedMs(priorities[first]),
+        concurrent ? 1 : static_cast<int>(groups.size()) - n);
     const double start = frame.elapsedMs();
-    if (fluids_.size() > 0) {  // a world without fluids pays nothing for them
-      setFluidLoads(handles[i], body);
-      body.applyFluidLoads(input.dt, config_.gravity);
-      a.phase(Phase::Coupling).ms += frame.elapsedMs() - start;
+    double mark = start;
+    std::vector<DeformableStepInput> inputs(members.size());
+    for (size_t m = 0; m < members.size(); ++m) {
+      const int i = members[m];
+      DeformableBody& body = *deformable(handles[i]);
+      deadlines[i] = groupDeadlines;
+      DeformableStepInput& input = inputs[m];
+      input = deformableStepInput(body, contactColliders);
+      input.dt = body.schedule().pendingDt;
+      input.pairContacts = &pairContacts;
+      input.pairBody = i;
+      input.deadline = groupDeadlines.share;
+      input.floorDeadline = groupDeadlines.floor;
+      if (fluids_.size() > 0) {  // a world without fluids pays nothing for them
+        setFluidLoads(handles[i], body);
+        body.applyFluidLoads(input.dt, config_.gravity);
+        const double now = frame.elapsedMs();
+        actors[i].phase(Phase::Coupling).ms += now - mark;
+        mark = now;
+      }
     }
-    input.deadline = deadlines[i].share;
-    input.floorDeadline = deadlines[i].floor;
-    try {
-      body.step(input, &a);
-    } catch (const std::bad_alloc&) {
-      body.abandonStep();
-      actorOutOfMemory_ = true;
+    stepGroup(handles, members, inputs, actors.data());
+    // A group's time is its members' by their share of its nodes (what each adds to the solve).
+    double groupNodes = 0.0;
+    for (int i : members) groupNodes += deformable(handles[i])->nodeCount();
+    const double ms = frame.elapsedMs() - start;
+    for (size_t m = 0; m < members.size(); ++m) {
+      ActorStats& a = actors[members[m]];
+      a.totalMs = ms * deformable(handles[members[m]])->nodeCount() / groupNodes;
+      a.simulatedDt = inputs[m].dt;
     }
-    a.totalMs = frame.elapsedMs() - start;
-    a.simulatedDt = input.dt;
   });
   std::vector<DeformableBody*> bodies;
   std::vector<double> steppedDt;

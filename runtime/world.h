@@ -119,6 +119,10 @@ class World {
   void stepRigidBodies(double dt, const Deadline& frame, StepStats* stats);
   // Returns whether every deformable that stepped reached its accuracy floor.
   bool stepDeformables(double dt, const Deadline& frame, StepStats* stats);
+  // One step of a contact group's members (deform/contact_groups.h; a lone body alone), indices
+  // into handles; inputs by member, actors by handle.
+  void stepGroup(const std::vector<DeformableHandle>& handles, const std::vector<int>& members,
+                 const std::vector<DeformableStepInput>& inputs, ActorStats* actors);
   // The deformables' contacts with each other and themselves at the frame's start, found once
   // for all their steps (each reads the others as they were then: the same for any worker count).
   std::vector<PairContact> findDeformablePairContacts(const std::vector<DeformableHandle>& handles, double dt,

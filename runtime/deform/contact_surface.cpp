@@ -48,6 +48,13 @@ void ContactSurface::refit(const Array<double>& x, const Array<double>& v, doubl
     for (int32_t n : triangleNodes_[t]) fastest = std::max(fastest, Vec3(v[3 * n], v[3 * n + 1], v[3 * n + 2]).norm());
     margins_[t] = h * fastest;
   }
+  nodeNormals_.assign(static_cast<size_t>(nodeCount()), Vec3::Zero());
+  for (const RefitBvh::Triangle& t : triangles_) {
+    const Vec3 areaNormal = (positions_[t[1]] - positions_[t[0]]).cross(positions_[t[2]] - positions_[t[0]]);
+    for (int k = 0; k < 3; ++k) nodeNormals_[vertexNode_[t[k]]] += areaNormal;
+  }
+  for (Vec3& n : nodeNormals_)
+    if (n.squaredNorm() > 0.0) n.normalize();
   if (bvh_.empty()) bvh_.rebuild(positions_, triangles_);
   bvh_.refit(positions_, triangles_, &margins_);
 }

@@ -4,7 +4,8 @@
 // its triangles), and which nodes share an element, so that self contact can leave out a
 // node's own neighbourhood (a node always lies on the triangles around it). Each triangle's
 // box is grown by how far its corners move in the coming step, so a node's search covers
-// only its own motion and not the body's fastest node's.
+// only its own motion and not the body's fastest node's. The nodes' normals tell a node
+// lying on a triangle from one beside it (at a box's edge, on the face round the corner).
 #pragma once
 
 #include <array>
@@ -37,6 +38,9 @@ class ContactSurface {
   };
   NodeList neighbourList(int32_t a) const;
   int32_t nodeCount() const { return static_cast<int32_t>(neighbourStart_.empty() ? 0 : neighbourStart_.size() - 1); }
+  // Node a's outward surface normal at the last refit: the area-weighted mean of its boundary
+  // triangles' (unit); zero for a node on no boundary triangle (a higher degree's control point).
+  const Vec3& nodeNormal(int32_t a) const { return nodeNormals_[static_cast<size_t>(a)]; }
   // More than one layer of elements: some corner node lies inside the body.
   bool hasInteriorNode() const { return hasInteriorNode_; }
 
@@ -46,6 +50,7 @@ class ContactSurface {
   Array<RefitBvh::Triangle> triangleNodes_;  // the same over node ids
   Array<Vec3> positions_;                    // boundary vertices, this step
   Array<double> margins_;                    // per triangle, this step
+  Array<Vec3> nodeNormals_;                  // per node, this step
   RefitBvh bvh_;
   Array<int32_t> neighbourStart_, neighbourList_;  // per node, sorted corner neighbours
   bool hasInteriorNode_ = false;

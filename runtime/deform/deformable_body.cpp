@@ -14,6 +14,7 @@
 #include "deform/bb_evaluation.h"
 #include "deform/bb_multi_index.h"
 #include "deform/bb_rotated_stiffness.h"
+#include "deform/contact_group_solve.h"
 #include "deform/corotated_element.h"
 #include "deform/deformation_gradient.h"
 #include "deform/degree_hierarchy.h"
@@ -30,10 +31,6 @@ namespace {
 // Speeds beyond this are treated as divergence: far above anything a game scene produces,
 // far below where doubles lose all meaning.
 constexpr double kMaxSpeed = 1e4;
-
-// Contact active-set passes per step: each may re-solve once. Four settle stick/slide/
-// release decisions in practice; a budget-cut step simply stops earlier.
-constexpr int kContactPasses = 4;
 
 // The energies' polar decompositions: tighter than the corotation's, since an energy's error
 // is first order in the rotation's.
@@ -450,7 +447,7 @@ void DeformableBody::contactImpulses(TaskSystem& tasks, Array<Vec3>* impulses) {
   impulses->resize(contacts.size());
   for (size_t c = 0; c < contacts.size(); ++c) {
     const int32_t i = contacts[c].node;
-    for (int k = 0; k < 3; ++k) (*impulses)[c][k] = cg_.q[3 * i + k] - rhs_[3 * i + k];
+    for (int k = 0; k < 3; ++k) (*impulses)[c][k] = cg_.q[3 * i + k] + pairCouplingAt(3 * i + k) - rhs_[3 * i + k];
   }
 }
 
@@ -559,7 +556,8 @@ struct NodeWork {
 }  // namespace
 
 StepEnergy DeformableBody::solvedStepEnergy(TaskSystem& tasks, double h, const Vec3& gravity,
-                                           const std::vector<PairContact>* pairs, int32_t pairBody) {
+                                           const std::vector<PairContact>* pairs, int32_t pairBody,
+                                           const PairVelocities& solved) {
   if (elasticEnergyAtX_ < 0.0) elasticEnergyAtX_ = elasticEnergy(tasks);
   const NodeWork w = parallelReduce<NodeWork>(tasks, nodeCount_, 1024, [&](int64_t begin, int64_t end) {
     NodeWork sum;
@@ -574,7 +572,7 @@ StepEnergy DeformableBody::solvedStepEnergy(TaskSystem& tasks, double h, const V
           const double* vc = &vNext_[3 * static_cast<int64_t>(matrix_.columns[k])];
           for (int r = 0; r < 3; ++r) impulse[r] += block[3 * r] * vc[0] + block[3 * r + 1] * vc[1] + block[3 * r + 2] * vc[2];
         }
-        for (int r = 0; r < 3; ++r) impulse[r] -= rhs_[3 * i + r];
+        for (int r = 0; r < 3; ++r) impulse[r] += pairCouplingAt(3 * i + r) - rhs_[3 * i + r];
       }
       for (int k = 0; k < 3; ++k) {
         sum.kineticStart += 0.5 * m * v[k] * v[k];
@@ -596,7 +594,7 @@ StepEnergy DeformableBody::solvedStepEnergy(TaskSystem& tasks, double h, const V
     const double* vn = &vNext_[3 * static_cast<int64_t>(contacts[c].node)];
     e.appliedWork += contacts_.frictionImpulses()[c].dot(Vec3(vn[0], vn[1], vn[2]));
   }
-  if (pairs) e.appliedWork += pairContactWork(*pairs, pairBody, h, vNext_);
+  if (pairs) e.appliedWork += pairContactWork(*pairs, pairBody, h, vNext_, solved);
   return e;
 }
 
@@ -624,8 +622,14 @@ void DeformableBody::abandonStep() {
 
 void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
   PhaseTimer timer(in.deadline, stats);
+  std::vector<ContactGroupMember> alone{{this, &in, &timer, stats}};
+  stepContactGroup(alone);
+}
+
+void DeformableBody::beginStep(const DeformableStepInput& in, PhaseTimer& timer) {
   backupX_.assign(x_.begin(), x_.end());
   backupV_.assign(v_.begin(), v_.end());
+  pairCoupling_.clear();
   holdNodes(in);
   timer.lap(Phase::Contacts);
   corotateAndAssemble(*in.tasks, in.dt * desc_.material.stiffnessDamping + in.dt * in.dt);
@@ -635,9 +639,12 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
   if (in.pairContacts) addPairContactRhs(*in.pairContacts, in.pairBody, in.dt, &rhs_);
   for (size_t k = 0; k < rhs_.size(); ++k) rhs_[k] += pendingImpulse_[k];
   timer.lap(Phase::Assemble);
-  const bool reachedFloor = solveStepSystem(in, timer, stats);
-  if (in.pairContacts) updatePairFriction(*in.pairContacts, in.pairBody, in.dt, vNext_, &pairFriction_);
-  integrateAndGuard(in, reachedFloor, stats);  // its energy passes are timed with the embedding
+}
+
+void DeformableBody::finishStep(const DeformableStepInput& in, bool reachedFloor, const PairVelocities& solved,
+                                PhaseTimer& timer, ActorStats* stats) {
+  if (in.pairContacts) updatePairFriction(*in.pairContacts, in.pairBody, in.dt, vNext_, solved, &pairFriction_);
+  integrateAndGuard(in, reachedFloor, solved, stats);  // its energy passes are timed with the embedding
   std::fill(externalForce_.begin(), externalForce_.end(), 0.0);
   std::fill(pendingImpulse_.begin(), pendingImpulse_.end(), 0.0);
   updateRenderMesh(*in.tasks);
@@ -689,65 +696,6 @@ void DeformableBody::assembleStepSystem(const DeformableStepInput& in) {
   if (deviceSolve_) deviceSolve_->matrixChanged();
 }
 
-bool DeformableBody::solveStepSystem(const DeformableStepInput& in, PhaseTimer& timer, ActorStats* stats) {
-  TaskSystem& tasks = *in.tasks;
-  const double scale = massScale(in.dt);
-  LinearSystem system;
-  system.size = 3 * static_cast<int64_t>(nodeCount_);
-  system.apply = [&](const double* x, double* y) { matrix_.multiply(tasks, x, y); };
-  if (preconditioner_.needsRefresh() && !deviceSolve_) {
-    refreshPreconditioner(tasks, scale);
-    timer.lap(Phase::Assemble);  // the preconditioner's setup is part of building the system
-  }
-  system.precondition = [&](const double* r, double* z) { preconditioner_.apply(tasks, r, z); };
-  system.filter = [&](double* vec) { held_.filter(tasks, vec); };
-  CgSettings settings{desc_.solver.tolerance,
-                      in.solverMaxIterations > 0 ? in.solverMaxIterations : desc_.solver.maxIterations};
-  const double floor = desc_.solver.targetResidual;
-  CgResult cg = solveLinearSystem(in, system, settings, scale);
-  PhaseStats& solve = stats->phase(Phase::Solve);
-  solve.iterations = cg.iterations;
-  timer.lap(Phase::Solve);
-
-  // Coulomb's law on the constraint impulses (deform/contact_active_set.h): a few passes,
-  // each re-solve starting from the last iterate, so it is cheap.
-  for (int pass = 0; pass < kContactPasses && !contacts_.contacts().empty(); ++pass) {
-    Array<Vec3> impulses;
-    contactImpulses(tasks, &impulses);
-    const bool changed = contacts_.applyCoulomb(impulses, &held_, &vNext_, &rhs_);
-    timer.lap(Phase::Contacts);
-    if (!changed) break;
-    // Past the accuracy floor's deadline a re-solve would run no iteration, and the multigrid
-    // refresh before it is the costliest part of a pass: the last solve's velocities stand.
-    // Only that deadline skips it: a released node kept at its collider's velocity glues the
-    // body to a moving collider frame after frame.
-    if (in.floorDeadline.expired()) {
-      cg.budgetCut = true;
-      break;
-    }
-    // With the filters of the pass before, a released node or a newly sliding contact's
-    // tangent lies in a multigrid's null space, CG cannot reduce the residual there and the
-    // solve stalls (relative residual ~1 after hundreds of iterations).
-    if (preconditioner_.needsRefresh() && !deviceSolve_) {
-      refreshPreconditioner(tasks, scale);
-      timer.lap(Phase::Assemble);
-    }
-    cg = solveLinearSystem(in, system, settings, scale);
-    solve.iterations += cg.iterations;
-    timer.lap(Phase::Solve);
-  }
-  contacts_.rememberSliding(vNext_, held_);
-  recordReactions(tasks, in.dt, in.colliders);
-  solve.residual = cg.relativeResidual;
-  stats->onDevice = deviceSolve_ != nullptr;
-  solve.budgetCut = cg.budgetCut;
-  stats->residual = cg.relativeResidual;
-  // Missed only when time ran out: a solve that stopped at maxIterations above the floor
-  // is a matter of the solver settings, which a lower rate would not change.
-  stats->floorMissed = cg.budgetCut && cg.relativeResidual > floor;
-  return !cg.budgetCut || cg.relativeResidual <= floor;
-}
-
 CgResult DeformableBody::solveLinearSystem(const DeformableStepInput& in, const LinearSystem& system,
                                           const CgSettings& settings, double massScale) {
   const double floor = desc_.solver.targetResidual;
@@ -774,8 +722,9 @@ Status DeformableBody::setSolveOnDevice(bool onDevice) {
   return DeviceStepSolve::create(matrix_, &deviceSolve_);
 }
 
-void DeformableBody::integrateAndGuard(const DeformableStepInput& in, bool solveReachedFloor, ActorStats* stats) {
-  const StepEnergy energy = solvedStepEnergy(*in.tasks, in.dt, in.gravity, in.pairContacts, in.pairBody);
+void DeformableBody::integrateAndGuard(const DeformableStepInput& in, bool solveReachedFloor,
+                                       const PairVelocities& solved, ActorStats* stats) {
+  const StepEnergy energy = solvedStepEnergy(*in.tasks, in.dt, in.gravity, in.pairContacts, in.pairBody, solved);
   for (size_t i = 0; i < x_.size(); ++i) {
     v_[i] = vNext_[i];
     x_[i] += in.dt * vNext_[i];

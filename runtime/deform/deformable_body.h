@@ -28,6 +28,7 @@
 #include "deform/device_step_solve.h"
 #include "gpu_kernels/device_element_assembly.h"
 #include "deform/node_constraints.h"
+#include "deform/pair_contact_terms.h"
 #include "deform/pair_contacts.h"
 #include "deform/step_preconditioner.h"
 #include "deform/degree_level_assembly.h"
@@ -77,6 +78,15 @@ class DeformableBody {
   // Advances one step; fills stats (phases, iterations, residual, budget cut) and sets
   // stats->diverged if the step blew up (the state is then restored to before the step).
   void step(const DeformableStepInput& input, ActorStats* stats);
+  // step() in the stages a contact group runs for each member around its one solve
+  // (deform/contact_group_solve.h). beginStep: pins, attachments and contacts prescribe
+  // velocities, the system is assembled. finishStep: friction states, x += h v' (restored if it
+  // blew up), the render mesh; `solved` holds the group's solved velocities by pair body.
+  void beginStep(const DeformableStepInput& input, PhaseTimer& timer);
+  void finishStep(const DeformableStepInput& input, bool solveReachedFloor, const PairVelocities& solved,
+                  PhaseTimer& timer, ActorStats* stats);
+  // The velocities the last solve found (3 per node; the step's v' until the next step begins).
+  const Array<double>& solvedVelocities() const { return vNext_; }
   // After an exception out of step() (out of memory): back to the state before the step.
   void abandonStep();
 
@@ -186,23 +196,26 @@ class DeformableBody {
   // The energies and works of the step just solved (vNext_), all but the elastic energy at
   // its end (core/step_energy.h).
   StepEnergy solvedStepEnergy(TaskSystem& tasks, double h, const Vec3& gravity, const std::vector<PairContact>* pairs,
-                              int32_t pairBody);
+                              int32_t pairBody, const PairVelocities& solved);
   // The guard after integrating: true when the step blew up (not finite, too fast, or an
   // energy gain its work does not explain while its solve reached the accuracy floor).
   bool stepBlewUp(TaskSystem& tasks, StepEnergy energy, bool solveReachedFloor);
+  friend class ContactGroupSolve;  // solves the members' step systems as one
   DeformableBody() = default;
   void corotateAndAssemble(TaskSystem& tasks, double stiffnessScale);
   void corotateAndAssembleBB(TaskSystem& tasks, double stiffnessScale);  // degree 2, 3
   template <class AddBlock>
   void gatherRows(TaskSystem& tasks, int64_t grain, const AddBlock& addBlock);
-  // The stages of step(), in order. holdNodes: pins, attachments and contacts prescribe
+  // Parts of beginStep and finishStep. holdNodes: pins, attachments and contacts prescribe
   // velocities (held_, vNext_). assembleStepSystem: the mass and the right-hand side on top of
-  // the corotated stiffness. solveStepSystem: CG and the contact passes; returns whether the
-  // solve reached the accuracy floor. integrateAndGuard: x += h v', restored if it blew up.
+  // the corotated stiffness. integrateAndGuard: x += h v', restored if it blew up.
   void holdNodes(const DeformableStepInput& in);
   void assembleStepSystem(const DeformableStepInput& in);
-  bool solveStepSystem(const DeformableStepInput& in, PhaseTimer& timer, ActorStats* stats);
-  void integrateAndGuard(const DeformableStepInput& in, bool solveReachedFloor, ActorStats* stats);
+  void integrateAndGuard(const DeformableStepInput& in, bool solveReachedFloor, const PairVelocities& solved,
+                         ActorStats* stats);
+  // Scalar k of the coupled pair contacts' terms between different nodes at the solved
+  // velocities (0 outside a coupled solve): part of A v' at a node, for its impulses.
+  double pairCouplingAt(size_t k) const { return pairCoupling_.empty() ? 0.0 : pairCoupling_[k]; }
   void recordReactions(TaskSystem& tasks, double h, const std::vector<ContactCollider>& colliders);
   double massScale(double h) const;  // 1 + h α: Rayleigh's mass damping on the mass term
   // One CG solve of the step system from vNext_, on the device when it has one.
@@ -265,6 +278,7 @@ class DeformableBody {
   Array<PairFriction> pairFriction_;     // per node, its pair contact's friction state
   Array<double> pendingImpulse_;         // 3 per node, for the next step (addContactImpulse)
   double pairContactDepth_ = 0.0;
+  Array<double> pairCoupling_;           // 3 per node in a coupled solve, else empty (pairCouplingAt)
   CgWorkspace cg_;
   StepPreconditioner preconditioner_;
   std::unique_ptr<DeviceStepSolve> deviceSolve_;  // set: the solve runs on the CUDA device

@@ -7,6 +7,7 @@ namespace vp {
 void settlePairContacts(const std::vector<PairContact>& pairs, const std::vector<DeformableBody*>& bodies,
                         const std::vector<double>& steppedDt) {
   for (const PairContact& p : pairs) {
+    if (p.coupled) continue;  // equal and opposite by construction
     DeformableBody& nodeBody = *bodies[p.nodeBody];
     DeformableBody& triangleBody = *bodies[p.triangleBody];
     const Vec3 excess = pairContactMismatch(p, steppedDt[p.nodeBody], nodeBody.velocities(),

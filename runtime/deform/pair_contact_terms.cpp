@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <utility>
 
 namespace vp {
 namespace {
@@ -16,6 +17,26 @@ Vec3 slipDirection(const PairContact& p) {
   return s > 0.0 ? Vec3(slip / s) : Vec3::Zero();
 }
 
+// The spring of contact p over a step of h: the impulse on the node is known − D u, with u
+// the node's velocity relative to the triangle's point (−w_i times it on triangle node i).
+struct Spring {
+  Mat3 D = Mat3::Zero();
+  Vec3 known = Vec3::Zero();  // the push to the rest gap, the stuck stretch and kinetic friction
+  Vec3 nodeImpulse(const Vec3& vNode, const Vec3& vPoint) const { return known - D * (vNode - vPoint); }
+};
+
+Spring spring(const PairContact& p, double h) {
+  const double K2 = p.springH2k();  // h² k
+  const double K1 = K2 / h;         // h k
+  const Mat3 N = p.normal * p.normal.transpose();
+  const bool slides = p.state.sliding != 0;
+  Spring s;
+  s.D = slides ? Mat3(K2 * N) : Mat3(K2 * Mat3::Identity());
+  const Vec3 friction = slides ? Vec3(p.friction * p.state.lastNormalImpulse * slipDirection(p)) : Vec3::Zero();
+  s.known = K1 * (p.rest - p.gap) * p.normal - (slides ? Vec3::Zero() : Vec3(K1 * p.state.stick)) - friction;
+  return s;
+}
+
 // One node's share of a contact in its body's step: the impulse on it is c − D v'.
 struct Term {
   int32_t node = -1;
@@ -24,21 +45,16 @@ struct Term {
   Vec3 impulse(const Array<double>& vNext) const { return c - D * nodeVector(vNext, node); }
 };
 
-// visit(term) for each node of `body` on contact p, over a step of h. The triangle's corners
-// each take their weight's share with the other corners at their frame-start velocities: the
-// corners' coupling w_i w_j k is left out of the matrix (with it, in the matrix, the stack of
-// two jellies did not come to rest; docs/choices.md).
+// visit(term) for each node of `body` on contact p, over a step of h: its diagonal share. An
+// uncoupled contact's other side, and the triangle's other corners, are at their frame-start
+// velocities in c: the corners' coupling w_i w_j k is left out of the matrix (with it, the
+// stack of two jellies did not come to rest; docs/choices.md). A coupled contact's are
+// unknowns of the same solve (addPairCouplingProduct).
 template <class Visit>
 void visitTerms(const PairContact& p, int32_t body, double h, const Visit& visit) {
-  const double K2 = kPairContactStiffness * p.reducedMass;  // h² k
-  const double K1 = K2 / h;                                 // h k
-  const Mat3 N = p.normal * p.normal.transpose();
-  const bool slides = p.state.sliding != 0;
-  const Mat3 D = slides ? Mat3(K2 * N) : Mat3(K2 * Mat3::Identity());
-  const Vec3 friction = slides ? Vec3(p.friction * p.state.lastNormalImpulse * slipDirection(p)) : Vec3::Zero();
-  // The spring's known part: the push to its rest gap and the stuck stretch.
-  const Vec3 known = K1 * (p.rest - p.gap) * p.normal - (slides ? Vec3::Zero() : Vec3(K1 * p.state.stick));
-  if (p.nodeBody == body) visit(Term{p.node, D, known + D * p.triangleVelocity() - friction});
+  const Spring s = spring(p, h);
+  if (p.nodeBody == body)
+    visit(Term{p.node, s.D, p.coupled ? s.known : Vec3(s.known + s.D * p.triangleVelocity())});
   if (p.triangleBody != body) return;
   for (int i = 0; i < 3; ++i) {
     const double w = p.weights[i];
@@ -46,8 +62,17 @@ void visitTerms(const PairContact& p, int32_t body, double h, const Visit& visit
     for (int j = 0; j < 3; ++j)
       if (j != i) others += p.weights[j] * p.triangleVelocities[j];
     // Minus the node's impulse, with the point's velocity w v'_i + others.
-    visit(Term{p.triangleNodes[i], w * w * D, -w * (known + D * (others - p.nodeVelocity) - friction)});
+    const Vec3 nodeImpulse = p.coupled ? s.known : Vec3(s.known + s.D * (others - p.nodeVelocity));
+    visit(Term{p.triangleNodes[i], w * w * s.D, -w * nodeImpulse});
   }
+}
+
+// A coupled contact's node velocity and its triangle point's, from the solved velocities.
+std::pair<Vec3, Vec3> solvedVelocities(const PairContact& p, const PairVelocities& solved) {
+  const Array<double>& t = *solved[p.triangleBody];
+  Vec3 point = Vec3::Zero();
+  for (int i = 0; i < 3; ++i) point += p.weights[i] * nodeVector(t, p.triangleNodes[i]);
+  return {nodeVector(*solved[p.nodeBody], p.node), point};
 }
 
 bool touches(const PairContact& p, int32_t body) { return p.nodeBody == body || p.triangleBody == body; }
@@ -90,33 +115,40 @@ Vec3 pairContactMismatch(const PairContact& p, double nodeH, const Array<double>
   return sum;
 }
 
-double pairContactWork(const std::vector<PairContact>& pairs, int32_t body, double h, const Array<double>& vNext) {
+double pairContactWork(const std::vector<PairContact>& pairs, int32_t body, double h, const Array<double>& vNext,
+                       const PairVelocities& solved) {
   double work = 0.0;
   for (const PairContact& p : pairs) {
     if (!touches(p, body)) continue;
+    if (p.coupled) {
+      const auto [vNode, vPoint] = solvedVelocities(p, solved);
+      const Vec3 impulse = spring(p, h).nodeImpulse(vNode, vPoint);
+      if (p.nodeBody == body) work += impulse.dot(vNode);
+      if (p.triangleBody == body) work -= impulse.dot(vPoint);
+      continue;
+    }
     visitTerms(p, body, h, [&](const Term& t) { work += t.impulse(vNext).dot(nodeVector(vNext, t.node)); });
   }
   return work;
 }
 
 void updatePairFriction(const std::vector<PairContact>& pairs, int32_t body, double h, const Array<double>& vNext,
-                        Array<PairFriction>* friction) {
+                        const PairVelocities& solved, Array<PairFriction>* friction) {
   std::fill(friction->begin(), friction->end(), PairFriction());
   for (const PairContact& p : pairs) {
     if (p.nodeBody != body) continue;
+    // The node's velocity and the triangle point's, as the node's side of the spring saw them.
     const Vec3 v = nodeVector(vNext, p.node);
-    PairContact nodeSide = p;
-    nodeSide.triangleBody = -1;
-    Vec3 impulse = Vec3::Zero();
-    visitTerms(nodeSide, body, h, [&](const Term& t) { impulse = t.impulse(vNext); });
+    const Vec3 point = p.coupled ? solvedVelocities(p, solved).second : p.triangleVelocity();
+    const Vec3 impulse = spring(p, h).nodeImpulse(v, point);
     const double jn = impulse.dot(p.normal);
     if (!(jn > 0.0)) continue;
     PairFriction& f = (*friction)[p.node];
     f.other = p.triangleBodyId;
     f.lastNormalImpulse = jn;
-    Vec3 slip = v - p.triangleVelocity();
+    Vec3 slip = v - point;
     slip -= slip.dot(p.normal) * p.normal;
-    const double K1 = kPairContactStiffness * p.reducedMass / h;
+    const double K1 = p.springH2k() / h;
     if (p.state.sliding) {
       // Slid: sticks again once the slip has stopped or turned against the friction, its
       // spring stretched to hold the friction it had.
@@ -132,6 +164,33 @@ void updatePairFriction(const std::vector<PairContact>& pairs, int32_t body, dou
       f.stick = stick * (cone / (K1 * stick.norm()));
     } else {
       f.stick = stick;
+    }
+  }
+}
+
+void addPairCouplingProduct(const std::vector<PairContact>& pairs, const std::vector<int64_t>& offsets, double h,
+                            const double* x, double* y) {
+  auto member = [&](int32_t body) { return body < static_cast<int32_t>(offsets.size()) && offsets[body] >= 0; };
+  for (const PairContact& p : pairs) {
+    if (!p.coupled || !member(p.nodeBody) || !member(p.triangleBody)) continue;
+    const Mat3 D = spring(p, h).D;
+    const double* xs[4];
+    double* ys[4];
+    xs[0] = x + offsets[p.nodeBody] + 3 * static_cast<int64_t>(p.node);
+    ys[0] = y + offsets[p.nodeBody] + 3 * static_cast<int64_t>(p.node);
+    for (int i = 0; i < 3; ++i) {
+      xs[i + 1] = x + offsets[p.triangleBody] + 3 * static_cast<int64_t>(p.triangleNodes[i]);
+      ys[i + 1] = y + offsets[p.triangleBody] + 3 * static_cast<int64_t>(p.triangleNodes[i]);
+    }
+    // The spring's Hessian is D times c c^T with c = (1, −w_0, −w_1, −w_2); its diagonal blocks
+    // are in the bodies' matrices (addPairContactStiffness), the rest is applied here.
+    const double c[4] = {1.0, -p.weights[0], -p.weights[1], -p.weights[2]};
+    for (int a = 0; a < 4; ++a) {
+      Vec3 sum = Vec3::Zero();
+      for (int b = 0; b < 4; ++b)
+        if (b != a) sum += c[b] * Vec3(xs[b][0], xs[b][1], xs[b][2]);
+      const Vec3 add = c[a] * (D * sum);
+      for (int k = 0; k < 3; ++k) ys[a][k] += add[k];
     }
   }
 }

@@ -68,6 +68,11 @@ void nearestTriangle(const std::vector<PairContactBody>& bodies, int32_t a, int3
   const PairContactBody& A = bodies[a];
   const PairContactBody& B = bodies[b];
   const Vec3 p = nodeVector(*A.x, node), vp = nodeVector(*A.v, node);
+  const Vec3& nodeNormal = A.surface->nodeNormal(node);
+  // A node that pushed in its last step stays in touch until it is a rest gap further off:
+  // a stiff spring at rest sits within noise of the rest gap, and a contact set that flips
+  // there each step feeds an oscillation.
+  const double threshold = (*A.friction)[node].lastNormalImpulse > 0.0 ? kPairContactKeep * A.rest : A.rest;
   const double reach = h * vp.norm() + A.rest + B.depth;
   const Vec3 lo = p - Vec3::Constant(reach), hi = p + Vec3::Constant(reach);
   const RefitBvh& bvh = B.surface->bvh();
@@ -84,10 +89,13 @@ void nearestTriangle(const std::vector<PairContactBody>& bodies, int32_t a, int3
     if (!projectOnTriangle(p, nodeVector(*B.x, tri[0]), nodeVector(*B.x, tri[1]), nodeVector(*B.x, tri[2]), &w, &n,
                            &height) || height < -B.depth)
       return;
+    // A node whose surface faces the triangle's way lies beside it, not on it: a box's edge
+    // node on the face round the corner, whose push would be sideways.
+    if (nodeNormal.dot(n) > 0.0) return;
     std::array<Vec3, 3> vt{{nodeVector(*B.v, tri[0]), nodeVector(*B.v, tri[1]), nodeVector(*B.v, tri[2])}};
     const Vec3 vc = w[0] * vt[0] + w[1] * vt[1] + w[2] * vt[2];
     const double predicted = height + h * (vp - vc).dot(n);
-    if (predicted >= A.rest || predicted >= *lowest) return;
+    if (predicted >= threshold || predicted >= *lowest) return;
     *lowest = predicted;
     const double mt = w[0] * (*B.mass)[tri[0]] + w[1] * (*B.mass)[tri[1]] + w[2] * (*B.mass)[tri[2]];
     const double mn = (*A.mass)[node];

@@ -1,10 +1,12 @@
 // Contacts between deformables, and of a deformable with itself: a surface node of one body
 // against a boundary triangle of another (or of its own, away from the node's neighbourhood).
 //
-// Deformables step side by side, each from the state every body had when the frame began, so
-// no step can see the other body's new velocities. A hard constraint to the other body's old
-// velocity, with its reaction sent one step late, is a delayed feedback loop: a stack of two
-// jellies chattered. Each contact is instead a stiff spring along the triangle's normal, with
+// Bodies that step together solve one system (contact_group_solve.h) and the contact couples
+// their new velocities (PairContact::coupled). Otherwise each steps from the state the other
+// had when the frame began, so neither step sees the other body's new velocities. A hard
+// constraint to the other body's old velocity, with its reaction sent one step late, is a
+// delayed feedback loop: a stack of two jellies chattered. Each contact is instead a stiff
+// spring along the triangle's normal, with
 // a tangential spring that sticks (its anchor carried from step to step)
 // until its force leaves Coulomb's cone, then slides with kinetic friction mu times its last
 // normal impulse, as collider contacts do. Each body treats its own side of the spring
@@ -29,9 +31,17 @@ namespace vp {
 // kStiffness))² and the penetration at rest is g h² / kStiffness over the share of the
 // body's weight the contact nodes carry.
 constexpr double kPairContactStiffness = 8.0;
+// The same for a contact whose two sides are solved in one system (PairContact::coupled): no
+// loop gain bounds it there, only the solve's conditioning, and the penetration at rest shrinks
+// with it.
+constexpr double kCoupledPairContactStiffness = 64.0;
 // How deep below a triangle a node still counts as touching it, in mean element edges: deeper
 // points are on another part of the surface (a convex edge's other face).
 constexpr double kPairContactDepthEdges = 0.5;
+
+// A contact whose node pushed in its last step holds until the predicted gap reaches this
+// many rest gaps (a fresh one begins below one).
+constexpr double kPairContactKeep = 2.0;
 
 // Below this slip speed (m/s) a sliding contact sticks again (ContactActiveSet::kSlipSpeed's rule).
 constexpr double kPairSlipSpeed = 1e-4;
@@ -66,6 +76,14 @@ struct PairContact {
   Vec3 nodeVelocity = Vec3::Zero();
   std::array<Vec3, 3> triangleVelocities{};
   PairFriction state;                // the node's friction state, stick projected on the tangent plane
+  // Both sides solved in one system this step (deform/contact_group_solve.h): each side sees
+  // the other's new velocities instead of those at the frame's start.
+  bool coupled = false;
+
+  // h² k, the spring's stiffness times the step squared.
+  double springH2k() const {
+    return (coupled ? kCoupledPairContactStiffness : kPairContactStiffness) * reducedMass;
+  }
 
   // The contact point's velocity at the frame's start.
   Vec3 triangleVelocity() const {

@@ -96,9 +96,8 @@ double penetrationDepth(const DeformableBody& top, const DeformableBody& bottom)
   return depth;
 }
 
-// The stack rests (0.00056 m/s); its penetration is 1.75% of the size (3.5 mm) against the 1%
-// asked for: the contact springs' compliance under the top's weight (docs/choices.md). The
-// penetration check is the DISABLED_ test below.
+// The two cubes solve as one system (deform/contact_group_solve.h), their contact springs
+// stiff enough that the top sinks in less than 1% of the size.
 struct Stack {
   double worstDepth = 0.0, restSpeed = 0.0, topY = 0.0;
 };
@@ -120,15 +119,11 @@ Stack stackTwoJellies() {
   return Stack{worstDepth, restSpeed, centroid(*world->deformable(top)).y()};
 }
 
-TEST(DeformablePairContact, TwoStackedJelliesComeToRest) {
+TEST(DeformablePairContact, TwoStackedJelliesComeToRestSinkingInLessThanOnePercent) {
   const Stack s = stackTwoJellies();
   EXPECT_LT(s.restSpeed, 1e-2);
   EXPECT_GT(s.topY, 0.25);  // still on top
-  EXPECT_LT(s.worstDepth, 0.025 * kJellySize);  // what it does now, so it does not get worse
-}
-
-TEST(DeformablePairContact, DISABLED_TwoStackedJelliesSinkInLessThanOnePercent) {
-  EXPECT_LT(stackTwoJellies().worstDepth, 0.01 * kJellySize);
+  EXPECT_LT(s.worstDepth, 0.01 * kJellySize);
 }
 
 // The top jelly's slip over the bottom one, along the slope (downhill positive), in `seconds`
@@ -146,10 +141,13 @@ double slipDownhill(double slopeDegrees, double seconds) {
   return relative() - start;
 }
 
-// Fails: at 15 degrees (below the 26.6 degree friction angle) the top slips 0.31 m in 1.5 s.
-// The slide at 40 degrees goes downhill (0.26 m in 0.4 s; 0.20 m expected with mu 0.5, 0.50 m
-// frictionless). While it
-// settles, the contact area shrinks to its downhill rows (25 contacts to 8) and they slide.
+// Fails: at 15 degrees (below the 26.6 degree friction angle) the top slips 0.59 m in 1.5 s
+// and falls off. The slide at 40 degrees goes downhill (0.21 m in 0.4 s; 0.20 m expected with
+// mu 0.5, 0.50 m frictionless). At 15 degrees the springs' friction on the top builds up to the
+// downhill load within 8 steps, then the lightly loaded contacts slide one after another while
+// the contact area shrinks to the downhill rows (25 contacts to 7) and the top tips over the
+// bottom's edge. Stiffer cubes hold: with E = 1e6 (1e7) instead of 1e5 the top's centroid ends
+// 2.5 (0.5) mm downhill of the bottom's and rests (scratch runs, docs/choices.md).
 TEST(DeformablePairContact, DISABLED_FrictionHoldsBelowTheFrictionAngleAndSlidesDownhillAbove) {
   const double held = slipDownhill(15.0, 1.5);
   const double slid = slipDownhill(40.0, 0.4);

@@ -1,0 +1,171 @@
+#include "deform/contact_group_solve.h"
+
+#include <algorithm>
+
+#include "deform/pair_contact_terms.h"
+
+namespace vp {
+namespace {
+
+// Contact active-set passes per step: each may re-solve once. Four settle stick/slide/
+// release decisions in practice; a budget-cut step simply stops earlier.
+constexpr int kContactPasses = 4;
+
+}  // namespace
+
+void stepContactGroup(const std::vector<ContactGroupMember>& members) {
+  for (const ContactGroupMember& m : members) m.body->beginStep(*m.input, *m.timer);
+  ContactGroupSolve group(members);
+  const bool reachedFloor = group.solve();
+  const PairVelocities solved = group.solvedVelocities();
+  for (const ContactGroupMember& m : members) m.body->finishStep(*m.input, reachedFloor, solved, *m.timer, m.stats);
+}
+
+ContactGroupSolve::ContactGroupSolve(const std::vector<ContactGroupMember>& members)
+    : members_(members), in_(*members.front().input) {
+  int32_t pairBodies = 0;
+  for (const ContactGroupMember& m : members_) pairBodies = std::max(pairBodies, m.input->pairBody + 1);
+  pairOffset_.assign(static_cast<size_t>(pairBodies), -1);
+  floor_ = members_.front().body->desc_.solver.targetResidual;
+  for (const ContactGroupMember& m : members_) {
+    memberOffset_.push_back(size_);
+    if (m.input->pairBody >= 0) pairOffset_[static_cast<size_t>(m.input->pairBody)] = size_;
+    size_ += 3 * static_cast<int64_t>(m.body->nodeCount_);
+    floor_ = std::min(floor_, m.body->desc_.solver.targetResidual);
+  }
+  auto member = [&](int32_t body) { return body < pairBodies && pairOffset_[static_cast<size_t>(body)] >= 0; };
+  if (in_.pairContacts)
+    for (const PairContact& p : *in_.pairContacts) coupled_ = coupled_ || (p.coupled && member(p.nodeBody));
+}
+
+PairVelocities ContactGroupSolve::solvedVelocities() const {
+  PairVelocities solved(pairOffset_.size(), nullptr);
+  for (const ContactGroupMember& m : members_)
+    if (m.input->pairBody >= 0) solved[static_cast<size_t>(m.input->pairBody)] = &m.body->vNext_;
+  return solved;
+}
+
+void ContactGroupSolve::lap(Phase phase) {
+  for (const ContactGroupMember& m : members_) m.timer->lap(phase);
+}
+
+void ContactGroupSolve::refreshPreconditioners() {
+  bool refreshed = false;
+  for (const ContactGroupMember& m : members_) {
+    DeformableBody& body = *m.body;
+    if (!body.preconditioner_.needsRefresh() || body.deviceSolve_) continue;
+    body.refreshPreconditioner(*in_.tasks, body.massScale(in_.dt));
+    refreshed = true;
+  }
+  if (refreshed) lap(Phase::Assemble);  // the preconditioner's setup is part of building the system
+}
+
+bool ContactGroupSolve::coulombPass() {
+  bool touched = false, changed = false;
+  for (const ContactGroupMember& m : members_) {
+    DeformableBody& body = *m.body;
+    if (body.contacts_.contacts().empty()) continue;
+    Array<Vec3> impulses;
+    body.contactImpulses(*in_.tasks, &impulses);
+    changed = body.contacts_.applyCoulomb(impulses, &body.held_, &body.vNext_, &body.rhs_) || changed;
+    touched = true;
+  }
+  if (touched) lap(Phase::Contacts);
+  return changed;
+}
+
+bool ContactGroupSolve::solve() {
+  TaskSystem& tasks = *in_.tasks;
+  CgSettings settings{members_.front().body->desc_.solver.tolerance, 0};
+  for (const ContactGroupMember& m : members_) {
+    settings.relativeTolerance = std::min(settings.relativeTolerance, m.body->desc_.solver.tolerance);
+    settings.maxIterations = std::max(settings.maxIterations, m.body->desc_.solver.maxIterations);
+  }
+  if (in_.solverMaxIterations > 0) settings.maxIterations = in_.solverMaxIterations;
+  refreshPreconditioners();
+  CgResult cg = solveOnce(settings);
+  int iterations = cg.iterations;
+  lap(Phase::Solve);
+
+  // Coulomb's law on the constraint impulses (deform/contact_active_set.h): a few passes,
+  // each re-solve starting from the last iterate, so it is cheap.
+  for (int pass = 0; pass < kContactPasses && coulombPass(); ++pass) {
+    // Past the accuracy floor's deadline a re-solve would run no iteration, and the multigrid
+    // refresh before it is the costliest part of a pass: the last solve's velocities stand.
+    // Only that deadline skips it: a released node kept at its collider's velocity glues the
+    // body to a moving collider frame after frame.
+    if (in_.floorDeadline.expired()) {
+      cg.budgetCut = true;
+      break;
+    }
+    // With the filters of the pass before, a released node or a newly sliding contact's
+    // tangent lies in a multigrid's null space, CG cannot reduce the residual there and the
+    // solve stalls (relative residual ~1 after hundreds of iterations).
+    refreshPreconditioners();
+    cg = solveOnce(settings);
+    iterations += cg.iterations;
+    lap(Phase::Solve);
+  }
+  for (const ContactGroupMember& m : members_) {
+    DeformableBody& body = *m.body;
+    body.contacts_.rememberSliding(body.vNext_, body.held_);
+    body.recordReactions(tasks, in_.dt, m.input->colliders);
+    PhaseStats& solve = m.stats->phase(Phase::Solve);
+    solve.iterations = iterations;
+    solve.residual = cg.relativeResidual;
+    solve.budgetCut = cg.budgetCut;
+    m.stats->onDevice = body.deviceSolve_ != nullptr;
+    m.stats->residual = cg.relativeResidual;
+    // Missed only when time ran out: a solve that stopped at maxIterations above the floor
+    // is a matter of the solver settings, which a lower rate would not change.
+    m.stats->floorMissed = cg.budgetCut && cg.relativeResidual > floor_;
+  }
+  return !cg.budgetCut || cg.relativeResidual <= floor_;
+}
+
+CgResult ContactGroupSolve::solveOnce(const CgSettings& settings) {
+  TaskSystem& tasks = *in_.tasks;
+  LinearSystem system;
+  system.size = size_;
+  system.apply = [&](const double* x, double* y) {
+    for (size_t m = 0; m < members_.size(); ++m)
+      members_[m].body->matrix_.multiply(tasks, x + memberOffset_[m], y + memberOffset_[m]);
+    if (coupled_) addPairCouplingProduct(*in_.pairContacts, pairOffset_, in_.dt, x, y);
+  };
+  system.precondition = [&](const double* r, double* z) {
+    for (size_t m = 0; m < members_.size(); ++m)
+      members_[m].body->preconditioner_.apply(tasks, r + memberOffset_[m], z + memberOffset_[m]);
+  };
+  system.filter = [&](double* v) {
+    for (size_t m = 0; m < members_.size(); ++m) members_[m].body->held_.filter(tasks, v + memberOffset_[m]);
+  };
+  DeformableBody& first = *members_.front().body;
+  if (members_.size() == 1 && !coupled_) return first.solveLinearSystem(in_, system, settings, first.massScale(in_.dt));
+
+  // The members' right-hand sides and warm starts in one vector each.
+  const bool alone = members_.size() == 1;
+  if (!alone) {
+    b_.resize(static_cast<size_t>(size_));
+    x_.resize(static_cast<size_t>(size_));
+    for (size_t m = 0; m < members_.size(); ++m) {
+      const DeformableBody& body = *members_[m].body;
+      std::copy(body.rhs_.begin(), body.rhs_.end(), b_.begin() + memberOffset_[m]);
+      std::copy(body.vNext_.begin(), body.vNext_.end(), x_.begin() + memberOffset_[m]);
+    }
+  }
+  double* x = alone ? first.vNext_.data() : x_.data();
+  const CgResult cg = solveConjugateGradient(tasks, system, alone ? first.rhs_.data() : b_.data(), x, settings,
+                                             in_.deadline, alone ? first.cg_ : work_, floor_, in_.floorDeadline);
+  // What the coupling adds to A v' at each node: the contacts' impulses read it.
+  product_.assign(static_cast<size_t>(size_), 0.0);
+  if (coupled_) addPairCouplingProduct(*in_.pairContacts, pairOffset_, in_.dt, x, product_.data());
+  for (size_t m = 0; m < members_.size(); ++m) {
+    DeformableBody& body = *members_[m].body;
+    const int64_t n = static_cast<int64_t>(body.vNext_.size());
+    if (!alone) std::copy(x + memberOffset_[m], x + memberOffset_[m] + n, body.vNext_.begin());
+    body.pairCoupling_.assign(product_.begin() + memberOffset_[m], product_.begin() + memberOffset_[m] + n);
+  }
+  return cg;
+}
+
+}  // namespace vp

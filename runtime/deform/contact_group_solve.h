@@ -1,0 +1,64 @@
+// One implicit solve for deformables that touch each other.
+//
+// A pair contact couples the velocities of the node's body and the triangle's. Solving each
+// body on its own, with the other side at its frame-start velocity, is one Jacobi sweep over
+// the bodies: the contact must be soft for that loop to settle (pair_contacts.h), a stack sinks
+// into its springs and a stick spring on a slope creeps. Here the bodies a frame's coupled
+// contacts join (PairContact::coupled) solve one system,
+//
+//   [ A_1 + D_1     C_12   … ] [ v'_1 ]   [ b_1 ]
+//   [   C_21     A_2 + D_2 … ] [ v'_2 ] = [ b_2 ],
+//
+// each A_b its step matrix, D_b the contacts' diagonal blocks and C the springs' blocks
+// between different nodes (addPairCouplingProduct), applied without storing them. The springs'
+// Hessians are positive semi-definite, so the system is SPD and one CG solves it, each body's
+// block preconditioned by its own preconditioner and filtered by its own constraints. The
+// collider contacts' Coulomb passes run as in a lone step, each pass re-solving the whole group.
+// A lone body is a group of one (its solve may run on the device; a group's runs on the CPU).
+#pragma once
+
+#include <vector>
+
+#include "deform/deformable_body.h"
+
+namespace vp {
+
+struct ContactGroupMember {
+  DeformableBody* body = nullptr;
+  const DeformableStepInput* input = nullptr;  // dt, deadlines and pair contacts: the first member's rule all
+  PhaseTimer* timer = nullptr;
+  ActorStats* stats = nullptr;
+};
+
+// One step of every member: each begins (DeformableBody::beginStep), one solve, each finishes.
+// The members share dt and the pair contacts; the first member's deadlines bound the solve,
+// and every member's stats report the group's solve.
+void stepContactGroup(const std::vector<ContactGroupMember>& members);
+
+class ContactGroupSolve {
+ public:
+  explicit ContactGroupSolve(const std::vector<ContactGroupMember>& members);
+  // CG and the collider contacts' passes; returns whether the solve reached the accuracy floor.
+  bool solve();
+  // The members' solved velocities by pair body (DeformableBody::finishStep's `solved`).
+  PairVelocities solvedVelocities() const;
+
+ private:
+  CgResult solveOnce(const CgSettings& settings);
+  void refreshPreconditioners();
+  // Whether a Coulomb pass changed any member's contacts.
+  bool coulombPass();
+  void lap(Phase phase);
+
+  const std::vector<ContactGroupMember>& members_;
+  const DeformableStepInput& in_;  // the first member's
+  std::vector<int64_t> memberOffset_;  // scalars before member m in the group's vectors
+  std::vector<int64_t> pairOffset_;    // the same by pair body (−1: not a member)
+  int64_t size_ = 0;
+  bool coupled_ = false;  // some coupled contact joins members
+  double floor_ = 0.0;    // the strictest member's accuracy floor
+  Array<double> b_, x_, product_;
+  CgWorkspace work_;
+};
+
+}  // namespace vp

@@ -1,0 +1,97 @@
+// Deformables that touch solve as one system (deform/contact_groups.h, contact_group_solve.h):
+// which bodies join a group and which contacts are coupled, and the coupled spring's terms
+// between nodes (addPairCouplingProduct) with its diagonal blocks make the spring's whole
+// Hessian D c cᵀ, c = (1, −w_0, −w_1, −w_2): the node feels D u and corner i −w_i D u, u the
+// node's velocity relative to the triangle's point.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "deform/contact_groups.h"
+#include "deform/pair_contact_terms.h"
+
+namespace vp {
+namespace {
+
+PairContact contact(int32_t nodeBody, int32_t triangleBody) {
+  PairContact p;
+  p.nodeBody = nodeBody;
+  p.node = 0;
+  p.triangleBody = triangleBody;
+  p.triangleNodes = {1, 2, 3};
+  return p;
+}
+
+TEST(ContactGroups, BodiesSteppingTogetherJoinAndTheirContactsAreCoupled) {
+  // 0–1 touch; 2 touches itself; 1 touches 3, which does not step this frame; 4 touches 0
+  // but steps a longer dt (a lowered rate); 5 solves on the device.
+  std::vector<ContactGroupCandidate> bodies(6, ContactGroupCandidate{true, true, 1.0 / 60.0});
+  bodies[3].steps = false;
+  bodies[4].dt = 2.0 / 60.0;
+  bodies[5].onCpu = false;
+  std::vector<PairContact> pairs{contact(0, 1), contact(2, 2), contact(1, 3), contact(4, 0), contact(5, 5),
+                                 contact(1, 0)};
+  const std::vector<int> order{2, 1, 0, 4, 5};  // as served
+  const std::vector<std::vector<int>> groups = formContactGroups(order, bodies, &pairs);
+  ASSERT_EQ(groups.size(), 4u);
+  EXPECT_EQ(groups[0], std::vector<int>({2}));
+  EXPECT_EQ(groups[1], std::vector<int>({1, 0}));  // ordered as served, named by the first
+  EXPECT_EQ(groups[2], std::vector<int>({4}));
+  EXPECT_EQ(groups[3], std::vector<int>({5}));
+  const std::vector<bool> coupled{true, true, false, false, false, true};
+  for (size_t c = 0; c < pairs.size(); ++c) EXPECT_EQ(pairs[c].coupled, coupled[c]) << "contact " << c;
+}
+
+Vec3 at(const std::vector<double>& v, int64_t offset, int32_t node) {
+  return Vec3(v[offset + 3 * node], v[offset + 3 * node + 1], v[offset + 3 * node + 2]);
+}
+
+void expectWholeHessian(bool sliding) {
+  // Node 0 of body 0 on the triangle (1, 2, 3) of body 1; body 1 after body 0's 4 nodes.
+  PairContact p = contact(0, 1);
+  p.coupled = true;
+  p.weights = Vec3(0.2, 0.3, 0.5);
+  p.normal = Vec3(1.0, 2.0, -0.5).normalized();
+  p.reducedMass = 0.7;
+  p.state.sliding = sliding ? 1 : 0;
+  const std::vector<int64_t> offsets{0, 12};
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  std::vector<double> x(24), y(24, 0.0);
+  for (double& value : x) value = uniform(random);
+  addPairCouplingProduct({p}, offsets, 1.0 / 60.0, x.data(), y.data());
+
+  const Mat3 N = p.normal * p.normal.transpose();
+  const Mat3 D = p.springH2k() * (sliding ? N : Mat3::Identity());
+  // The diagonal blocks addPairContactStiffness puts in the bodies' matrices.
+  Vec3 node = at(y, 0, 0) + D * at(x, 0, 0);
+  Vec3 u = at(x, 0, 0);
+  for (int i = 0; i < 3; ++i) u -= p.weights[i] * at(x, 12, p.triangleNodes[i]);
+  EXPECT_LT((node - D * u).norm(), 1e-12 * (D * u).norm());
+  for (int i = 0; i < 3; ++i) {
+    const int32_t corner = p.triangleNodes[i];
+    const Vec3 whole = at(y, 12, corner) + p.weights[i] * p.weights[i] * D * at(x, 12, corner);
+    EXPECT_LT((whole + p.weights[i] * D * u).norm(), 1e-12 * (D * u).norm()) << "corner " << i;
+  }
+  // Nodes on no contact, and the node's own block, get nothing from the product.
+  for (int32_t n = 1; n < 4; ++n) EXPECT_EQ(at(y, 0, n), Vec3::Zero());
+  EXPECT_EQ(at(y, 12, 0), Vec3::Zero());
+}
+
+TEST(ContactGroups, ACoupledSpringsTermsMakeItsWholeHessianSticking) { expectWholeHessian(false); }
+TEST(ContactGroups, ACoupledSpringsTermsMakeItsWholeHessianSliding) { expectWholeHessian(true); }
+
+TEST(ContactGroups, UncoupledContactsAndBodiesOutsideTheGroupAddNothing) {
+  PairContact uncoupled = contact(0, 1);
+  uncoupled.weights = Vec3(0.2, 0.3, 0.5);
+  uncoupled.reducedMass = 1.0;
+  PairContact outside = uncoupled;
+  outside.coupled = true;
+  outside.triangleBody = 2;  // body 2 is not in the group
+  std::vector<double> x(24, 1.0), y(24, 0.0);
+  addPairCouplingProduct({uncoupled, outside}, {0, 12, -1}, 1.0 / 60.0, x.data(), y.data());
+  for (double value : y) EXPECT_EQ(value, 0.0);
+}
+
+}  // namespace
+}  // namespace vp
