@@ -45,6 +45,10 @@ constexpr double kPairContactKeep = 2.0;
 
 // Below this slip speed (m/s) a sliding contact sticks again (ContactActiveSet::kSlipSpeed's rule).
 constexpr double kPairSlipSpeed = 1e-4;
+// A contact that begins with its node slipping at least this fast (m/s) begins sliding: a
+// fresh stick spring would stop the slip within the step, beyond Coulomb's cone. Slower
+// arrivals stick, as a resting stack's contacts that come and go at its rim must.
+constexpr double kPairArrivingSlipSpeed = 1e-2;
 
 // Which deformable a contact touched, by its handle: list positions shift when a deformable
 // before it is destroyed, and a friction state carried by position would be taken up by
