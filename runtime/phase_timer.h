@@ -10,6 +10,8 @@ namespace vp {
 class PhaseTimer {
  public:
   PhaseTimer(const Deadline& clock, ActorStats* stats) : clock_(clock), stats_(stats), mark_(clock.elapsedMs()) {}
+  // From now on: what ran since the last lap belongs to no phase of this actor.
+  void restart() { mark_ = clock_.elapsedMs(); }
   void lap(Phase phase) {
     const double now = clock_.elapsedMs();
     stats_->phase(phase).ms += now - mark_;

@@ -496,11 +496,13 @@ bool World::stepDeformables(double dt, const Deadline& frame, StepStats* stats) 
     const int first = members.front();
     // The group is planned as one actor: the first member's priority, every member's tail.
     ActorSchedule schedule = deformable(handles[first])->schedule();
+    double tailsMs = 0.0;
     for (int i : members) {
       const ActorSchedule& s = deformable(handles[i])->schedule();
-      if (i != first) schedule.tailMs += std::max(s.tailMs, 0.0);
+      tailsMs += std::max(s.tailMs, 0.0);
       schedule.interval = std::max(schedule.interval, s.interval);
     }
+    if (members.size() > 1) schedule.tailMs = tailsMs;
     const FramePlan::DeformableDeadlines groupDeadlines = FramePlan::deformableDeadlines(
         frame, schedule, concurrent ? 0.0 : laterFloorsMs[n + 1], fluidsExpectedMs(priorities[first]),
         concurrent ? 1 : static_cast<int>(groups.size()) - n);

@@ -14,11 +14,29 @@ constexpr int kContactPasses = 4;
 }  // namespace
 
 void stepContactGroup(const std::vector<ContactGroupMember>& members) {
-  for (const ContactGroupMember& m : members) m.body->beginStep(*m.input, *m.timer);
-  ContactGroupSolve group(members);
-  const bool reachedFloor = group.solve();
-  const PairVelocities solved = group.solvedVelocities();
-  for (const ContactGroupMember& m : members) m.body->finishStep(*m.input, reachedFloor, solved, *m.timer, m.stats);
+  // In a group each member's timer holds its own stages; the shared solve is the first's.
+  const bool group = members.size() > 1;
+  for (const ContactGroupMember& m : members) {
+    if (group) m.timer->restart();
+    m.body->beginStep(*m.input, *m.timer);
+  }
+  if (group) members.front().timer->restart();
+  ContactGroupSolve solve(members);
+  const bool reachedFloor = solve.solve();
+  const PairVelocities solved = solve.solvedVelocities();
+  bool diverged = false;
+  for (const ContactGroupMember& m : members) {
+    if (group) m.timer->restart();
+    m.body->finishStep(*m.input, reachedFloor, solved, *m.timer, m.stats);
+    diverged = diverged || m.stats->diverged;
+  }
+  // The members' steps share their contacts' impulses: one that blew up takes the others back too.
+  if (!diverged) return;
+  for (const ContactGroupMember& m : members)
+    if (!m.stats->diverged) {
+      m.body->discardStep(*m.input->tasks);
+      m.stats->diverged = true;
+    }
 }
 
 ContactGroupSolve::ContactGroupSolve(const std::vector<ContactGroupMember>& members)
@@ -45,9 +63,7 @@ PairVelocities ContactGroupSolve::solvedVelocities() const {
   return solved;
 }
 
-void ContactGroupSolve::lap(Phase phase) {
-  for (const ContactGroupMember& m : members_) m.timer->lap(phase);
-}
+void ContactGroupSolve::lap(Phase phase) { members_.front().timer->lap(phase); }
 
 void ContactGroupSolve::refreshPreconditioners() {
   bool refreshed = false;
@@ -106,6 +122,7 @@ bool ContactGroupSolve::solve() {
     iterations += cg.iterations;
     lap(Phase::Solve);
   }
+  storeCouplingProduct();  // a pass cut short by the floor's deadline may have moved vNext_
   for (const ContactGroupMember& m : members_) {
     DeformableBody& body = *m.body;
     body.contacts_.rememberSliding(body.vNext_, body.held_);
@@ -156,16 +173,32 @@ CgResult ContactGroupSolve::solveOnce(const CgSettings& settings) {
   double* x = alone ? first.vNext_.data() : x_.data();
   const CgResult cg = solveConjugateGradient(tasks, system, alone ? first.rhs_.data() : b_.data(), x, settings,
                                              in_.deadline, alone ? first.cg_ : work_, floor_, in_.floorDeadline);
-  // What the coupling adds to A v' at each node: the contacts' impulses read it.
+  if (!alone)
+    for (size_t m = 0; m < members_.size(); ++m) {
+      DeformableBody& body = *members_[m].body;
+      std::copy(x + memberOffset_[m], x + memberOffset_[m] + static_cast<int64_t>(body.vNext_.size()),
+                body.vNext_.begin());
+    }
+  storeCouplingProduct();
+  return cg;
+}
+
+void ContactGroupSolve::storeCouplingProduct() {
+  if (!coupled_) return;
+  // What the coupling adds to A v' at each node, at the members' current v': the contacts'
+  // impulses read it.
+  x_.resize(static_cast<size_t>(size_));
+  for (size_t m = 0; m < members_.size(); ++m) {
+    const DeformableBody& body = *members_[m].body;
+    std::copy(body.vNext_.begin(), body.vNext_.end(), x_.begin() + memberOffset_[m]);
+  }
   product_.assign(static_cast<size_t>(size_), 0.0);
-  if (coupled_) addPairCouplingProduct(*in_.pairContacts, pairOffset_, in_.dt, x, product_.data());
+  addPairCouplingProduct(*in_.pairContacts, pairOffset_, in_.dt, x_.data(), product_.data());
   for (size_t m = 0; m < members_.size(); ++m) {
     DeformableBody& body = *members_[m].body;
-    const int64_t n = static_cast<int64_t>(body.vNext_.size());
-    if (!alone) std::copy(x + memberOffset_[m], x + memberOffset_[m] + n, body.vNext_.begin());
-    body.pairCoupling_.assign(product_.begin() + memberOffset_[m], product_.begin() + memberOffset_[m] + n);
+    const auto first = product_.begin() + memberOffset_[m];
+    body.pairCoupling_.assign(first, first + static_cast<int64_t>(body.vNext_.size()));
   }
-  return cg;
 }
 
 }  // namespace vp

@@ -31,8 +31,10 @@ struct ContactGroupMember {
 };
 
 // One step of every member: each begins (DeformableBody::beginStep), one solve, each finishes.
-// The members share dt and the pair contacts; the first member's deadlines bound the solve,
-// and every member's stats report the group's solve.
+// The members share dt and the pair contacts; the first member's deadlines bound the solve.
+// Every member's stats report the group's iterations and residual; the solve's time is in the
+// first member's phases, each member's own stages in its own. When one member's step blows up,
+// every member's is discarded.
 void stepContactGroup(const std::vector<ContactGroupMember>& members);
 
 class ContactGroupSolve {
@@ -49,6 +51,8 @@ class ContactGroupSolve {
   // Whether a Coulomb pass changed any member's contacts.
   bool coulombPass();
   void lap(Phase phase);
+  // Each member's pairCoupling_ at the members' current solved velocities.
+  void storeCouplingProduct();
 
   const std::vector<ContactGroupMember>& members_;
   const DeformableStepInput& in_;  // the first member's

@@ -615,8 +615,8 @@ bool DeformableBody::stepBlewUp(TaskSystem& tasks, StepEnergy energy, bool solve
 }
 
 void DeformableBody::abandonStep() {
-  // The backups are whole once the step has begun (assigning them is its first allocation).
-  if (backupX_.size() == x_.size() && backupV_.size() == v_.size()) restoreStepStart();
+  if (stepBegun_) restoreStepStart();
+  stepBegun_ = false;
   std::fill(externalForce_.begin(), externalForce_.end(), 0.0);
 }
 
@@ -629,6 +629,7 @@ void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
 void DeformableBody::beginStep(const DeformableStepInput& in, PhaseTimer& timer) {
   backupX_.assign(x_.begin(), x_.end());
   backupV_.assign(v_.begin(), v_.end());
+  stepBegun_ = true;
   pairCoupling_.clear();
   holdNodes(in);
   timer.lap(Phase::Contacts);
@@ -649,6 +650,13 @@ void DeformableBody::finishStep(const DeformableStepInput& in, bool reachedFloor
   std::fill(pendingImpulse_.begin(), pendingImpulse_.end(), 0.0);
   updateRenderMesh(*in.tasks);
   timer.lap(Phase::Embed);
+  stepBegun_ = false;
+}
+
+void DeformableBody::discardStep(TaskSystem& tasks) {
+  restoreStepStart();
+  reactions_.clear();
+  updateRenderMesh(tasks);
 }
 
 void DeformableBody::holdNodes(const DeformableStepInput& in) {

@@ -87,6 +87,8 @@ class DeformableBody {
                   PhaseTimer& timer, ActorStats* stats);
   // The velocities the last solve found (3 per node; the step's v' until the next step begins).
   const Array<double>& solvedVelocities() const { return vNext_; }
+  // A step finished but not kept (a contact group member blew up): back to the state before it.
+  void discardStep(TaskSystem& tasks);
   // After an exception out of step() (out of memory): back to the state before the step.
   void abandonStep();
 
@@ -278,6 +280,7 @@ class DeformableBody {
   Array<PairFriction> pairFriction_;     // per node, its pair contact's friction state
   Array<double> pendingImpulse_;         // 3 per node, for the next step (addContactImpulse)
   double pairContactDepth_ = 0.0;
+  bool stepBegun_ = false;               // between beginStep's backups and finishStep's end
   Array<double> pairCoupling_;           // 3 per node in a coupled solve, else empty (pairCouplingAt)
   CgWorkspace cg_;
   StepPreconditioner preconditioner_;

@@ -33,7 +33,7 @@ Spring spring(const PairContact& p, double h) {
   Spring s;
   s.D = slides ? Mat3(K2 * N) : Mat3(K2 * Mat3::Identity());
   const Vec3 friction = slides ? Vec3(p.friction * p.state.lastNormalImpulse * slipDirection(p)) : Vec3::Zero();
-  s.known = K1 * (p.rest - p.gap) * p.normal - (slides ? Vec3::Zero() : Vec3(K1 * p.state.stick)) - friction;
+  s.known = K1 * (p.rest - p.gap) * p.normal - (slides ? Vec3::Zero() : Vec3(h * p.state.stick)) - friction;
   return s;
 }
 
@@ -148,20 +148,20 @@ void updatePairFriction(const std::vector<PairContact>& pairs, int32_t body, dou
     f.lastNormalImpulse = jn;
     Vec3 slip = v - point;
     slip -= slip.dot(p.normal) * p.normal;
-    const double K1 = p.springH2k() / h;
+    const double k = p.springH2k() / (h * h);
     if (p.state.sliding) {
       // Slid: sticks again once the slip has stopped or turned against the friction, its
-      // spring stretched to hold the friction it had.
+      // spring holding the friction it had.
       const bool stopped = slip.norm() < kPairSlipSpeed || slip.dot(slipDirection(p)) <= 0.0;
       f.sliding = stopped ? 0 : 1;
-      if (stopped) f.stick = p.friction * jn * slipDirection(p) / K1;
+      if (stopped) f.stick = p.friction * jn * slipDirection(p) / h;
       continue;
     }
-    const Vec3 stick = p.state.stick + h * slip;
+    const Vec3 stick = p.state.stick + k * h * slip;  // the spring's force after the step's slip
     const double cone = p.friction * jn;
-    if (K1 * stick.norm() > cone) {
+    if (h * stick.norm() > cone) {
       f.sliding = 1;
-      f.stick = stick * (cone / (K1 * stick.norm()));
+      f.stick = stick * (cone / (h * stick.norm()));
     } else {
       f.stick = stick;
     }

@@ -40,7 +40,9 @@ constexpr double kCoupledPairContactStiffness = 64.0;
 constexpr double kPairContactDepthEdges = 0.5;
 
 // A contact whose node pushed in its last step holds until the predicted gap reaches this
-// many rest gaps (a fresh one begins below one).
+// many rest gaps (a fresh one begins below one). The spring acts both ways, so a node
+// separating slower than about a rest gap per step is pulled back for that one step; its
+// normal impulse then pulls, its state starts afresh and the next step lets it go.
 constexpr double kPairContactKeep = 2.0;
 
 // Below this slip speed (m/s) a sliding contact sticks again (ContactActiveSet::kSlipSpeed's rule).
@@ -60,7 +62,9 @@ struct PairBodyId {
 
 // A node's tangential spring, carried from its last step (kept by the node's body).
 struct PairFriction {
-  Vec3 stick = Vec3::Zero();       // the spring's stretch, in the last contact's tangent plane
+  // The stick spring's force (N), in the last contact's tangent plane: a force, not a stretch,
+  // so that it carries over when the spring's stiffness changes (coupled or not, another dt).
+  Vec3 stick = Vec3::Zero();
   double lastNormalImpulse = 0.0;  // N s
   PairBodyId other;                // the body whose triangle it touched
   uint8_t sliding = 0;

@@ -211,7 +211,7 @@ void readDeformableState(StateReader& in, const DeformableBody& body, Deformable
   if (in.ok() && in.has(nodes, 4 * sizeof(double) + 2 * sizeof(uint32_t) + sizeof(uint8_t))) {
     s->pairFriction.resize(static_cast<size_t>(nodes));
     for (PairFriction& f : s->pairFriction) {
-      f.stick = readVec(in, "a deformable's pair contact stretch");
+      f.stick = readVec(in, "a deformable's pair contact stick force");
       f.lastNormalImpulse = in.value<double>();
       in.requireFinite("a deformable's pair contact impulse", &f.lastNormalImpulse, 1);
       f.other.index1 = in.value<uint32_t>();

@@ -46,15 +46,17 @@ Vec3 at(const std::vector<double>& v, int64_t offset, int32_t node) {
   return Vec3(v[offset + 3 * node], v[offset + 3 * node + 1], v[offset + 3 * node + 2]);
 }
 
-void expectWholeHessian(bool sliding) {
-  // Node 0 of body 0 on the triangle (1, 2, 3) of body 1; body 1 after body 0's 4 nodes.
-  PairContact p = contact(0, 1);
+// Node 0 of body 0 on the triangle (1, 2, 3) of body 1, whose 4 nodes come after body 0's 4 in
+// the group's vector; with `self`, on the triangle (1, 2, 3) of its own body of 8 nodes.
+void expectWholeHessian(bool sliding, bool self) {
+  PairContact p = contact(0, self ? 0 : 1);
   p.coupled = true;
   p.weights = Vec3(0.2, 0.3, 0.5);
   p.normal = Vec3(1.0, 2.0, -0.5).normalized();
   p.reducedMass = 0.7;
   p.state.sliding = sliding ? 1 : 0;
-  const std::vector<int64_t> offsets{0, 12};
+  const std::vector<int64_t> offsets{0, self ? -1 : 12};
+  const int64_t triangleOffset = self ? 0 : 12;
   std::mt19937 random(7);
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);
   std::vector<double> x(24), y(24, 0.0);
@@ -66,20 +68,26 @@ void expectWholeHessian(bool sliding) {
   // The diagonal blocks addPairContactStiffness puts in the bodies' matrices.
   Vec3 node = at(y, 0, 0) + D * at(x, 0, 0);
   Vec3 u = at(x, 0, 0);
-  for (int i = 0; i < 3; ++i) u -= p.weights[i] * at(x, 12, p.triangleNodes[i]);
+  for (int i = 0; i < 3; ++i) u -= p.weights[i] * at(x, triangleOffset, p.triangleNodes[i]);
   EXPECT_LT((node - D * u).norm(), 1e-12 * (D * u).norm());
   for (int i = 0; i < 3; ++i) {
     const int32_t corner = p.triangleNodes[i];
-    const Vec3 whole = at(y, 12, corner) + p.weights[i] * p.weights[i] * D * at(x, 12, corner);
+    const Vec3 whole =
+        at(y, triangleOffset, corner) + p.weights[i] * p.weights[i] * D * at(x, triangleOffset, corner);
     EXPECT_LT((whole + p.weights[i] * D * u).norm(), 1e-12 * (D * u).norm()) << "corner " << i;
   }
-  // Nodes on no contact, and the node's own block, get nothing from the product.
-  for (int32_t n = 1; n < 4; ++n) EXPECT_EQ(at(y, 0, n), Vec3::Zero());
-  EXPECT_EQ(at(y, 12, 0), Vec3::Zero());
+  // Nodes on no contact get nothing from the product.
+  if (!self) {
+    for (int32_t n = 1; n < 4; ++n) EXPECT_EQ(at(y, 0, n), Vec3::Zero());
+    EXPECT_EQ(at(y, 12, 0), Vec3::Zero());
+  }
+  if (self)
+    for (int32_t n = 4; n < 8; ++n) EXPECT_EQ(at(y, 0, n), Vec3::Zero());
 }
 
-TEST(ContactGroups, ACoupledSpringsTermsMakeItsWholeHessianSticking) { expectWholeHessian(false); }
-TEST(ContactGroups, ACoupledSpringsTermsMakeItsWholeHessianSliding) { expectWholeHessian(true); }
+TEST(ContactGroups, ACoupledSpringsTermsMakeItsWholeHessianSticking) { expectWholeHessian(false, false); }
+TEST(ContactGroups, ACoupledSpringsTermsMakeItsWholeHessianSliding) { expectWholeHessian(true, false); }
+TEST(ContactGroups, ACoupledSelfContactsTermsMakeItsWholeHessian) { expectWholeHessian(false, true); }
 
 TEST(ContactGroups, UncoupledContactsAndBodiesOutsideTheGroupAddNothing) {
   PairContact uncoupled = contact(0, 1);
