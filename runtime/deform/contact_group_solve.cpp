@@ -52,8 +52,11 @@ ContactGroupSolve::ContactGroupSolve(const std::vector<ContactGroupMember>& memb
     floor_ = std::min(floor_, m.body->desc_.solver.targetResidual);
   }
   auto member = [&](int32_t body) { return body < pairBodies && pairOffset_[static_cast<size_t>(body)] >= 0; };
+  // The group's coupled contacts, so that each CG iteration visits only them.
   if (in_.pairContacts)
-    for (const PairContact& p : *in_.pairContacts) coupled_ = coupled_ || (p.coupled && member(p.nodeBody));
+    for (const PairContact& p : *in_.pairContacts)
+      if (p.coupled && member(p.nodeBody)) coupledPairs_.push_back(p);
+  coupled_ = !coupledPairs_.empty();
 }
 
 PairVelocities ContactGroupSolve::solvedVelocities() const {
@@ -147,7 +150,7 @@ CgResult ContactGroupSolve::solveOnce(const CgSettings& settings) {
   system.apply = [&](const double* x, double* y) {
     for (size_t m = 0; m < members_.size(); ++m)
       members_[m].body->matrix_.multiply(tasks, x + memberOffset_[m], y + memberOffset_[m]);
-    if (coupled_) addPairCouplingProduct(*in_.pairContacts, pairOffset_, in_.dt, x, y);
+    if (coupled_) addPairCouplingProduct(coupledPairs_, pairOffset_, in_.dt, x, y);
   };
   system.precondition = [&](const double* r, double* z) {
     for (size_t m = 0; m < members_.size(); ++m)
@@ -193,7 +196,7 @@ void ContactGroupSolve::storeCouplingProduct() {
     std::copy(body.vNext_.begin(), body.vNext_.end(), x_.begin() + memberOffset_[m]);
   }
   product_.assign(static_cast<size_t>(size_), 0.0);
-  addPairCouplingProduct(*in_.pairContacts, pairOffset_, in_.dt, x_.data(), product_.data());
+  addPairCouplingProduct(coupledPairs_, pairOffset_, in_.dt, x_.data(), product_.data());
   for (size_t m = 0; m < members_.size(); ++m) {
     DeformableBody& body = *members_[m].body;
     const auto first = product_.begin() + memberOffset_[m];

@@ -59,7 +59,8 @@ class ContactGroupSolve {
   std::vector<int64_t> memberOffset_;  // scalars before member m in the group's vectors
   std::vector<int64_t> pairOffset_;    // the same by pair body (−1: not a member)
   int64_t size_ = 0;
-  bool coupled_ = false;  // some coupled contact joins members
+  std::vector<PairContact> coupledPairs_;  // the coupled contacts among the members
+  bool coupled_ = false;                   // coupledPairs_ is not empty
   double floor_ = 0.0;    // the strictest member's accuracy floor
   Array<double> b_, x_, product_;
   CgWorkspace work_;
