@@ -115,6 +115,7 @@ bool ContactGroupSolve::solve() {
     // body to a moving collider frame after frame.
     if (in_.floorDeadline.expired()) {
       cg.budgetCut = true;
+      storeCouplingProduct();  // the pass moved vNext_ after the last solve
       break;
     }
     // With the filters of the pass before, a released node or a newly sliding contact's
@@ -125,7 +126,6 @@ bool ContactGroupSolve::solve() {
     iterations += cg.iterations;
     lap(Phase::Solve);
   }
-  storeCouplingProduct();  // a pass cut short by the floor's deadline may have moved vNext_
   for (const ContactGroupMember& m : members_) {
     DeformableBody& body = *m.body;
     body.contacts_.rememberSliding(body.vNext_, body.held_);
@@ -150,7 +150,7 @@ CgResult ContactGroupSolve::solveOnce(const CgSettings& settings) {
   system.apply = [&](const double* x, double* y) {
     for (size_t m = 0; m < members_.size(); ++m)
       members_[m].body->matrix_.multiply(tasks, x + memberOffset_[m], y + memberOffset_[m]);
-    if (coupled_) addPairCouplingProduct(coupledPairs_, pairOffset_, in_.dt, x, y);
+    if (coupled_) addPairCouplingProduct(coupledPairs_, pairOffset_, x, y);
   };
   system.precondition = [&](const double* r, double* z) {
     for (size_t m = 0; m < members_.size(); ++m)
@@ -196,7 +196,7 @@ void ContactGroupSolve::storeCouplingProduct() {
     std::copy(body.vNext_.begin(), body.vNext_.end(), x_.begin() + memberOffset_[m]);
   }
   product_.assign(static_cast<size_t>(size_), 0.0);
-  addPairCouplingProduct(coupledPairs_, pairOffset_, in_.dt, x_.data(), product_.data());
+  addPairCouplingProduct(coupledPairs_, pairOffset_, x_.data(), product_.data());
   for (size_t m = 0; m < members_.size(); ++m) {
     DeformableBody& body = *members_[m].body;
     const auto first = product_.begin() + memberOffset_[m];

@@ -25,7 +25,7 @@ namespace vp {
 
 struct ContactGroupMember {
   DeformableBody* body = nullptr;
-  const DeformableStepInput* input = nullptr;  // dt, deadlines and pair contacts: the first member's rule all
+  const DeformableStepInput* input = nullptr;  // dt, deadlines, pair contacts: the first member's hold for all
   PhaseTimer* timer = nullptr;
   ActorStats* stats = nullptr;
 };

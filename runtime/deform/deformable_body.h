@@ -85,8 +85,6 @@ class DeformableBody {
   void beginStep(const DeformableStepInput& input, PhaseTimer& timer);
   void finishStep(const DeformableStepInput& input, bool solveReachedFloor, const PairVelocities& solved,
                   PhaseTimer& timer, ActorStats* stats);
-  // The velocities the last solve found (3 per node; the step's v' until the next step begins).
-  const Array<double>& solvedVelocities() const { return vNext_; }
   // A step finished but not kept (a contact group member blew up): back to the state before it.
   void discardStep(TaskSystem& tasks);
   // After an exception out of step() (out of memory): back to the state before the step.

@@ -11,8 +11,7 @@ Vec3 nodeVector(const Array<double>& a, int32_t i) { return Vec3(a[3 * i], a[3 *
 
 // The direction kinetic friction opposes: the node's slip over the triangle at the frame's start.
 Vec3 slipDirection(const PairContact& p) {
-  Vec3 slip = p.nodeVelocity - p.triangleVelocity();
-  slip -= slip.dot(p.normal) * p.normal;
+  const Vec3 slip = p.startSlip();
   const double s = slip.norm();
   return s > 0.0 ? Vec3(slip / s) : Vec3::Zero();
 }
@@ -25,13 +24,17 @@ struct Spring {
   Vec3 nodeImpulse(const Vec3& vNode, const Vec3& vPoint) const { return known - D * (vNode - vPoint); }
 };
 
+// h² times the spring's stiffness matrix: along the normal only while the contact slides.
+Mat3 springMatrix(const PairContact& p) {
+  const double K2 = p.springH2k();
+  return p.state.sliding ? Mat3(K2 * p.normal * p.normal.transpose()) : Mat3(K2 * Mat3::Identity());
+}
+
 Spring spring(const PairContact& p, double h) {
-  const double K2 = p.springH2k();  // h² k
-  const double K1 = K2 / h;         // h k
-  const Mat3 N = p.normal * p.normal.transpose();
+  const double K1 = p.springH2k() / h;  // h k
   const bool slides = p.state.sliding != 0;
   Spring s;
-  s.D = slides ? Mat3(K2 * N) : Mat3(K2 * Mat3::Identity());
+  s.D = springMatrix(p);
   const Vec3 friction = slides ? Vec3(p.friction * p.state.lastNormalImpulse * slipDirection(p)) : Vec3::Zero();
   s.known = K1 * (p.rest - p.gap) * p.normal - (slides ? Vec3::Zero() : Vec3(h * p.state.stick)) - friction;
   return s;
@@ -168,12 +171,12 @@ void updatePairFriction(const std::vector<PairContact>& pairs, int32_t body, dou
   }
 }
 
-void addPairCouplingProduct(const std::vector<PairContact>& pairs, const std::vector<int64_t>& offsets, double h,
+void addPairCouplingProduct(const std::vector<PairContact>& pairs, const std::vector<int64_t>& offsets,
                             const double* x, double* y) {
   auto member = [&](int32_t body) { return body < static_cast<int32_t>(offsets.size()) && offsets[body] >= 0; };
   for (const PairContact& p : pairs) {
     if (!p.coupled || !member(p.nodeBody) || !member(p.triangleBody)) continue;
-    const Mat3 D = spring(p, h).D;
+    const Mat3 D = springMatrix(p);
     const double* xs[4];
     double* ys[4];
     xs[0] = x + offsets[p.nodeBody] + 3 * static_cast<int64_t>(p.node);

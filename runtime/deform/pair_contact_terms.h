@@ -46,7 +46,7 @@ void updatePairFriction(const std::vector<PairContact>& pairs, int32_t body, dou
 // y += the coupled contacts' spring terms between different nodes, over the vector of a
 // contact group's solve, in which pair body b's nodes start at offsets[b] (scalars; −1 or past
 // the end: not in the group, and its contacts are left out).
-void addPairCouplingProduct(const std::vector<PairContact>& pairs, const std::vector<int64_t>& offsets, double h,
+void addPairCouplingProduct(const std::vector<PairContact>& pairs, const std::vector<int64_t>& offsets,
                             const double* x, double* y);
 
 }  // namespace vp

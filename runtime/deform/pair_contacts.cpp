@@ -147,9 +147,7 @@ void findPairContacts(const std::vector<PairContactBody>& bodies, double h, Task
       // A node that arrives slipping slides (with no friction until it has a normal impulse)
       // and sticks once the slip stops: a fresh stick spring would stop its slip within the
       // step, whatever Coulomb's cone allows.
-      Vec3 slip = c.nodeVelocity - c.triangleVelocity();
-      slip -= slip.dot(c.normal) * c.normal;
-      c.state.sliding = slip.norm() >= kPairArrivingSlipSpeed ? 1 : 0;
+      c.state.sliding = c.startSlip().norm() >= kPairArrivingSlipSpeed ? 1 : 0;
     }
     out->push_back(c);
   }

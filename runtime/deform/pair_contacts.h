@@ -97,6 +97,11 @@ struct PairContact {
   Vec3 triangleVelocity() const {
     return weights[0] * triangleVelocities[0] + weights[1] * triangleVelocities[1] + weights[2] * triangleVelocities[2];
   }
+  // The node's slip over the triangle at the frame's start: its tangential relative velocity.
+  Vec3 startSlip() const {
+    const Vec3 u = nodeVelocity - triangleVelocity();
+    return u - u.dot(normal) * normal;
+  }
   // The gap at the end of a step of h at the frame's start velocities.
   double predictedGap(double h) const { return gap + h * (nodeVelocity - triangleVelocity()).dot(normal); }
 };
