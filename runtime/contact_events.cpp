@@ -18,7 +18,7 @@ void ContactEventTracker::update(uint32_t index1, uint32_t generation, const Def
   // The colliders touched now, with the sums for their Begin events.
   std::vector<ContactEvent> now;
   const Array<double>& x = body.positions();
-  for (const NodeContact& c : body.contacts()) {
+  auto touching = [&](const NodeContact& c) {
     auto it = std::find_if(now.begin(), now.end(), [&](const ContactEvent& e) {
       return e.colliderIndex1 == c.colliderIndex1 && e.colliderGeneration == c.colliderGeneration;
     });
@@ -34,7 +34,9 @@ void ContactEventTracker::update(uint32_t index1, uint32_t generation, const Def
     it->nodeCount++;
     it->point += Vec3(x[3 * c.node], x[3 * c.node + 1], x[3 * c.node + 2]);
     it->normal += c.normal;
-  }
+  };
+  for (const NodeContact& c : body.contacts()) touching(c);
+  for (const NodeContact& c : body.rigidContacts()) touching(c);
   for (ContactEvent& e : now) {
     e.point /= e.nodeCount;
     if (e.normal.norm() > 0.0) e.normal.normalize();

@@ -1,5 +1,6 @@
 // Begin and end of touching between deformables and colliders, from the node contacts each
-// deformable step leaves (DeformableBody::contacts, after lift-off releases). A pair touches
+// deformable step leaves (DeformableBody::contacts, after lift-off releases, and
+// DeformableBody::rigidContacts, its springs against dynamic bodies that pushed). A pair touches
 // while at least one of the deformable's nodes is in contact with the collider. The events are
 // those of the last world step; a deformable that did not step this frame (its rate lowered by
 // the frame budget) changes nothing. Destroying a deformable drops its pairs without events.

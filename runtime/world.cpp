@@ -411,16 +411,38 @@ Status World::solveDeformableStatic(DeformableHandle handle, int32_t maxIteratio
                                 maxIterations, tolerance, result);
 }
 
-std::vector<PairContact> World::findDeformablePairContacts(const std::vector<DeformableHandle>& handles, double dt,
+std::vector<RigidContactBody> World::rigidContactBodies() const {
+  std::vector<RigidContactBody> rigids;
+  colliders_.forEach([&](ColliderHandle h, const Collider& c) {
+    RigidContactBody r;
+    if (!c.geometry() || !c.massProperties(&r.mass, &r.inertia)) return;
+    r.id = PairBodyId{h.index1, h.generation, 1};
+    r.geometry = c.geometry();
+    r.centre = c.pose().position;
+    r.linearVelocity = c.linearVelocity();
+    r.angularVelocity = c.angularVelocity();
+    r.velocityChange = c.lastStepVelocityChange();
+    r.spinChange = c.lastStepSpinChange();
+    r.filter = c.filter();
+    r.frictionCoefficient = c.desc().friction;
+    rigids.push_back(r);
+  });
+  return rigids;
+}
+
+std::vector<PairContact> World::findDeformablePairContacts(const std::vector<DeformableHandle>& handles,
+                                                          const std::vector<bool>& touchesRigid,
+                                                          const std::vector<RigidContactBody>& rigids, double dt,
                                                           const Deadline& frame, StepStats* stats) {
   const double start = frame.elapsedMs();
   std::vector<PairContactBody> bodies;
-  for (const DeformableHandle& h : handles) {
-    bodies.push_back(deformable(h)->pairContactBody(dt));
-    bodies.back().id = PairBodyId{h.index1, h.generation};
+  for (size_t i = 0; i < handles.size(); ++i) {
+    bodies.push_back(deformable(handles[i])->pairContactBody(dt));
+    bodies.back().id = PairBodyId{handles[i].index1, handles[i].generation};
+    bodies.back().touchesRigid = touchesRigid[i];
   }
   std::vector<PairContact> pairs;
-  findPairContacts(bodies, dt, *tasks_, &pairs);
+  findPairContacts(bodies, rigids, dt, *tasks_, &pairs);
   // One slice: the deformables' steps read every contact.
   stats->deformableContactMs = frame.elapsedMs() - start;
   stats->maxSliceMs = std::max(stats->maxSliceMs, stats->deformableContactMs);
@@ -471,14 +493,26 @@ bool World::stepDeformables(double dt, const Deadline& frame, StepStats* stats) 
   std::vector<ActorStats> actors(handles.size());
   std::vector<FramePlan::DeformableDeadlines> deadlines(handles.size());
   std::vector<ContactGroupCandidate> candidates(handles.size());
+  // A body solves with the dynamic bodies it touches when it steps this frame's dt on the CPU
+  // (Bullet steps them by dt); otherwise they are colliders with its contacts' reactions.
+  std::vector<bool> touchesRigid(handles.size());
   for (size_t i = 0; i < handles.size(); ++i) {
     actors[i] = actorStats(ActorKind::Deformable, handles[i].index1, handles[i].generation, priorities[i], 0.0);
     actors[i].interval = planned[i].schedule->interval;
     DeformableBody& body = *deformable(handles[i]);
     candidates[i] = ContactGroupCandidate{static_cast<bool>(due[i]), !body.solvesOnDevice(), body.schedule().pendingDt};
+    touchesRigid[i] = candidates[i].steps && candidates[i].onCpu && candidates[i].dt == dt;
   }
-  std::vector<PairContact> pairContacts = findDeformablePairContacts(handles, dt, frame, stats);
+  const std::vector<RigidContactBody> rigids = rigidContactBodies();
+  std::vector<PairContact> pairContacts = findDeformablePairContacts(handles, touchesRigid, rigids, dt, frame, stats);
+  candidates.resize(handles.size() + rigids.size(), ContactGroupCandidate{true, true, dt});
   const std::vector<std::vector<int>> groups = formContactGroups(served, candidates, &pairContacts);
+  // The colliders a body's own contacts meet: not the dynamic bodies it solves with.
+  auto solvedWith = [&](const ContactCollider& c) {
+    return std::any_of(rigids.begin(), rigids.end(), [&](const RigidContactBody& r) {
+      return r.id.index1 == c.index1 && r.id.generation == c.generation;
+    });
+  };
   // What the groups served after each are expected to need (infinite while one of their
   // bodies has not been measured: then the shares are equal).
   std::vector<double> laterFloorsMs(groups.size() + 1, 0.0);
@@ -515,9 +549,14 @@ bool World::stepDeformables(double dt, const Deadline& frame, StepStats* stats) 
       deadlines[i] = groupDeadlines;
       DeformableStepInput& input = inputs[m];
       input = deformableStepInput(body, contactColliders);
+      if (touchesRigid[i])
+        input.colliders.erase(std::remove_if(input.colliders.begin(), input.colliders.end(), solvedWith),
+                              input.colliders.end());
       input.dt = body.schedule().pendingDt;
       input.pairContacts = &pairContacts;
       input.pairBody = i;
+      input.rigidBodies = &rigids;
+      input.rigidBodyBase = static_cast<int32_t>(handles.size());
       input.deadline = groupDeadlines.share;
       input.floorDeadline = groupDeadlines.floor;
       if (fluids_.size() > 0) {  // a world without fluids pays nothing for them

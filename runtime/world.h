@@ -124,9 +124,14 @@ class World {
   void stepGroup(const std::vector<DeformableHandle>& handles, const std::vector<int>& members,
                  const std::vector<DeformableStepInput>& inputs, ActorStats* actors);
   // The deformables' contacts with each other and themselves at the frame's start, found once
-  // for all their steps (each reads the others as they were then: the same for any worker count).
-  std::vector<PairContact> findDeformablePairContacts(const std::vector<DeformableHandle>& handles, double dt,
+  // for all their steps (each reads the others as they were then: the same for any worker count),
+  // and, for those whose touchesRigid is set, with the dynamic rigid bodies `rigids`.
+  std::vector<PairContact> findDeformablePairContacts(const std::vector<DeformableHandle>& handles,
+                                                      const std::vector<bool>& touchesRigid,
+                                                      const std::vector<RigidContactBody>& rigids, double dt,
                                                       const Deadline& frame, StepStats* stats);
+  // The dynamic bodies a deformable's step can solve with it (deform/contact_group_solve.h).
+  std::vector<RigidContactBody> rigidContactBodies() const;
   // Deformables push back: each contact reaction of the body's last step acts on its dynamic
   // collider as an impulse at once (equal and opposite to the one on the node).
   void pushDynamicColliders(const DeformableBody& body);

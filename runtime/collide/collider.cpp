@@ -161,6 +161,18 @@ void Collider::clearHostLoad() {
   hostForce_ = hostTorque_ = Vec3::Zero();
 }
 
+bool Collider::massProperties(double* mass, Mat3* inertia) const {
+  const double inverseMass = body_->getInvMass();
+  const btMatrix3x3& invInertia = body_->getInvInertiaTensorWorld();
+  if (desc_.bodyType != BodyType::Dynamic || !(inverseMass > 0.0) || !(std::abs(invInertia.determinant()) > 0.0))
+    return false;
+  const btMatrix3x3 I = invInertia.inverse();
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) (*inertia)(r, c) = I[r][c];
+  *mass = 1.0 / inverseMass;
+  return true;
+}
+
 void Collider::applyImpulse(const Vec3& linear, const Vec3& angular) {
   if (desc_.bodyType != BodyType::Dynamic) return;
   body_->applyCentralImpulse(bt(linear));

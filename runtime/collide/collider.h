@@ -44,6 +44,9 @@ class Collider {
   // An impulse changes the velocity at once: dv = J / m, dw = I^-1 L (L about the origin).
   void applyImpulse(const Vec3& linear, const Vec3& angular);
   BodyProperties properties() const { return bodyPropertiesOf(desc_); }
+  // A dynamic body's mass and inertia about its centre of mass in the world frame, as Bullet
+  // has them now; false when it is not dynamic or its inertia is singular.
+  bool massProperties(double* mass, Mat3* inertia) const;
   const CollisionFilter& filter() const { return desc_.filter; }
   // Only through CollisionWorld::setFilter, which gives Bullet the new bits.
   void setFilter(const CollisionFilter& filter) { desc_.filter = filter; }
@@ -73,6 +76,9 @@ class Collider {
   void clearFluidLoad();
   // At the start of every world step: remembers how much the velocity changed in the last one.
   void trackVelocity();
+  // What the last rigid step changed of the velocities: now less what trackVelocity kept.
+  Vec3 lastStepVelocityChange() const { return linearVelocity() - trackedVelocity_; }
+  Vec3 lastStepSpinChange() const { return angularVelocity() - trackedSpin_; }
 
   // What evolves (snapshot/actor_states.h): the Bullet body's motion and sleep state, the
   // kinematic driving, pending host loads, the tracked velocities and the geometry's pose.

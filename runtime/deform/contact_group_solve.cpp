@@ -57,12 +57,40 @@ ContactGroupSolve::ContactGroupSolve(const std::vector<ContactGroupMember>& memb
     for (const PairContact& p : *in_.pairContacts)
       if (p.coupled && member(p.nodeBody)) coupledPairs_.push_back(p);
   coupled_ = !coupledPairs_.empty();
+  addRigidMembers();
+}
+
+void ContactGroupSolve::addRigidMembers() {
+  for (const PairContact& p : coupledPairs_) {
+    if (!p.rigidSide) continue;
+    const size_t b = static_cast<size_t>(p.triangleBody);
+    if (b >= pairOffset_.size()) pairOffset_.resize(b + 1, -1);
+    if (pairOffset_[b] >= 0) continue;
+    RigidMember r;
+    r.pairBody = p.triangleBody;
+    r.body = &(*in_.rigidBodies)[static_cast<size_t>(p.triangleBody - in_.rigidBodyBase)];
+    r.offset = pairOffset_[b] = size_;
+    size_ += 6;
+    const RigidContactBody& R = *r.body;
+    r.block.topLeftCorner<3, 3>() = R.mass * Mat3::Identity();
+    r.block.bottomRightCorner<3, 3>() = R.inertia;
+    Vec6 u, expected;
+    u << R.linearVelocity, R.angularVelocity;
+    expected << R.linearVelocity + R.velocityChange, R.angularVelocity + R.spinChange;
+    r.rhs = r.block * expected;
+    addRigidContactTerms(coupledPairs_, r.pairBody, in_.dt, &r.block, &r.rhs);
+    r.inverse = r.block.inverse();
+    r.velocity.resize(6);
+    Eigen::Map<Vec6>(r.velocity.data()) = u;
+    rigids_.push_back(std::move(r));
+  }
 }
 
 PairVelocities ContactGroupSolve::solvedVelocities() const {
   PairVelocities solved(pairOffset_.size(), nullptr);
   for (const ContactGroupMember& m : members_)
     if (m.input->pairBody >= 0) solved[static_cast<size_t>(m.input->pairBody)] = &m.body->vNext_;
+  for (const RigidMember& r : rigids_) solved[static_cast<size_t>(r.pairBody)] = &r.velocity;
   return solved;
 }
 
@@ -129,7 +157,7 @@ bool ContactGroupSolve::solve() {
   for (const ContactGroupMember& m : members_) {
     DeformableBody& body = *m.body;
     body.contacts_.rememberSliding(body.vNext_, body.held_);
-    body.recordReactions(tasks, in_.dt, m.input->colliders);
+    body.recordReactions(tasks, *m.input, solvedVelocities());
     PhaseStats& solve = m.stats->phase(Phase::Solve);
     solve.iterations = iterations;
     solve.residual = cg.relativeResidual;
@@ -150,11 +178,14 @@ CgResult ContactGroupSolve::solveOnce(const CgSettings& settings) {
   system.apply = [&](const double* x, double* y) {
     for (size_t m = 0; m < members_.size(); ++m)
       members_[m].body->matrix_.multiply(tasks, x + memberOffset_[m], y + memberOffset_[m]);
+    for (const RigidMember& r : rigids_) Eigen::Map<Vec6>(y + r.offset) = r.block * Eigen::Map<const Vec6>(x + r.offset);
     if (coupled_) addPairCouplingProduct(coupledPairs_, pairOffset_, x, y);
   };
   system.precondition = [&](const double* r, double* z) {
     for (size_t m = 0; m < members_.size(); ++m)
       members_[m].body->preconditioner_.apply(tasks, r + memberOffset_[m], z + memberOffset_[m]);
+    for (const RigidMember& rigid : rigids_)
+      Eigen::Map<Vec6>(z + rigid.offset) = rigid.inverse * Eigen::Map<const Vec6>(r + rigid.offset);
   };
   system.filter = [&](double* v) {
     for (size_t m = 0; m < members_.size(); ++m) members_[m].body->held_.filter(tasks, v + memberOffset_[m]);
@@ -163,38 +194,45 @@ CgResult ContactGroupSolve::solveOnce(const CgSettings& settings) {
   if (members_.size() == 1 && !coupled_) return first.solveLinearSystem(in_, system, settings, first.massScale(in_.dt));
 
   // The members' right-hand sides and warm starts in one vector each.
-  const bool alone = members_.size() == 1;
+  const bool alone = members_.size() == 1 && rigids_.empty();
   if (!alone) {
     b_.resize(static_cast<size_t>(size_));
-    x_.resize(static_cast<size_t>(size_));
+    gatherVelocities();
     for (size_t m = 0; m < members_.size(); ++m) {
       const DeformableBody& body = *members_[m].body;
       std::copy(body.rhs_.begin(), body.rhs_.end(), b_.begin() + memberOffset_[m]);
-      std::copy(body.vNext_.begin(), body.vNext_.end(), x_.begin() + memberOffset_[m]);
     }
+    for (const RigidMember& r : rigids_) Eigen::Map<Vec6>(b_.data() + r.offset) = r.rhs;
   }
   double* x = alone ? first.vNext_.data() : x_.data();
   const CgResult cg = solveConjugateGradient(tasks, system, alone ? first.rhs_.data() : b_.data(), x, settings,
                                              in_.deadline, alone ? first.cg_ : work_, floor_, in_.floorDeadline);
-  if (!alone)
+  if (!alone) {
     for (size_t m = 0; m < members_.size(); ++m) {
       DeformableBody& body = *members_[m].body;
       std::copy(x + memberOffset_[m], x + memberOffset_[m] + static_cast<int64_t>(body.vNext_.size()),
                 body.vNext_.begin());
     }
+    for (RigidMember& r : rigids_) std::copy(x + r.offset, x + r.offset + 6, r.velocity.begin());
+  }
   storeCouplingProduct();
   return cg;
+}
+
+void ContactGroupSolve::gatherVelocities() {
+  x_.resize(static_cast<size_t>(size_));
+  for (size_t m = 0; m < members_.size(); ++m) {
+    const DeformableBody& body = *members_[m].body;
+    std::copy(body.vNext_.begin(), body.vNext_.end(), x_.begin() + memberOffset_[m]);
+  }
+  for (const RigidMember& r : rigids_) std::copy(r.velocity.begin(), r.velocity.end(), x_.begin() + r.offset);
 }
 
 void ContactGroupSolve::storeCouplingProduct() {
   if (!coupled_) return;
   // What the coupling adds to A v' at each node, at the members' current v': the contacts'
   // impulses read it.
-  x_.resize(static_cast<size_t>(size_));
-  for (size_t m = 0; m < members_.size(); ++m) {
-    const DeformableBody& body = *members_[m].body;
-    std::copy(body.vNext_.begin(), body.vNext_.end(), x_.begin() + memberOffset_[m]);
-  }
+  gatherVelocities();
   product_.assign(static_cast<size_t>(size_), 0.0);
   addPairCouplingProduct(coupledPairs_, pairOffset_, x_.data(), product_.data());
   for (size_t m = 0; m < members_.size(); ++m) {

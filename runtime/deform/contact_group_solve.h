@@ -15,11 +15,21 @@
 // block preconditioned by its own preconditioner and filtered by its own constraints. The
 // collider contacts' Coulomb passes run as in a lone step, each pass re-solving the whole group.
 // A lone body is a group of one (its solve may run on the device; a group's runs on the CPU).
+//
+// A dynamic rigid body that the members' contacts touch (PairContact::rigidSide) joins with
+// its six velocities u = (V, Ω): its rows are M u' + Σ J^T D (v' + J u') = M (u + h g) + Σ J^T c,
+// M its mass and world inertia, J = [−I, [arm]×] each contact's, so that the contacts'
+// impulses are those of the rigid body's new velocity, not of its old one. Its block is 6×6,
+// preconditioned by its inverse. The rigid body's step itself is Bullet's, in the next frame:
+// the world hands it the contacts' impulses (DeformableBody::contactReactions), and a body
+// that touches nothing else moves as solved here. What else acts on it (its contacts in
+// Bullet, damping, fluid and host loads) the solve does not see.
 #pragma once
 
 #include <vector>
 
 #include "deform/deformable_body.h"
+#include "deform/pair_contact_terms.h"
 
 namespace vp {
 
@@ -51,10 +61,24 @@ class ContactGroupSolve {
   // Whether a Coulomb pass changed any member's contacts.
   bool coulombPass();
   void lap(Phase phase);
+  // x_ = every member's current solved velocities (the rigid members' too).
+  void gatherVelocities();
   // Each member's pairCoupling_ at the members' current solved velocities.
   void storeCouplingProduct();
 
+  // A dynamic rigid body in the solve (see above): pair body pairBody, at offset in the vectors.
+  struct RigidMember {
+    int32_t pairBody = -1;
+    const RigidContactBody* body = nullptr;
+    int64_t offset = 0;
+    Mat6 block = Mat6::Zero(), inverse = Mat6::Zero();
+    Vec6 rhs = Vec6::Zero();
+    Array<double> velocity;  // 6: the solved u'
+  };
+  void addRigidMembers();
+
   const std::vector<ContactGroupMember>& members_;
+  std::vector<RigidMember> rigids_;
   const DeformableStepInput& in_;  // the first member's
   std::vector<int64_t> memberOffset_;  // scalars before member m in the group's vectors
   std::vector<int64_t> pairOffset_;    // the same by pair body (−1: not a member)

@@ -4,7 +4,8 @@
 // this frame, over the same dt, on the CPU. Their contacts are then coupled (PairContact::
 // coupled); a contact between bodies that cannot share a solve stays a one-step-late spring
 // on each side (pair_contacts.h). A body's contacts with itself are coupled whenever it steps
-// on the CPU: it is one system anyway.
+// on the CPU: it is one system anyway. Dynamic rigid bodies are candidates too (after the
+// deformables, as pair bodies are numbered): two deformables touching one body join its group.
 #pragma once
 
 #include <vector>

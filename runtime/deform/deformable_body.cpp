@@ -744,24 +744,45 @@ void DeformableBody::integrateAndGuard(const DeformableStepInput& in, bool solve
   }
 }
 
-void DeformableBody::recordReactions(TaskSystem& tasks, double h, const std::vector<ContactCollider>& colliders) {
+void DeformableBody::recordReactions(TaskSystem& tasks, const DeformableStepInput& in, const PairVelocities& solved) {
   reactions_.clear();
+  rigidContacts_.clear();
+  const double h = in.dt;
   const Array<NodeContact>& contacts = contacts_.contacts();
   auto dynamic = [&](const NodeContact& c) {
-    for (const ContactCollider& cc : colliders)
+    for (const ContactCollider& cc : in.colliders)
       if (cc.index1 == c.colliderIndex1 && cc.generation == c.colliderGeneration) return cc.dynamic;
     return false;
   };
-  if (std::none_of(contacts.begin(), contacts.end(), dynamic)) return;
-  Array<Vec3> impulses;
-  contactImpulses(tasks, &impulses);
-  for (size_t c = 0; c < contacts.size(); ++c) {
-    if (!dynamic(contacts[c])) continue;
-    const int32_t i = contacts[c].node;
-    // The node where the step leaves it, touching the collider.
-    Vec3 point;
-    for (int k = 0; k < 3; ++k) point[k] = x_[3 * i + k] + h * vNext_[3 * i + k];
-    reactions_.push_back({contacts[c].colliderIndex1, contacts[c].colliderGeneration, point, -impulses[c]});
+  if (std::any_of(contacts.begin(), contacts.end(), dynamic)) {
+    Array<Vec3> impulses;
+    contactImpulses(tasks, &impulses);
+    for (size_t c = 0; c < contacts.size(); ++c) {
+      if (!dynamic(contacts[c])) continue;
+      const int32_t i = contacts[c].node;
+      // The node where the step leaves it, touching the collider.
+      Vec3 point;
+      for (int k = 0; k < 3; ++k) point[k] = x_[3 * i + k] + h * vNext_[3 * i + k];
+      reactions_.push_back({contacts[c].colliderIndex1, contacts[c].colliderGeneration, point, -impulses[c]});
+    }
+  }
+  if (!in.pairContacts) return;
+  for (const PairContact& p : *in.pairContacts) {
+    if (!p.rigidSide || !p.coupled || p.nodeBody != in.pairBody) continue;
+    // Equal and opposite at the contact point the solve's J used: momentum and angular momentum
+    // conserved to rounding, however far the solve got.
+    const Vec3 impulse = coupledNodeImpulse(p, h, solved);
+    const RigidContactBody& rigid = (*in.rigidBodies)[static_cast<size_t>(p.triangleBody - in.rigidBodyBase)];
+    reactions_.push_back({p.triangleBodyId.index1, p.triangleBodyId.generation, rigid.centre + p.arm, -impulse});
+    if (!(impulse.dot(p.normal) > 0.0)) continue;
+    NodeContact touch;
+    touch.node = p.node;
+    touch.normal = p.normal;
+    touch.colliderVelocity = rigid.pointVelocity(p.arm);
+    touch.friction = p.friction;
+    touch.colliderIndex1 = p.triangleBodyId.index1;
+    touch.colliderGeneration = p.triangleBodyId.generation;
+    rigidContacts_.push_back(touch);
   }
 }
 

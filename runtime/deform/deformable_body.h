@@ -69,6 +69,10 @@ struct DeformableStepInput {
   // frame's start; this body is bodies[pairBody] there.
   const std::vector<PairContact>* pairContacts = nullptr;
   int32_t pairBody = -1;
+  // The dynamic rigid bodies those contacts' rigid sides are: pair body rigidBodyBase + r is
+  // (*rigidBodies)[r].
+  const std::vector<RigidContactBody>* rigidBodies = nullptr;
+  int32_t rigidBodyBase = 0;
 };
 
 class DeformableBody {
@@ -134,6 +138,9 @@ class DeformableBody {
   const Array<NodeContact>& contacts() const { return contacts_.contacts(); }
   // What the last step's contacts with dynamic colliders did to them (empty if it diverged).
   const Array<ContactReaction>& contactReactions() const { return reactions_; }
+  // The last step's pair contacts with dynamic rigid bodies that pushed (the spring's normal
+  // impulse positive), as node contacts (normal, the collider's point velocity, its handle).
+  const Array<NodeContact>& rigidContacts() const { return rigidContacts_; }
   // The body in the fluids (deform/fluid_immersion.h): its surface as they see it now, and
   // their loads, which the world sets before each step of the body.
   std::shared_ptr<const PreparedCollider> fluidSurface() { return immersion_.surface(x_, v_); }
@@ -216,7 +223,9 @@ class DeformableBody {
   // Scalar k of the coupled pair contacts' terms between different nodes at the solved
   // velocities (0 outside a coupled solve): part of A v' at a node, for its impulses.
   double pairCouplingAt(size_t k) const { return pairCoupling_.empty() ? 0.0 : pairCoupling_[k]; }
-  void recordReactions(TaskSystem& tasks, double h, const std::vector<ContactCollider>& colliders);
+  // After the solve: what the step's contacts did to dynamic colliders (reactions_), the collider
+  // contacts' and the coupled pair contacts' with rigid bodies (`solved` as finishStep's).
+  void recordReactions(TaskSystem& tasks, const DeformableStepInput& in, const PairVelocities& solved);
   double massScale(double h) const;  // 1 + h α: Rayleigh's mass damping on the mass term
   // One CG solve of the step system from vNext_, on the device when it has one.
   CgResult solveLinearSystem(const DeformableStepInput& in, const LinearSystem& system, const CgSettings& settings,
@@ -272,6 +281,7 @@ class DeformableBody {
   Array<int32_t> surfaceNodes_;
   ContactActiveSet contacts_;
   Array<ContactReaction> reactions_;
+  Array<NodeContact> rigidContacts_;
   FluidImmersion immersion_;
   double contactMargin_ = 0.0;
   ContactSurface contactSurface_;        // what other deformables and the body itself touch

@@ -4,11 +4,10 @@
 #include <cmath>
 
 namespace vp {
-namespace {
 
 // Central differences of the signed distance: works for every shape the exact geometry
 // supports, and the step is far below any feature size we simulate.
-Vec3 distanceGradient(const PreparedCollider& c, const Vec3& x) {
+Vec3 colliderNormal(const PreparedCollider& c, const Vec3& x) {
   const double eps = 1e-6 * (1.0 + x.cwiseAbs().maxCoeff());
   Vec3 g;
   for (int k = 0; k < 3; ++k) {
@@ -20,8 +19,6 @@ Vec3 distanceGradient(const PreparedCollider& c, const Vec3& x) {
   const double n = g.norm();
   return n > 1e-12 ? Vec3(g / n) : Vec3::UnitY();
 }
-
-}  // namespace
 
 void findNodeContacts(const Array<double>& x, const Array<double>& v, const Array<int32_t>& surfaceNodes,
                       const std::vector<ContactCollider>& colliders, double h, double bodyFriction, double margin,
@@ -43,7 +40,7 @@ void findNodeContacts(const Array<double>& x, const Array<double>& v, const Arra
       const double phi = signedDistanceBound(c, p);
       if (phi > reach + h * (c.shape.linearVelocity.norm() + c.shape.angularVelocity.norm() * c.boundRadius))
         continue;
-      const Vec3 n = distanceGradient(c, p);
+      const Vec3 n = colliderNormal(c, p);
       const Vec3 vc = c.shape.linearVelocity + c.shape.angularVelocity.cross(p - c.translation);
       const double predicted = phi + h * (vel - vc).dot(n);
       if (predicted >= margin || (best.node >= 0 && predicted >= bestPredicted)) continue;

@@ -56,6 +56,9 @@ struct NodeContact {
 // over several steps instead of launching the body.
 constexpr double kMaxPushOutSpeed = 2.0;
 
+// The unit gradient of the collider's signed distance at x: its outward normal there.
+Vec3 colliderNormal(const PreparedCollider& c, const Vec3& x);
+
 void findNodeContacts(const Array<double>& x, const Array<double>& v, const Array<int32_t>& surfaceNodes,
                       const std::vector<ContactCollider>& colliders, double h, double bodyFriction, double margin,
                       Array<NodeContact>* out);

@@ -7,7 +7,8 @@ namespace vp {
 void settlePairContacts(const std::vector<PairContact>& pairs, const std::vector<DeformableBody*>& bodies,
                         const std::vector<double>& steppedDt) {
   for (const PairContact& p : pairs) {
-    if (p.coupled) continue;  // equal and opposite by construction
+    // Equal and opposite by construction; a rigid side is always coupled (contact_groups.h).
+    if (p.coupled || p.rigidSide) continue;
     DeformableBody& nodeBody = *bodies[p.nodeBody];
     DeformableBody& triangleBody = *bodies[p.triangleBody];
     const Vec3 excess = pairContactMismatch(p, steppedDt[p.nodeBody], nodeBody.velocities(),

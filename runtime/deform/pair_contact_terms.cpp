@@ -70,12 +70,25 @@ void visitTerms(const PairContact& p, int32_t body, double h, const Visit& visit
   }
 }
 
-// A coupled contact's node velocity and its triangle point's, from the solved velocities.
+// The rigid side's point velocity is V + Ω × arm, so the contact's relative velocity is
+// v − (V + Ω × arm) = v + J u with u = (V, Ω) and J = [−I, [arm]×].
+Eigen::Matrix<double, 3, 6> rigidJacobian(const Vec3& arm) {
+  Eigen::Matrix<double, 3, 6> J;
+  J.leftCols<3>() = -Mat3::Identity();
+  J.rightCols<3>() << 0.0, -arm.z(), arm.y(), arm.z(), 0.0, -arm.x(), -arm.y(), arm.x(), 0.0;
+  return J;
+}
+
+Vec6 sixVector(const double* x) { return Eigen::Map<const Vec6>(x); }
+
+// A coupled contact's node velocity and its other side's point's, from the solved velocities.
 std::pair<Vec3, Vec3> solvedVelocities(const PairContact& p, const PairVelocities& solved) {
   const Array<double>& t = *solved[p.triangleBody];
+  const Vec3 node = nodeVector(*solved[p.nodeBody], p.node);
+  if (p.rigidSide) return {node, -rigidJacobian(p.arm) * sixVector(t.data())};
   Vec3 point = Vec3::Zero();
   for (int i = 0; i < 3; ++i) point += p.weights[i] * nodeVector(t, p.triangleNodes[i]);
-  return {nodeVector(*solved[p.nodeBody], p.node), point};
+  return {node, point};
 }
 
 bool touches(const PairContact& p, int32_t body) { return p.nodeBody == body || p.triangleBody == body; }
@@ -171,12 +184,36 @@ void updatePairFriction(const std::vector<PairContact>& pairs, int32_t body, dou
   }
 }
 
+Vec3 coupledNodeImpulse(const PairContact& p, double h, const PairVelocities& solved) {
+  const auto [vNode, vPoint] = solvedVelocities(p, solved);
+  return spring(p, h).nodeImpulse(vNode, vPoint);
+}
+
+void addRigidContactTerms(const std::vector<PairContact>& pairs, int32_t body, double h, Mat6* block, Vec6* rhs) {
+  for (const PairContact& p : pairs) {
+    if (!p.rigidSide || p.triangleBody != body) continue;
+    // The rigid body takes −P at the point: J^T P = J^T c − J^T D (v + J u).
+    const Eigen::Matrix<double, 3, 6> J = rigidJacobian(p.arm);
+    const Spring s = spring(p, h);
+    *block += J.transpose() * s.D * J;
+    *rhs += J.transpose() * s.known;
+  }
+}
+
 void addPairCouplingProduct(const std::vector<PairContact>& pairs, const std::vector<int64_t>& offsets,
                             const double* x, double* y) {
   auto member = [&](int32_t body) { return body < static_cast<int32_t>(offsets.size()) && offsets[body] >= 0; };
   for (const PairContact& p : pairs) {
     if (!p.coupled || !member(p.nodeBody) || !member(p.triangleBody)) continue;
     const Mat3 D = springMatrix(p);
+    if (p.rigidSide) {
+      // The blocks D J (the node's row) and J^T D (the rigid body's).
+      const Eigen::Matrix<double, 3, 6> J = rigidJacobian(p.arm);
+      const int64_t n = offsets[p.nodeBody] + 3 * static_cast<int64_t>(p.node), r = offsets[p.triangleBody];
+      Eigen::Map<Vec3>(y + n) += D * (J * sixVector(x + r));
+      Eigen::Map<Vec6>(y + r) += J.transpose() * (D * Eigen::Map<const Vec3>(x + n));
+      continue;
+    }
     const double* xs[4];
     double* ys[4];
     xs[0] = x + offsets[p.nodeBody] + 3 * static_cast<int64_t>(p.node);

@@ -5,7 +5,8 @@
 // triangle's point at its frame-start velocity; each triangle node i takes −w_i times the
 // spring with the node at its frame-start velocity and the other triangle nodes at theirs.
 // Coupled (both sides in one solve), the other nodes' velocities are unknowns of the same
-// system and their blocks are applied by addPairCouplingProduct. A sticking contact's
+// system and their blocks are applied by addPairCouplingProduct; so are a rigid body's six
+// velocities, whose rows a contact group's solve holds (addRigidContactTerms). A sticking contact's
 // springs act in every direction; a sliding one's only along the normal, with kinetic friction
 // mu J_n (the last normal impulse) against the slip.
 #pragma once
@@ -43,6 +44,15 @@ Vec3 pairContactMismatch(const PairContact& p, double nodeH, const Array<double>
 // contact, or one whose spring pulled, starts afresh.
 void updatePairFriction(const std::vector<PairContact>& pairs, int32_t body, double h, const Array<double>& vNext,
                         const PairVelocities& solved, Array<PairFriction>* friction);
+// A rigid body's six velocities in a solve: linear, then angular about its centre of mass.
+using Vec6 = Eigen::Matrix<double, 6, 1>;
+using Mat6 = Eigen::Matrix<double, 6, 6>;
+
+// The impulse coupled contact p applied to its node at the solved velocities.
+Vec3 coupledNodeImpulse(const PairContact& p, double h, const PairVelocities& solved);
+// What the coupled contacts with rigid pair body `body` put into its rows of a contact group's
+// solve: their J^T D J on its 6×6 diagonal block, J^T c on its right-hand side.
+void addRigidContactTerms(const std::vector<PairContact>& pairs, int32_t body, double h, Mat6* block, Vec6* rhs);
 // y += the coupled contacts' spring terms between different nodes, over the vector of a
 // contact group's solve, in which pair body b's nodes start at offsets[b] (scalars; −1 or past
 // the end: not in the group, and its contacts are left out).

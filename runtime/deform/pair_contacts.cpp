@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "core/parallel_for.h"
+#include "deform/deformable_contacts.h"
 
 namespace vp {
 namespace {
@@ -57,6 +58,13 @@ bool projectOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& 
   return true;
 }
 
+// The threshold below which node `node` of A touches: the rest gap, or the keep band when it
+// pushed in its last step (a stiff spring at rest sits within noise of the rest gap, and a
+// contact set that flips there each step feeds an oscillation).
+double touchThreshold(const PairContactBody& A, int32_t node) {
+  return (*A.friction)[node].lastNormalImpulse > 0.0 ? kPairContactKeep * A.rest : A.rest;
+}
+
 // Node `node` of body `a` against the triangles of body `b`: the first triangle whose
 // predicted gap is below both the rest gap and `lowest` (the best so far, over the bodies
 // searched before) becomes `best`, and `lowest` its gap. A triangle touched within the step
@@ -69,10 +77,7 @@ void nearestTriangle(const std::vector<PairContactBody>& bodies, int32_t a, int3
   const PairContactBody& B = bodies[b];
   const Vec3 p = nodeVector(*A.x, node), vp = nodeVector(*A.v, node);
   const Vec3& nodeNormal = A.surface->nodeNormal(node);
-  // A node that pushed in its last step stays in touch until it is a rest gap further off:
-  // a stiff spring at rest sits within noise of the rest gap, and a contact set that flips
-  // there each step feeds an oscillation.
-  const double threshold = (*A.friction)[node].lastNormalImpulse > 0.0 ? kPairContactKeep * A.rest : A.rest;
+  const double threshold = touchThreshold(A, node);
   const double reach = h * vp.norm() + A.rest + B.depth;
   const Vec3 lo = p - Vec3::Constant(reach), hi = p + Vec3::Constant(reach);
   const RefitBvh& bvh = B.surface->bvh();
@@ -115,10 +120,49 @@ void nearestTriangle(const std::vector<PairContactBody>& bodies, int32_t a, int3
   });
 }
 
+// Node `node` of body `a` against rigid body R (pair body `r`), as nearestTriangle: the
+// contact point is the node's nearest point on R's surface, the normal the distance's gradient.
+void nearestRigid(const PairContactBody& A, int32_t a, int32_t node, const RigidContactBody& R, int32_t r, double h,
+                  double* lowest, PairContact* best) {
+  const PreparedCollider& c = *R.geometry;
+  const Vec3 p = nodeVector(*A.x, node), vp = nodeVector(*A.v, node);
+  // The node's reach over the step and the rigid body's own motion (its bounds are its pose now).
+  const double reach = h * vp.norm() + touchThreshold(A, node) +
+                       h * (R.linearVelocity.norm() + R.angularVelocity.norm() * c.boundRadius) + 1e-9;
+  if (((p + Vec3::Constant(reach)) - c.bounds.lo).minCoeff() < 0.0 ||
+      (c.bounds.hi - (p - Vec3::Constant(reach))).minCoeff() < 0.0)
+    return;
+  const double phi = signedDistanceBound(c, p);
+  if (phi > reach) return;
+  const Vec3 n = colliderNormal(c, p);
+  const Vec3 arm = p - phi * n - R.centre;
+  const Vec3 vc = R.pointVelocity(arm);
+  const double predicted = phi + h * (vp - vc).dot(n);
+  if (predicted >= touchThreshold(A, node) || predicted >= *lowest) return;
+  *lowest = predicted;
+  const double mn = (*A.mass)[node];
+  *best = PairContact();
+  best->nodeBody = a;
+  best->node = node;
+  best->triangleBody = r;
+  best->triangleBodyId = R.id;
+  best->weights = Vec3(1.0, 0.0, 0.0);
+  best->rigidSide = true;
+  best->arm = arm;
+  best->normal = n;
+  // A node deep inside is pushed out at kMaxPushOutSpeed at most, as a collider contact is.
+  best->gap = std::max(phi, A.rest - kMaxPushOutSpeed * h);
+  best->rest = A.rest;
+  best->reducedMass = mn * R.mass / (mn + R.mass);
+  best->friction = A.frictionCoefficient * R.frictionCoefficient;
+  best->nodeVelocity = vp;
+  best->triangleVelocities = {{vc, Vec3::Zero(), Vec3::Zero()}};
+}
+
 }  // namespace
 
-void findPairContacts(const std::vector<PairContactBody>& bodies, double h, TaskSystem& tasks,
-                      std::vector<PairContact>* out) {
+void findPairContacts(const std::vector<PairContactBody>& bodies, const std::vector<RigidContactBody>& rigids,
+                      double h, TaskSystem& tasks, std::vector<PairContact>* out) {
   out->clear();
   // One slot per surface node of every body, filled in parallel, then read in body and node
   // order: the same contacts for any worker count.
@@ -132,9 +176,15 @@ void findPairContacts(const std::vector<PairContactBody>& bodies, double h, Task
       const PairContactBody& A = bodies[a];
       const int32_t node = (*A.surfaceNodes)[s - first[a]];
       double lowest = std::numeric_limits<double>::infinity();
-      for (int32_t b = 0; b < static_cast<int32_t>(bodies.size()); ++b)
+      const int32_t deformables = static_cast<int32_t>(bodies.size());
+      for (int32_t b = 0; b < deformables; ++b)
         if (b == a ? A.selfCollision : A.filter.meets(bodies[b].filter))
           nearestTriangle(bodies, a, node, b, h, &lowest, &slots[static_cast<size_t>(s)]);
+      if (!A.touchesRigid) continue;
+      for (size_t r = 0; r < rigids.size(); ++r)
+        if (A.filter.meets(rigids[r].filter))
+          nearestRigid(A, a, node, rigids[r], deformables + static_cast<int32_t>(r), h, &lowest,
+                       &slots[static_cast<size_t>(s)]);
     }
   });
   for (PairContact& c : slots) {

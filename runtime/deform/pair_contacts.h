@@ -1,5 +1,7 @@
 // Contacts between deformables, and of a deformable with itself: a surface node of one body
 // against a boundary triangle of another (or of its own, away from the node's neighbourhood).
+// A node's contact with a dynamic rigid body is the same spring with a point of the rigid body
+// on its other side (PairContact::rigidSide), whose six velocities join the solve.
 //
 // Bodies that step together solve one system (contact_group_solve.h) and the contact couples
 // their new velocities (PairContact::coupled). Otherwise each steps from the state the other
@@ -22,6 +24,7 @@
 #include "core/collision_filter.h"
 #include "core/math_types.h"
 #include "core/task_system.h"
+#include "collide/face_coverage.h"
 #include "deform/contact_surface.h"
 
 namespace vp {
@@ -57,7 +60,10 @@ constexpr double kPairArrivingSlipSpeed = 1e-2;
 // another pair.
 struct PairBodyId {
   uint32_t index1 = 0, generation = 0;  // index1 0: none
-  bool operator==(const PairBodyId& o) const { return index1 == o.index1 && generation == o.generation; }
+  uint8_t rigid = 0;                    // 1: a collider's handle, else a deformable's
+  bool operator==(const PairBodyId& o) const {
+    return index1 == o.index1 && generation == o.generation && rigid == o.rigid;
+  }
 };
 
 // A node's tangential spring, carried from its last step (kept by the node's body).
@@ -72,17 +78,21 @@ struct PairFriction {
 
 struct PairContact {
   int32_t nodeBody = -1, node = -1;  // the node side
-  int32_t triangleBody = -1;         // the triangle side (the node's own body: self contact)
+  // The other side: a triangle (the node's own body: self contact) or, with rigidSide, a rigid
+  // body, whose pair body index follows the deformables' (findPairContacts).
+  int32_t triangleBody = -1;
   PairBodyId triangleBodyId;         // its handle
   std::array<int32_t, 3> triangleNodes{{-1, -1, -1}};
-  Vec3 weights = Vec3::Zero();       // the contact point's barycentric weights
-  Vec3 normal = Vec3::UnitY();       // out of the triangle
+  Vec3 weights = Vec3::Zero();       // the contact point's barycentric weights (rigid: 1, 0, 0)
+  bool rigidSide = false;
+  Vec3 arm = Vec3::Zero();           // rigid: the contact point less the body's centre of mass
+  Vec3 normal = Vec3::UnitY();       // out of the triangle (the rigid body)
   double gap = 0.0;                  // (node − contact point)·normal at the frame's start
   double rest = 0.0;                 // the spring's rest gap
   double reducedMass = 0.0;          // of the node and the triangle's point
   double friction = 0.0;             // combined coefficient (product of the bodies')
   Vec3 nodeVelocity = Vec3::Zero();
-  std::array<Vec3, 3> triangleVelocities{};
+  std::array<Vec3, 3> triangleVelocities{};  // rigid: the point's velocity first
   PairFriction state;                // the node's friction state, stick projected on the tangent plane
   // Both sides solved in one system this step (deform/contact_group_solve.h): each side sees
   // the other's new velocities instead of those at the frame's start.
@@ -120,12 +130,30 @@ struct PairContactBody {
   double rest = 0.0;       // its contact margin: the spring's rest gap for its nodes
   double depth = 0.0;      // kPairContactDepthEdges mean edges
   bool selfCollision = false;
+  bool touchesRigid = false;  // its contacts with dynamic rigid bodies are pair contacts this step
+};
+
+// What detection and the solve read of a dynamic rigid body, after the frame's rigid step.
+struct RigidContactBody {
+  PairBodyId id;                              // the collider's handle (rigid = 1)
+  const PreparedCollider* geometry = nullptr;  // at its current pose
+  Vec3 centre = Vec3::Zero();                 // of mass: its origin
+  Vec3 linearVelocity = Vec3::Zero(), angularVelocity = Vec3::Zero();
+  // What its next rigid step is expected to add to them besides the deformables' contacts: what
+  // its last one did (gravity, its contacts in Bullet, loads).
+  Vec3 velocityChange = Vec3::Zero(), spinChange = Vec3::Zero();
+  double mass = 0.0;
+  Mat3 inertia = Mat3::Identity();            // about the centre, in the world frame
+  CollisionFilter filter;
+  double frictionCoefficient = 0.5;
+  Vec3 pointVelocity(const Vec3& arm) const { return linearVelocity + angularVelocity.cross(arm); }
 };
 
 // Every surface node's nearest touching triangle (the lowest predicted gap over the step h)
-// among the bodies its filter meets and, with selfCollision, its own; in body, node order
-// (the same for any worker count).
-void findPairContacts(const std::vector<PairContactBody>& bodies, double h, TaskSystem& tasks,
-                      std::vector<PairContact>* out);
+// among the bodies its filter meets and, with selfCollision, its own, or, for a body whose
+// touchesRigid is set, the nearest rigid body's surface if that is nearer; in body, node order
+// (the same for any worker count). Rigid body r is pair body bodies.size() + r.
+void findPairContacts(const std::vector<PairContactBody>& bodies, const std::vector<RigidContactBody>& rigids,
+                      double h, TaskSystem& tasks, std::vector<PairContact>* out);
 
 }  // namespace vp

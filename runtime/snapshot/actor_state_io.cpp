@@ -170,6 +170,7 @@ void writeDeformableState(StateWriter& out, const DeformableState& s) {
     out.value(f.lastNormalImpulse);
     out.value(f.other.index1);
     out.value(f.other.generation);
+    out.value(f.other.rigid);
     out.value(f.sliding);
   }
   out.array(s.pendingImpulse);
@@ -208,7 +209,7 @@ void readDeformableState(StateReader& in, const DeformableBody& body, Deformable
   FluidImmersion::Tracking& t = s->immersionTracking;
   for (Vec3* v : {&t.velocity, &t.velocityChange, &t.spin, &t.spinChange}) *v = readVec(in, "a deformable's tracked motion");
   // One friction state per node, as many as the body has (not counted in the buffer).
-  if (in.ok() && in.has(nodes, 4 * sizeof(double) + 2 * sizeof(uint32_t) + sizeof(uint8_t))) {
+  if (in.ok() && in.has(nodes, 4 * sizeof(double) + 2 * sizeof(uint32_t) + 2 * sizeof(uint8_t))) {
     s->pairFriction.resize(static_cast<size_t>(nodes));
     for (PairFriction& f : s->pairFriction) {
       f.stick = readVec(in, "a deformable's pair contact stick force");
@@ -216,8 +217,9 @@ void readDeformableState(StateReader& in, const DeformableBody& body, Deformable
       in.requireFinite("a deformable's pair contact impulse", &f.lastNormalImpulse, 1);
       f.other.index1 = in.value<uint32_t>();
       f.other.generation = in.value<uint32_t>();
+      f.other.rigid = in.value<uint8_t>();
       f.sliding = in.value<uint8_t>();
-      if (in.ok() && f.sliding > 1) in.outOfRange("a deformable's pair contact state");
+      if (in.ok() && (f.sliding > 1 || f.other.rigid > 1)) in.outOfRange("a deformable's pair contact state");
     }
   }
   readFiniteArray(in, &s->pendingImpulse, 3 * nodes, "deformable's pending impulse count (3 per node)");

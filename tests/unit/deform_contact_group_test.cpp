@@ -90,6 +90,56 @@ TEST(ContactGroups, ACoupledSpringsTermsMakeItsWholeHessianSticking) { expectWho
 TEST(ContactGroups, ACoupledSpringsTermsMakeItsWholeHessianSliding) { expectWholeHessian(true, false); }
 TEST(ContactGroups, ACoupledSelfContactsTermsMakeItsWholeHessian) { expectWholeHessian(false, true); }
 
+// Node 0 of body 0 (4 nodes) against a rigid body, pair body 1, whose six velocities (linear,
+// angular) follow in the group's vector. The spring acts on the relative velocity
+// u = v − (V + Ω × arm): the node's rows of A x hold D u, the rigid body's the generalized force
+// of −D u at the arm, and its right-hand side that of −c, c the spring's known impulse.
+void expectRigidTerms(bool sliding) {
+  const double h = 1.0 / 60.0;
+  PairContact p;
+  p.nodeBody = 0;
+  p.node = 2;
+  p.triangleBody = 1;
+  p.rigidSide = true;
+  p.coupled = true;
+  p.weights = Vec3(1.0, 0.0, 0.0);
+  p.arm = Vec3(0.3, -0.2, 0.1);
+  p.normal = Vec3(0.5, 1.0, 0.2).normalized();
+  p.reducedMass = 0.7;
+  p.gap = 0.001;
+  p.rest = 0.004;
+  p.state.sliding = sliding ? 1 : 0;
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  std::vector<double> x(18), y(18, 0.0);
+  for (double& value : x) value = uniform(random);
+  addPairCouplingProduct({p}, {0, 12}, x.data(), y.data());
+  Mat6 block = Mat6::Zero();
+  Vec6 rhs = Vec6::Zero();
+  addRigidContactTerms({p}, 1, h, &block, &rhs);
+
+  const Mat3 D = p.springH2k() * (sliding ? Mat3(p.normal * p.normal.transpose()) : Mat3::Identity());
+  const Vec3 V(x[12], x[13], x[14]), W(x[15], x[16], x[17]);
+  const Vec3 u = at(x, 0, p.node) - (V + W.cross(p.arm));
+  const Vec3 Du = D * u;
+  EXPECT_LT((at(y, 0, p.node) + D * at(x, 0, p.node) - Du).norm(), 1e-12 * Du.norm());
+  const Vec6 rigidRows = Eigen::Map<const Vec6>(&y[12]) + block * Eigen::Map<const Vec6>(&x[12]);
+  EXPECT_LT((rigidRows.head<3>() + Du).norm(), 1e-12 * Du.norm());
+  EXPECT_LT((rigidRows.tail<3>() + p.arm.cross(Du)).norm(), 1e-12 * Du.norm());
+  for (int32_t n : {0, 1, 3}) EXPECT_EQ(at(y, 0, n), Vec3::Zero());
+  // The known impulse pushes the node out to the rest gap: h k (rest − gap) along the normal.
+  const Vec3 known = p.springH2k() / h * (p.rest - p.gap) * p.normal;
+  EXPECT_LT((rhs.head<3>() + known).norm(), 1e-12 * known.norm());
+  EXPECT_LT((rhs.tail<3>() + p.arm.cross(known)).norm(), 1e-12 * known.norm());
+  // The impulse on the node at given velocities: c − D u.
+  Array<double> nodes(x.begin(), x.begin() + 12), rigid(x.begin() + 12, x.end());
+  const Vec3 impulse = coupledNodeImpulse(p, h, {&nodes, &rigid});
+  EXPECT_LT((impulse - (known - Du)).norm(), 1e-12 * (known.norm() + Du.norm()));
+}
+
+TEST(ContactGroups, ARigidContactsTermsAreItsSpringOnTheRelativeVelocitySticking) { expectRigidTerms(false); }
+TEST(ContactGroups, ARigidContactsTermsAreItsSpringOnTheRelativeVelocitySliding) { expectRigidTerms(true); }
+
 TEST(ContactGroups, UncoupledContactsAndBodiesOutsideTheGroupAddNothing) {
   PairContact uncoupled = contact(0, 1);
   uncoupled.weights = Vec3(0.2, 0.3, 0.5);

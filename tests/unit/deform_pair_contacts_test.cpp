@@ -69,7 +69,7 @@ TEST(PairContactDetection, ATriangleThatReachesARestingNodeWithinTheStepFindsIt)
   TetBody apex = apexTet(gap), rising = floorTet(Vec3(0, speed, 0));
   auto tasks = TaskSystem::create(TaskHooks{}, 1);
   std::vector<PairContact> contacts;
-  findPairContacts({apex.body(kStep, false), rising.body(kStep, false)}, kStep, *tasks, &contacts);
+  findPairContacts({apex.body(kStep, false), rising.body(kStep, false)}, {}, kStep, *tasks, &contacts);
   const PairContact* c = contactOfNode(contacts, 0, 0);
   ASSERT_NE(c, nullptr);
   EXPECT_EQ(c->triangleBody, 1);
@@ -80,7 +80,7 @@ TEST(PairContactDetection, ATriangleThatReachesARestingNodeWithinTheStepFindsIt)
 
   // The same floor at rest is not touched within the step: predicted gap 0.08 > rest 0.01.
   TetBody still = floorTet(Vec3::Zero());
-  findPairContacts({apex.body(kStep, false), still.body(kStep, false)}, kStep, *tasks, &contacts);
+  findPairContacts({apex.body(kStep, false), still.body(kStep, false)}, {}, kStep, *tasks, &contacts);
   EXPECT_EQ(contactOfNode(contacts, 0, 0), nullptr);
 }
 
@@ -90,7 +90,7 @@ TEST(PairContactDetection, ABodysOwnCornersAreNotSelfContacts) {
   TetBody tet = floorTet(Vec3(0.3, -2.0, 0.1));
   auto tasks = TaskSystem::create(TaskHooks{}, 2);
   std::vector<PairContact> contacts;
-  findPairContacts({tet.body(kStep, true)}, kStep, *tasks, &contacts);
+  findPairContacts({tet.body(kStep, true)}, {}, kStep, *tasks, &contacts);
   EXPECT_TRUE(contacts.empty());
 }
 

@@ -118,6 +118,12 @@ TEST(WorldState, TouchingDeformablesContinueBitwise) {
   checkRoundTrip(VP_TEST_DATA_DIR "/scenes/jelly_stack.json", 0.0, 30, 30);
 }
 
+// A dynamic box sliding on a jelly, the two solved as one (deform/contact_group_solve.h): the
+// friction states of the jelly's nodes on the box are in the state.
+TEST(WorldState, AJellyAndTheDynamicBoxOnItContinueBitwise) {
+  checkRoundTrip(VP_TEST_DATA_DIR "/scenes/box_on_jelly.json", 0.0, 20, 30);
+}
+
 TEST(WorldState, FluidsContinueBitwise) { checkRoundTrip(VP_TEST_DATA_DIR "/scenes/fluid_pair.json", 0.0, 20, 20); }
 
 // Under a budget (tick clock: deterministic) fluid steps span frames; the save lands on one

@@ -12,9 +12,9 @@ namespace testutil {
 
 // No frame budget (nothing is cut or paced by the clock) and two workers; null (and a test
 // failure) if the world cannot be made.
-inline std::unique_ptr<World> unbudgetedWorld() {
+inline std::unique_ptr<World> unbudgetedWorld(int workers = 2) {
   WorldConfig config;
-  config.workerCount = 2;
+  config.workerCount = workers;
   config.frameBudgetMs = 0.0;
   std::unique_ptr<World> world;
   EXPECT_EQ(World::create(config, &world), Status::Ok) << lastError();
