@@ -418,7 +418,9 @@ std::vector<RigidContactBody> World::rigidContactBodies() const {
     if (!c.geometry() || !c.massProperties(&r.mass, &r.inertia)) return;
     r.id = PairBodyId{h.index1, h.generation, 1};
     r.geometry = c.geometry();
-    r.centre = c.pose().position;
+    const Pose pose = c.pose();
+    r.centre = pose.position;
+    r.rotation = pose.rotation.toRotationMatrix();
     r.linearVelocity = c.linearVelocity();
     r.angularVelocity = c.angularVelocity();
     r.velocityChange = c.lastStepVelocityChange();
@@ -428,6 +430,19 @@ std::vector<RigidContactBody> World::rigidContactBodies() const {
     rigids.push_back(r);
   });
   return rigids;
+}
+
+void World::addAttachmentSprings(const std::vector<DeformableHandle>& handles, const std::vector<bool>& touchesRigid,
+                                 const std::vector<RigidContactBody>& rigids, std::vector<PairContact>* pairs) const {
+  const int32_t rigidBase = static_cast<int32_t>(handles.size());
+  // An attached node does not also touch the body it is attached to (nor does a held one a collider).
+  pairs->erase(std::remove_if(pairs->begin(), pairs->end(), [&](const PairContact& p) {
+    return p.rigidSide && deformable(handles[p.nodeBody])->attachedTo(p.node, p.triangleBodyId.index1,
+                                                                        p.triangleBodyId.generation);
+  }), pairs->end());
+  for (size_t i = 0; i < handles.size(); ++i)
+    if (touchesRigid[i])
+      deformable(handles[i])->attachmentSprings(static_cast<int32_t>(i), rigids, rigidBase, pairs);
 }
 
 std::vector<PairContact> World::findDeformablePairContacts(const std::vector<DeformableHandle>& handles,
@@ -505,6 +520,7 @@ bool World::stepDeformables(double dt, const Deadline& frame, StepStats* stats) 
   }
   const std::vector<RigidContactBody> rigids = rigidContactBodies();
   std::vector<PairContact> pairContacts = findDeformablePairContacts(handles, touchesRigid, rigids, dt, frame, stats);
+  addAttachmentSprings(handles, touchesRigid, rigids, &pairContacts);
   candidates.resize(handles.size() + rigids.size(), ContactGroupCandidate{true, true, dt});
   const std::vector<std::vector<int>> groups = formContactGroups(served, candidates, &pairContacts);
   // The colliders a body's own contacts meet: not the dynamic bodies it solves with.
@@ -555,7 +571,7 @@ bool World::stepDeformables(double dt, const Deadline& frame, StepStats* stats) 
       input.dt = body.schedule().pendingDt;
       input.pairContacts = &pairContacts;
       input.pairBody = i;
-      input.rigidBodies = &rigids;
+      if (touchesRigid[i]) input.rigidBodies = &rigids;
       input.rigidBodyBase = static_cast<int32_t>(handles.size());
       input.deadline = groupDeadlines.share;
       input.floorDeadline = groupDeadlines.floor;

@@ -130,6 +130,10 @@ class World {
                                                       const std::vector<bool>& touchesRigid,
                                                       const std::vector<RigidContactBody>& rigids, double dt,
                                                       const Deadline& frame, StepStats* stats);
+  // The attachments of the bodies that touch rigid ones to those (DeformableBody::attachmentSprings),
+  // added to the pair contacts; a node's contact with the body it is attached to is dropped.
+  void addAttachmentSprings(const std::vector<DeformableHandle>& handles, const std::vector<bool>& touchesRigid,
+                            const std::vector<RigidContactBody>& rigids, std::vector<PairContact>* pairs) const;
   // The dynamic bodies a deformable's step can solve with it (deform/contact_group_solve.h).
   std::vector<RigidContactBody> rigidContactBodies() const;
   // Deformables push back: each contact reaction of the body's last step acts on its dynamic

@@ -321,6 +321,41 @@ Status DeformableBody::attach(const int32_t* nodes, int64_t count, uint32_t inde
   return Status::Ok;
 }
 
+bool DeformableBody::attachedTo(int32_t node, uint32_t index1, uint32_t generation) const {
+  return std::any_of(attachments_.begin(), attachments_.end(), [&](const Attachment& a) {
+    return a.node == node && a.index1 == index1 && a.generation == generation;
+  });
+}
+
+void DeformableBody::attachmentSprings(int32_t pairBody, const std::vector<RigidContactBody>& rigids,
+                                       int32_t rigidBase, std::vector<PairContact>* out) const {
+  for (const Attachment& a : attachments_) {
+    const auto rigid = std::find_if(rigids.begin(), rigids.end(), [&](const RigidContactBody& r) {
+      return r.id.index1 == a.index1 && r.id.generation == a.generation;
+    });
+    if (rigid == rigids.end()) continue;
+    const Vec3 x(x_[3 * a.node], x_[3 * a.node + 1], x_[3 * a.node + 2]);
+    const Vec3 target = rigid->rotation * a.localOffset + rigid->centre;
+    const double stretch = (target - x).norm();
+    PairContact p;
+    p.nodeBody = pairBody;
+    p.node = a.node;
+    p.triangleBody = rigidBase + static_cast<int32_t>(rigid - rigids.begin());
+    p.triangleBodyId = rigid->id;
+    p.weights = Vec3(1.0, 0.0, 0.0);
+    p.rigidSide = true;
+    p.attachment = true;
+    p.arm = target - rigid->centre;
+    // The spring's push to its rest gap, K (rest − gap) n, is then K (target − x).
+    p.normal = stretch > 0.0 ? Vec3((target - x) / stretch) : Vec3::UnitY();
+    p.gap = -stretch;
+    p.reducedMass = mass_[a.node] * rigid->mass / (mass_[a.node] + rigid->mass);
+    p.nodeVelocity = Vec3(v_[3 * a.node], v_[3 * a.node + 1], v_[3 * a.node + 2]);
+    p.triangleVelocities[0] = rigid->pointVelocity(p.arm);
+    out->push_back(p);
+  }
+}
+
 void DeformableBody::detachAll(uint32_t index1, uint32_t generation) {
   attachments_.erase(std::remove_if(attachments_.begin(), attachments_.end(),
                                     [&](const Attachment& a) { return a.index1 == index1 && a.generation == generation; }),
@@ -673,7 +708,13 @@ void DeformableBody::holdNodes(const DeformableStepInput& in) {
   attachments_.erase(std::remove_if(attachments_.begin(), attachments_.end(),
                                     [&](const Attachment& a) { return !in.collider || !in.collider(a.index1, a.generation); }),
                      attachments_.end());
+  auto solvedWith = [&](const Attachment& a) {
+    return in.rigidBodies && std::any_of(in.rigidBodies->begin(), in.rigidBodies->end(), [&](const RigidContactBody& r) {
+      return r.id.index1 == a.index1 && r.id.generation == a.generation;
+    });
+  };
   for (const Attachment& a : attachments_) {
+    if (solvedWith(a)) continue;  // a spring of the group's solve (attachmentSprings)
     const Pose pose = in.collider(a.index1, a.generation)->pose();
     const Vec3 target = pose.apply(a.localOffset);
     held_.kind[a.node] = NodeConstraints::kFixed;
@@ -774,7 +815,7 @@ void DeformableBody::recordReactions(TaskSystem& tasks, const DeformableStepInpu
     const Vec3 impulse = coupledNodeImpulse(p, h, solved);
     const RigidContactBody& rigid = (*in.rigidBodies)[static_cast<size_t>(p.triangleBody - in.rigidBodyBase)];
     reactions_.push_back({p.triangleBodyId.index1, p.triangleBodyId.generation, rigid.centre + p.arm, -impulse});
-    if (!(impulse.dot(p.normal) > 0.0)) continue;
+    if (p.attachment || !(impulse.dot(p.normal) > 0.0)) continue;
     NodeContact touch;
     touch.node = p.node;
     touch.normal = p.normal;

@@ -70,7 +70,8 @@ struct DeformableStepInput {
   const std::vector<PairContact>* pairContacts = nullptr;
   int32_t pairBody = -1;
   // The dynamic rigid bodies those contacts' rigid sides are: pair body rigidBodyBase + r is
-  // (*rigidBodies)[r].
+  // (*rigidBodies)[r]. When set, the body solves with them: its attachments to them are springs
+  // among the pair contacts (attachmentSprings), not held velocities.
   const std::vector<RigidContactBody>* rigidBodies = nullptr;
   int32_t rigidBodyBase = 0;
 };
@@ -126,6 +127,13 @@ class DeformableBody {
   Status attach(const int32_t* nodes, int64_t count, uint32_t colliderIndex1, uint32_t colliderGeneration,
                 const Collider& collider);
   void detachAll(uint32_t colliderIndex1, uint32_t colliderGeneration);
+  bool attachedTo(int32_t node, uint32_t colliderIndex1, uint32_t colliderGeneration) const;
+  // The attachments to the dynamic bodies `rigids` (pair body rigidBase + r) as springs of a
+  // contact group's solve (PairContact::attachment) over a step of h: each pulls its node to
+  // the point of the body it is attached at, and the body back, so that the attachment pulls
+  // both ways. Its step then leaves those nodes free (DeformableStepInput::rigidBodies).
+  void attachmentSprings(int32_t pairBody, const std::vector<RigidContactBody>& rigids, int32_t rigidBase,
+                         std::vector<PairContact>* out) const;
   int64_t attachmentCount() const { return static_cast<int64_t>(attachments_.size()); }
   // Per node, 1 where the host holds it (pinned or attached), else 0.
   void heldNodes(Array<uint8_t>* out) const;

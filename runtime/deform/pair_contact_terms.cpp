@@ -152,7 +152,7 @@ void updatePairFriction(const std::vector<PairContact>& pairs, int32_t body, dou
                         const PairVelocities& solved, Array<PairFriction>* friction) {
   std::fill(friction->begin(), friction->end(), PairFriction());
   for (const PairContact& p : pairs) {
-    if (p.nodeBody != body) continue;
+    if (p.nodeBody != body || p.attachment) continue;
     // The node's velocity and the triangle point's, as the node's side of the spring saw them.
     const Vec3 v = nodeVector(vNext, p.node);
     const Vec3 point = p.coupled ? solvedVelocities(p, solved).second : p.triangleVelocity();

@@ -86,6 +86,10 @@ struct PairContact {
   Vec3 weights = Vec3::Zero();       // the contact point's barycentric weights (rigid: 1, 0, 0)
   bool rigidSide = false;
   Vec3 arm = Vec3::Zero();           // rigid: the contact point less the body's centre of mass
+  // An attachment of the node to the rigid body (DeformableBody::attachmentSprings), not a
+  // contact: a spring with no rest length that never slides, keeps no friction state and
+  // makes no contact events.
+  bool attachment = false;
   Vec3 normal = Vec3::UnitY();       // out of the triangle (the rigid body)
   double gap = 0.0;                  // (node − contact point)·normal at the frame's start
   double rest = 0.0;                 // the spring's rest gap
@@ -138,6 +142,7 @@ struct RigidContactBody {
   PairBodyId id;                              // the collider's handle (rigid = 1)
   const PreparedCollider* geometry = nullptr;  // at its current pose
   Vec3 centre = Vec3::Zero();                 // of mass: its origin
+  Mat3 rotation = Mat3::Identity();           // its pose's: world = rotation * local + centre
   Vec3 linearVelocity = Vec3::Zero(), angularVelocity = Vec3::Zero();
   // What its next rigid step is expected to add to them besides the deformables' contacts: what
   // its last one did (gravity, its contacts in Bullet, loads).

@@ -641,7 +641,10 @@ VP_API vpStatus vpDeformableApplyImpulse(vpDeformableId deformable, int32_t node
 VP_API vpStatus vpDeformablePin(vpDeformableId deformable, const int32_t* nodes, int32_t count);
 VP_API vpStatus vpDeformableUnpin(vpDeformableId deformable, const int32_t* nodes, int32_t count);
 /* The nodes follow the collider rigidly from their current offset in its frame (until the
- * collider is destroyed). The collider must belong to the same world. */
+ * collider is destroyed). The collider must belong to the same world. A dynamic collider is
+ * pulled back: each attachment is then a stiff spring solved with the body's velocities, so the
+ * two hang on each other (one way only while the deformable steps on a device or at a lowered
+ * rate). */
 VP_API vpStatus vpDeformableAttach(vpDeformableId deformable, const int32_t* nodes, int32_t count,
                                    vpColliderId collider);
 VP_API vpStatus vpDeformableGetRenderMeshSize(vpDeformableId deformable, int32_t* outVertexCount,
