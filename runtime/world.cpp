@@ -326,7 +326,7 @@ void World::stepRigidBodies(double dt, const Deadline& frame, StepStats* stats) 
   std::vector<Collider*> kinematics, loaded;
   colliders_.forEach([&](ColliderHandle, Collider& c) {
     if (c.bodyType() == BodyType::Kinematic) kinematics.push_back(&c);
-    if (c.hasHostLoad()) loaded.push_back(&c);
+    if (c.hasHostLoad() || c.hasContactLoad()) loaded.push_back(&c);
   });
   // The loads of each fluid's last completed step; those of several fluids on one body add
   // up, in the fluids' slot order; a body destroyed since is skipped.
@@ -344,7 +344,10 @@ void World::stepRigidBodies(double dt, const Deadline& frame, StepStats* stats) 
   loaded.erase(std::unique(loaded.begin(), loaded.end()), loaded.end());
   forEachFluidLoad([](Collider& c, const PressureLoad& l) { c.addFluidLoad(l.force, l.torque, l.addedMass); });
   colliders_.forEach([](ColliderHandle, Collider& c) { c.trackVelocity(); });
-  for (Collider* c : loaded) c->prepareFluidLoad(dt, config_.gravity);
+  for (Collider* c : loaded) {
+    c->prepareFluidLoad(dt, config_.gravity);
+    c->prepareContactLoad(dt);  // the deformables' pushes of the last frame
+  }
   const uint64_t refusals = hostAllocationRefusals();
   const CollisionWorld::StepResult result = collision_.step(dt, config_.rigidMaxSubstep, kinematics.data(),
                                                             static_cast<int>(kinematics.size()), loaded.data(),
@@ -365,6 +368,7 @@ void World::stepRigidBodies(double dt, const Deadline& frame, StepStats* stats) 
   for (Collider* c : loaded) {
     c->clearFluidLoad();
     c->clearHostLoad();
+    c->clearContactLoad();
   }
   colliders_.forEach([](ColliderHandle, Collider& c) { c.syncGeometry(); });
   rigid.phase(Phase::Rigid).ms = frame.elapsedMs() - start;
@@ -399,7 +403,7 @@ void World::pushDynamicColliders(const DeformableBody& body) {
   for (const ContactReaction& r : body.contactReactions()) {
     Collider* c = colliders_.get(r.colliderIndex1, r.colliderGeneration);
     if (!c || c->bodyType() != BodyType::Dynamic) continue;
-    c->applyImpulse(r.impulse, (r.point - c->pose().position).cross(r.impulse));
+    c->addContactImpulse(r.impulse, (r.point - c->pose().position).cross(r.impulse));
   }
 }
 

@@ -137,7 +137,8 @@ class World {
   // The dynamic bodies a deformable's step can solve with it (deform/contact_group_solve.h).
   std::vector<RigidContactBody> rigidContactBodies() const;
   // Deformables push back: each contact reaction of the body's last step acts on its dynamic
-  // collider as an impulse at once (equal and opposite to the one on the node).
+  // collider as an impulse (equal and opposite to the one on the node), applied when the next
+  // rigid step begins (Collider::addContactImpulse).
   void pushDynamicColliders(const DeformableBody& body);
   // A deformable's step input without its time step and deadlines: gravity, the pool, the
   // colliders its filter meets and the lookup of its attachments' colliders.

@@ -107,6 +107,7 @@ void Collider::trackVelocity() {
   trackedVelocity_ = v;
   lastSpinChange_ = w - trackedSpin_;
   trackedSpin_ = w;
+  stepContactLinear_ = stepContactAngular_ = Vec3::Zero();
 }
 
 // The fluid's load F was computed from last step's pressure, which holds the reaction to the
@@ -146,8 +147,11 @@ void Collider::prepareFluidLoad(double dt, const Vec3& gravity) {
 void Collider::applyExternalLoads() {
   if (desc_.bodyType != BodyType::Dynamic) return;
   body_->activate(true);
-  body_->applyCentralForce(bt(appliedFluidForce_ + hostForce_));
-  body_->applyTorque(bt(appliedFluidTorque_ + hostTorque_));
+  // The contact load acts where the contacts were, not at the moving body's point: its moment
+  // about the origin, the deformables' reactions' one, is then the same in every sub-step.
+  const Vec3 contactTorque = contactMomentRate_ - pose().position.cross(contactForce_);
+  body_->applyCentralForce(bt(appliedFluidForce_ + hostForce_ + contactForce_));
+  body_->applyTorque(bt(appliedFluidTorque_ + hostTorque_ + contactTorque));
 }
 
 void Collider::addHostLoad(const Vec3& force, const Vec3& torque) {
@@ -178,6 +182,32 @@ void Collider::applyImpulse(const Vec3& linear, const Vec3& angular) {
   body_->applyCentralImpulse(bt(linear));
   body_->applyTorqueImpulse(bt(angular));
   body_->activate(true);
+}
+
+void Collider::addContactImpulse(const Vec3& linear, const Vec3& angular) {
+  if (desc_.bodyType != BodyType::Dynamic) return;
+  contactLinear_ += linear;
+  contactMoment_ += pose().position.cross(linear) + angular;
+}
+
+void Collider::prepareContactLoad(double dt) {
+  stepContactLinear_ = contactLinear_;
+  stepContactAngular_ = contactMoment_ - pose().position.cross(contactLinear_);
+  contactForce_ = contactLinear_ / dt;
+  contactMomentRate_ = contactMoment_ / dt;
+  contactLinear_ = contactMoment_ = Vec3::Zero();
+}
+
+void Collider::clearContactLoad() { contactForce_ = contactMomentRate_ = Vec3::Zero(); }
+
+Vec3 Collider::lastStepVelocityChange() const {
+  const double inverseMass = body_->getInvMass();
+  return linearVelocity() - trackedVelocity_ - inverseMass * stepContactLinear_;
+}
+
+Vec3 Collider::lastStepSpinChange() const {
+  const btVector3 spin = body_->getInvInertiaTensorWorld() * bt(stepContactAngular_);
+  return angularVelocity() - trackedSpin_ - Vec3(spin.x(), spin.y(), spin.z());
 }
 
 void Collider::setProperties(const BodyProperties& p) {
@@ -327,6 +357,8 @@ ColliderState Collider::saveState() const {
   s.targetActive = targetActive_;
   s.hostForce = hostForce_;
   s.hostTorque = hostTorque_;
+  s.contactLinear = contactLinear_;
+  s.contactMoment = contactMoment_;
   s.trackedVelocity = trackedVelocity_;
   s.lastVelocityChange = lastVelocityChange_;
   s.trackedSpin = trackedSpin_;
@@ -366,6 +398,8 @@ void Collider::restoreState(const ColliderState& s) {
   targetActive_ = s.targetActive;
   hostForce_ = s.hostForce;
   hostTorque_ = s.hostTorque;
+  contactLinear_ = s.contactLinear;
+  contactMoment_ = s.contactMoment;
   trackedVelocity_ = s.trackedVelocity;
   lastVelocityChange_ = s.lastVelocityChange;
   trackedSpin_ = s.trackedSpin;

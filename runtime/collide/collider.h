@@ -43,6 +43,17 @@ class Collider {
   void clearHostLoad();
   // An impulse changes the velocity at once: dv = J / m, dw = I^-1 L (L about the origin).
   void applyImpulse(const Vec3& linear, const Vec3& angular);
+  // What the deformables' contacts and attachments did to a dynamic body in a world step: kept
+  // (added up) and spread over the next rigid step as a constant load, as Bullet's own contacts
+  // act over each of its sub-steps: a body resting on a jelly then reads no velocity after a
+  // step instead of bouncing within it.
+  void addContactImpulse(const Vec3& linear, const Vec3& angular);
+  bool hasContactLoad() const { return !contactLinear_.isZero(0.0) || !contactMoment_.isZero(0.0); }
+  // Once per world step, before its sub-steps: the kept impulses become the load of a step of dt.
+  void prepareContactLoad(double dt);
+  void clearContactLoad();  // after the step's sub-steps
+  Vec3 pendingContactImpulse() const { return contactLinear_; }
+  Vec3 pendingContactMoment() const { return contactMoment_; }  // their moment about the world origin
   BodyProperties properties() const { return bodyPropertiesOf(desc_); }
   // A dynamic body's mass and inertia about its centre of mass in the world frame, as Bullet
   // has them now; false when it is not dynamic or its inertia is singular.
@@ -76,9 +87,10 @@ class Collider {
   void clearFluidLoad();
   // At the start of every world step: remembers how much the velocity changed in the last one.
   void trackVelocity();
-  // What the last rigid step changed of the velocities: now less what trackVelocity kept.
-  Vec3 lastStepVelocityChange() const { return linearVelocity() - trackedVelocity_; }
-  Vec3 lastStepSpinChange() const { return angularVelocity() - trackedSpin_; }
+  // What the last rigid step changed of the velocities besides the deformables' contact load:
+  // now less what trackVelocity kept, less that load's impulse.
+  Vec3 lastStepVelocityChange() const;
+  Vec3 lastStepSpinChange() const;
 
   // What evolves (snapshot/actor_states.h): the Bullet body's motion and sleep state, the
   // kinematic driving, pending host loads, the tracked velocities and the geometry's pose.
@@ -105,6 +117,12 @@ class Collider {
   Vec3 appliedFluidForce_ = Vec3::Zero(), appliedFluidTorque_ = Vec3::Zero();
   double fluidAddedMass_ = 0.0;
   Vec3 hostForce_ = Vec3::Zero(), hostTorque_ = Vec3::Zero();
+  // The contact impulses for the next rigid step: their sum and moment about the world origin.
+  Vec3 contactLinear_ = Vec3::Zero(), contactMoment_ = Vec3::Zero();
+  // In this one: the load (force, and moment about the origin per second) and, for
+  // lastStepVelocityChange, its impulses (the angular one about the centre at the step's start).
+  Vec3 contactForce_ = Vec3::Zero(), contactMomentRate_ = Vec3::Zero();
+  Vec3 stepContactLinear_ = Vec3::Zero(), stepContactAngular_ = Vec3::Zero();
   Vec3 trackedVelocity_ = Vec3::Zero(), lastVelocityChange_ = Vec3::Zero();
   Vec3 trackedSpin_ = Vec3::Zero(), lastSpinChange_ = Vec3::Zero();
 };

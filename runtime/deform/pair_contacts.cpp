@@ -135,7 +135,10 @@ void nearestRigid(const PairContactBody& A, int32_t a, int32_t node, const Rigid
   const double phi = signedDistanceBound(c, p);
   if (phi > reach) return;
   const Vec3 n = colliderNormal(c, p);
-  const Vec3 arm = p - phi * n - R.centre;
+  // The spring acts on the body at the node's own position (the body's motion carried there),
+  // not at the node's nearest point on it: its tangential part then keeps the angular momentum
+  // too (a contact is found within a step's reach, not only once it touches).
+  const Vec3 arm = p - R.centre;
   const Vec3 vc = R.pointVelocity(arm);
   const double predicted = phi + h * (vp - vc).dot(n);
   if (predicted >= touchThreshold(A, node) || predicted >= *lowest) return;

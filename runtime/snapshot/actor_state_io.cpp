@@ -67,8 +67,8 @@ void writeColliderState(StateWriter& out, const ColliderState& s) {
   out.value(static_cast<uint8_t>(s.target.has_value()));
   if (s.target) writePose(out, *s.target);
   out.value(static_cast<uint8_t>(s.targetActive));
-  for (const Vec3* v : {&s.hostForce, &s.hostTorque, &s.trackedVelocity, &s.lastVelocityChange, &s.trackedSpin,
-                        &s.lastSpinChange})
+  for (const Vec3* v : {&s.hostForce, &s.hostTorque, &s.contactLinear, &s.contactMoment, &s.trackedVelocity,
+                        &s.lastVelocityChange, &s.trackedSpin, &s.lastSpinChange})
     writeVec(out, *v);
   out.value(static_cast<uint8_t>(s.hasGeometry));
   if (s.hasGeometry) {
@@ -96,8 +96,8 @@ void readColliderState(StateReader& in, bool hasGeometry, ColliderState* s) {
   s->kinematicAngular = readVec(in, "a kinematic velocity");
   if (in.value<uint8_t>() != 0) s->target = readPose(in, "a kinematic target");
   s->targetActive = in.value<uint8_t>() != 0;
-  for (Vec3* v : {&s->hostForce, &s->hostTorque, &s->trackedVelocity, &s->lastVelocityChange, &s->trackedSpin,
-                  &s->lastSpinChange})
+  for (Vec3* v : {&s->hostForce, &s->hostTorque, &s->contactLinear, &s->contactMoment, &s->trackedVelocity,
+                  &s->lastVelocityChange, &s->trackedSpin, &s->lastSpinChange})
     *v = readVec(in, "a rigid body's load or velocity");
   s->hasGeometry = in.value<uint8_t>() != 0;
   in.expect("collider's exact geometry (0 or 1)", s->hasGeometry, hasGeometry);

@@ -44,6 +44,7 @@ struct ColliderState {
   std::optional<Pose> target;
   bool targetActive = false;
   Vec3 hostForce = Vec3::Zero(), hostTorque = Vec3::Zero();
+  Vec3 contactLinear = Vec3::Zero(), contactMoment = Vec3::Zero();  // pending contact impulses
   Vec3 trackedVelocity = Vec3::Zero(), lastVelocityChange = Vec3::Zero();
   Vec3 trackedSpin = Vec3::Zero(), lastSpinChange = Vec3::Zero();
   // The pose and velocity its exact geometry was last brought to (colliders with one).

@@ -53,6 +53,11 @@ struct ZeroGravityScene {
       p += body.nodeMasses()[i] * Vec3(body.velocities()[3 * i], body.velocities()[3 * i + 1], body.velocities()[3 * i + 2]);
     return p;
   }
+  // The ball's momentum with the impulses the last step left for the next rigid step.
+  Vec3 ballMomentum() {
+    const Collider& c = *world->collider(ball);
+    return ballMass * c.linearVelocity() + c.pendingContactImpulse();
+  }
   double jellyMass() {
     double m = 0.0;
     for (double mi : world->deformable(jelly)->nodeMasses()) m += mi;
@@ -65,8 +70,8 @@ TEST(DeformablePushesRigid, AJellyHittingABallConservesMomentumAndSendsItOff) {
   const Vec3 before = s.jellyMomentum();
   ASSERT_NEAR(before.x(), 3.0 * s.jellyMass(), 1e-9 * before.norm());
   for (int i = 0; i < 90; ++i) ASSERT_EQ(s.world->step(1.0 / 60.0), Status::Ok);
-  const Vec3 ballVelocity = s.world->collider(s.ball)->linearVelocity();
-  const Vec3 after = s.jellyMomentum() + s.ballMass * ballVelocity;
+  const Vec3 ballVelocity = s.ballMomentum() / s.ballMass;
+  const Vec3 after = s.jellyMomentum() + s.ballMomentum();
   std::printf("jelly hits a ball: the ball at %.3f m/s, momentum %.4f -> %.4f (relative change %.1e)\n",
               ballVelocity.x(), before.x(), after.x(), (after - before).norm() / before.norm());
   EXPECT_LT((after - before).norm(), 0.02 * before.norm()) << "after " << after.transpose();
@@ -106,27 +111,45 @@ TEST(DeformablePushesRigid, AnOffCentreHitConservesAngularMomentumAndSpinsTheBod
     }
     return L;
   };
-  auto cubeAngularMomentum = [&] {
+  // The cube's, without and with the moment of the impulses the jelly's last step left for it.
+  auto cubeOwnAngularMomentum = [&] {
     const Collider& c = *s.world->collider(s.ball);
     const double I = s.ballMass * 2.0 * 0.15 * 0.15 / 3.0;  // a cube's, about any axis through its centre
     return Vec3(s.ballMass * c.pose().position.cross(c.linearVelocity()) + I * c.angularVelocity());
   };
+  auto cubeAngularMomentum = [&] { return Vec3(cubeOwnAngularMomentum() + s.world->collider(s.ball)->pendingContactMoment()); };
   const Vec3 linearBefore = s.jellyMomentum(), angularBefore = jellyAngularMomentum() + cubeAngularMomentum();
-  for (int i = 0; i < 60; ++i) ASSERT_EQ(s.world->step(1.0 / 60.0), Status::Ok);
+  // Frame by frame, the cube's rigid step changes its angular momentum by the moment of the
+  // reactions the jelly's contacts recorded in the frame before (Bullet in single precision).
+  Vec3 reactionMoment = Vec3::Zero();
+  double largestMiss = 0.0, largestChange = 0.0;
+  for (int i = 0; i < 60; ++i) {
+    const Vec3 own = cubeOwnAngularMomentum();
+    ASSERT_EQ(s.world->step(1.0 / 60.0), Status::Ok);
+    const Vec3 change = cubeOwnAngularMomentum() - own;
+    largestMiss = std::max(largestMiss, (change - reactionMoment).norm());
+    largestChange = std::max(largestChange, change.norm());
+    reactionMoment = Vec3::Zero();
+    for (const ContactReaction& r : s.world->deformable(s.jelly)->contactReactions())
+      reactionMoment += r.point.cross(r.impulse);
+  }
+  EXPECT_LT(largestMiss, 1e-4 * largestChange);
   const Collider& cube = *s.world->collider(s.ball);
-  const Vec3 linearAfter = s.jellyMomentum() + s.ballMass * cube.linearVelocity();
+  const Vec3 linearAfter = s.jellyMomentum() + s.ballMomentum();
   const Vec3 cubeL = cubeAngularMomentum();
   const Vec3 angularAfter = jellyAngularMomentum() + cubeL;
   std::printf("off-centre hit: cube at %.3f m/s, spin %.3f rad/s; angular momentum about the origin %.5f -> %.5f "
-              "(z), the cube's %.5f\n",
+              "(z), the cube's %.5f; a frame's exchange missed by at most %.1e of %.3f\n",
               cube.linearVelocity().norm(), cube.angularVelocity().norm(), angularBefore.z(), angularAfter.z(),
-              cubeL.z());
+              cubeL.z(), largestMiss, largestChange);
   EXPECT_GT(cube.linearVelocity().x(), 1.0);
   // The push below its centre turns it: positive z spin for a push along +x under the centre.
   EXPECT_GT(cube.angularVelocity().z(), 0.1);
   EXPECT_LT((linearAfter - linearBefore).norm(), 0.02 * linearBefore.norm());
-  // Conserved within 2% of what the cube took.
-  EXPECT_LT((angularAfter - angularBefore).norm(), 0.02 * cubeL.norm());
+  // The cube takes the moment of the contacts' reactions exactly (above), and they act at the
+  // nodes. The jelly's own steps keep it less well: their linearized corotated stiffness exerts
+  // a small net moment while it is squashed. Within 3% of what the cube took in all.
+  EXPECT_LT((angularAfter - angularBefore).norm(), 0.03 * cubeL.norm());
 }
 
 // A world under gravity with a static ground plane at y = 0.
@@ -235,11 +258,13 @@ struct BoxOnPinnedJelly {
     double fastest = 0.0;  // the box's largest speed over a frame in the last half second (m/s)
     double drift = 0.0;    // how far it moved in the last half second (m)
     double gap = 0.0;      // its bottom less the jelly's highest node at the end (m)
+    double readSpeed = 0.0;    // the speed a host reads after the last step (m/s)
     int begins = 0, ends = 0;  // contact events between the jelly and the box
+    int frames = 0;
     void print(const char* box) const {
-      std::printf("%s on a pinned jelly after 3 s: over the last 0.5 s at most %.4f m/s, moved %.2e m; its bottom "
-                  "%.4f m from the jelly's top; %d contact begin(s), %d end(s)\n",
-                  box, fastest, drift, gap, begins, ends);
+      std::printf("%s on a pinned jelly after %.0f s: over the last 0.5 s at most %.4f m/s, moved %.2e m; its bottom "
+                  "%.4f m from the jelly's top; read speed %.4f m/s; %d contact begin(s), %d end(s)\n",
+                  box, frames / 60.0, fastest, drift, gap, readSpeed, begins, ends);
     }
   };
   // Its speed is read from its motion over each frame: the velocity a host reads after a step
@@ -260,7 +285,9 @@ struct BoxOnPinnedJelly {
       before = now;
     }
     const Vec3 end = world->collider(box)->pose().position;
+    rest.frames = frames;
     rest.drift = (end - halfSecondAgo).norm();
+    rest.readSpeed = world->collider(box)->linearVelocity().norm();
     rest.gap = end.y() - half.y() - highestY(*world->deformable(jelly));
     return rest;
   }
@@ -278,20 +305,23 @@ TEST(DeformablePushesRigid, ABoxDroppedOnAPinnedJellyIsStopped) {
   EXPECT_LT(rest.fastest, 0.05);
   EXPECT_LT(rest.drift, 1e-3);
   EXPECT_NEAR(rest.gap, 0.0, 0.01);
+  // What a host reads is the velocity it moved with (the jelly's push waits for the next step).
+  EXPECT_LT(rest.readSpeed, 0.01);
   // The contacts solved with the box report its touching like any collider's: it landed and stayed.
   EXPECT_GE(rest.begins, 1);
   EXPECT_EQ(rest.begins, rest.ends + 1);
 }
 
-// A 0.2 m box has its edges right over the top nodes at ±0.1 m: it is stopped and stays on top,
-// but does not come to rest. The nodes beside its edges touch them with a normal that turns a
-// right angle over a fraction of a millimetre, taken at the frame's start, and the box jitters
-// (0.1-0.4 rad/s) and creeps (millimetres a second; docs/choices.md, "Contacts").
-TEST(DeformablePushesRigid, ABoxWhoseEdgesLieOverNodesIsStoppedButJitters) {
+// A 0.2 m box has its edges right over the top nodes at ±0.1 m. The nodes beside its edges touch
+// them with a normal that turns a right angle over a fraction of a millimetre: the box sinks
+// between them (2.4 cm), rocks and slides (up to 0.8 rad/s) and rests only after about 4 s
+// (docs/choices.md, "Contacts").
+TEST(DeformablePushesRigid, ABoxWhoseEdgesLieOverNodesRestsLater) {
   BoxOnPinnedJelly scene(2.0, 0.1, 0.3);
-  const BoxOnPinnedJelly::Rest rest = scene.run(180);
+  const BoxOnPinnedJelly::Rest rest = scene.run(300);
   rest.print("0.2 m box");
   EXPECT_LT(rest.fastest, 0.05);
+  EXPECT_LT(rest.drift, 1e-3);
   EXPECT_NEAR(rest.gap, 0.0, 0.01);
 }
 
@@ -373,14 +403,16 @@ TEST(DeformablePushesRigid, AJellyDragsTheBallAttachedToItAndKeepsTheMomentum) {
   ASSERT_EQ(body.attach(face.data(), static_cast<int64_t>(face.size()), s.ball.index1, s.ball.generation,
                         *s.world->collider(s.ball)),
             Status::Ok);
-  const Vec3 before = s.jellyMomentum() + s.ballMass * s.world->collider(s.ball)->linearVelocity();
+  const Vec3 before = s.jellyMomentum() + s.ballMomentum();
   for (int i = 0; i < 60; ++i) ASSERT_EQ(s.world->step(1.0 / 60.0), Status::Ok);
-  const Vec3 ball = s.world->collider(s.ball)->linearVelocity();
-  const Vec3 after = s.jellyMomentum() + s.ballMass * ball;
+  const Vec3 ball = s.ballMomentum() / s.ballMass;
+  const Vec3 after = s.jellyMomentum() + s.ballMomentum();
   const double common = before.x() / (s.jellyMass() + s.ballMass);
-  std::printf("jelly drags a ball: the ball at %.4f m/s, the common speed %.4f; momentum %.4f -> %.4f\n", ball.x(),
-              common, before.x(), after.x());
-  EXPECT_LT((after - before).norm(), 1e-6 * before.norm());
+  std::printf("jelly drags a ball: the ball at %.4f m/s, the common speed %.4f; momentum %.4f -> %.4f (%.1e)\n",
+              ball.x(), common, before.x(), after.x(), (after - before).norm() / before.norm());
+  // Bullet keeps the ball's velocity in single precision (6e-8 relative), and the load changes
+  // it twice a frame.
+  EXPECT_LT((after - before).norm(), 1e-4 * before.norm());
   EXPECT_NEAR(ball.x(), common, 0.05 * common);
 }
 
