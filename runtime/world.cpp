@@ -490,6 +490,51 @@ void World::stepGroup(const std::vector<DeformableHandle>& handles, const std::v
   }
 }
 
+World::FrameContacts World::findFrameContacts(const std::vector<DeformableHandle>& handles,
+                                              const std::vector<int>& served, const std::vector<bool>& due,
+                                              double dt, const Deadline& frame, StepStats* stats) {
+  FrameContacts contacts;
+  std::vector<ContactGroupCandidate> candidates(handles.size());
+  // A body solves with the dynamic bodies it touches when it steps this frame's dt on the CPU
+  // (Bullet steps them by dt); otherwise they are colliders with its contacts' reactions.
+  contacts.touchesRigid.resize(handles.size());
+  for (size_t i = 0; i < handles.size(); ++i) {
+    DeformableBody& body = *deformable(handles[i]);
+    candidates[i] = ContactGroupCandidate{static_cast<bool>(due[i]), !body.solvesOnDevice(), body.schedule().pendingDt};
+    contacts.touchesRigid[i] = candidates[i].steps && candidates[i].onCpu && candidates[i].dt == dt;
+  }
+  if (std::find(contacts.touchesRigid.begin(), contacts.touchesRigid.end(), true) != contacts.touchesRigid.end())
+    contacts.rigids = rigidContactBodies();
+  contacts.pairs = findDeformablePairContacts(handles, contacts.touchesRigid, contacts.rigids, dt, frame, stats);
+  addAttachmentSprings(handles, contacts.touchesRigid, contacts.rigids, &contacts.pairs);
+  candidates.resize(handles.size() + contacts.rigids.size(), ContactGroupCandidate{true, true, dt});
+  contacts.groups = formContactGroups(served, candidates, &contacts.pairs);
+  return contacts;
+}
+
+DeformableStepInput World::frameStepInput(const std::vector<DeformableHandle>& handles, int i,
+                                          const std::vector<Filtered<ContactCollider>>& colliders,
+                                          const FrameContacts& contacts) const {
+  DeformableBody& body = *deformable(handles[static_cast<size_t>(i)]);
+  DeformableStepInput input = deformableStepInput(body, colliders);
+  input.dt = body.schedule().pendingDt;
+  input.pairContacts = &contacts.pairs;
+  input.pairBody = i;
+  if (!contacts.touchesRigid[static_cast<size_t>(i)]) return input;
+  // Its own contacts do not meet the dynamic bodies it solves with: its pair contacts hold those.
+  const std::vector<RigidContactBody>& rigids = contacts.rigids;
+  input.colliders.erase(std::remove_if(input.colliders.begin(), input.colliders.end(),
+                                       [&](const ContactCollider& c) {
+                                         return std::any_of(rigids.begin(), rigids.end(), [&](const RigidContactBody& r) {
+                                           return r.id.index1 == c.index1 && r.id.generation == c.generation;
+                                         });
+                                       }),
+                        input.colliders.end());
+  input.rigidBodies = &rigids;
+  input.rigidBodyBase = static_cast<int32_t>(handles.size());
+  return input;
+}
+
 bool World::stepDeformables(double dt, const Deadline& frame, StepStats* stats) {
   const std::vector<Filtered<ContactCollider>> contactColliders = deformableContactColliders(colliders_);
   const std::vector<DeformableHandle> handles = deformableHandles();
@@ -511,28 +556,12 @@ bool World::stepDeformables(double dt, const Deadline& frame, StepStats* stats) 
     if (due[i]) served.push_back(i);
   std::vector<ActorStats> actors(handles.size());
   std::vector<FramePlan::DeformableDeadlines> deadlines(handles.size());
-  std::vector<ContactGroupCandidate> candidates(handles.size());
-  // A body solves with the dynamic bodies it touches when it steps this frame's dt on the CPU
-  // (Bullet steps them by dt); otherwise they are colliders with its contacts' reactions.
-  std::vector<bool> touchesRigid(handles.size());
   for (size_t i = 0; i < handles.size(); ++i) {
     actors[i] = actorStats(ActorKind::Deformable, handles[i].index1, handles[i].generation, priorities[i], 0.0);
     actors[i].interval = planned[i].schedule->interval;
-    DeformableBody& body = *deformable(handles[i]);
-    candidates[i] = ContactGroupCandidate{static_cast<bool>(due[i]), !body.solvesOnDevice(), body.schedule().pendingDt};
-    touchesRigid[i] = candidates[i].steps && candidates[i].onCpu && candidates[i].dt == dt;
   }
-  const std::vector<RigidContactBody> rigids = rigidContactBodies();
-  std::vector<PairContact> pairContacts = findDeformablePairContacts(handles, touchesRigid, rigids, dt, frame, stats);
-  addAttachmentSprings(handles, touchesRigid, rigids, &pairContacts);
-  candidates.resize(handles.size() + rigids.size(), ContactGroupCandidate{true, true, dt});
-  const std::vector<std::vector<int>> groups = formContactGroups(served, candidates, &pairContacts);
-  // The colliders a body's own contacts meet: not the dynamic bodies it solves with.
-  auto solvedWith = [&](const ContactCollider& c) {
-    return std::any_of(rigids.begin(), rigids.end(), [&](const RigidContactBody& r) {
-      return r.id.index1 == c.index1 && r.id.generation == c.generation;
-    });
-  };
+  const FrameContacts contacts = findFrameContacts(handles, served, due, dt, frame, stats);
+  const std::vector<std::vector<int>>& groups = contacts.groups;
   // What the groups served after each are expected to need (infinite while one of their
   // bodies has not been measured: then the shares are equal).
   std::vector<double> laterFloorsMs(groups.size() + 1, 0.0);
@@ -568,15 +597,7 @@ bool World::stepDeformables(double dt, const Deadline& frame, StepStats* stats) 
       DeformableBody& body = *deformable(handles[i]);
       deadlines[i] = groupDeadlines;
       DeformableStepInput& input = inputs[m];
-      input = deformableStepInput(body, contactColliders);
-      if (touchesRigid[i])
-        input.colliders.erase(std::remove_if(input.colliders.begin(), input.colliders.end(), solvedWith),
-                              input.colliders.end());
-      input.dt = body.schedule().pendingDt;
-      input.pairContacts = &pairContacts;
-      input.pairBody = i;
-      if (touchesRigid[i]) input.rigidBodies = &rigids;
-      input.rigidBodyBase = static_cast<int32_t>(handles.size());
+      input = frameStepInput(handles, i, contactColliders, contacts);
       input.deadline = groupDeadlines.share;
       input.floorDeadline = groupDeadlines.floor;
       if (fluids_.size() > 0) {  // a world without fluids pays nothing for them
@@ -604,7 +625,7 @@ bool World::stepDeformables(double dt, const Deadline& frame, StepStats* stats) 
     bodies.push_back(deformable(handles[i]));
     steppedDt.push_back(actors[i].simulatedDt);
   }
-  settlePairContacts(pairContacts, bodies, steppedDt);
+  settlePairContacts(contacts.pairs, bodies, steppedDt);
   std::vector<bool> missed(handles.size(), false);
   for (size_t i = 0; i < handles.size(); ++i) {
     ActorSchedule& s = *planned[i].schedule;

@@ -123,6 +123,22 @@ class World {
   // into handles; inputs by member, actors by handle.
   void stepGroup(const std::vector<DeformableHandle>& handles, const std::vector<int>& members,
                  const std::vector<DeformableStepInput>& inputs, ActorStats* actors);
+  // The deformables' contacts of a frame, found once at its start for all their steps: which
+  // bodies solve with the dynamic rigid bodies they touch, those bodies, the pair contacts
+  // (attachment springs included) and the groups that solve together (deform/contact_groups.h).
+  struct FrameContacts {
+    std::vector<bool> touchesRigid;  // by handle
+    std::vector<RigidContactBody> rigids;
+    std::vector<PairContact> pairs;
+    std::vector<std::vector<int>> groups;
+  };
+  FrameContacts findFrameContacts(const std::vector<DeformableHandle>& handles, const std::vector<int>& served,
+                                  const std::vector<bool>& due, double dt, const Deadline& frame,
+                                  StepStats* stats);
+  // Body handles[i]'s step input in this frame, bar its deadlines.
+  DeformableStepInput frameStepInput(const std::vector<DeformableHandle>& handles, int i,
+                                     const std::vector<Filtered<ContactCollider>>& colliders,
+                                     const FrameContacts& contacts) const;
   // The deformables' contacts with each other and themselves at the frame's start, found once
   // for all their steps (each reads the others as they were then: the same for any worker count),
   // and, for those whose touchesRigid is set, with the dynamic rigid bodies `rigids`.

@@ -172,6 +172,23 @@ void findPairContacts(const std::vector<PairContactBody>& bodies, const std::vec
   std::vector<int64_t> first(bodies.size() + 1, 0);
   for (size_t a = 0; a < bodies.size(); ++a) first[a + 1] = first[a] + static_cast<int64_t>(bodies[a].surfaceNodes->size());
   std::vector<PairContact> slots(static_cast<size_t>(first.back()));
+  // The rigid bodies each body's surface can reach this step (its boxes hold its motion; the
+  // rigid bodies' is added), so that a node visits only those.
+  std::vector<std::vector<int32_t>> nearRigids(bodies.size());
+  for (size_t a = 0; a < bodies.size(); ++a) {
+    const PairContactBody& A = bodies[a];
+    if (!A.touchesRigid) continue;
+    const Vec3 lo = A.surface->bvh().lo(), hi = A.surface->bvh().hi();
+    for (size_t r = 0; r < rigids.size(); ++r) {
+      const RigidContactBody& R = rigids[r];
+      const double reach = kPairContactKeep * A.rest + 1e-9 +
+                           h * (R.linearVelocity.norm() + R.angularVelocity.norm() * R.geometry->boundRadius);
+      const Aabb& b = R.geometry->bounds;
+      if (A.filter.meets(R.filter) && ((lo - Vec3::Constant(reach)).array() <= b.hi.array()).all() &&
+          ((hi + Vec3::Constant(reach)).array() >= b.lo.array()).all())
+        nearRigids[a].push_back(static_cast<int32_t>(r));
+    }
+  }
   parallelFor(tasks, first.back(), 64, [&](int64_t begin, int64_t end) {
     int32_t a = static_cast<int32_t>(std::upper_bound(first.begin(), first.end(), begin) - first.begin()) - 1;
     for (int64_t s = begin; s < end; ++s) {
@@ -183,11 +200,9 @@ void findPairContacts(const std::vector<PairContactBody>& bodies, const std::vec
       for (int32_t b = 0; b < deformables; ++b)
         if (b == a ? A.selfCollision : A.filter.meets(bodies[b].filter))
           nearestTriangle(bodies, a, node, b, h, &lowest, &slots[static_cast<size_t>(s)]);
-      if (!A.touchesRigid) continue;
-      for (size_t r = 0; r < rigids.size(); ++r)
-        if (A.filter.meets(rigids[r].filter))
-          nearestRigid(A, a, node, rigids[r], deformables + static_cast<int32_t>(r), h, &lowest,
-                       &slots[static_cast<size_t>(s)]);
+      for (int32_t r : nearRigids[static_cast<size_t>(a)])
+        nearestRigid(A, a, node, rigids[static_cast<size_t>(r)], deformables + r, h, &lowest,
+                     &slots[static_cast<size_t>(s)]);
     }
   });
   for (PairContact& c : slots) {
