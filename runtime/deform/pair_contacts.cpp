@@ -214,8 +214,8 @@ void findPairContacts(const std::vector<PairContactBody>& bodies, const std::vec
     } else {
       // A node that arrives slipping slides (with no friction until it has a normal impulse)
       // and sticks once the slip stops: a fresh stick spring would stop its slip within the
-      // step, whatever Coulomb's cone allows.
-      c.state.sliding = c.startSlip().norm() >= kPairArrivingSlipSpeed ? 1 : 0;
+      // step, whatever Coulomb's cone allows. Without friction nothing sticks.
+      c.state.sliding = c.friction <= 0.0 || c.startSlip().norm() >= kPairArrivingSlipSpeed ? 1 : 0;
     }
     out->push_back(c);
   }
