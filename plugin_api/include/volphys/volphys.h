@@ -460,6 +460,8 @@ VP_API vpStatus vpColliderIsValid(vpColliderId collider); /* Ok or InvalidId */
 VP_API vpStatus vpColliderGetPose(vpColliderId collider, vpTransform* outPose);
 /* Teleports the body (any type). Clears a pending kinematic target. */
 VP_API vpStatus vpColliderSetPose(vpColliderId collider, const vpTransform* pose);
+/* The velocity the body moved with in the last step. What deformables pushed on a dynamic body
+ * in that step acts on it over the next one, as their contacts' load. */
 VP_API vpStatus vpColliderGetVelocity(vpColliderId collider, vpVec3* outLinear, vpVec3* outAngular);
 /* Dynamic: sets the velocity. Kinematic: the body moves with this velocity each step until
  * changed or a target is set. Static: InvalidArgument. */
