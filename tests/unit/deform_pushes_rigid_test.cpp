@@ -294,10 +294,9 @@ struct BoxOnPinnedJelly {
 };
 
 // A 2 kg box dropped from 0.3 m onto the pinned jelly: the jelly stops it and carries it, the
-// box at rest on its top. (With the box at its frame-start velocity in the jelly's step and the
-// reaction sent after, the box bounced without losing height and fell between the top nodes:
-// the box's velocities are unknowns of the jelly's solve now.) A 0.3 m box rests on the top's
-// nine middle nodes.
+// box at rest on its top (the box's velocities are unknowns of the jelly's solve, so its light
+// mass cannot bounce off the jelly's stiffness). A 0.3 m box rests on the top's nine middle
+// nodes.
 TEST(DeformablePushesRigid, ABoxDroppedOnAPinnedJellyIsStopped) {
   BoxOnPinnedJelly scene(2.0, 0.15, 0.3);
   const BoxOnPinnedJelly::Rest rest = scene.run(180);
@@ -314,8 +313,8 @@ TEST(DeformablePushesRigid, ABoxDroppedOnAPinnedJellyIsStopped) {
 
 // A 0.2 m box has its edges right over the top nodes at ±0.1 m. The nodes beside its edges touch
 // them with a normal that turns a right angle over a fraction of a millimetre: the box sinks
-// between them (2.4 cm), rocks and slides (up to 0.8 rad/s) and rests only after about 4 s
-// (docs/choices.md, "Contacts").
+// between them, rocks and slides, and rests only after some seconds (docs/choices.md, "Contacts",
+// has the figures).
 TEST(DeformablePushesRigid, ABoxWhoseEdgesLieOverNodesRestsLater) {
   BoxOnPinnedJelly scene(2.0, 0.1, 0.3);
   const BoxOnPinnedJelly::Rest rest = scene.run(300);
@@ -325,11 +324,9 @@ TEST(DeformablePushesRigid, ABoxWhoseEdgesLieOverNodesRestsLater) {
   EXPECT_NEAR(rest.gap, 0.0, 0.01);
 }
 
-// Attachments to a dynamic body pull both ways. A box of 0.5, 2 or 10 kg hangs from a jelly pinned at its
-// top, its top face attached to the jelly's bottom nodes: the box comes to rest, the
-// attachments carry its weight and the nodes stay on the box. (One way, the box fell away
-// from the jelly; sent back as the constraint's impulse after the step, a 0.5 or 2 kg box flew
-// off and a 10 kg one chattered.)
+// Attachments to a dynamic body pull both ways. A box of 0.5, 2 or 10 kg hangs from a jelly
+// pinned at its top, its top face attached to the jelly's bottom nodes: the box comes to rest,
+// the attachments carry its weight and the nodes stay on the box.
 void expectHangingBoxComesToRest(double mass) {
   SCOPED_TRACE(mass);
   std::unique_ptr<World> world = testutil::unbudgetedWorld();
