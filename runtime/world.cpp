@@ -523,12 +523,8 @@ DeformableStepInput World::frameStepInput(const std::vector<DeformableHandle>& h
   if (!contacts.touchesRigid[static_cast<size_t>(i)]) return input;
   // Its own contacts do not meet the dynamic bodies it solves with: its pair contacts hold those.
   const std::vector<RigidContactBody>& rigids = contacts.rigids;
-  input.colliders.erase(std::remove_if(input.colliders.begin(), input.colliders.end(),
-                                       [&](const ContactCollider& c) {
-                                         return std::any_of(rigids.begin(), rigids.end(), [&](const RigidContactBody& r) {
-                                           return r.id.index1 == c.index1 && r.id.generation == c.generation;
-                                         });
-                                       }),
+  auto solvedWith = [&](const ContactCollider& c) { return findRigidBody(rigids, c.index1, c.generation) != nullptr; };
+  input.colliders.erase(std::remove_if(input.colliders.begin(), input.colliders.end(), solvedWith),
                         input.colliders.end());
   input.rigidBodies = &rigids;
   input.rigidBodyBase = static_cast<int32_t>(handles.size());

@@ -330,17 +330,15 @@ bool DeformableBody::attachedTo(int32_t node, uint32_t index1, uint32_t generati
 void DeformableBody::attachmentSprings(int32_t pairBody, const std::vector<RigidContactBody>& rigids,
                                        int32_t rigidBase, std::vector<PairContact>* out) const {
   for (const Attachment& a : attachments_) {
-    const auto rigid = std::find_if(rigids.begin(), rigids.end(), [&](const RigidContactBody& r) {
-      return r.id.index1 == a.index1 && r.id.generation == a.generation;
-    });
-    if (rigid == rigids.end()) continue;
+    const RigidContactBody* rigid = findRigidBody(rigids, a.index1, a.generation);
+    if (!rigid) continue;
     const Vec3 x(x_[3 * a.node], x_[3 * a.node + 1], x_[3 * a.node + 2]);
     const Vec3 target = rigid->rotation * a.localOffset + rigid->centre;
     const double stretch = (target - x).norm();
     PairContact p;
     p.nodeBody = pairBody;
     p.node = a.node;
-    p.triangleBody = rigidBase + static_cast<int32_t>(rigid - rigids.begin());
+    p.triangleBody = rigidBase + static_cast<int32_t>(rigid - rigids.data());
     p.triangleBodyId = rigid->id;
     p.weights = Vec3(1.0, 0.0, 0.0);
     p.rigidSide = true;
@@ -709,9 +707,7 @@ void DeformableBody::holdNodes(const DeformableStepInput& in) {
                                     [&](const Attachment& a) { return !in.collider || !in.collider(a.index1, a.generation); }),
                      attachments_.end());
   auto solvedWith = [&](const Attachment& a) {
-    return in.rigidBodies && std::any_of(in.rigidBodies->begin(), in.rigidBodies->end(), [&](const RigidContactBody& r) {
-      return r.id.index1 == a.index1 && r.id.generation == a.generation;
-    });
+    return in.rigidBodies && findRigidBody(*in.rigidBodies, a.index1, a.generation);
   };
   for (const Attachment& a : attachments_) {
     if (solvedWith(a)) continue;  // a spring of the group's solve (attachmentSprings)

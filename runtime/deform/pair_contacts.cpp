@@ -164,6 +164,13 @@ void nearestRigid(const PairContactBody& A, int32_t a, int32_t node, const Rigid
 
 }  // namespace
 
+const RigidContactBody* findRigidBody(const std::vector<RigidContactBody>& rigids, uint32_t index1,
+                                      uint32_t generation) {
+  for (const RigidContactBody& r : rigids)
+    if (r.id.index1 == index1 && r.id.generation == generation) return &r;
+  return nullptr;
+}
+
 void findPairContacts(const std::vector<PairContactBody>& bodies, const std::vector<RigidContactBody>& rigids,
                       double h, TaskSystem& tasks, std::vector<PairContact>* out) {
   out->clear();

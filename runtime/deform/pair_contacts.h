@@ -154,6 +154,10 @@ struct RigidContactBody {
   Vec3 pointVelocity(const Vec3& arm) const { return linearVelocity + angularVelocity.cross(arm); }
 };
 
+// The rigid body of `rigids` with the collider handle (index1, generation), or null.
+const RigidContactBody* findRigidBody(const std::vector<RigidContactBody>& rigids, uint32_t index1,
+                                      uint32_t generation);
+
 // Every surface node's nearest touching triangle (the lowest predicted gap over the step h)
 // among the bodies its filter meets and, with selfCollision, its own, or, for a body whose
 // touchesRigid is set, the nearest rigid body's surface if that is nearer; in body, node order
