@@ -403,7 +403,7 @@ void World::pushDynamicColliders(const DeformableBody& body) {
   for (const ContactReaction& r : body.contactReactions()) {
     Collider* c = colliders_.get(r.colliderIndex1, r.colliderGeneration);
     if (!c || c->bodyType() != BodyType::Dynamic) continue;
-    c->addContactImpulse(r.impulse, (r.point - c->pose().position).cross(r.impulse));
+    c->addContactImpulse(r.impulse, r.point);
   }
 }
 
@@ -439,7 +439,8 @@ std::vector<RigidContactBody> World::rigidContactBodies() const {
 void World::addAttachmentSprings(const std::vector<DeformableHandle>& handles, const std::vector<bool>& touchesRigid,
                                  const std::vector<RigidContactBody>& rigids, std::vector<PairContact>* pairs) const {
   const int32_t rigidBase = static_cast<int32_t>(handles.size());
-  // An attached node does not also touch the body it is attached to (nor does a held one a collider).
+  // An attached node does not also touch the body it is attached to, as a held node's collider
+  // contacts ignore its collider.
   pairs->erase(std::remove_if(pairs->begin(), pairs->end(), [&](const PairContact& p) {
     return p.rigidSide && deformable(handles[p.nodeBody])->attachedTo(p.node, p.triangleBodyId.index1,
                                                                         p.triangleBodyId.generation);

@@ -184,10 +184,10 @@ void Collider::applyImpulse(const Vec3& linear, const Vec3& angular) {
   body_->activate(true);
 }
 
-void Collider::addContactImpulse(const Vec3& linear, const Vec3& angular) {
+void Collider::addContactImpulse(const Vec3& impulse, const Vec3& point) {
   if (desc_.bodyType != BodyType::Dynamic) return;
-  contactLinear_ += linear;
-  contactMoment_ += pose().position.cross(linear) + angular;
+  contactLinear_ += impulse;
+  contactMoment_ += point.cross(impulse);
 }
 
 void Collider::prepareContactLoad(double dt) {

@@ -47,7 +47,7 @@ class Collider {
   // (added up) and spread over the next rigid step as a constant load, as Bullet's own contacts
   // act over each of its sub-steps: a body resting on a jelly then reads no velocity after a
   // step instead of bouncing within it.
-  void addContactImpulse(const Vec3& linear, const Vec3& angular);
+  void addContactImpulse(const Vec3& impulse, const Vec3& point);
   bool hasContactLoad() const { return !contactLinear_.isZero(0.0) || !contactMoment_.isZero(0.0); }
   // Once per world step, before its sub-steps: the kept impulses become the load of a step of dt.
   void prepareContactLoad(double dt);

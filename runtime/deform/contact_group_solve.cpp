@@ -68,7 +68,7 @@ void ContactGroupSolve::addRigidMembers() {
     if (pairOffset_[b] >= 0) continue;
     RigidMember r;
     r.pairBody = p.triangleBody;
-    r.body = &(*in_.rigidBodies)[static_cast<size_t>(p.triangleBody - in_.rigidBodyBase)];
+    r.body = &in_.rigidBody(p.triangleBody);
     r.offset = pairOffset_[b] = size_;
     size_ += 6;
     const RigidContactBody& R = *r.body;

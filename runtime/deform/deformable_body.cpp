@@ -349,7 +349,7 @@ void DeformableBody::attachmentSprings(int32_t pairBody, const std::vector<Rigid
     p.gap = -stretch;
     p.reducedMass = mass_[a.node] * rigid->mass / (mass_[a.node] + rigid->mass);
     p.nodeVelocity = Vec3(v_[3 * a.node], v_[3 * a.node + 1], v_[3 * a.node + 2]);
-    p.triangleVelocities[0] = rigid->pointVelocity(p.arm);
+    p.triangleVelocities = {{rigid->pointVelocity(p.arm), Vec3::Zero(), Vec3::Zero()}};
     out->push_back(p);
   }
 }
@@ -809,7 +809,7 @@ void DeformableBody::recordReactions(TaskSystem& tasks, const DeformableStepInpu
     // Equal and opposite at the contact point the solve's J used: momentum and angular momentum
     // conserved to rounding, however far the solve got.
     const Vec3 impulse = coupledNodeImpulse(p, h, solved);
-    const RigidContactBody& rigid = (*in.rigidBodies)[static_cast<size_t>(p.triangleBody - in.rigidBodyBase)];
+    const RigidContactBody& rigid = in.rigidBody(p.triangleBody);
     reactions_.push_back({p.triangleBodyId.index1, p.triangleBodyId.generation, rigid.centre + p.arm, -impulse});
     if (p.attachment || !(impulse.dot(p.normal) > 0.0)) continue;
     NodeContact touch;

@@ -74,6 +74,9 @@ struct DeformableStepInput {
   // among the pair contacts (attachmentSprings), not held velocities.
   const std::vector<RigidContactBody>* rigidBodies = nullptr;
   int32_t rigidBodyBase = 0;
+  const RigidContactBody& rigidBody(int32_t rigidPairBody) const {
+    return (*rigidBodies)[static_cast<size_t>(rigidPairBody - rigidBodyBase)];
+  }
 };
 
 class DeformableBody {

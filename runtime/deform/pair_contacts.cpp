@@ -129,9 +129,7 @@ void nearestRigid(const PairContactBody& A, int32_t a, int32_t node, const Rigid
   // The node's reach over the step and the rigid body's own motion (its bounds are its pose now).
   const double reach = h * vp.norm() + touchThreshold(A, node) +
                        h * (R.linearVelocity.norm() + R.angularVelocity.norm() * c.boundRadius) + 1e-9;
-  if (((p + Vec3::Constant(reach)) - c.bounds.lo).minCoeff() < 0.0 ||
-      (c.bounds.hi - (p - Vec3::Constant(reach))).minCoeff() < 0.0)
-    return;
+  if (!Aabb{p - Vec3::Constant(reach), p + Vec3::Constant(reach)}.overlaps(c.bounds)) return;
   const double phi = signedDistanceBound(c, p);
   if (phi > reach) return;
   const Vec3 n = colliderNormal(c, p);
@@ -185,14 +183,12 @@ void findPairContacts(const std::vector<PairContactBody>& bodies, const std::vec
   for (size_t a = 0; a < bodies.size(); ++a) {
     const PairContactBody& A = bodies[a];
     if (!A.touchesRigid) continue;
-    const Vec3 lo = A.surface->bvh().lo(), hi = A.surface->bvh().hi();
     for (size_t r = 0; r < rigids.size(); ++r) {
       const RigidContactBody& R = rigids[r];
       const double reach = kPairContactKeep * A.rest + 1e-9 +
                            h * (R.linearVelocity.norm() + R.angularVelocity.norm() * R.geometry->boundRadius);
-      const Aabb& b = R.geometry->bounds;
-      if (A.filter.meets(R.filter) && ((lo - Vec3::Constant(reach)).array() <= b.hi.array()).all() &&
-          ((hi + Vec3::Constant(reach)).array() >= b.lo.array()).all())
+      const Aabb surface{A.surface->bvh().lo() - Vec3::Constant(reach), A.surface->bvh().hi() + Vec3::Constant(reach)};
+      if (A.filter.meets(R.filter) && surface.overlaps(R.geometry->bounds))
         nearRigids[a].push_back(static_cast<int32_t>(r));
     }
   }
