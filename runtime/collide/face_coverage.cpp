@@ -88,6 +88,21 @@ double coveredFractionAndCentroid(const PreparedCollider& c, const AxisFace& fac
   return std::min(1.0, std::max(0.0, m.area / fr.area()));
 }
 
+double coveredFractionAndTraceVelocity(const PreparedCollider& c, const AxisFace& face, Eigen::Vector3d* velocity,
+                                       bool* traced) {
+  *traced = false;
+  const int cls = classifyFace(c, face);
+  if (cls != 0) return cls > 0 ? 1.0 : 0.0;
+  const detail::FaceFrame fr = detail::makeFrame(face);
+  detail::SurfaceTrace trace;
+  const double area = detail::coveredAreaAndTraceMesh(c, fr, &trace);
+  if (trace.length > 0.0) {
+    *velocity = trace.velocity / trace.length;
+    *traced = true;
+  }
+  return std::min(1.0, std::max(0.0, area / fr.area()));
+}
+
 double coveredFraction(const ColliderShape& shape, const AxisFace& face) {
   PreparedCollider c;
   if (!ok(prepareCollider(shape, &c))) return std::numeric_limits<double>::quiet_NaN();

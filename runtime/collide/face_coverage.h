@@ -128,6 +128,15 @@ double coveredFraction(const PreparedCollider& collider, const AxisFace& face);
 // covered, and for any other shape. No allocation.
 double coveredFractionAndCentroid(const PreparedCollider& collider, const AxisFace& face, Eigen::Vector3d* centroid);
 
+// For a deforming surface (vertexVelocities set): the covered fraction as coveredFraction
+// gives it and the surface's velocity where it crosses the face, the mean over its trace on
+// the face (the segments where it meets the face's square) weighted by length: the velocity of
+// the boundary between the covered part and the open one. Where the trace has no length
+// (nothing covered, all of it, or the surface only touching the face's edge) *velocity is
+// left as it is and *traced is false. No allocation.
+double coveredFractionAndTraceVelocity(const PreparedCollider& surface, const AxisFace& face,
+                                       Eigen::Vector3d* velocity, bool* traced);
+
 // Convenience for one-off queries and tests: prepares `shape` (allocates); returns NaN when
 // the shape is invalid (vp::lastError() says why).
 double coveredFraction(const ColliderShape& shape, const AxisFace& face);

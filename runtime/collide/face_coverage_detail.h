@@ -120,6 +120,14 @@ struct CoveredMoments {
   double area = 0.0, u = 0.0, v = 0.0;
 };
 CoveredMoments coveredMomentsMesh(const PreparedCollider& c, const FaceFrame& fr);
+// A deforming surface's trace on the face: the length of the segments where it meets the face's
+// rectangle, and the integral of its interpolated vertex velocity along them.
+struct SurfaceTrace {
+  double length = 0.0;
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
+};
+// The covered area as coveredAreaMesh gives it (bitwise) and the trace (c.vertexVelocities set).
+double coveredAreaAndTraceMesh(const PreparedCollider& c, const FaceFrame& fr, SurfaceTrace* trace);
 
 // Convex-hull half-spaces of a point set (local frame): unit n, d in w; n.x <= d inside.
 Status convexHullPlanes(const Array<Eigen::Vector3d>& points,

@@ -65,7 +65,28 @@ CoveredMoments clampedIntegrals(double ua, double va, double ub, double vb, doub
   return s;
 }
 
-CoveredMoments meshIntegrals(const PreparedCollider& c, const FaceFrame& fr, bool moments) {
+// The part of segment p -> q inside the face's rectangle, as parameters [*t0, *t1] along it
+// (Liang-Barsky); false when none of it, or a single point, is inside.
+bool clipToFace(double pu, double pv, double qu, double qv, const FaceFrame& fr, double* t0, double* t1) {
+  double lo = 0.0, hi = 1.0;
+  const double d[2] = {qu - pu, qv - pv}, p[2] = {pu, pv}, low[2] = {fr.u0, fr.v0}, high[2] = {fr.u1, fr.v1};
+  for (int k = 0; k < 2; ++k) {
+    if (d[k] == 0.0) {
+      if (p[k] < low[k] || p[k] > high[k]) return false;
+      continue;
+    }
+    double a = (low[k] - p[k]) / d[k], b = (high[k] - p[k]) / d[k];
+    if (a > b) std::swap(a, b);
+    lo = std::max(lo, a);
+    hi = std::min(hi, b);
+  }
+  *t0 = lo;
+  *t1 = hi;
+  return hi > lo;
+}
+
+CoveredMoments meshIntegrals(const PreparedCollider& c, const FaceFrame& fr, bool moments,
+                             SurfaceTrace* trace = nullptr) {
   Eigen::Vector3d lo, hi;
   lo[fr.a] = hi[fr.a] = fr.c0;
   lo[fr.a1] = fr.u0;
@@ -83,16 +104,26 @@ CoveredMoments meshIntegrals(const PreparedCollider& c, const FaceFrame& fr, boo
     int lone = 0;  // the vertex on its own side
     if (above[1] != above[0] && above[1] != above[2]) lone = 1;
     if (above[2] != above[0] && above[2] != above[1]) lone = 2;
-    auto cross = [&](int i, int j, double* u, double* v) {
+    auto cross = [&](int i, int j, double* u, double* v, Eigen::Vector3d* velocity) {
       int p = tri[i], q = tri[j];
       if (p > q) std::swap(p, q);
       const double s = (fr.c0 - V[p][fr.a]) / (V[q][fr.a] - V[p][fr.a]);
       *u = V[p][fr.a1] + s * (V[q][fr.a1] - V[p][fr.a1]);
       *v = V[p][fr.a2] + s * (V[q][fr.a2] - V[p][fr.a2]);
+      if (trace != nullptr) *velocity = c.vertexVelocities[p] + s * (c.vertexVelocities[q] - c.vertexVelocities[p]);
     };
     double pu, pv, qu, qv;
-    cross(lone, (lone + 1) % 3, &pu, &pv);
-    cross((lone + 2) % 3, lone, &qu, &qv);
+    Eigen::Vector3d pVelocity, qVelocity;
+    cross(lone, (lone + 1) % 3, &pu, &pv, &pVelocity);
+    cross((lone + 2) % 3, lone, &qu, &qv, &qVelocity);
+    double t0, t1;
+    if (trace != nullptr && clipToFace(pu, pv, qu, qv, fr, &t0, &t1)) {
+      // The velocity is linear along the segment: its mean over the clipped part is its value
+      // at that part's middle.
+      const double length = (t1 - t0) * std::sqrt((qu - pu) * (qu - pu) + (qv - pv) * (qv - pv));
+      trace->length += length;
+      trace->velocity += length * (pVelocity + 0.5 * (t0 + t1) * (qVelocity - pVelocity));
+    }
     // Lone vertex above: the boundary runs P -> Q; below: Q -> P.
     if (!above[lone]) { std::swap(pu, qu); std::swap(pv, qv); }
     if (pu == qu) return;
@@ -111,6 +142,10 @@ CoveredMoments meshIntegrals(const PreparedCollider& c, const FaceFrame& fr, boo
 
 double coveredAreaMesh(const PreparedCollider& c, const FaceFrame& fr) {
   return std::min(fr.area(), std::max(0.0, meshIntegrals(c, fr, false).area));
+}
+
+double coveredAreaAndTraceMesh(const PreparedCollider& c, const FaceFrame& fr, SurfaceTrace* trace) {
+  return std::min(fr.area(), std::max(0.0, meshIntegrals(c, fr, false, trace).area));
 }
 
 CoveredMoments coveredMomentsMesh(const PreparedCollider& c, const FaceFrame& fr) {

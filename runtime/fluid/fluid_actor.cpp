@@ -656,8 +656,8 @@ void FluidActor::addSubstepLoads() {
                                  *fc.geometry, fc.geometry->shape.translation);
     } else {
       SurfacePressureLoad surface;
-      surfacePressureLoad(grid_, fractions_, pressure_.poisson, pressure_.pressure.data(), liquidPhi(), desc_.density,
-                          *fc.geometry, &surface);
+      surfacePressureLoad(*st.input.tasks, grid_, fractions_, pressure_.poisson, pressure_.pressure.data(),
+                          liquidPhi(), desc_.density, *fc.geometry, &surface);
       Array<Vec3>& sum = st.vertexForceSum[c];
       if (sum.empty()) sum.assign(surface.vertexForces.size(), Vec3::Zero());
       for (size_t v = 0; v < sum.size(); ++v) sum[v] += surface.vertexForces[v] / st.substeps;

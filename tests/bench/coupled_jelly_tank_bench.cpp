@@ -18,8 +18,8 @@
 //   immersion_ms       the jelly's own step in the coupled world less the twin's (the loads'
 //                      stabilization and whatever the different motion costs)
 //   advect_ms, pressure_ms, surface_ms (and _uncoupled): the tank's other phases, where the rest
-//                      of coupling_ms goes; pressure_ms holds the loads on the jelly's nodes
-//                      (integrated after each projection) and the projections themselves
+//                      of coupling_ms goes (pressure_ms: the projections, which the jelly's
+//                      moving boundary makes take more iterations)
 //   pressure_iters (and _uncoupled): the tank's pressure iterations per step, all sub-steps
 #include <benchmark/benchmark.h>
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 
 #include "fluid/solids/face_fraction_field.h"
 #include "geometry/box_tet_mesh.h"
@@ -154,25 +155,89 @@ TEST(DeformableInFluid, ATranslatingSurfaceGivesItsVelocityToTheFacesItCovers) {
       }
 }
 
+// jellyBlock(500, 0.33)'s surface with vertex velocities velocityAt(x), and its fractions on a
+// 48^3 grid of 1 m.
+struct MovingBlock {
+  PreparedCollider surface;
+  MacGridSpec grid;
+  FaceFractionField field;
+};
+
+void fractionsOfMovingBlock(const std::function<Vec3(const Vec3&)>& velocityAt, MovingBlock* out) {
+  std::unique_ptr<DeformableBody> body;
+  ASSERT_EQ(DeformableBody::create(jellyBlock(500.0, 0.33), &body), Status::Ok) << lastError();
+  out->surface = *body->fluidSurface();
+  Array<Vec3> velocities;
+  for (const Vec3& x : out->surface.shape.meshVertices) velocities.push_back(velocityAt(x));
+  setDeformingSurface(&out->surface, out->surface.shape.meshVertices, velocities);
+  out->grid.h = 1.0 / 48;
+  out->grid.nx = out->grid.ny = out->grid.nz = 48;
+  ASSERT_EQ(initFaceFractionField(out->grid, &out->field), Status::Ok);
+  const PreparedCollider* deforming = &out->surface;
+  ASSERT_EQ(computeFaceFractions(&deforming, 1, &out->field), Status::Ok);
+}
+
+// A face the surface cuts takes the surface's velocity where the surface crosses it: the mean
+// over its trace on the face. With a velocity linear in position (a shear, so that the normal
+// component varies across the face), that mean is the velocity at the trace's centroid; the
+// block's flat sides cut each face plane in a rectangle, whose sides clipped to the face are
+// the trace.
+TEST(DeformableInFluid, ACutFaceTakesTheVelocityOfTheSurfaceWhereItCrossesTheFace) {
+  const Vec3 lo(0.35, 0.33, 0.35), hi(0.65, 0.53, 0.65);  // jellyBlock(_, 0.33)'s corners
+  const Vec3 centre = 0.5 * (lo + hi);
+  auto velocityAt = [&](const Vec3& x) { return Vec3(x.y() - centre.y(), x.z() - centre.z(), x.x() - centre.x()); };
+  MovingBlock block;
+  ASSERT_NO_FATAL_FAILURE(fractionsOfMovingBlock(velocityAt, &block));
+  const FaceFractionField& field = block.field;
+  int cut = 0;
+  for (int a = 0; a < 3; ++a) {
+    const int u = (a + 1) % 3, v = (a + 2) % 3;
+    const Eigen::Vector3i d = field.faceDims(a);
+    for (int k = 0; k < d.z(); ++k)
+      for (int j = 0; j < d.y(); ++j)
+        for (int i = 0; i < d.x(); ++i) {
+          const size_t f = field.faceIndex(a, i, j, k);
+          if (!(field.open[a][f] > 0.0 && field.open[a][f] < 1.0)) continue;
+          const AxisFace face = field.face(a, i, j, k);
+          const double r = 0.5 * face.h;
+          const double faceLo[2] = {face.centre[u] - r, face.centre[v] - r};
+          const double faceHi[2] = {face.centre[u] + r, face.centre[v] + r};
+          // The rectangle's four sides (side s at coordinate `at` of direction `across`, running
+          // along the other one), each clipped to the face.
+          double length = 0.0;
+          Vec3 moment = Vec3::Zero();
+          for (int across = 0; across < 2; ++across)
+            for (const double at : {across == 0 ? lo[u] : lo[v], across == 0 ? hi[u] : hi[v]}) {
+              const int along = 1 - across, alongAxis = along == 0 ? u : v;
+              if (at < faceLo[across] || at > faceHi[across]) continue;
+              const double from = std::max(lo[alongAxis], faceLo[along]), to = std::min(hi[alongAxis], faceHi[along]);
+              if (to <= from) continue;
+              Vec3 mid = face.centre;
+              mid[across == 0 ? u : v] = at;
+              mid[alongAxis] = 0.5 * (from + to);
+              length += to - from;
+              moment += (to - from) * mid;
+            }
+          ASSERT_GT(length, 0.0) << "axis " << a << " face " << i << ", " << j << ", " << k;
+          ASSERT_NEAR(field.solidVelocity[a][f], velocityAt(moment / length)[a], 1e-12)
+              << "axis " << a << " face " << i << ", " << j << ", " << k;
+          ++cut;
+        }
+  }
+  EXPECT_GT(cut, 500);
+}
+
 // A deforming surface's velocities: a face it covers whole that borders a cell with an open
 // face (one the fluid may read) takes the nearest surface point's velocity; a face whose cells
 // are covered whole takes the surface's mean vertex velocity (no fluid cell reads it).
 TEST(DeformableInFluid, InteriorFacesTakeTheMeanVelocityAndFacesBesideFluidTheNearestPoints) {
-  std::unique_ptr<DeformableBody> body;
-  ASSERT_EQ(DeformableBody::create(jellyBlock(500.0, 0.33), &body), Status::Ok) << lastError();
-  PreparedCollider surface = *body->fluidSurface();
   // An expansion about the block's centre: every vertex has its own velocity.
   const Vec3 centre(0.5, 0.43, 0.5);
-  Array<Vec3> velocities;
-  for (const Vec3& x : surface.shape.meshVertices) velocities.push_back(x - centre);
-  setDeformingSurface(&surface, surface.shape.meshVertices, velocities);
-  MacGridSpec grid;
-  grid.h = 1.0 / 48;
-  grid.nx = grid.ny = grid.nz = 48;
-  FaceFractionField field;
-  ASSERT_EQ(initFaceFractionField(grid, &field), Status::Ok);
-  const PreparedCollider* deforming = &surface;
-  ASSERT_EQ(computeFaceFractions(&deforming, 1, &field), Status::Ok);
+  MovingBlock block;
+  ASSERT_NO_FATAL_FAILURE(fractionsOfMovingBlock([&](const Vec3& x) { return Vec3(x - centre); }, &block));
+  const PreparedCollider& surface = block.surface;
+  const MacGridSpec& grid = block.grid;
+  const FaceFractionField& field = block.field;
   auto cellOpen = [&](int i, int j, int k) {
     if (i < 0 || j < 0 || k < 0 || i >= grid.nx || j >= grid.ny || k >= grid.nz) return false;
     for (int a = 0; a < 3; ++a) {

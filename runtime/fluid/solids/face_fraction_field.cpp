@@ -68,25 +68,41 @@ bool deforming(const PreparedCollider& c) { return !c.vertexVelocities.empty(); 
 // The meshes' face classes of the box being recomputed (mesh_face_classes.h).
 using MeshClassList = std::vector<MeshFaceClasses>;
 
-// One collider's coverage of a face: from its classes where they decide, else exact; for a
-// mesh with the centroid of its covered part too (the face's centre otherwise).
-double coverageOf(const PreparedCollider& c, const AxisFace& face, int i, int j, int k, const MeshClassList& classes,
-                  Eigen::Vector3d* centroid) {
-  *centroid = face.centre;
-  for (const MeshFaceClasses& m : classes) {
-    if (m.mesh != &c) continue;
-    const FaceClass cls = m.at(face.axis, i, j, k);
-    if (cls != FaceClass::Touched) return cls == FaceClass::Inside ? 1.0 : 0.0;
-  }
-  return coveredFractionAndCentroid(c, face, centroid);
+// A mesh's class of a face where its classes decide (Touched where they do not, or where the
+// mesh was not classified).
+FaceClass classOf(const PreparedCollider& c, int axis, int i, int j, int k, const MeshClassList& classes) {
+  for (const MeshFaceClasses& m : classes)
+    if (m.mesh == &c) return m.at(axis, i, j, k);
+  return FaceClass::Touched;
 }
 
-// The solid's normal velocity over its covered part of a face: at the covered part's centroid
-// where a mesh gave it exactly, else as colliderNormalVelocity finds it.
-double normalVelocityOver(const PreparedCollider& c, const AxisFace& face, double covered,
-                          const Eigen::Vector3d& centroid) {
-  if (c.shape.kind != ShapeKind::TriangleMesh) return colliderNormalVelocity(c, face, covered);
-  return solidVelocityAt(c, centroid)[face.axis];
+// One collider's coverage of a face (from its classes where they decide, else exact) and the
+// solid's normal velocity over the covered part: a deforming surface's where it crosses the
+// face (coveredFractionAndTraceVelocity; a face it covers whole is left pending), another
+// mesh's at the covered part's exact centroid, any other shape's as colliderNormalVelocity
+// finds it.
+void coverFace(const PreparedCollider& c, const AxisFace& face, int i, int j, int k, const MeshClassList& classes,
+               double* covered, double* velocity) {
+  *velocity = 0.0;
+  const FaceClass cls = classOf(c, face.axis, i, j, k, classes);
+  Eigen::Vector3d centroid = face.centre;
+  if (cls != FaceClass::Touched) {
+    *covered = cls == FaceClass::Inside ? 1.0 : 0.0;
+  } else if (deforming(c)) {
+    Eigen::Vector3d traceVelocity;
+    bool traced = false;
+    *covered = coveredFractionAndTraceVelocity(c, face, &traceVelocity, &traced);
+    if (*covered > 0.0 && *covered < 1.0) {
+      *velocity = traced ? traceVelocity[face.axis] : solidVelocityAt(c, face.centre)[face.axis];
+      return;
+    }
+  } else {
+    *covered = coveredFractionAndCentroid(c, face, &centroid);
+  }
+  if (*covered >= 1.0 && deforming(c)) *velocity = kVelocityPending;
+  else if (*covered > 0.0 && c.shape.kind == ShapeKind::TriangleMesh)
+    *velocity = solidVelocityAt(c, centroid)[face.axis];
+  else if (*covered > 0.0) *velocity = colliderNormalVelocity(c, face, *covered);
 }
 
 void recomputeFace(const PreparedCollider* const* colliders, int count, const MeshClassList& classes, int axis,
@@ -99,10 +115,7 @@ void recomputeFace(const PreparedCollider* const* colliders, int count, const Me
     if (colliders[c]->bounds.overlaps(fb)) near[n++] = colliders[c];
   double covered = 0.0, velocity = 0.0;
   if (n == 1) {
-    Eigen::Vector3d centroid;
-    covered = coverageOf(*near[0], face, i, j, k, classes, &centroid);
-    if (covered >= 1.0 && deforming(*near[0])) velocity = kVelocityPending;
-    else if (covered > 0.0) velocity = normalVelocityOver(*near[0], face, covered, centroid);
+    coverFace(*near[0], face, i, j, k, classes, &covered, &velocity);
   } else if (n > 1) {
     covered = coveredFractionUnion(near, n, face);
     if (covered > 0.0) {

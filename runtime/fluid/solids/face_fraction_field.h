@@ -17,15 +17,18 @@
 //                     value at the covered part's centroid; that centroid is approximated from
 //                     the coverage of the face's four quadrants (exact for faces covered
 //                     uniformly per quadrant; error <= |w| h / 2), and skipped (any point is
-//                     exact) when w = 0. A deforming surface (a deformable's boundary) has
-//                     its vertex velocities interpolated at the surface point nearest that
-//                     centroid (collide/face_coverage.h, solidVelocityAt): exact for a body
-//                     moving rigidly by translation, an approximation of the velocity inside
-//                     it otherwise; a face it covers whole whose two cells are covered whole
-//                     too (no fluid cell reads it) takes the surface's mean vertex velocity
-//                     instead, which spares the nearest-point search for the body's
-//                     interior. Faces covered by several colliders average the colliders'
-//                     values weighted by their individual coverage.
+//                     exact) when w = 0. A deforming surface (a deformable's boundary) gives
+//                     a face it cuts its vertex velocities interpolated along its trace on
+//                     the face and averaged by length (collide/face_coverage.h,
+//                     coveredFractionAndTraceVelocity): the velocity of the boundary between
+//                     the covered part and the open one, the one the fluid's flux through the
+//                     face sees move, found in the same pass over the triangles as the
+//                     coverage. A face it covers whole takes the velocity of the surface point
+//                     nearest its centre when a cell beside it has an open face, else (no
+//                     fluid cell reads it) the surface's mean vertex velocity, which spares
+//                     the nearest-point search for the body's interior. Faces covered by
+//                     several colliders average the colliders' values (each at the surface
+//                     point nearest its covered part's centroid) weighted by their coverage.
 #pragma once
 
 #include "core/allocator.h"

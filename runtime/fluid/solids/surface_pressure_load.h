@@ -20,6 +20,7 @@
 
 #include "collide/face_coverage.h"
 #include "core/allocator.h"
+#include "core/task_system.h"
 #include "fluid/mac_grid.h"
 #include "fluid/pressure/cut_cell_poisson.h"
 #include "fluid/solids/face_fraction_field.h"
@@ -36,9 +37,10 @@ struct SurfacePressureLoad {
 
 constexpr int kMaxSubdivision = 8;
 
-// `surface` must be a deforming surface (vertexVelocities set); liquidPhi null for smoke.
-void surfacePressureLoad(const MacGrid& grid, const FaceFractionField& fractions, const CutCellPoisson& op,
-                         const double* pressure, const double* liquidPhi, double density,
+// `surface` must be a deforming surface (vertexVelocities set); liquidPhi null for smoke. The
+// triangles are integrated in parallel; the result does not depend on the worker count.
+void surfacePressureLoad(TaskSystem& tasks, const MacGrid& grid, const FaceFractionField& fractions,
+                         const CutCellPoisson& op, const double* pressure, const double* liquidPhi, double density,
                          const PreparedCollider& surface, SurfacePressureLoad* out);
 
 }  // namespace vp
