@@ -440,10 +440,15 @@ void World::addAttachmentSprings(const std::vector<DeformableHandle>& handles, c
                                  const std::vector<RigidContactBody>& rigids, std::vector<PairContact>* pairs) const {
   const int32_t rigidBase = static_cast<int32_t>(handles.size());
   // An attached node does not also touch the body it is attached to, as a held node's collider
-  // contacts ignore its collider.
+  // contacts ignore its collider; nor does that body's corner touch a triangle at the node.
   pairs->erase(std::remove_if(pairs->begin(), pairs->end(), [&](const PairContact& p) {
-    return p.rigidSide && deformable(handles[p.nodeBody])->attachedTo(p.node, p.triangleBodyId.index1,
-                                                                        p.triangleBodyId.generation);
+    if (p.rigidSide)
+      return deformable(handles[p.nodeBody])->attachedTo(p.node, p.triangleBodyId.index1, p.triangleBodyId.generation);
+    if (!p.rigidNode) return false;
+    const PairBodyId& rigid = rigids[static_cast<size_t>(p.nodeBody - rigidBase)].id;
+    const DeformableBody& body = *deformable(handles[p.triangleBody]);
+    return std::any_of(p.triangleNodes.begin(), p.triangleNodes.end(),
+                       [&](int32_t n) { return body.attachedTo(n, rigid.index1, rigid.generation); });
   }), pairs->end());
   for (size_t i = 0; i < handles.size(); ++i)
     if (touchesRigid[i])

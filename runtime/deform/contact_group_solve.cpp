@@ -55,20 +55,21 @@ ContactGroupSolve::ContactGroupSolve(const std::vector<ContactGroupMember>& memb
   // The group's coupled contacts, so that each CG iteration visits only them.
   if (in_.pairContacts)
     for (const PairContact& p : *in_.pairContacts)
-      if (p.coupled && member(p.nodeBody)) coupledPairs_.push_back(p);
+      if (p.coupled && (member(p.nodeBody) || member(p.triangleBody))) coupledPairs_.push_back(p);
   coupled_ = !coupledPairs_.empty();
   addRigidMembers();
 }
 
 void ContactGroupSolve::addRigidMembers() {
   for (const PairContact& p : coupledPairs_) {
-    if (!p.rigidSide) continue;
-    const size_t b = static_cast<size_t>(p.triangleBody);
+    if (!p.rigidSide && !p.rigidNode) continue;
+    const int32_t pairBody = p.rigidSide ? p.triangleBody : p.nodeBody;
+    const size_t b = static_cast<size_t>(pairBody);
     if (b >= pairOffset_.size()) pairOffset_.resize(b + 1, -1);
     if (pairOffset_[b] >= 0) continue;
     RigidMember r;
-    r.pairBody = p.triangleBody;
-    r.body = &in_.rigidBody(p.triangleBody);
+    r.pairBody = pairBody;
+    r.body = &in_.rigidBody(pairBody);
     r.offset = pairOffset_[b] = size_;
     size_ += 6;
     const RigidContactBody& R = *r.body;

@@ -16,7 +16,7 @@
 // collider contacts' Coulomb passes run as in a lone step, each pass re-solving the whole group.
 // A lone body is a group of one (its solve may run on the device; a group's runs on the CPU).
 //
-// A dynamic rigid body that the members' contacts touch (PairContact::rigidSide) joins with
+// A dynamic rigid body that the members' contacts touch (PairContact::rigidSide, rigidNode) joins with
 // its six velocities u = (V, Ω): its rows are M u' + Σ J^T D (v' + J u') = M (u + h g) + Σ J^T c,
 // M its mass and world inertia, J = [−I, [arm]×] each contact's, so that the contacts'
 // impulses are those of the rigid body's new velocity, not of its old one. Its block is 6×6,

@@ -181,6 +181,7 @@ PairContactBody DeformableBody::pairContactBody(double h) {
   b.surfaceNodes = &surfaceNodes_;
   b.surface = &contactSurface_;
   b.friction = &pairFriction_;
+  b.cornerFriction = &cornerFriction_;
   b.filter = desc_.filter;
   b.frictionCoefficient = desc_.material.friction;
   b.rest = contactMargin_;
@@ -677,7 +678,8 @@ void DeformableBody::beginStep(const DeformableStepInput& in, PhaseTimer& timer)
 
 void DeformableBody::finishStep(const DeformableStepInput& in, bool reachedFloor, const PairVelocities& solved,
                                 PhaseTimer& timer, ActorStats* stats) {
-  if (in.pairContacts) updatePairFriction(*in.pairContacts, in.pairBody, in.dt, vNext_, solved, &pairFriction_);
+  if (in.pairContacts)
+    updatePairFriction(*in.pairContacts, in.pairBody, in.dt, vNext_, solved, &pairFriction_, &cornerFriction_);
   integrateAndGuard(in, reachedFloor, solved, stats);  // its energy passes are timed with the embedding
   std::fill(externalForce_.begin(), externalForce_.end(), 0.0);
   std::fill(pendingImpulse_.begin(), pendingImpulse_.end(), 0.0);
@@ -805,20 +807,27 @@ void DeformableBody::recordReactions(TaskSystem& tasks, const DeformableStepInpu
   }
   if (!in.pairContacts) return;
   for (const PairContact& p : *in.pairContacts) {
-    if (!p.rigidSide || !p.coupled || p.nodeBody != in.pairBody) continue;
+    const bool onNode = p.rigidSide && p.nodeBody == in.pairBody;
+    const bool onTriangle = p.rigidNode && p.triangleBody == in.pairBody;
+    if (!p.coupled || !(onNode || onTriangle)) continue;
     // Equal and opposite at the contact point the solve's J used: momentum and angular momentum
     // conserved to rounding, however far the solve got.
     const Vec3 impulse = coupledNodeImpulse(p, h, solved);
-    const RigidContactBody& rigid = in.rigidBody(p.triangleBody);
-    reactions_.push_back({p.triangleBodyId.index1, p.triangleBodyId.generation, rigid.centre + p.arm, -impulse});
+    const RigidContactBody& rigid = in.rigidBody(onNode ? p.triangleBody : p.nodeBody);
+    // A rigid corner is the node side: it takes the node's impulse.
+    reactions_.push_back({rigid.id.index1, rigid.id.generation, rigid.centre + p.arm, onNode ? -impulse : impulse});
     if (p.attachment || !(impulse.dot(p.normal) > 0.0)) continue;
     NodeContact touch;
-    touch.node = p.node;
-    touch.normal = p.normal;
+    // The body's node a corner pushes hardest (the triangle's with the largest weight), and the
+    // normal out of the rigid body either way.
+    Eigen::Index corner = 0;
+    p.weights.maxCoeff(&corner);
+    touch.node = onNode ? p.node : p.triangleNodes[static_cast<size_t>(corner)];
+    touch.normal = onNode ? p.normal : Vec3(-p.normal);
     touch.colliderVelocity = rigid.pointVelocity(p.arm);
     touch.friction = p.friction;
-    touch.colliderIndex1 = p.triangleBodyId.index1;
-    touch.colliderGeneration = p.triangleBodyId.generation;
+    touch.colliderIndex1 = rigid.id.index1;
+    touch.colliderGeneration = rigid.id.generation;
     rigidContacts_.push_back(touch);
   }
 }
@@ -835,6 +844,7 @@ DeformableState DeformableBody::saveState() const {
   s.schedule = schedule_;
   s.immersionTracking = immersion_.tracking();
   s.pairFriction = pairFriction_;
+  s.cornerFriction = cornerFriction_;
   s.pendingImpulse = pendingImpulse_;
   return s;
 }
@@ -852,6 +862,7 @@ void DeformableBody::restoreState(DeformableState&& s) {
   schedule_ = s.schedule;
   immersion_.restoreTracking(s.immersionTracking);
   pairFriction_ = std::move(s.pairFriction);
+  cornerFriction_ = std::move(s.cornerFriction);
   pendingImpulse_ = std::move(s.pendingImpulse);
 }
 

@@ -297,6 +297,7 @@ class DeformableBody {
   double contactMargin_ = 0.0;
   ContactSurface contactSurface_;        // what other deformables and the body itself touch
   Array<PairFriction> pairFriction_;     // per node, its pair contact's friction state
+  Array<CornerFriction> cornerFriction_;  // of the rigid corners on its triangles
   Array<double> pendingImpulse_;         // 3 per node, for the next step (addContactImpulse)
   double pairContactDepth_ = 0.0;
   bool stepBegun_ = false;               // between beginStep's backups and finishStep's end

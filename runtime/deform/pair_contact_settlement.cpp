@@ -8,7 +8,7 @@ void settlePairContacts(const std::vector<PairContact>& pairs, const std::vector
                         const std::vector<double>& steppedDt) {
   for (const PairContact& p : pairs) {
     // Equal and opposite by construction; a rigid side is always coupled (contact_groups.h).
-    if (p.coupled || p.rigidSide) continue;
+    if (p.coupled || p.rigidSide || p.rigidNode) continue;
     DeformableBody& nodeBody = *bodies[p.nodeBody];
     DeformableBody& triangleBody = *bodies[p.triangleBody];
     const Vec3 excess = pairContactMismatch(p, steppedDt[p.nodeBody], nodeBody.velocities(),

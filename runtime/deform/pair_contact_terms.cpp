@@ -84,11 +84,42 @@ Vec6 sixVector(const double* x) { return Eigen::Map<const Vec6>(x); }
 // A coupled contact's node velocity and its other side's point's, from the solved velocities.
 std::pair<Vec3, Vec3> solvedVelocities(const PairContact& p, const PairVelocities& solved) {
   const Array<double>& t = *solved[p.triangleBody];
-  const Vec3 node = nodeVector(*solved[p.nodeBody], p.node);
+  const Vec3 node = p.rigidNode ? Vec3(-rigidJacobian(p.arm) * sixVector(solved[p.nodeBody]->data()))
+                                : nodeVector(*solved[p.nodeBody], p.node);
   if (p.rigidSide) return {node, -rigidJacobian(p.arm) * sixVector(t.data())};
   Vec3 point = Vec3::Zero();
   for (int i = 0; i < 3; ++i) point += p.weights[i] * nodeVector(t, p.triangleNodes[i]);
   return {node, point};
+}
+
+// The friction state contact p leaves for the next step, from its node's velocity v and the
+// triangle point's; false when its spring pulled (the state starts afresh).
+bool nextFriction(const PairContact& p, double h, const Vec3& v, const Vec3& point, PairFriction* f) {
+  const Vec3 impulse = spring(p, h).nodeImpulse(v, point);
+  const double jn = impulse.dot(p.normal);
+  if (!(jn > 0.0)) return false;
+  f->other = p.triangleBodyId;
+  f->lastNormalImpulse = jn;
+  Vec3 slip = v - point;
+  slip -= slip.dot(p.normal) * p.normal;
+  const double k = p.springH2k() / (h * h);
+  if (p.state.sliding) {
+    // Slid: sticks again once the slip has stopped or turned against the friction, its
+    // spring holding the friction it had.
+    const bool stopped = slip.norm() < kPairSlipSpeed || slip.dot(slipDirection(p)) <= 0.0;
+    f->sliding = stopped ? 0 : 1;
+    if (stopped) f->stick = p.friction * jn * slipDirection(p) / h;
+    return true;
+  }
+  const Vec3 stick = p.state.stick + k * h * slip;  // the spring's force after the step's slip
+  const double cone = p.friction * jn;
+  if (h * stick.norm() > cone) {
+    f->sliding = 1;
+    f->stick = stick * (cone / (h * stick.norm()));
+  } else {
+    f->stick = stick;
+  }
+  return true;
 }
 
 bool touches(const PairContact& p, int32_t body) { return p.nodeBody == body || p.triangleBody == body; }
@@ -149,38 +180,22 @@ double pairContactWork(const std::vector<PairContact>& pairs, int32_t body, doub
 }
 
 void updatePairFriction(const std::vector<PairContact>& pairs, int32_t body, double h, const Array<double>& vNext,
-                        const PairVelocities& solved, Array<PairFriction>* friction) {
+                        const PairVelocities& solved, Array<PairFriction>* friction,
+                        Array<CornerFriction>* cornerFriction) {
   std::fill(friction->begin(), friction->end(), PairFriction());
+  cornerFriction->clear();
   for (const PairContact& p : pairs) {
-    if (p.nodeBody != body || p.attachment) continue;
+    const bool node = p.nodeBody == body && !p.attachment, corner = p.rigidNode && p.triangleBody == body;
+    if (!node && !corner) continue;
     // The node's velocity and the triangle point's, as the node's side of the spring saw them.
-    const Vec3 v = nodeVector(vNext, p.node);
-    const Vec3 point = p.coupled ? solvedVelocities(p, solved).second : p.triangleVelocity();
-    const Vec3 impulse = spring(p, h).nodeImpulse(v, point);
-    const double jn = impulse.dot(p.normal);
-    if (!(jn > 0.0)) continue;
-    PairFriction& f = (*friction)[p.node];
-    f.other = p.triangleBodyId;
-    f.lastNormalImpulse = jn;
-    Vec3 slip = v - point;
-    slip -= slip.dot(p.normal) * p.normal;
-    const double k = p.springH2k() / (h * h);
-    if (p.state.sliding) {
-      // Slid: sticks again once the slip has stopped or turned against the friction, its
-      // spring holding the friction it had.
-      const bool stopped = slip.norm() < kPairSlipSpeed || slip.dot(slipDirection(p)) <= 0.0;
-      f.sliding = stopped ? 0 : 1;
-      if (stopped) f.stick = p.friction * jn * slipDirection(p) / h;
-      continue;
-    }
-    const Vec3 stick = p.state.stick + k * h * slip;  // the spring's force after the step's slip
-    const double cone = p.friction * jn;
-    if (h * stick.norm() > cone) {
-      f.sliding = 1;
-      f.stick = stick * (cone / (h * stick.norm()));
-    } else {
-      f.stick = stick;
-    }
+    const auto [v, point] = corner ? solvedVelocities(p, solved)
+                                   : std::pair<Vec3, Vec3>(nodeVector(vNext, p.node),
+                                                           p.coupled ? solvedVelocities(p, solved).second
+                                                                     : p.triangleVelocity());
+    PairFriction f;
+    if (!nextFriction(p, h, v, point, &f)) continue;
+    if (node) (*friction)[p.node] = f;
+    else cornerFriction->push_back(CornerFriction{p.nodeBodyId, p.node, f});
   }
 }
 
@@ -191,12 +206,15 @@ Vec3 coupledNodeImpulse(const PairContact& p, double h, const PairVelocities& so
 
 void addRigidContactTerms(const std::vector<PairContact>& pairs, int32_t body, double h, Mat6* block, Vec6* rhs) {
   for (const PairContact& p : pairs) {
-    if (!p.rigidSide || p.triangleBody != body) continue;
-    // The rigid body takes −P at the point: J^T P = J^T c − J^T D (v + J u).
+    const bool triangleSide = p.rigidSide && p.triangleBody == body, nodeSide = p.rigidNode && p.nodeBody == body;
+    if (!triangleSide && !nodeSide) continue;
+    // On the triangle side the rigid body takes −P at the point: J^T P = J^T c − J^T D (v + J u).
+    // On the node side, where the node's velocity is −J u, it takes P: −J^T P = −J^T c − J^T D
+    // (J u + v_point).
     const Eigen::Matrix<double, 3, 6> J = rigidJacobian(p.arm);
     const Spring s = spring(p, h);
     *block += J.transpose() * s.D * J;
-    *rhs += J.transpose() * s.known;
+    *rhs += (triangleSide ? 1.0 : -1.0) * (J.transpose() * s.known);
   }
 }
 
@@ -206,6 +224,28 @@ void addPairCouplingProduct(const std::vector<PairContact>& pairs, const std::ve
   for (const PairContact& p : pairs) {
     if (!p.coupled || !member(p.nodeBody) || !member(p.triangleBody)) continue;
     const Mat3 D = springMatrix(p);
+    if (p.rigidNode) {
+      // The spring's Hessian is c^T D c with c = (−J, −w_0 I, −w_1 I, −w_2 I): the blocks
+      // w_i J^T D (the rigid body's row), w_i D J and w_i w_j D (corner i's).
+      const Eigen::Matrix<double, 3, 6> J = rigidJacobian(p.arm);
+      const int64_t r = offsets[p.nodeBody];
+      int64_t at[3];  // the corners' offsets
+      Vec3 corner[3];
+      for (int i = 0; i < 3; ++i) {
+        at[i] = offsets[p.triangleBody] + 3 * static_cast<int64_t>(p.triangleNodes[i]);
+        corner[i] = Eigen::Map<const Vec3>(x + at[i]);
+      }
+      const Vec3 rigidPart = D * (J * sixVector(x + r));
+      Eigen::Map<Vec6>(y + r) +=
+          J.transpose() * (D * (p.weights[0] * corner[0] + p.weights[1] * corner[1] + p.weights[2] * corner[2]));
+      for (int i = 0; i < 3; ++i) {
+        Vec3 others = Vec3::Zero();
+        for (int j = 0; j < 3; ++j)
+          if (j != i) others += p.weights[j] * corner[j];
+        Eigen::Map<Vec3>(y + at[i]) += p.weights[i] * (rigidPart + D * others);
+      }
+      continue;
+    }
     if (p.rigidSide) {
       // The blocks D J (the node's row) and J^T D (the rigid body's).
       const Eigen::Matrix<double, 3, 6> J = rigidJacobian(p.arm);

@@ -39,11 +39,13 @@ double pairContactWork(const std::vector<PairContact>& pairs, int32_t body, doub
 // to each side, as impulses in their next steps, and the momentum is conserved.
 Vec3 pairContactMismatch(const PairContact& p, double nodeH, const Array<double>& nodeV, double triangleH,
                          const Array<double>& triangleV);
-// After the solve, the body's nodes' friction states for the next step: a sticking spring
-// stretched beyond mu J_n slides, a slide that stopped or reversed sticks again; a node with no
-// contact, or one whose spring pulled, starts afresh.
+// After the solve, the body's nodes' friction states for the next step, and those of the rigid
+// corners on its triangles: a sticking spring stretched beyond mu J_n slides, a slide that
+// stopped or reversed sticks again; a node or corner with no contact, or one whose spring
+// pulled, starts afresh (a corner's state is then dropped).
 void updatePairFriction(const std::vector<PairContact>& pairs, int32_t body, double h, const Array<double>& vNext,
-                        const PairVelocities& solved, Array<PairFriction>* friction);
+                        const PairVelocities& solved, Array<PairFriction>* friction,
+                        Array<CornerFriction>* cornerFriction);
 // A rigid body's six velocities in a solve: linear, then angular about its centre of mass.
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 using Mat6 = Eigen::Matrix<double, 6, 6>;

@@ -65,59 +65,128 @@ double touchThreshold(const PairContactBody& A, int32_t node) {
   return (*A.friction)[node].lastNormalImpulse > 0.0 ? kPairContactKeep * A.rest : A.rest;
 }
 
+// A point that may touch a body's triangles within a step: where it is and how fast it moves,
+// the way its own surface faces (a triangle facing that way too lies beside it, not under it:
+// a box's edge node on the face round the corner, whose push would be sideways), its contact
+// margin and the gap below which it touches.
+struct TouchQuery {
+  Vec3 p, v, facing;
+  double rest, threshold;
+};
+
+// visit(triangle, weights, normal, height, triangle velocities) for each triangle of B that the
+// point touches within the step h with a predicted gap below both its threshold and *lowest
+// (the best so far, over the bodies searched before), which then becomes that gap; skip(tri)
+// leaves a triangle out. A triangle touched within the step lies within depth, or within the
+// margin plus both sides' motion, of the point: B's boxes hold the triangles' motion
+// (ContactSurface::refit), the query box the point's.
+template <class Skip, class Visit>
+void touchingTriangles(const TouchQuery& q, const PairContactBody& B, double h, double* lowest, const Skip& skip,
+                       const Visit& visit) {
+  const double reach = h * q.v.norm() + q.rest + B.depth;
+  const Vec3 lo = q.p - Vec3::Constant(reach), hi = q.p + Vec3::Constant(reach);
+  const RefitBvh& bvh = B.surface->bvh();
+  if ((lo.array() > bvh.hi().array()).any() || (hi.array() < bvh.lo().array()).any()) return;  // far off
+  const Array<RefitBvh::Triangle>& triangles = B.surface->triangles();
+  bvh.visitBox(lo, hi, [&](int32_t t) {
+    const RefitBvh::Triangle& tri = triangles[t];
+    if (skip(tri)) return;
+    Vec3 w, n;
+    double height;
+    if (!projectOnTriangle(q.p, nodeVector(*B.x, tri[0]), nodeVector(*B.x, tri[1]), nodeVector(*B.x, tri[2]), &w, &n,
+                           &height) || height < -B.depth)
+      return;
+    if (q.facing.dot(n) > 0.0) return;
+    const std::array<Vec3, 3> vt{{nodeVector(*B.v, tri[0]), nodeVector(*B.v, tri[1]), nodeVector(*B.v, tri[2])}};
+    const Vec3 vc = w[0] * vt[0] + w[1] * vt[1] + w[2] * vt[2];
+    const double predicted = height + h * (q.v - vc).dot(n);
+    if (predicted >= q.threshold || predicted >= *lowest) return;
+    *lowest = predicted;
+    visit(tri, w, n, height, vt);
+  });
+}
+
+// The mass of the triangle's point with weights w.
+double pointMass(const PairContactBody& B, const RefitBvh::Triangle& tri, const Vec3& w) {
+  return w[0] * (*B.mass)[tri[0]] + w[1] * (*B.mass)[tri[1]] + w[2] * (*B.mass)[tri[2]];
+}
+
+// The triangle side of a contact with triangle `tri` of body b (B).
+void setTriangleSide(const PairContactBody& B, int32_t b, const RefitBvh::Triangle& tri, const Vec3& w, const Vec3& n,
+                     const std::array<Vec3, 3>& vt, PairContact* c) {
+  c->triangleBody = b;
+  c->triangleBodyId = B.id;
+  c->triangleNodes = tri;
+  c->weights = w;
+  c->normal = n;
+  c->triangleVelocities = vt;
+}
+
 // Node `node` of body `a` against the triangles of body `b`: the first triangle whose
-// predicted gap is below both the rest gap and `lowest` (the best so far, over the bodies
-// searched before) becomes `best`, and `lowest` its gap. A triangle touched within the step
-// lies within depth, or within the rest gap plus both sides' motion, of the node: B's boxes
-// hold the triangles' motion (ContactSurface::refit), the query box the node's.
+// predicted gap is below both the node's threshold and `lowest` becomes `best`.
 void nearestTriangle(const std::vector<PairContactBody>& bodies, int32_t a, int32_t node, int32_t b, double h,
                      double* lowest, PairContact* best) {
   static thread_local NeighbourMarks ownNeighbourhood;
   const PairContactBody& A = bodies[a];
   const PairContactBody& B = bodies[b];
-  const Vec3 p = nodeVector(*A.x, node), vp = nodeVector(*A.v, node);
-  const Vec3& nodeNormal = A.surface->nodeNormal(node);
-  const double threshold = touchThreshold(A, node);
-  const double reach = h * vp.norm() + A.rest + B.depth;
-  const Vec3 lo = p - Vec3::Constant(reach), hi = p + Vec3::Constant(reach);
-  const RefitBvh& bvh = B.surface->bvh();
-  if ((lo.array() > bvh.hi().array()).any() || (hi.array() < bvh.lo().array()).any()) return;  // far off
-  const Array<RefitBvh::Triangle>& triangles = B.surface->triangles();
+  const TouchQuery q{nodeVector(*A.x, node), nodeVector(*A.v, node), A.surface->nodeNormal(node), A.rest,
+                     touchThreshold(A, node)};
   if (a == b) ownNeighbourhood.mark(*A.surface, node);
-  bvh.visitBox(lo, hi, [&](int32_t t) {
-    const RefitBvh::Triangle& tri = triangles[t];
-    if (a == b && (ownNeighbourhood.marked(tri[0]) || ownNeighbourhood.marked(tri[1]) ||
-                   ownNeighbourhood.marked(tri[2])))
-      return;
-    Vec3 w, n;
-    double height;
-    if (!projectOnTriangle(p, nodeVector(*B.x, tri[0]), nodeVector(*B.x, tri[1]), nodeVector(*B.x, tri[2]), &w, &n,
-                           &height) || height < -B.depth)
-      return;
-    // A node whose surface faces the triangle's way lies beside it, not on it: a box's edge
-    // node on the face round the corner, whose push would be sideways.
-    if (nodeNormal.dot(n) > 0.0) return;
-    std::array<Vec3, 3> vt{{nodeVector(*B.v, tri[0]), nodeVector(*B.v, tri[1]), nodeVector(*B.v, tri[2])}};
-    const Vec3 vc = w[0] * vt[0] + w[1] * vt[1] + w[2] * vt[2];
-    const double predicted = height + h * (vp - vc).dot(n);
-    if (predicted >= threshold || predicted >= *lowest) return;
-    *lowest = predicted;
-    const double mt = w[0] * (*B.mass)[tri[0]] + w[1] * (*B.mass)[tri[1]] + w[2] * (*B.mass)[tri[2]];
-    const double mn = (*A.mass)[node];
-    best->nodeBody = a;
-    best->node = node;
-    best->triangleBody = b;
-    best->triangleBodyId = B.id;
-    best->triangleNodes = tri;
-    best->weights = w;
-    best->normal = n;
-    best->gap = height;
-    best->rest = A.rest;
-    best->reducedMass = mn * mt / (mn + mt);
-    best->friction = A.frictionCoefficient * B.frictionCoefficient;
-    best->nodeVelocity = vp;
-    best->triangleVelocities = vt;
-  });
+  auto ownNeighbour = [&](const RefitBvh::Triangle& tri) {
+    return a == b && (ownNeighbourhood.marked(tri[0]) || ownNeighbourhood.marked(tri[1]) ||
+                      ownNeighbourhood.marked(tri[2]));
+  };
+  touchingTriangles(q, B, h, lowest, ownNeighbour,
+                    [&](const RefitBvh::Triangle& tri, const Vec3& w, const Vec3& n, double height,
+                        const std::array<Vec3, 3>& vt) {
+                      const double mt = pointMass(B, tri, w), mn = (*A.mass)[node];
+                      best->nodeBody = a;
+                      best->node = node;
+                      setTriangleSide(B, b, tri, w, n, vt, best);
+                      best->gap = height;
+                      best->rest = A.rest;
+                      best->reducedMass = mn * mt / (mn + mt);
+                      best->friction = A.frictionCoefficient * B.frictionCoefficient;
+                      best->nodeVelocity = q.v;
+                    });
+}
+
+// The friction state B keeps for corner `corner` of rigid body `rigid`, or null.
+const CornerFriction* cornerState(const PairContactBody& B, const PairBodyId& rigid, int32_t corner) {
+  for (const CornerFriction& f : *B.cornerFriction)
+    if (f.rigid == rigid && f.corner == corner) return &f;
+  return nullptr;
+}
+
+// Corner `corner` (at q) of rigid body R (pair body r) against the triangles of body `b`, as
+// nearestTriangle: its arm's direction is the way the corner faces, B's margin its own (and
+// its keep band when it pushed in its last step).
+void nearestTriangleToCorner(const RigidContactBody& R, int32_t r, int32_t corner, const Vec3& q,
+                             const std::vector<PairContactBody>& bodies, int32_t b, double h, double* lowest,
+                             PairContact* best) {
+  const PairContactBody& B = bodies[b];
+  const Vec3 arm = q - R.centre;
+  const CornerFriction* last = cornerState(B, R.id, corner);
+  const double threshold = last != nullptr && last->state.lastNormalImpulse > 0.0 ? kPairContactKeep * B.rest : B.rest;
+  const TouchQuery query{q, R.pointVelocity(arm), arm, B.rest, threshold};
+  touchingTriangles(query, B, h, lowest, [](const RefitBvh::Triangle&) { return false; },
+                    [&](const RefitBvh::Triangle& tri, const Vec3& w, const Vec3& n, double height,
+                        const std::array<Vec3, 3>& vt) {
+                      const double mt = pointMass(B, tri, w);
+                      *best = PairContact();
+                      best->nodeBody = r;
+                      best->node = corner;
+                      best->rigidNode = true;
+                      best->nodeBodyId = R.id;
+                      best->arm = arm;
+                      setTriangleSide(B, b, tri, w, n, vt, best);
+                      // Deep inside, it is pushed out at kMaxPushOutSpeed at most, as a node in a collider.
+                      best->gap = std::max(height, B.rest - kMaxPushOutSpeed * h);
+                      best->rest = B.rest;
+                      best->reducedMass = R.mass * mt / (R.mass + mt);
+                      best->friction = R.frictionCoefficient * B.frictionCoefficient;
+                      best->nodeVelocity = query.v;
+                    });
 }
 
 // Node `node` of body `a` against rigid body R (pair body `r`), as nearestTriangle: the
@@ -160,7 +229,67 @@ void nearestRigid(const PairContactBody& A, int32_t a, int32_t node, const Rigid
   best->triangleVelocities = {{vc, Vec3::Zero(), Vec3::Zero()}};
 }
 
+// Appends one slot per corner of every rigid body that some body with touchesRigid set can
+// reach this step (its boxes hold its motion; the rigid body's is added), filled in parallel
+// with the corner's nearest touching triangle over those bodies; in rigid body, corner order.
+void findCornerContacts(const std::vector<PairContactBody>& bodies, const std::vector<RigidContactBody>& rigids,
+                        double h, TaskSystem& tasks, std::vector<PairContact>* slots) {
+  struct Corner {
+    int32_t rigid, index;
+    Vec3 position;
+  };
+  std::vector<Corner> corners;
+  std::vector<std::vector<int32_t>> nearBodies(rigids.size());
+  Array<Vec3> vertices;
+  for (size_t r = 0; r < rigids.size(); ++r) {
+    const RigidContactBody& R = rigids[r];
+    for (size_t b = 0; b < bodies.size(); ++b) {
+      const PairContactBody& B = bodies[b];
+      const double reach = B.rest + B.depth + 1e-9 +
+                           h * (R.linearVelocity.norm() + R.angularVelocity.norm() * R.geometry->boundRadius);
+      const Aabb surface{B.surface->bvh().lo() - Vec3::Constant(reach), B.surface->bvh().hi() + Vec3::Constant(reach)};
+      if (B.touchesRigid && B.filter.meets(R.filter) && surface.overlaps(R.geometry->bounds))
+        nearBodies[r].push_back(static_cast<int32_t>(b));
+    }
+    if (nearBodies[r].empty()) continue;
+    rigidVertices(*R.geometry, &vertices);
+    for (size_t k = 0; k < vertices.size(); ++k)
+      corners.push_back({static_cast<int32_t>(r), static_cast<int32_t>(k), vertices[k]});
+  }
+  const size_t first = slots->size();
+  slots->resize(first + corners.size());
+  const int32_t deformables = static_cast<int32_t>(bodies.size());
+  parallelFor(tasks, static_cast<int64_t>(corners.size()), 16, [&](int64_t begin, int64_t end) {
+    for (int64_t k = begin; k < end; ++k) {
+      const Corner& c = corners[static_cast<size_t>(k)];
+      double lowest = std::numeric_limits<double>::infinity();
+      for (int32_t b : nearBodies[static_cast<size_t>(c.rigid)])
+        nearestTriangleToCorner(rigids[static_cast<size_t>(c.rigid)], deformables + c.rigid, c.index, c.position,
+                                bodies, b, h, &lowest, &(*slots)[first + static_cast<size_t>(k)]);
+    }
+  });
+}
+
 }  // namespace
+
+void rigidVertices(const PreparedCollider& shape, Array<Vec3>* out) {
+  out->clear();
+  const ColliderShape& s = shape.shape;
+  switch (s.kind) {
+    case ShapeKind::Box:
+      for (int k = 0; k < 8; ++k) {
+        const Vec3 local((k & 1 ? 1.0 : -1.0) * s.halfExtents.x(), (k & 2 ? 1.0 : -1.0) * s.halfExtents.y(),
+                         (k & 4 ? 1.0 : -1.0) * s.halfExtents.z());
+        out->push_back(shape.rotation * local + shape.translation);
+      }
+      break;
+    case ShapeKind::ConvexHull:
+      for (const Vec3& p : s.hullPoints) out->push_back(shape.rotation * p + shape.translation);
+      break;
+    case ShapeKind::TriangleMesh: out->assign(shape.worldVertices.begin(), shape.worldVertices.end()); break;
+    default: break;
+  }
+}
 
 const RigidContactBody* findRigidBody(const std::vector<RigidContactBody>& rigids, uint32_t index1,
                                       uint32_t generation) {
@@ -208,9 +337,13 @@ void findPairContacts(const std::vector<PairContactBody>& bodies, const std::vec
                      &slots[static_cast<size_t>(s)]);
     }
   });
+  findCornerContacts(bodies, rigids, h, tasks, &slots);
   for (PairContact& c : slots) {
     if (c.node < 0) continue;
-    const PairFriction& f = (*bodies[c.nodeBody].friction)[c.node];
+    const CornerFriction* corner =
+        c.rigidNode ? cornerState(bodies[c.triangleBody], c.nodeBodyId, c.node) : nullptr;
+    const PairFriction& f = c.rigidNode ? (corner != nullptr ? corner->state : PairFriction())
+                                        : (*bodies[c.nodeBody].friction)[c.node];
     if (f.other == c.triangleBodyId) {
       c.state = f;
       c.state.stick -= c.state.stick.dot(c.normal) * c.normal;

@@ -1,7 +1,9 @@
 // Contacts between deformables, and of a deformable with itself: a surface node of one body
 // against a boundary triangle of another (or of its own, away from the node's neighbourhood).
 // A node's contact with a dynamic rigid body is the same spring with a point of the rigid body
-// on its other side (PairContact::rigidSide), whose six velocities join the solve.
+// on its other side (PairContact::rigidSide), whose six velocities join the solve; so is a
+// rigid body's corner against a deformable's triangle (PairContact::rigidNode), without which a
+// box smaller than the deformable's elements falls between its nodes.
 //
 // Bodies that step together solve one system (contact_group_solve.h) and the contact couples
 // their new velocities (PairContact::coupled). Otherwise each steps from the state the other
@@ -76,8 +78,16 @@ struct PairFriction {
   uint8_t sliding = 0;
 };
 
+// A rigid body's corner's tangential spring on a deformable, carried from its last step (kept by
+// the deformable, since the world keeps no state of its own for a rigid body).
+struct CornerFriction {
+  PairBodyId rigid;     // the corner's body
+  int32_t corner = -1;  // rigidVertices' numbering
+  PairFriction state;   // state.other: the deformable
+};
+
 struct PairContact {
-  int32_t nodeBody = -1, node = -1;  // the node side
+  int32_t nodeBody = -1, node = -1;  // the node side (rigidNode: a rigid pair body and its corner)
   // The other side: a triangle (the node's own body: self contact) or, with rigidSide, a rigid
   // body, whose pair body index follows the deformables' (findPairContacts).
   int32_t triangleBody = -1;
@@ -85,7 +95,11 @@ struct PairContact {
   std::array<int32_t, 3> triangleNodes{{-1, -1, -1}};
   Vec3 weights = Vec3::Zero();       // the contact point's barycentric weights (rigid: 1, 0, 0)
   bool rigidSide = false;
-  Vec3 arm = Vec3::Zero();           // rigid: the contact point less the body's centre of mass
+  // The node side is a corner of a dynamic rigid body (rigidVertices' numbering), whose pair body
+  // index follows the deformables'; its friction state is kept by the triangle's body.
+  bool rigidNode = false;
+  PairBodyId nodeBodyId;             // rigidNode: the rigid body's handle
+  Vec3 arm = Vec3::Zero();           // rigid (either side): the contact point less the body's centre of mass
   // An attachment of the node to the rigid body (DeformableBody::attachmentSprings), not a
   // contact: a spring with no rest length that never slides, keeps no friction state and
   // makes no contact events.
@@ -129,6 +143,7 @@ struct PairContactBody {
   const Array<int32_t>* surfaceNodes = nullptr;
   const ContactSurface* surface = nullptr;  // refit to x and the step's motion (ContactSurface::refit)
   const Array<PairFriction>* friction = nullptr;  // per node
+  const Array<CornerFriction>* cornerFriction = nullptr;  // of the rigid corners on its triangles
   CollisionFilter filter;
   double frictionCoefficient = 0.5;  // the body's Coulomb coefficient
   double rest = 0.0;       // its contact margin: the spring's rest gap for its nodes
@@ -154,14 +169,20 @@ struct RigidContactBody {
   Vec3 pointVelocity(const Vec3& arm) const { return linearVelocity + angularVelocity.cross(arm); }
 };
 
+// The corners a rigid body's shape pokes into a deformable with (world frame, at its pose): a
+// box's eight, a hull's points, a mesh's vertices; none for round shapes and planes.
+void rigidVertices(const PreparedCollider& shape, Array<Vec3>* out);
+
 // The rigid body of `rigids` with the collider handle (index1, generation), or null.
 const RigidContactBody* findRigidBody(const std::vector<RigidContactBody>& rigids, uint32_t index1,
                                       uint32_t generation);
 
 // Every surface node's nearest touching triangle (the lowest predicted gap over the step h)
 // among the bodies its filter meets and, with selfCollision, its own, or, for a body whose
-// touchesRigid is set, the nearest rigid body's surface if that is nearer; in body, node order
-// (the same for any worker count). Rigid body r is pair body bodies.size() + r.
+// touchesRigid is set, the nearest rigid body's surface if that is nearer; then every rigid
+// body's corners' nearest touching triangles among the bodies whose touchesRigid is set and
+// whose filter meets its; in body, node order, then rigid body, corner order (the same for any
+// worker count). Rigid body r is pair body bodies.size() + r.
 void findPairContacts(const std::vector<PairContactBody>& bodies, const std::vector<RigidContactBody>& rigids,
                       double h, TaskSystem& tasks, std::vector<PairContact>* out);
 

@@ -145,6 +145,29 @@ void readEmptyOrFull(StateReader& in, A* a, uint64_t full, const char* what) {
   if (in.ok() && !a->empty() && a->size() != full) in.expect(what, a->size(), full);
 }
 
+// A pair contact's friction state (deform/pair_contacts.h), and its size in the stream.
+constexpr uint64_t kPairFrictionBytes = 4 * sizeof(double) + 2 * sizeof(uint32_t) + 2 * sizeof(uint8_t);
+
+void writePairFriction(StateWriter& out, const PairFriction& f) {
+  writeVec(out, f.stick);
+  out.value(f.lastNormalImpulse);
+  out.value(f.other.index1);
+  out.value(f.other.generation);
+  out.value(f.other.rigid);
+  out.value(f.sliding);
+}
+
+void readPairFriction(StateReader& in, PairFriction* f) {
+  f->stick = readVec(in, "a deformable's pair contact stick force");
+  f->lastNormalImpulse = in.value<double>();
+  in.requireFinite("a deformable's pair contact impulse", &f->lastNormalImpulse, 1);
+  f->other.index1 = in.value<uint32_t>();
+  f->other.generation = in.value<uint32_t>();
+  f->other.rigid = in.value<uint8_t>();
+  f->sliding = in.value<uint8_t>();
+  if (in.ok() && (f->sliding > 1 || f->other.rigid > 1)) in.outOfRange("a deformable's pair contact state");
+}
+
 }  // namespace
 
 void writeDeformableState(StateWriter& out, const DeformableState& s) {
@@ -165,13 +188,13 @@ void writeDeformableState(StateWriter& out, const DeformableState& s) {
   writeSchedule(out, s.schedule);
   const FluidImmersion::Tracking& t = s.immersionTracking;
   for (const Vec3* v : {&t.velocity, &t.velocityChange, &t.spin, &t.spinChange}) writeVec(out, *v);
-  for (const PairFriction& f : s.pairFriction) {
-    writeVec(out, f.stick);
-    out.value(f.lastNormalImpulse);
-    out.value(f.other.index1);
-    out.value(f.other.generation);
-    out.value(f.other.rigid);
-    out.value(f.sliding);
+  for (const PairFriction& f : s.pairFriction) writePairFriction(out, f);
+  out.value(static_cast<uint64_t>(s.cornerFriction.size()));
+  for (const CornerFriction& c : s.cornerFriction) {
+    out.value(c.rigid.index1);
+    out.value(c.rigid.generation);
+    out.value(c.corner);
+    writePairFriction(out, c.state);
   }
   out.array(s.pendingImpulse);
 }
@@ -209,17 +232,18 @@ void readDeformableState(StateReader& in, const DeformableBody& body, Deformable
   FluidImmersion::Tracking& t = s->immersionTracking;
   for (Vec3* v : {&t.velocity, &t.velocityChange, &t.spin, &t.spinChange}) *v = readVec(in, "a deformable's tracked motion");
   // One friction state per node, as many as the body has (not counted in the buffer).
-  if (in.ok() && in.has(nodes, 4 * sizeof(double) + 2 * sizeof(uint32_t) + 2 * sizeof(uint8_t))) {
+  if (in.ok() && in.has(nodes, kPairFrictionBytes)) {
     s->pairFriction.resize(static_cast<size_t>(nodes));
-    for (PairFriction& f : s->pairFriction) {
-      f.stick = readVec(in, "a deformable's pair contact stick force");
-      f.lastNormalImpulse = in.value<double>();
-      in.requireFinite("a deformable's pair contact impulse", &f.lastNormalImpulse, 1);
-      f.other.index1 = in.value<uint32_t>();
-      f.other.generation = in.value<uint32_t>();
-      f.other.rigid = in.value<uint8_t>();
-      f.sliding = in.value<uint8_t>();
-      if (in.ok() && (f.sliding > 1 || f.other.rigid > 1)) in.outOfRange("a deformable's pair contact state");
+    for (PairFriction& f : s->pairFriction) readPairFriction(in, &f);
+  }
+  const uint64_t corners = in.value<uint64_t>();
+  if (in.ok() && in.has(corners, 2 * sizeof(uint32_t) + sizeof(int32_t) + kPairFrictionBytes)) {
+    s->cornerFriction.resize(static_cast<size_t>(corners));
+    for (CornerFriction& c : s->cornerFriction) {
+      c.rigid = PairBodyId{in.value<uint32_t>(), in.value<uint32_t>(), 1};
+      c.corner = in.value<int32_t>();
+      if (in.ok() && c.corner < 0) in.outOfRange("a rigid corner's index");
+      readPairFriction(in, &c.state);
     }
   }
   readFiniteArray(in, &s->pendingImpulse, 3 * nodes, "deformable's pending impulse count (3 per node)");

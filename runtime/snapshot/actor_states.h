@@ -60,9 +60,10 @@ struct DeformableState {
   Array<Vec3> renderPositions, renderNormals;
   ActorSchedule schedule;
   FluidImmersion::Tracking immersionTracking;  // for the fluids' loads
-  // Contacts with deformables (deform/pair_contacts.h): per node, its friction state, and the
-  // impulses the next step applies (3 per node).
+  // Contacts with deformables (deform/pair_contacts.h): per node, its friction state, those of
+  // the rigid corners on its triangles, and the impulses the next step applies (3 per node).
   Array<PairFriction> pairFriction;
+  Array<CornerFriction> cornerFriction;
   Array<double> pendingImpulse;
 };
 
