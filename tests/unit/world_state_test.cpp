@@ -119,8 +119,12 @@ TEST(WorldState, TouchingDeformablesContinueBitwise) {
 }
 
 // A dynamic box sliding on a jelly, the two solved as one (deform/contact_group_solve.h): the
-// friction states of the jelly's nodes on the box are in the state.
+// friction states of the jelly's nodes on the box, and of the box's corners on the jelly's
+// triangles (which the jelly keeps; there are some at the save), are in the state.
 TEST(WorldState, AJellyAndTheDynamicBoxOnItContinueBitwise) {
+  SceneWorld scene(VP_TEST_DATA_DIR "/scenes/box_on_jelly.json", 0.0);
+  scene.run(20);
+  EXPECT_GT(scene.world->deformable(scene.world->deformableHandles().front())->saveState().cornerFriction.size(), 0u);
   checkRoundTrip(VP_TEST_DATA_DIR "/scenes/box_on_jelly.json", 0.0, 20, 30);
 }
 
