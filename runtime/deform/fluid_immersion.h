@@ -3,8 +3,9 @@
 // The fluids take the boundary triangles of the tet mesh (the corner nodes' triangles; for
 // quadratic and cubic elements the flat triangles under the curved surface) at the current
 // node positions, with the node velocities, as a moving closed mesh (collide/face_coverage.h,
-// deforming surfaces): exact face fractions, and on each covered face the velocity of the
-// surface point nearest the covered part. What a fluid's step sees stays as it was while the
+// deforming surfaces): exact face fractions, and on each face it cuts the surface's velocity
+// where it crosses the face (fluid/solids/face_fraction_field.h has the rules for the faces it
+// covers whole). What a fluid's step sees stays as it was while the
 // step runs over several frames (the surface is copied before it changes while shared).
 //
 // Each fluid's last completed step leaves a force on every surface vertex
