@@ -256,7 +256,7 @@ Aabb DeformableBody::bounds() const {
 }
 
 void DeformableBody::applyFluidLoads(double h, const Vec3& gravity) {
-  immersion_.trackVelocity(x_, v_, mass_);
+  immersion_.trackVelocity(x_, v_, mass_, h);
   if (!immersion_.loaded()) return;
   Array<uint8_t> touching(static_cast<size_t>(nodeCount_), 0);
   for (const NodeContact& c : contacts_.contacts()) touching[c.node] = 1;

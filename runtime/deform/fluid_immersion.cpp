@@ -81,14 +81,17 @@ bool FluidImmersion::addLoad(const Array<Vec3>& vertexForces, double addedMass) 
   return true;
 }
 
-void FluidImmersion::trackVelocity(const Array<double>& x, const Array<double>& v, const Array<double>& mass) {
+void FluidImmersion::trackVelocity(const Array<double>& x, const Array<double>& v, const Array<double>& mass,
+                                   double h) {
   const RigidView body(x, &v, mass);
   if (!(body.mass > 0.0)) return;
   const Vec3 velocity = body.momentum / body.mass, spin = body.solveInertia(body.angularMomentum);
-  tracking_.velocityChange = velocity - tracking_.velocity;
-  tracking_.spinChange = spin - tracking_.spin;
+  const bool stepped = tracking_.stepDt > 0.0;  // a first step has no last one
+  tracking_.acceleration = stepped ? Vec3((velocity - tracking_.velocity) / tracking_.stepDt) : Vec3::Zero();
+  tracking_.spinAcceleration = stepped ? Vec3((spin - tracking_.spin) / tracking_.stepDt) : Vec3::Zero();
   tracking_.velocity = velocity;
   tracking_.spin = spin;
+  tracking_.stepDt = h;
 }
 
 void FluidImmersion::addNodeForces(const Array<double>& x, const Array<double>& mass, double h, const Vec3& gravity,
@@ -105,8 +108,8 @@ void FluidImmersion::addNodeForces(const Array<double>& x, const Array<double>& 
     torque += (nodeVector(x, i) - body.centre).cross(nodeVector(f, i));
   }
   const double k = addedMass_ / body.mass;
-  const Vec3 stabilizedNet = (net + addedMass_ * (tracking_.velocityChange / h - gravity)) / (1.0 + k);
-  const Vec3 stabilizedTorque = (torque + k * body.inertia * (tracking_.spinChange / h)) / (1.0 + k);
+  const Vec3 stabilizedNet = (net + addedMass_ * (tracking_.acceleration - gravity)) / (1.0 + k);
+  const Vec3 stabilizedTorque = (torque + k * body.inertia * tracking_.spinAcceleration) / (1.0 + k);
   // Per node: the rest (f minus its rigid part) scaled, plus the stabilized rigid part.
   const Vec3 linear = net / body.mass, angular = body.solveInertia(torque);
   const Vec3 linearOut = stabilizedNet / body.mass, angularOut = body.solveInertia(stabilizedTorque);

@@ -19,7 +19,8 @@
 // force or torque. With m the body's mass and k = m_a / m, the rigid part becomes
 //     F' = (F + m_a (a_last - g)) / (1 + k),   tau' = (tau + k I alpha_last) / (1 + k),
 // where a_last and alpha_last are the last step's changes of the centre of mass's velocity
-// and of the body's spin (angular momentum over inertia) over the step; the rest is scaled by
+// and of the body's spin (angular momentum over inertia) over that step's length (which is
+// not the coming step's when a frame budget changes the body's rate); the rest is scaled by
 // 1 / (1 + k) too.
 #pragma once
 
@@ -49,9 +50,9 @@ class FluidImmersion {
   bool addLoad(const Array<Vec3>& vertexForces, double addedMass);
   bool loaded() const { return loaded_; }
 
-  // At the start of every step of the body: remembers how much its centre-of-mass velocity
-  // and its spin changed in the last one.
-  void trackVelocity(const Array<double>& x, const Array<double>& v, const Array<double>& mass);
+  // At the start of every step of the body, of length h: remembers how fast its centre-of-mass
+  // velocity and its spin changed in the last one.
+  void trackVelocity(const Array<double>& x, const Array<double>& v, const Array<double>& mass, double h);
   // The loads as node forces for a step of h under gravity g, added to `force` (3 per node).
   // Nodes touching a collider (touching[node] != 0) take no vertex force: the fluid between two
   // solids closer than a cell is not resolved (its pressure there swings with the gap, and
@@ -59,11 +60,12 @@ class FluidImmersion {
   void addNodeForces(const Array<double>& x, const Array<double>& mass, double h, const Vec3& gravity,
                      const Array<uint8_t>& touching, Array<double>* force) const;
 
-  // What evolves with the body (its saved state): the tracked velocity and spin, and their
-  // last changes.
+  // What evolves with the body (its saved state): the velocity and spin at the start of the
+  // step now running, that step's length, and their rates of change over the step before.
   struct Tracking {
-    Vec3 velocity = Vec3::Zero(), velocityChange = Vec3::Zero();
-    Vec3 spin = Vec3::Zero(), spinChange = Vec3::Zero();
+    Vec3 velocity = Vec3::Zero(), acceleration = Vec3::Zero();
+    Vec3 spin = Vec3::Zero(), spinAcceleration = Vec3::Zero();
+    double stepDt = 0.0;
   };
   const Tracking& tracking() const { return tracking_; }
   void restoreTracking(const Tracking& tracking) { tracking_ = tracking; }

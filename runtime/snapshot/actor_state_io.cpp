@@ -187,7 +187,8 @@ void writeDeformableState(StateWriter& out, const DeformableState& s) {
   writeVecs(out, s.renderNormals);
   writeSchedule(out, s.schedule);
   const FluidImmersion::Tracking& t = s.immersionTracking;
-  for (const Vec3* v : {&t.velocity, &t.velocityChange, &t.spin, &t.spinChange}) writeVec(out, *v);
+  for (const Vec3* v : {&t.velocity, &t.acceleration, &t.spin, &t.spinAcceleration}) writeVec(out, *v);
+  out.value(t.stepDt);
   for (const PairFriction& f : s.pairFriction) writePairFriction(out, f);
   out.value(static_cast<uint64_t>(s.cornerFriction.size()));
   for (const CornerFriction& c : s.cornerFriction) {
@@ -230,7 +231,11 @@ void readDeformableState(StateReader& in, const DeformableBody& body, Deformable
   readVecs(in, &s->renderNormals, render, "deformable's render normal count");
   readSchedule(in, &s->schedule);
   FluidImmersion::Tracking& t = s->immersionTracking;
-  for (Vec3* v : {&t.velocity, &t.velocityChange, &t.spin, &t.spinChange}) *v = readVec(in, "a deformable's tracked motion");
+  for (Vec3* v : {&t.velocity, &t.acceleration, &t.spin, &t.spinAcceleration})
+    *v = readVec(in, "a deformable's tracked motion");
+  t.stepDt = in.value<double>();
+  in.requireFinite("a deformable's tracked step", &t.stepDt, 1);
+  if (in.ok() && t.stepDt < 0.0) in.outOfRange("a deformable's tracked step");
   // One friction state per node, as many as the body has (not counted in the buffer).
   if (in.ok() && in.has(nodes, kPairFrictionBytes)) {
     s->pairFriction.resize(static_cast<size_t>(nodes));

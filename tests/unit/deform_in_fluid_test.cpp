@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <functional>
 
+#include "deform/fluid_immersion.h"
 #include "fluid/solids/face_fraction_field.h"
 #include "geometry/box_tet_mesh.h"
 #include "liquid_tank_world.h"
@@ -271,6 +272,24 @@ TEST(DeformableInFluid, InteriorFacesTakeTheMeanVelocityAndFacesBesideFluidTheNe
   std::printf("covered faces beside fluid %d, interior %d\n", besideFluid, interior);
   EXPECT_GT(besideFluid, 100);
   EXPECT_GT(interior, 100);
+}
+
+// The loads' added-mass stabilization reads the body's acceleration over its last step: the
+// change of its centre-of-mass velocity (and spin) over that step's own length, which under a
+// frame budget is not the coming step's (an interval of 6 frames, then 1). Divided by the
+// coming step's length instead, it came out six times too large, and the default scene's duck
+// blew up under a tick-clock budget.
+TEST(DeformableInFluid, TheTrackedAccelerationIsOverTheLastStepsOwnLength) {
+  FluidImmersion immersion;
+  const Array<double> x = {0.0, 0.0, 0.0, 1.0, 0.0, 0.0}, mass = {1.0, 1.0};
+  const double longStep = 6.0 / 60.0, shortStep = 1.0 / 60.0;
+  immersion.trackVelocity(x, Array<double>{0.0, 1.0, 0.0, 0.0, 1.0, 0.0}, mass, longStep);
+  EXPECT_EQ(immersion.tracking().acceleration, Vec3::Zero());  // a first step has no last one
+  immersion.trackVelocity(x, Array<double>{0.0, 0.4, 0.0, 0.0, 0.4, 0.0}, mass, shortStep);
+  EXPECT_NEAR(immersion.tracking().acceleration.y(), (0.4 - 1.0) / longStep, 1e-12);
+  EXPECT_EQ(immersion.tracking().stepDt, shortStep);
+  immersion.trackVelocity(x, Array<double>{0.0, 0.3, 0.0, 0.0, 0.3, 0.0}, mass, shortStep);
+  EXPECT_NEAR(immersion.tracking().acceleration.y(), (0.3 - 0.4) / shortStep, 1e-12);
 }
 
 // Smoke flows around a deformable held still as around the rigid mesh of its surface.
