@@ -229,6 +229,53 @@ void nearestRigid(const PairContactBody& A, int32_t a, int32_t node, const Rigid
   best->triangleVelocities = {{vc, Vec3::Zero(), Vec3::Zero()}};
 }
 
+// A round shape's point farthest along unit d (its support point), world frame: a sphere's,
+// a capsule's and a cylinder's (local y axis, halfHeight); false for other shapes.
+bool roundSupport(const PreparedCollider& shape, const Vec3& d, Vec3* out) {
+  const ColliderShape& s = shape.shape;
+  if (s.kind != ShapeKind::Sphere && s.kind != ShapeKind::Capsule && s.kind != ShapeKind::Cylinder) return false;
+  const Vec3 axis = shape.rotation.col(1);
+  const double along = d.dot(axis);
+  const Vec3 end = s.kind == ShapeKind::Sphere ? Vec3::Zero() : Vec3((along >= 0.0 ? 1.0 : -1.0) * s.halfHeight * axis);
+  Vec3 radial = d;
+  if (s.kind == ShapeKind::Cylinder) {
+    radial = d - along * axis;  // the rim's point: across the axis only
+    const double n = radial.norm();
+    radial = n > 1e-12 ? Vec3(radial / n) : Vec3::Zero();
+  }
+  *out = shape.translation + end + s.radius * radial;
+  return true;
+}
+
+// A round body R (pair body r) against the triangles of body `b`: each triangle near it
+// against the body's point deepest under the triangle's plane (its support point along the
+// inward normal), as nearestTriangleToCorner does a corner. Such a point is not one of a fixed
+// set: its friction state is keyed by the triangle's index. Appends the contacts in the BVH's
+// order.
+void roundContacts(const RigidContactBody& R, int32_t r, const std::vector<PairContactBody>& bodies, int32_t b,
+                   double h, std::vector<PairContact>* out) {
+  const PairContactBody& B = bodies[b];
+  const PreparedCollider& c = *R.geometry;
+  const double reach = B.rest + B.depth + h * (R.linearVelocity.norm() + R.angularVelocity.norm() * c.boundRadius);
+  const Vec3 lo = c.bounds.lo - Vec3::Constant(reach), hi = c.bounds.hi + Vec3::Constant(reach);
+  const RefitBvh& bvh = B.surface->bvh();
+  if ((lo.array() > bvh.hi().array()).any() || (hi.array() < bvh.lo().array()).any()) return;
+  const Array<RefitBvh::Triangle>& triangles = B.surface->triangles();
+  bvh.visitBox(lo, hi, [&](int32_t t) {
+    const RefitBvh::Triangle& tri = triangles[t];
+    const Vec3 a = nodeVector(*B.x, tri[0]);
+    const Vec3 n = (nodeVector(*B.x, tri[1]) - a).cross(nodeVector(*B.x, tri[2]) - a);
+    if (!(n.squaredNorm() > 0.0)) return;
+    Vec3 q;
+    roundSupport(c, Vec3(-n.normalized()), &q);
+    // The point belongs to this triangle: it counts where this triangle is the one it touches.
+    double lowest = std::numeric_limits<double>::infinity();
+    PairContact contact;
+    nearestTriangleToCorner(R, r, t, q, bodies, b, h, &lowest, &contact);
+    if (contact.node >= 0 && contact.triangleNodes == tri) out->push_back(contact);
+  });
+}
+
 // Appends one slot per corner of every rigid body that some body with touchesRigid set can
 // reach this step (its boxes hold its motion; the rigid body's is added), filled in parallel
 // with the corner's nearest touching triangle over those bodies; in rigid body, corner order.
@@ -240,6 +287,7 @@ void findCornerContacts(const std::vector<PairContactBody>& bodies, const std::v
   };
   std::vector<Corner> corners;
   std::vector<std::vector<int32_t>> nearBodies(rigids.size());
+  std::vector<int32_t> round;  // the round bodies: their points come from the triangles (roundContacts)
   Array<Vec3> vertices;
   for (size_t r = 0; r < rigids.size(); ++r) {
     const RigidContactBody& R = rigids[r];
@@ -252,6 +300,11 @@ void findCornerContacts(const std::vector<PairContactBody>& bodies, const std::v
         nearBodies[r].push_back(static_cast<int32_t>(b));
     }
     if (nearBodies[r].empty()) continue;
+    Vec3 unused;
+    if (roundSupport(*R.geometry, Vec3::UnitY(), &unused)) {
+      round.push_back(static_cast<int32_t>(r));
+      continue;
+    }
     rigidVertices(*R.geometry, &vertices);
     for (size_t k = 0; k < vertices.size(); ++k)
       corners.push_back({static_cast<int32_t>(r), static_cast<int32_t>(k), vertices[k]});
@@ -268,6 +321,9 @@ void findCornerContacts(const std::vector<PairContactBody>& bodies, const std::v
                                 bodies, b, h, &lowest, &(*slots)[first + static_cast<size_t>(k)]);
     }
   });
+  for (int32_t r : round)
+    for (int32_t b : nearBodies[static_cast<size_t>(r)])
+      roundContacts(rigids[static_cast<size_t>(r)], deformables + r, bodies, b, h, slots);
 }
 
 }  // namespace

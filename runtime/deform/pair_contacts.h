@@ -3,7 +3,9 @@
 // A node's contact with a dynamic rigid body is the same spring with a point of the rigid body
 // on its other side (PairContact::rigidSide), whose six velocities join the solve; so is a
 // rigid body's corner against a deformable's triangle (PairContact::rigidNode), without which a
-// box smaller than the deformable's elements falls between its nodes.
+// box smaller than the deformable's elements falls between its nodes. A round body (sphere,
+// capsule, cylinder) has no corners: each triangle near it is touched by the body's point
+// deepest under the triangle's plane, its friction state keyed by the triangle.
 //
 // Bodies that step together solve one system (contact_group_solve.h) and the contact couples
 // their new velocities (PairContact::coupled). Otherwise each steps from the state the other
@@ -87,7 +89,9 @@ struct CornerFriction {
 };
 
 struct PairContact {
-  int32_t nodeBody = -1, node = -1;  // the node side (rigidNode: a rigid pair body and its corner)
+  // The node side (rigidNode: a rigid pair body and its corner, or for a round body the
+  // triangle whose plane its point is deepest under).
+  int32_t nodeBody = -1, node = -1;
   // The other side: a triangle (the node's own body: self contact) or, with rigidSide, a rigid
   // body, whose pair body index follows the deformables' (findPairContacts).
   int32_t triangleBody = -1;
@@ -170,7 +174,8 @@ struct RigidContactBody {
 };
 
 // The corners a rigid body's shape pokes into a deformable with (world frame, at its pose): a
-// box's eight, a hull's points, a mesh's vertices; none for round shapes and planes.
+// box's eight, a hull's points, a mesh's vertices; none for round shapes (their points come
+// from the triangles they touch) and planes.
 void rigidVertices(const PreparedCollider& shape, Array<Vec3>* out);
 
 // The rigid body of `rigids` with the collider handle (index1, generation), or null.
