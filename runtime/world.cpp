@@ -445,10 +445,9 @@ void World::addAttachmentSprings(const std::vector<DeformableHandle>& handles, c
     if (p.rigidSide)
       return deformable(handles[p.nodeBody])->attachedTo(p.node, p.triangleBodyId.index1, p.triangleBodyId.generation);
     if (!p.rigidNode) return false;
-    const PairBodyId& rigid = rigids[static_cast<size_t>(p.nodeBody - rigidBase)].id;
     const DeformableBody& body = *deformable(handles[p.triangleBody]);
     return std::any_of(p.triangleNodes.begin(), p.triangleNodes.end(),
-                       [&](int32_t n) { return body.attachedTo(n, rigid.index1, rigid.generation); });
+                       [&](int32_t n) { return body.attachedTo(n, p.nodeBodyId.index1, p.nodeBodyId.generation); });
   }), pairs->end());
   for (size_t i = 0; i < handles.size(); ++i)
     if (touchesRigid[i])

@@ -185,13 +185,12 @@ void updatePairFriction(const std::vector<PairContact>& pairs, int32_t body, dou
   std::fill(friction->begin(), friction->end(), PairFriction());
   cornerFriction->clear();
   for (const PairContact& p : pairs) {
-    const bool node = p.nodeBody == body && !p.attachment, corner = p.rigidNode && p.triangleBody == body;
+    // A rigid corner's contact is always coupled: its body is solved with the deformable.
+    const bool node = p.nodeBody == body && !p.attachment, corner = p.rigidNode && p.coupled && p.triangleBody == body;
     if (!node && !corner) continue;
     // The node's velocity and the triangle point's, as the node's side of the spring saw them.
-    const auto [v, point] = corner ? solvedVelocities(p, solved)
-                                   : std::pair<Vec3, Vec3>(nodeVector(vNext, p.node),
-                                                           p.coupled ? solvedVelocities(p, solved).second
-                                                                     : p.triangleVelocity());
+    const auto [v, point] = p.coupled ? solvedVelocities(p, solved)
+                                      : std::pair<Vec3, Vec3>(nodeVector(vNext, p.node), p.triangleVelocity());
     PairFriction f;
     if (!nextFriction(p, h, v, point, &f)) continue;
     if (node) (*friction)[p.node] = f;

@@ -158,18 +158,19 @@ const CornerFriction* cornerState(const PairContactBody& B, const PairBodyId& ri
   return nullptr;
 }
 
-// Corner `corner` (at q) of rigid body R (pair body r) against the triangles of body `b`, as
-// nearestTriangle: its arm's direction is the way the corner faces, B's margin its own (and
-// its keep band when it pushed in its last step).
+// Corner `corner` (at q) of rigid body R (pair body r) against the triangles of body `b` that
+// skip(tri) leaves in, as nearestTriangle: its arm's direction is the way the corner faces, B's
+// margin its own (and its keep band when it pushed in its last step).
+template <class Skip = bool (*)(const RefitBvh::Triangle&)>
 void nearestTriangleToCorner(const RigidContactBody& R, int32_t r, int32_t corner, const Vec3& q,
                              const std::vector<PairContactBody>& bodies, int32_t b, double h, double* lowest,
-                             PairContact* best) {
+                             PairContact* best, const Skip& skip = [](const RefitBvh::Triangle&) { return false; }) {
   const PairContactBody& B = bodies[b];
   const Vec3 arm = q - R.centre;
   const CornerFriction* last = cornerState(B, R.id, corner);
   const double threshold = last != nullptr && last->state.lastNormalImpulse > 0.0 ? kPairContactKeep * B.rest : B.rest;
   const TouchQuery query{q, R.pointVelocity(arm), arm, B.rest, threshold};
-  touchingTriangles(query, B, h, lowest, [](const RefitBvh::Triangle&) { return false; },
+  touchingTriangles(query, B, h, lowest, skip,
                     [&](const RefitBvh::Triangle& tri, const Vec3& w, const Vec3& n, double height,
                         const std::array<Vec3, 3>& vt) {
                       const double mt = pointMass(B, tri, w);
@@ -196,8 +197,7 @@ void nearestRigid(const PairContactBody& A, int32_t a, int32_t node, const Rigid
   const PreparedCollider& c = *R.geometry;
   const Vec3 p = nodeVector(*A.x, node), vp = nodeVector(*A.v, node);
   // The node's reach over the step and the rigid body's own motion (its bounds are its pose now).
-  const double reach = h * vp.norm() + touchThreshold(A, node) +
-                       h * (R.linearVelocity.norm() + R.angularVelocity.norm() * c.boundRadius) + 1e-9;
+  const double reach = h * vp.norm() + touchThreshold(A, node) + R.sweep(h) + 1e-9;
   if (!Aabb{p - Vec3::Constant(reach), p + Vec3::Constant(reach)}.overlaps(c.bounds)) return;
   const double phi = signedDistanceBound(c, p);
   if (phi > reach) return;
@@ -229,11 +229,16 @@ void nearestRigid(const PairContactBody& A, int32_t a, int32_t node, const Rigid
   best->triangleVelocities = {{vc, Vec3::Zero(), Vec3::Zero()}};
 }
 
+// A sphere, capsule or cylinder: no corners.
+bool isRound(const PreparedCollider& shape) {
+  const ShapeKind k = shape.shape.kind;
+  return k == ShapeKind::Sphere || k == ShapeKind::Capsule || k == ShapeKind::Cylinder;
+}
+
 // A round shape's point farthest along unit d (its support point), world frame: a sphere's,
-// a capsule's and a cylinder's (local y axis, halfHeight); false for other shapes.
-bool roundSupport(const PreparedCollider& shape, const Vec3& d, Vec3* out) {
+// a capsule's and a cylinder's (local y axis, halfHeight).
+Vec3 roundSupport(const PreparedCollider& shape, const Vec3& d) {
   const ColliderShape& s = shape.shape;
-  if (s.kind != ShapeKind::Sphere && s.kind != ShapeKind::Capsule && s.kind != ShapeKind::Cylinder) return false;
   const Vec3 axis = shape.rotation.col(1);
   const double along = d.dot(axis);
   const Vec3 end = s.kind == ShapeKind::Sphere ? Vec3::Zero() : Vec3((along >= 0.0 ? 1.0 : -1.0) * s.halfHeight * axis);
@@ -243,36 +248,30 @@ bool roundSupport(const PreparedCollider& shape, const Vec3& d, Vec3* out) {
     const double n = radial.norm();
     radial = n > 1e-12 ? Vec3(radial / n) : Vec3::Zero();
   }
-  *out = shape.translation + end + s.radius * radial;
-  return true;
+  return shape.translation + end + s.radius * radial;
 }
 
 // A round body R (pair body r) against the triangles of body `b`: each triangle near it
 // against the body's point deepest under the triangle's plane (its support point along the
-// inward normal), as nearestTriangleToCorner does a corner. Such a point is not one of a fixed
-// set: its friction state is keyed by the triangle's index. Appends the contacts in the BVH's
-// order.
+// inward normal), tested against that triangle alone, as nearestTriangleToCorner tests a
+// corner. Such a point is not one of a fixed set: its friction state is keyed by the
+// triangle's index. Appends the contacts in the BVH's order.
 void roundContacts(const RigidContactBody& R, int32_t r, const std::vector<PairContactBody>& bodies, int32_t b,
                    double h, std::vector<PairContact>* out) {
   const PairContactBody& B = bodies[b];
-  const PreparedCollider& c = *R.geometry;
-  const double reach = B.rest + B.depth + h * (R.linearVelocity.norm() + R.angularVelocity.norm() * c.boundRadius);
-  const Vec3 lo = c.bounds.lo - Vec3::Constant(reach), hi = c.bounds.hi + Vec3::Constant(reach);
-  const RefitBvh& bvh = B.surface->bvh();
-  if ((lo.array() > bvh.hi().array()).any() || (hi.array() < bvh.lo().array()).any()) return;
+  const double reach = B.rest + B.depth + R.sweep(h);
+  const Aabb near{R.geometry->bounds.lo - Vec3::Constant(reach), R.geometry->bounds.hi + Vec3::Constant(reach)};
   const Array<RefitBvh::Triangle>& triangles = B.surface->triangles();
-  bvh.visitBox(lo, hi, [&](int32_t t) {
+  B.surface->bvh().visitBox(near.lo, near.hi, [&](int32_t t) {
     const RefitBvh::Triangle& tri = triangles[t];
     const Vec3 a = nodeVector(*B.x, tri[0]);
     const Vec3 n = (nodeVector(*B.x, tri[1]) - a).cross(nodeVector(*B.x, tri[2]) - a);
     if (!(n.squaredNorm() > 0.0)) return;
-    Vec3 q;
-    roundSupport(c, Vec3(-n.normalized()), &q);
-    // The point belongs to this triangle: it counts where this triangle is the one it touches.
     double lowest = std::numeric_limits<double>::infinity();
     PairContact contact;
-    nearestTriangleToCorner(R, r, t, q, bodies, b, h, &lowest, &contact);
-    if (contact.node >= 0 && contact.triangleNodes == tri) out->push_back(contact);
+    nearestTriangleToCorner(R, r, t, roundSupport(*R.geometry, Vec3(-n.normalized())), bodies, b, h, &lowest,
+                            &contact, [&](const RefitBvh::Triangle& other) { return other != tri; });
+    if (contact.node >= 0) out->push_back(contact);
   });
 }
 
@@ -287,22 +286,20 @@ void findCornerContacts(const std::vector<PairContactBody>& bodies, const std::v
   };
   std::vector<Corner> corners;
   std::vector<std::vector<int32_t>> nearBodies(rigids.size());
-  std::vector<int32_t> round;  // the round bodies: their points come from the triangles (roundContacts)
+  std::vector<int32_t> roundBodies;  // their points come from the triangles (roundContacts)
   Array<Vec3> vertices;
   for (size_t r = 0; r < rigids.size(); ++r) {
     const RigidContactBody& R = rigids[r];
     for (size_t b = 0; b < bodies.size(); ++b) {
       const PairContactBody& B = bodies[b];
-      const double reach = B.rest + B.depth + 1e-9 +
-                           h * (R.linearVelocity.norm() + R.angularVelocity.norm() * R.geometry->boundRadius);
+      const double reach = B.rest + B.depth + 1e-9 + R.sweep(h);
       const Aabb surface{B.surface->bvh().lo() - Vec3::Constant(reach), B.surface->bvh().hi() + Vec3::Constant(reach)};
       if (B.touchesRigid && B.filter.meets(R.filter) && surface.overlaps(R.geometry->bounds))
         nearBodies[r].push_back(static_cast<int32_t>(b));
     }
     if (nearBodies[r].empty()) continue;
-    Vec3 unused;
-    if (roundSupport(*R.geometry, Vec3::UnitY(), &unused)) {
-      round.push_back(static_cast<int32_t>(r));
+    if (isRound(*R.geometry)) {
+      roundBodies.push_back(static_cast<int32_t>(r));
       continue;
     }
     rigidVertices(*R.geometry, &vertices);
@@ -321,7 +318,7 @@ void findCornerContacts(const std::vector<PairContactBody>& bodies, const std::v
                                 bodies, b, h, &lowest, &(*slots)[first + static_cast<size_t>(k)]);
     }
   });
-  for (int32_t r : round)
+  for (int32_t r : roundBodies)
     for (int32_t b : nearBodies[static_cast<size_t>(r)])
       roundContacts(rigids[static_cast<size_t>(r)], deformables + r, bodies, b, h, slots);
 }
@@ -370,8 +367,7 @@ void findPairContacts(const std::vector<PairContactBody>& bodies, const std::vec
     if (!A.touchesRigid) continue;
     for (size_t r = 0; r < rigids.size(); ++r) {
       const RigidContactBody& R = rigids[r];
-      const double reach = kPairContactKeep * A.rest + 1e-9 +
-                           h * (R.linearVelocity.norm() + R.angularVelocity.norm() * R.geometry->boundRadius);
+      const double reach = kPairContactKeep * A.rest + 1e-9 + R.sweep(h);
       const Aabb surface{A.surface->bvh().lo() - Vec3::Constant(reach), A.surface->bvh().hi() + Vec3::Constant(reach)};
       if (A.filter.meets(R.filter) && surface.overlaps(R.geometry->bounds))
         nearRigids[a].push_back(static_cast<int32_t>(r));

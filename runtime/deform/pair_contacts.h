@@ -171,6 +171,8 @@ struct RigidContactBody {
   CollisionFilter filter;
   double frictionCoefficient = 0.5;
   Vec3 pointVelocity(const Vec3& arm) const { return linearVelocity + angularVelocity.cross(arm); }
+  // How far any of its points can move over a step of h.
+  double sweep(double h) const { return h * (linearVelocity.norm() + angularVelocity.norm() * geometry->boundRadius); }
 };
 
 // The corners a rigid body's shape pokes into a deformable with (world frame, at its pose): a

@@ -83,26 +83,18 @@ FaceClass classOf(const PreparedCollider& c, int axis, int i, int j, int k, cons
 // finds it.
 void coverFace(const PreparedCollider& c, const AxisFace& face, int i, int j, int k, const MeshClassList& classes,
                double* covered, double* velocity) {
-  *velocity = 0.0;
   const FaceClass cls = classOf(c, face.axis, i, j, k, classes);
-  Eigen::Vector3d centroid = face.centre;
-  if (cls != FaceClass::Touched) {
-    *covered = cls == FaceClass::Inside ? 1.0 : 0.0;
-  } else if (deforming(c)) {
-    Eigen::Vector3d traceVelocity;
-    bool traced = false;
-    *covered = coveredFractionAndTraceVelocity(c, face, &traceVelocity, &traced);
-    if (*covered > 0.0 && *covered < 1.0) {
-      *velocity = traced ? traceVelocity[face.axis] : solidVelocityAt(c, face.centre)[face.axis];
-      return;
-    }
-  } else {
-    *covered = coveredFractionAndCentroid(c, face, &centroid);
-  }
-  if (*covered >= 1.0 && deforming(c)) *velocity = kVelocityPending;
-  else if (*covered > 0.0 && c.shape.kind == ShapeKind::TriangleMesh)
-    *velocity = solidVelocityAt(c, centroid)[face.axis];
-  else if (*covered > 0.0) *velocity = colliderNormalVelocity(c, face, *covered);
+  Eigen::Vector3d centroid = face.centre, traceVelocity;
+  bool traced = false;
+  if (cls != FaceClass::Touched) *covered = cls == FaceClass::Inside ? 1.0 : 0.0;
+  else if (deforming(c)) *covered = coveredFractionAndTraceVelocity(c, face, &traceVelocity, &traced);
+  else *covered = coveredFractionAndCentroid(c, face, &centroid);
+  *velocity = 0.0;
+  if (!(*covered > 0.0)) return;
+  if (deforming(c) && *covered >= 1.0) *velocity = kVelocityPending;
+  else if (deforming(c)) *velocity = traced ? traceVelocity[face.axis] : solidVelocityAt(c, face.centre)[face.axis];
+  else if (c.shape.kind == ShapeKind::TriangleMesh) *velocity = solidVelocityAt(c, centroid)[face.axis];
+  else *velocity = colliderNormalVelocity(c, face, *covered);
 }
 
 void recomputeFace(const PreparedCollider* const* colliders, int count, const MeshClassList& classes, int axis,

@@ -70,51 +70,51 @@ void surfacePressureLoad(TaskSystem& tasks, const MacGrid& grid, const FaceFract
   struct TriangleLoad {
     Vec3 vertex[3] = {Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
     Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
-    double wetArea = 0.0;
+    double area = 0.0, wetArea = 0.0;
+  };
+  auto integrate = [&](const Eigen::Vector3i& t, TriangleLoad* load) {
+    const Vec3 &a = x[t[0]], &b = x[t[1]], &c = x[t[2]];
+    const Vec3 areaVector = 0.5 * (b - a).cross(c - a);  // outward normal times area
+    load->area = areaVector.norm();
+    const double longest = std::sqrt(std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()}));
+    const int n = clampIndex(std::ceil(longest / (0.5 * s.h)), 1, kMaxSubdivision);
+    const double pieceWeight = 1.0 / (n * n);
+    // The pieces' centroids in barycentric (u, v) of b and c: n^2 pieces, upright and inverted.
+    auto piece = [&](double u, double v) {
+      const Vec3 p = a + u * (b - a) + v * (c - a);
+      if (!wetAt(p)) return;
+      const double pressureHere = pressureAt(p);
+      load->wetArea += pieceWeight * load->area;
+      const Vec3 f = -pressureHere * pieceWeight * areaVector;
+      load->vertex[0] += (1.0 - u - v) * f;
+      load->vertex[1] += u * f;
+      load->vertex[2] += v * f;
+      load->force += f;
+      load->torque += p.cross(f);
+    };
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; i + j < n; ++j) {
+        piece((i + 1.0 / 3.0) / n, (j + 1.0 / 3.0) / n);
+        if (i + j + 1 < n) piece((i + 2.0 / 3.0) / n, (j + 2.0 / 3.0) / n);
+      }
   };
   Array<TriangleLoad> loads(surface.triangles.size());
   parallelFor(tasks, static_cast<int64_t>(loads.size()), kTriangleGrain, [&](int64_t begin, int64_t end) {
     for (int64_t id = begin; id < end; ++id) {
-      const Eigen::Vector3i& t = surface.triangles[static_cast<size_t>(id)];
-      TriangleLoad& load = loads[static_cast<size_t>(id)];
-      const Vec3 &a = x[t[0]], &b = x[t[1]], &c = x[t[2]];
-      const Vec3 areaVector = 0.5 * (b - a).cross(c - a);  // outward normal times area
-      const double triangleArea = areaVector.norm();
-      const double longest =
-          std::sqrt(std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()}));
-      const int n = clampIndex(std::ceil(longest / (0.5 * s.h)), 1, kMaxSubdivision);
-      const double pieceWeight = 1.0 / (n * n);
-      // The pieces' centroids in barycentric (u, v) of b and c: n^2 pieces, upright and inverted.
-      auto piece = [&](double u, double v) {
-        const Vec3 p = a + u * (b - a) + v * (c - a);
-        if (!wetAt(p)) return;
-        const double pressureHere = pressureAt(p);
-        load.wetArea += pieceWeight * triangleArea;
-        const Vec3 f = -pressureHere * pieceWeight * areaVector;
-        load.vertex[0] += (1.0 - u - v) * f;
-        load.vertex[1] += u * f;
-        load.vertex[2] += v * f;
-        load.force += f;
-        load.torque += p.cross(f);
-      };
-      for (int i = 0; i < n; ++i)
-        for (int j = 0; i + j < n; ++j) {
-          piece((i + 1.0 / 3.0) / n, (j + 1.0 / 3.0) / n);
-          if (i + j + 1 < n) piece((i + 2.0 / 3.0) / n, (j + 2.0 / 3.0) / n);
-        }
+      const size_t t = static_cast<size_t>(id);
+      integrate(surface.triangles[t], &loads[t]);
     }
   });
   double area = 0.0, wetArea = 0.0, volume6 = 0.0;
   for (size_t id = 0; id < loads.size(); ++id) {
     const Eigen::Vector3i& t = surface.triangles[id];
-    const Vec3 &a = x[t[0]], &b = x[t[1]], &c = x[t[2]];
-    volume6 += a.dot(b.cross(c));
-    area += 0.5 * (b - a).cross(c - a).norm();
+    volume6 += x[t[0]].dot(x[t[1]].cross(x[t[2]]));
     const TriangleLoad& load = loads[id];
+    area += load.area;
+    wetArea += load.wetArea;
     for (int k = 0; k < 3; ++k) out->vertexForces[t[k]] += load.vertex[k];
     out->total.force += load.force;
     out->total.torque += load.torque;
-    wetArea += load.wetArea;
   }
   if (area > 0.0) out->total.addedMass = density * std::abs(volume6) / 6.0 * wetArea / area;
 }
