@@ -254,6 +254,11 @@ void World::balanceWorkers(const Deadline& frame, double runDelayAtStart) {
 
 namespace {
 
+// Whether a fluid reaches a body within `bounds` and sees it (it then takes it as a solid).
+bool reaches(const FluidActor& fluid, const Aabb& bounds, const CollisionFilter& filter) {
+  return fluid.domainBounds().overlaps(bounds) && fluid.desc().filter.meets(filter);
+}
+
 // A deformable step's slices are its non-iterative phases and its solver's iterations.
 double longestDeformableSliceMs(const ActorStats& a) {
   double longest = 0.0;
@@ -333,19 +338,35 @@ void World::stepRigidBodies(double dt, const Deadline& frame, StepStats* stats) 
   auto forEachFluidLoad = [&](const auto& visit) {
     fluids_.forEach([&](FluidHandle, const FluidActor& fluid) {
       for (const FluidColliderLoad& l : fluid.loads())
-        if (Collider* c = colliders_.get(l.index1, l.generation); c != nullptr) visit(*c, l.load);
+        if (Collider* c = colliders_.get(l.index1, l.generation); c != nullptr) visit(*c, l);
     });
   };
-  forEachFluidLoad([&](Collider& c, const PressureLoad&) {
-    c.clearFluidLoad();
-    loaded.push_back(&c);
-  });
+  // And the weight of each liquid that reaches a dynamic body, on the body where it is now.
+  struct Hydrostatic {
+    Collider* collider;
+    PressureLoad load;
+  };
+  std::vector<Hydrostatic> hydrostatics;
+  if (fluids_.size() > 0)
+    colliders_.forEach([&](ColliderHandle, Collider& c) {
+      if (c.bodyType() != BodyType::Dynamic || !c.geometry()) return;
+      fluids_.forEach([&](FluidHandle, const FluidActor& fluid) {
+        if (fluid.desc().twoWayCoupling && reaches(fluid, c.geometry()->bounds, c.filter()))
+          hydrostatics.push_back({&c, fluid.hydrostaticColliderLoad(config_.gravity, *c.geometry())});
+      });
+    });
+  forEachFluidLoad([&](Collider& c, const FluidColliderLoad&) { loaded.push_back(&c); });
+  for (const Hydrostatic& h : hydrostatics) loaded.push_back(h.collider);
   std::sort(loaded.begin(), loaded.end());
   loaded.erase(std::unique(loaded.begin(), loaded.end()), loaded.end());
-  forEachFluidLoad([](Collider& c, const PressureLoad& l) { c.addFluidLoad(l.force, l.torque, l.addedMass); });
+  for (Collider* c : loaded) c->clearFluidLoad();
+  forEachFluidLoad([](Collider& c, const FluidColliderLoad& l) {
+    c.addFluidLoad(l.load.force, l.load.torque, l.load.addedMass, l.seen);
+  });
+  for (const Hydrostatic& h : hydrostatics) h.collider->addHydrostaticLoad(h.load.force, h.load.torque);
   colliders_.forEach([](ColliderHandle, Collider& c) { c.trackVelocity(); });
   for (Collider* c : loaded) {
-    c->prepareFluidLoad(dt, config_.gravity);
+    c->prepareFluidLoad(config_.gravity);
     c->prepareContactLoad(dt);  // the deformables' pushes of the last frame
   }
   const uint64_t refusals = hostAllocationRefusals();
@@ -603,7 +624,7 @@ bool World::stepDeformables(double dt, const Deadline& frame, StepStats* stats) 
       input.floorDeadline = groupDeadlines.floor;
       if (fluids_.size() > 0) {  // a world without fluids pays nothing for them
         setFluidLoads(handles[i], body);
-        body.applyFluidLoads(input.dt, config_.gravity);
+        body.applyFluidLoads(config_.gravity);
         const double now = frame.elapsedMs();
         actors[i].phase(Phase::Coupling).ms += now - mark;
         mark = now;
@@ -666,22 +687,16 @@ std::vector<Filtered<FluidCollider>> World::fluidSolids(const Deadline& frame, S
   colliders_.forEach([&](ColliderHandle h, const Collider& c) {
     if (c.geometry())
       solids.push_back({c.filter(), FluidCollider{h.index1, h.generation, c.geometry(), c.sharedGeometry(),
-                                                  c.bodyType() == BodyType::Dynamic}});
+                                                  c.bodyType() == BodyType::Dynamic,
+                                                  SolidMotion{c.linearVelocity(), c.angularVelocity()}}});
   });
-  struct Domain {
-    Aabb bounds;
-    CollisionFilter filter;
-  };
-  std::vector<Domain> domains;
-  fluids_.forEach([&](FluidHandle, const FluidActor& f) { domains.push_back({f.domainBounds(), f.desc().filter}); });
   // A deformable that no fluid both reaches and sees is left out rather than kept up to date
   // for nothing.
   deformables_.forEach([&](DeformableHandle h, DeformableBody& body) {
     const Aabb bounds = body.bounds();
-    if (std::none_of(domains.begin(), domains.end(), [&](const Domain& d) {
-          return d.bounds.overlaps(bounds) && d.filter.meets(body.desc().filter);
-        }))
-      return;
+    bool seen = false;
+    fluids_.forEach([&](FluidHandle, const FluidActor& f) { seen = seen || reaches(f, bounds, body.desc().filter); });
+    if (!seen) return;
     // The surface's refresh is the deformable's coupling work, and one slice of the frame.
     const double start = frame.elapsedMs();
     std::shared_ptr<const PreparedCollider> surface = body.fluidSurface();
@@ -693,7 +708,7 @@ std::vector<Filtered<FluidCollider>> World::fluidSolids(const Deadline& frame, S
         a.totalMs += ms;
       }
     solids.push_back({body.desc().filter, FluidCollider{h.index1, h.generation | kDeformableSolidBit, surface.get(),
-                                                        surface, true}});
+                                                        surface, true, body.rigidMotion()}});
   });
   return solids;
 }
@@ -701,10 +716,19 @@ std::vector<Filtered<FluidCollider>> World::fluidSolids(const Deadline& frame, S
 void World::setFluidLoads(DeformableHandle handle, DeformableBody& body) const {
   FluidImmersion& immersion = body.immersion();
   immersion.clearLoads();
+  const Aabb bounds = body.bounds();
   fluids_.forEach([&](FluidHandle, const FluidActor& fluid) {
+    // The hydrostatic part holds as soon as the liquid reaches the body, whether or not a step
+    // of it has completed since (a body falling in meets the liquid at once).
+    if (fluid.desc().twoWayCoupling && reaches(fluid, bounds, body.desc().filter)) {
+      Array<Vec3> hydrostatic;
+      fluid.hydrostaticSurfaceLoad(*tasks_, config_.gravity, immersion.vertices(body.positions()),
+                                   immersion.triangles(), &hydrostatic);
+      immersion.addHydrostaticLoad(hydrostatic);
+    }
     for (const FluidColliderLoad& l : fluid.loads())
       if (l.index1 == handle.index1 && l.generation == (handle.generation | kDeformableSolidBit))
-        immersion.addLoad(l.vertexForces, l.load.addedMass);
+        immersion.addLoad(l.vertexForces, l.load.addedMass, l.seen);
   });
 }
 

@@ -93,55 +93,68 @@ Collider::Collider(ColliderDesc desc) : desc_(std::move(desc)), shape_(buildBull
 Collider::~Collider() = default;
 
 
-void Collider::addFluidLoad(const Vec3& force, const Vec3& torque, double addedMass) {
+void Collider::addFluidLoad(const Vec3& force, const Vec3& torque, double addedMass, const SolidAcceleration& seen) {
   if (desc_.bodyType != BodyType::Dynamic) return;
   fluidForce_ += force;
   fluidTorque_ += torque;
   fluidAddedMass_ += addedMass;
+  fluidReaction_ += addedMass * seen.linear;
+  fluidSpinReaction_ += addedMass * seen.angular;
+}
+
+void Collider::addHydrostaticLoad(const Vec3& force, const Vec3& torque) {
+  if (desc_.bodyType != BodyType::Dynamic) return;
+  hydrostaticForce_ += force;
+  hydrostaticTorque_ += torque;
 }
 
 void Collider::trackVelocity() {
   if (desc_.bodyType != BodyType::Dynamic) return;
-  const Vec3 v = linearVelocity(), w = angularVelocity();
-  lastVelocityChange_ = v - trackedVelocity_;
-  trackedVelocity_ = v;
-  lastSpinChange_ = w - trackedSpin_;
-  trackedSpin_ = w;
+  trackedVelocity_ = linearVelocity();
+  trackedSpin_ = angularVelocity();
   stepContactLinear_ = stepContactAngular_ = Vec3::Zero();
 }
 
-// The fluid's load F was computed from last step's pressure, which holds the reaction to the
-// body's acceleration then: F = F_rest - m_a a_last. Applied explicitly to a body lighter than
-// its added mass m_a, that reaction overshoots every step and the motion blows up (the
-// added-mass instability of partitioned coupling). Moving m_a to the left-hand side,
-//     (m + m_a) a = m g + F + m_a a_last,
-// is unconditionally stable for this model and changes nothing at rest (a_last = 0 and
+// A liquid's load splits into its hydrostatic part, taken anew at every step from where the
+// body is (a fluid step may span several frames under a frame budget, and a buoyancy held
+// that long is a delayed spring that pumps the bobbing up: a floating ball was thrown metres
+// out of its tank), and the dynamic part of the fluid's last step, held until the next one.
+// That part was computed from a pressure that holds the fluid's reaction to the change of the
+// body's motion that the fluid's step saw: F = F_rest - m_a a_seen
+// (fluid/solids/solid_motion_history.h). Applied explicitly to a body lighter than its added
+// mass m_a, that reaction overshoots every step and the motion blows up (the added-mass
+// instability of partitioned coupling). Moving m_a to the left-hand side,
+//     (m + m_a) a = m g + F + m_a a_seen,
+// is unconditionally stable for this model and changes nothing at rest (a_seen = 0 and
 // F = -m g give a = 0). Bullet integrates m a = m g + F_applied, so
-//     F_applied = m / (m + m_a) (F + m_a (a_last - g)).
-// Rotation has the same problem (a flat floating box rolls itself over without it); its added
-// inertia is taken as the body's own inertia I scaled by k = m_a / m, which gives
-//     tau_applied = (tau + k I alpha_last) / (1 + k).
+//     F_applied = m / (m + m_a) (F + m_a (a_seen - g)),
+// with m_a a_seen summed over the fluids and limited to the reaction the dynamic part shows
+// (solid_motion.h, shownReaction). Rotation has the same problem (a flat floating box
+// rolls itself over without it); its added inertia is taken as the body's own inertia I
+// scaled by k = m_a / m, which gives
+//     tau_applied = (tau + k I alpha_seen) / (1 + k).
 // Except for a sphere: pressure acts along its normals, through its centre, so the fluid
 // exerts no torque on it and it has no added inertia. The model would still feed k/(1+k) of
 // every spin change back as torque the next step: a spin given by a contact (a paddle's
 // friction) came back tripled in all, and a floating ball pushed by a paddle was spun up and
 // rolled out of its tank.
-void Collider::prepareFluidLoad(double dt, const Vec3& gravity) {
+void Collider::prepareFluidLoad(const Vec3& gravity) {
   if (desc_.bodyType != BodyType::Dynamic) return;
   const double inverseMass = body_->getInvMass();
-  if (!(inverseMass > 0.0) || !(dt > 0.0)) return;
+  if (!(inverseMass > 0.0)) return;
   const double m = 1.0 / inverseMass, ma = fluidAddedMass_;
-  const Vec3 lastAcceleration = lastVelocityChange_ / dt;
-  appliedFluidForce_ = m / (m + ma) * (fluidForce_ + ma * (lastAcceleration - gravity));
-  const double k = desc_.shape.type == ShapeType::Sphere ? 0.0 : ma / m;
+  const Vec3 reaction = shownReaction(fluidReaction_, fluidForce_);
+  appliedFluidForce_ = m / (m + ma) * (fluidForce_ + hydrostaticForce_ + reaction - ma * gravity);
+  const bool sphere = desc_.shape.type == ShapeType::Sphere;
+  const double k = sphere ? 0.0 : ma / m;
+  const Vec3 kAlpha = sphere ? Vec3::Zero() : Vec3(fluidSpinReaction_ / m);
   const btMatrix3x3& invInertia = body_->getInvInertiaTensorWorld();
-  const btVector3 alpha(btScalar(lastSpinChange_.x() / dt), btScalar(lastSpinChange_.y() / dt),
-                        btScalar(lastSpinChange_.z() / dt));
   // A body with locked rotation has a singular inverse inertia: no stabilization needed there.
-  const btVector3 inertiaTimesAlpha =
-      std::abs(invInertia.determinant()) > 0 ? invInertia.inverse() * alpha : btVector3(0, 0, 0);
-  appliedFluidTorque_ =
-      (fluidTorque_ + k * Vec3(inertiaTimesAlpha.x(), inertiaTimesAlpha.y(), inertiaTimesAlpha.z())) / (1.0 + k);
+  const btVector3 inertiaTimesKAlpha =
+      std::abs(invInertia.determinant()) > 0 ? invInertia.inverse() * bt(kAlpha) : btVector3(0, 0, 0);
+  const Vec3 spinReaction =
+      shownReaction(Vec3(inertiaTimesKAlpha.x(), inertiaTimesKAlpha.y(), inertiaTimesKAlpha.z()), fluidTorque_);
+  appliedFluidTorque_ = (fluidTorque_ + hydrostaticTorque_ + spinReaction) / (1.0 + k);
 }
 
 void Collider::applyExternalLoads() {
@@ -245,6 +258,8 @@ void Collider::setSleeping(bool asleep) {
 
 void Collider::clearFluidLoad() {
   fluidForce_ = fluidTorque_ = appliedFluidForce_ = appliedFluidTorque_ = Vec3::Zero();
+  hydrostaticForce_ = hydrostaticTorque_ = Vec3::Zero();
+  fluidReaction_ = fluidSpinReaction_ = Vec3::Zero();
   fluidAddedMass_ = 0.0;
 }
 
@@ -360,9 +375,7 @@ ColliderState Collider::saveState() const {
   s.contactLinear = contactLinear_;
   s.contactMoment = contactMoment_;
   s.trackedVelocity = trackedVelocity_;
-  s.lastVelocityChange = lastVelocityChange_;
   s.trackedSpin = trackedSpin_;
-  s.lastSpinChange = lastSpinChange_;
   s.hasGeometry = geometry_ != nullptr;
   if (geometry_) {
     const ColliderShape& g = geometry_->shape;
@@ -401,9 +414,7 @@ void Collider::restoreState(const ColliderState& s) {
   contactLinear_ = s.contactLinear;
   contactMoment_ = s.contactMoment;
   trackedVelocity_ = s.trackedVelocity;
-  lastVelocityChange_ = s.lastVelocityChange;
   trackedSpin_ = s.trackedSpin;
-  lastSpinChange_ = s.lastSpinChange;
   clearFluidLoad();
   if (geometry_ && s.hasGeometry) {
     const ColliderShape& g = geometry_->shape;

@@ -10,6 +10,7 @@
 #include "collide/bullet_shape_builder.h"
 #include "collide/collider_desc.h"
 #include "collide/face_coverage.h"
+#include "collide/solid_motion.h"
 #include "snapshot/actor_states.h"
 
 class btRigidBody;
@@ -75,17 +76,20 @@ class Collider {
   // Brings the geometry to the body's current pose and velocity (after each rigid step).
   void syncGeometry();
 
-  // Loads from the fluids: force, torque about the body's origin, and the added mass (the
-  // fluid that has to accelerate with the body). Applied on every Bullet sub-step of the next
-  // world step, then cleared. Dynamic bodies only; others ignore them.
-  void addFluidLoad(const Vec3& force, const Vec3& torque, double addedMass);
+  // Loads from the fluids: the dynamic part of a fluid step's (force, torque about the body's
+  // origin, the added mass: the fluid that has to accelerate with the body, and the change of
+  // the body's motion that the step saw, fluid/solids/solid_motion_history.h), and the
+  // hydrostatic part at the body's pose now. Applied on every Bullet sub-step of the next world
+  // step, then cleared. Dynamic bodies only; others ignore them.
+  void addFluidLoad(const Vec3& force, const Vec3& torque, double addedMass, const SolidAcceleration& seen);
+  void addHydrostaticLoad(const Vec3& force, const Vec3& torque);
   // Once per world step, before its sub-steps: turns the accumulated load into the force
   // Bullet applies, stabilized for the added mass (collider.cpp says how).
-  void prepareFluidLoad(double dt, const Vec3& gravity);
+  void prepareFluidLoad(const Vec3& gravity);
   // Before each sub-step (Bullet clears forces after each one): the fluid's load and the host's.
   void applyExternalLoads();
   void clearFluidLoad();
-  // At the start of every world step: remembers how much the velocity changed in the last one.
+  // At the start of every world step: remembers the velocities it starts with.
   void trackVelocity();
   // What the last rigid step changed of the velocities besides the deformables' contact load:
   // now less what trackVelocity kept, less that load's impulse.
@@ -113,9 +117,13 @@ class Collider {
   std::optional<Pose> target_;
   std::shared_ptr<PreparedCollider> geometry_;
   bool targetActive_ = false;
-  Vec3 fluidForce_ = Vec3::Zero(), fluidTorque_ = Vec3::Zero();
+  Vec3 fluidForce_ = Vec3::Zero(), fluidTorque_ = Vec3::Zero();  // dynamic
+  Vec3 hydrostaticForce_ = Vec3::Zero(), hydrostaticTorque_ = Vec3::Zero();
   Vec3 appliedFluidForce_ = Vec3::Zero(), appliedFluidTorque_ = Vec3::Zero();
   double fluidAddedMass_ = 0.0;
+  // The fluid's reactions to the motion changes their steps saw: the sums of added mass times
+  // the linear and the angular accelerations.
+  Vec3 fluidReaction_ = Vec3::Zero(), fluidSpinReaction_ = Vec3::Zero();
   Vec3 hostForce_ = Vec3::Zero(), hostTorque_ = Vec3::Zero();
   // The contact impulses for the next rigid step: their sum and moment about the world origin.
   Vec3 contactLinear_ = Vec3::Zero(), contactMoment_ = Vec3::Zero();
@@ -123,8 +131,7 @@ class Collider {
   // lastStepVelocityChange, its impulses (the angular one about the centre at the step's start).
   Vec3 contactForce_ = Vec3::Zero(), contactMomentRate_ = Vec3::Zero();
   Vec3 stepContactLinear_ = Vec3::Zero(), stepContactAngular_ = Vec3::Zero();
-  Vec3 trackedVelocity_ = Vec3::Zero(), lastVelocityChange_ = Vec3::Zero();
-  Vec3 trackedSpin_ = Vec3::Zero(), lastSpinChange_ = Vec3::Zero();
+  Vec3 trackedVelocity_ = Vec3::Zero(), trackedSpin_ = Vec3::Zero();
 };
 
 }  // namespace vp

@@ -255,12 +255,11 @@ Aabb DeformableBody::bounds() const {
   return b;
 }
 
-void DeformableBody::applyFluidLoads(double h, const Vec3& gravity) {
-  immersion_.trackVelocity(x_, v_, mass_, h);
+void DeformableBody::applyFluidLoads(const Vec3& gravity) {
   if (!immersion_.loaded()) return;
   Array<uint8_t> touching(static_cast<size_t>(nodeCount_), 0);
   for (const NodeContact& c : contacts_.contacts()) touching[c.node] = 1;
-  immersion_.addNodeForces(x_, mass_, h, gravity, touching, &externalForce_);
+  immersion_.addNodeForces(x_, mass_, gravity, touching, &externalForce_);
 }
 
 Status DeformableBody::applyForce(int32_t node, const Vec3& force) {
@@ -842,7 +841,6 @@ DeformableState DeformableBody::saveState() const {
   s.renderPositions = renderPositions_;
   s.renderNormals = renderNormals_;
   s.schedule = schedule_;
-  s.immersionTracking = immersion_.tracking();
   s.pairFriction = pairFriction_;
   s.cornerFriction = cornerFriction_;
   s.pendingImpulse = pendingImpulse_;
@@ -860,7 +858,6 @@ void DeformableBody::restoreState(DeformableState&& s) {
   renderNormals_ = std::move(s.renderNormals);
   ++renderVersion_;
   schedule_ = s.schedule;
-  immersion_.restoreTracking(s.immersionTracking);
   pairFriction_ = std::move(s.pairFriction);
   cornerFriction_ = std::move(s.cornerFriction);
   pendingImpulse_ = std::move(s.pendingImpulse);

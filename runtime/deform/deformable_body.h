@@ -152,12 +152,14 @@ class DeformableBody {
   // The last step's pair contacts with dynamic rigid bodies that pushed (the spring's normal
   // impulse positive), as node contacts (normal, the collider's point velocity, its handle).
   const Array<NodeContact>& rigidContacts() const { return rigidContacts_; }
-  // The body in the fluids (deform/fluid_immersion.h): its surface as they see it now, and
-  // their loads, which the world sets before each step of the body.
+  // The body in the fluids (deform/fluid_immersion.h): its surface and its motion as a rigid
+  // body's as they see them now, and their loads, which the world sets before each step of
+  // the body.
   std::shared_ptr<const PreparedCollider> fluidSurface() { return immersion_.surface(x_, v_); }
+  SolidMotion rigidMotion() const { return FluidImmersion::rigidMotion(x_, v_, mass_); }
   FluidImmersion& immersion() { return immersion_; }
-  // Before a step of h: the fluids' loads set in immersion() act on the nodes during it.
-  void applyFluidLoads(double h, const Vec3& gravity);
+  // Before its step: the fluids' loads set in immersion() act on the nodes during it.
+  void applyFluidLoads(const Vec3& gravity);
 
   // The render mesh: the desc's, else the tet mesh's boundary; embedded in the tets and
   // moved with them each step. Positions and normals are in the world frame.

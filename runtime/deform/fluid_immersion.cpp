@@ -47,6 +47,7 @@ Status FluidImmersion::build(const SurfaceMesh& boundary, const Array<int32_t>& 
   VP_TRY(prepareDeformingSurface(positions_, triangles, surface.get()));
   surface_ = std::move(surface);
   forces_.assign(vertexNode.size(), Vec3::Zero());
+  hydrostaticForces_.assign(vertexNode.size(), Vec3::Zero());
   return Status::Ok;
 }
 
@@ -68,48 +69,63 @@ std::shared_ptr<const PreparedCollider> FluidImmersion::surface(const Array<doub
 }
 
 void FluidImmersion::clearLoads() {
-  std::fill(forces_.begin(), forces_.end(), Vec3::Zero());
+  forces_.assign(vertexNode_.size(), Vec3::Zero());
+  hydrostaticForces_.assign(vertexNode_.size(), Vec3::Zero());
   addedMass_ = 0.0;
+  reaction_ = spinReaction_ = Vec3::Zero();
   loaded_ = false;
 }
 
-bool FluidImmersion::addLoad(const Array<Vec3>& vertexForces, double addedMass) {
-  if (vertexForces.size() != forces_.size() || !(addedMass >= 0.0)) return false;
-  for (size_t i = 0; i < forces_.size(); ++i) forces_[i] += vertexForces[i];
-  addedMass_ += addedMass;
+bool FluidImmersion::addHydrostaticLoad(const Array<Vec3>& vertexForces) {
+  if (vertexForces.size() != hydrostaticForces_.size()) return false;
+  for (size_t i = 0; i < vertexForces.size(); ++i) hydrostaticForces_[i] += vertexForces[i];
   loaded_ = true;
   return true;
 }
 
-void FluidImmersion::trackVelocity(const Array<double>& x, const Array<double>& v, const Array<double>& mass,
-                                   double h) {
-  const RigidView body(x, &v, mass);
-  if (!(body.mass > 0.0)) return;
-  const Vec3 velocity = body.momentum / body.mass, spin = body.solveInertia(body.angularMomentum);
-  const bool stepped = tracking_.stepDt > 0.0;  // a first step has no last one
-  tracking_.acceleration = stepped ? Vec3((velocity - tracking_.velocity) / tracking_.stepDt) : Vec3::Zero();
-  tracking_.spinAcceleration = stepped ? Vec3((spin - tracking_.spin) / tracking_.stepDt) : Vec3::Zero();
-  tracking_.velocity = velocity;
-  tracking_.spin = spin;
-  tracking_.stepDt = h;
+bool FluidImmersion::addLoad(const Array<Vec3>& dynamicForces, double addedMass, const SolidAcceleration& seen) {
+  if (dynamicForces.size() != forces_.size() || !(addedMass >= 0.0)) return false;
+  for (size_t i = 0; i < forces_.size(); ++i) forces_[i] += dynamicForces[i];
+  addedMass_ += addedMass;
+  reaction_ += addedMass * seen.linear;
+  spinReaction_ += addedMass * seen.angular;
+  loaded_ = true;
+  return true;
 }
 
-void FluidImmersion::addNodeForces(const Array<double>& x, const Array<double>& mass, double h, const Vec3& gravity,
+Array<Eigen::Vector3d> FluidImmersion::vertices(const Array<double>& x) const {
+  Array<Eigen::Vector3d> out(vertexNode_.size());
+  for (size_t i = 0; i < out.size(); ++i) out[i] = nodeVector(x, static_cast<size_t>(vertexNode_[i]));
+  return out;
+}
+
+SolidMotion FluidImmersion::rigidMotion(const Array<double>& x, const Array<double>& v, const Array<double>& mass) {
+  const RigidView body(x, &v, mass);
+  if (!(body.mass > 0.0)) return SolidMotion{};
+  return SolidMotion{body.momentum / body.mass, body.solveInertia(body.angularMomentum)};
+}
+
+void FluidImmersion::addNodeForces(const Array<double>& x, const Array<double>& mass, const Vec3& gravity,
                                    const Array<uint8_t>& touching, Array<double>* force) const {
   const RigidView body(x, nullptr, mass);
-  if (!loaded_ || !(body.mass > 0.0) || !(h > 0.0)) return;
+  if (!loaded_ || !(body.mass > 0.0)) return;
   Array<double> f(3 * mass.size(), 0.0);
-  for (size_t v = 0; v < forces_.size(); ++v)
-    if (!touching[vertexNode_[v]])
-      for (int k = 0; k < 3; ++k) f[3 * vertexNode_[v] + k] += forces_[v][k];
-  Vec3 net = Vec3::Zero(), torque = Vec3::Zero();
-  for (size_t i = 0; i < mass.size(); ++i) {
-    net += nodeVector(f, i);
-    torque += (nodeVector(x, i) - body.centre).cross(nodeVector(f, i));
+  Vec3 net = Vec3::Zero(), torque = Vec3::Zero(), dynamicNet = Vec3::Zero(), dynamicTorque = Vec3::Zero();
+  for (size_t v = 0; v < forces_.size(); ++v) {
+    const int32_t node = vertexNode_[v];
+    const Vec3 dynamic = touching[node] ? Vec3::Zero() : forces_[v], load = dynamic + hydrostaticForces_[v];
+    const Vec3 r = nodeVector(x, static_cast<size_t>(node)) - body.centre;
+    for (int k = 0; k < 3; ++k) f[3 * node + k] += load[k];
+    net += load;
+    torque += r.cross(load);
+    dynamicNet += dynamic;
+    dynamicTorque += r.cross(dynamic);
   }
   const double k = addedMass_ / body.mass;
-  const Vec3 stabilizedNet = (net + addedMass_ * (tracking_.acceleration - gravity)) / (1.0 + k);
-  const Vec3 stabilizedTorque = (torque + k * body.inertia * tracking_.spinAcceleration) / (1.0 + k);
+  const Vec3 reaction = shownReaction(reaction_, dynamicNet);
+  const Vec3 spinReaction = shownReaction(body.inertia * spinReaction_ / body.mass, dynamicTorque);
+  const Vec3 stabilizedNet = (net + reaction - addedMass_ * gravity) / (1.0 + k);
+  const Vec3 stabilizedTorque = (torque + spinReaction) / (1.0 + k);
   // Per node: the rest (f minus its rigid part) scaled, plus the stabilized rigid part.
   const Vec3 linear = net / body.mass, angular = body.solveInertia(torque);
   const Vec3 linearOut = stabilizedNet / body.mass, angularOut = body.solveInertia(stabilizedTorque);

@@ -8,26 +8,34 @@
 // covers whole). What a fluid's step sees stays as it was while the
 // step runs over several frames (the surface is copied before it changes while shared).
 //
-// Each fluid's last completed step leaves a force on every surface vertex
-// (fluid/solids/surface_pressure_load.h); they act on the vertices' nodes through the steps
-// that follow until the next one completes, one step late like the rigid bodies' loads. The
+// A liquid's pressure on the surface splits in two (fluid/solids/surface_pressure_load.h): the
+// hydrostatic part, which depends only on where the surface is under the liquid's free surface,
+// is taken anew at every step of the body from the liquid's last level set; the rest, the
+// dynamic part, is known only at the fluid's steps. Each fluid's last completed step leaves
+// that part on every surface vertex, acting on the vertices' nodes through the steps that
+// follow until the next one completes, one step late like the rigid bodies' loads. A fluid
+// step may span several frames under a frame budget, and a buoyancy held that long is a
+// delayed spring: it pumps a floating body's bobbing up (a dropped jelly was thrown out of
+// its tank again and again), and a body falling in meets no liquid until the step completes.
+// The
 // delay would make a light body unstable (the pressure carries the reaction of the fluid it
 // accelerates, its added mass m_a, one step late), so the loads are stabilized as a rigid
 // body's are (collide/collider.cpp). The vertex forces split into their rigid part, the net
 // force F and torque tau about the centre of mass spread over the nodes as a rigid motion
 // (f_i = m_i (F / m + I^-1 tau x r_i), which strains nothing), and the rest, which has no net
 // force or torque. With m the body's mass and k = m_a / m, the rigid part becomes
-//     F' = (F + m_a (a_last - g)) / (1 + k),   tau' = (tau + k I alpha_last) / (1 + k),
-// where a_last and alpha_last are the last step's changes of the centre of mass's velocity
-// and of the body's spin (angular momentum over inertia) over that step's length (which is
-// not the coming step's when a frame budget changes the body's rate); the rest is scaled by
-// 1 / (1 + k) too.
+//     F' = (F + m_a (a_seen - g)) / (1 + k),   tau' = (tau + k I alpha_seen) / (1 + k),
+// where a_seen and alpha_seen are the changes of the body's motion (rigidMotion) that the
+// fluid's step saw (fluid/solids/solid_motion_history.h), with m_a a_seen summed over the
+// fluids and limited to the reaction the dynamic part shows (collide/solid_motion.h,
+// shownReaction); the rest is scaled by 1 / (1 + k) too.
 #pragma once
 
 #include <cstdint>
 #include <memory>
 
 #include "collide/face_coverage.h"
+#include "collide/solid_motion.h"
 #include "core/allocator.h"
 #include "core/math_types.h"
 #include "core/status.h"
@@ -44,40 +52,40 @@ class FluidImmersion {
   // only when one of its vertices did.
   std::shared_ptr<const PreparedCollider> surface(const Array<double>& x, const Array<double>& v);
 
-  // The loads of the fluids' last completed steps on this body: cleared, then added one by one
-  // (a load whose vertex count is not this surface's is ignored and returns false).
+  // The loads of the fluids on this body: cleared, then added one by one: the hydrostatic
+  // vertex forces of each liquid at the body's positions now, and the dynamic ones of each
+  // fluid's last completed step with the change of the body's motion that step saw (a load
+  // whose vertex count is not this surface's is ignored and returns false).
   void clearLoads();
-  bool addLoad(const Array<Vec3>& vertexForces, double addedMass);
+  bool addHydrostaticLoad(const Array<Vec3>& vertexForces);
+  bool addLoad(const Array<Vec3>& dynamicForces, double addedMass, const SolidAcceleration& seen);
   bool loaded() const { return loaded_; }
+  // The surface's vertices at node positions x, and its outward triangles.
+  Array<Eigen::Vector3d> vertices(const Array<double>& x) const;
+  const Array<Eigen::Vector3i>& triangles() const { return surface_->triangles; }
 
-  // At the start of every step of the body, of length h: remembers how fast its centre-of-mass
-  // velocity and its spin changed in the last one.
-  void trackVelocity(const Array<double>& x, const Array<double>& v, const Array<double>& mass, double h);
-  // The loads as node forces for a step of h under gravity g, added to `force` (3 per node).
-  // Nodes touching a collider (touching[node] != 0) take no vertex force: the fluid between two
-  // solids closer than a cell is not resolved (its pressure there swings with the gap, and
-  // one step late it launches the body), and the contact carries the load there.
-  void addNodeForces(const Array<double>& x, const Array<double>& mass, double h, const Vec3& gravity,
+  // The loads as node forces under gravity g, added to `force` (3 per node). Nodes touching a
+  // collider (touching[node] != 0) take no dynamic force: the fluid between two solids closer
+  // than a cell is not resolved (its pressure there swings with the gap, and one step late it
+  // launches the body), and the contact carries the load there. They take the hydrostatic
+  // one, which has no such swing: without it a light body resting on the floor would stay
+  // there, pressed down by the liquid on its top.
+  void addNodeForces(const Array<double>& x, const Array<double>& mass, const Vec3& gravity,
                      const Array<uint8_t>& touching, Array<double>* force) const;
 
-  // What evolves with the body (its saved state): the velocity and spin at the start of the
-  // step now running, that step's length, and their rates of change over the step before.
-  struct Tracking {
-    Vec3 velocity = Vec3::Zero(), acceleration = Vec3::Zero();
-    Vec3 spin = Vec3::Zero(), spinAcceleration = Vec3::Zero();
-    double stepDt = 0.0;
-  };
-  const Tracking& tracking() const { return tracking_; }
-  void restoreTracking(const Tracking& tracking) { tracking_ = tracking; }
+  // A body of nodes at x with velocities v and masses `mass` (3, 3 and 1 per node) as a rigid
+  // body: its centre of mass's velocity and its angular momentum about it over its inertia.
+  static SolidMotion rigidMotion(const Array<double>& x, const Array<double>& v, const Array<double>& mass);
 
  private:
   Array<int32_t> vertexNode_;
   std::shared_ptr<PreparedCollider> surface_;
   Array<Eigen::Vector3d> positions_, velocities_;  // scratch
-  Array<Vec3> forces_;
+  Array<Vec3> forces_, hydrostaticForces_;  // per vertex, summed over the loads
   double addedMass_ = 0.0;
+  // The sums over the loads of added mass times the linear and the angular accelerations seen.
+  Vec3 reaction_ = Vec3::Zero(), spinReaction_ = Vec3::Zero();
   bool loaded_ = false;
-  Tracking tracking_;
 };
 
 }  // namespace vp

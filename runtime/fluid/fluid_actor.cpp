@@ -462,6 +462,9 @@ void FluidActor::beginStep(const FluidStepInput& input) {
   }
   step_ = std::make_unique<StepInProgress>();
   step_->input = input;
+  std::vector<SolidMotionHistory::Entry> motions;
+  for (const FluidCollider& c : input.colliders) motions.push_back({c.index1, c.generation, c.motion});
+  step_->seen = solidMotions_.begin(motions, input.dt);
   job_.reset();
   work_.begin();
   job_.thenOnce(static_cast<int>(FluidSlice::Fractions), [this] { planFractionUpdate(); });
@@ -654,13 +657,22 @@ void FluidActor::addSubstepLoads() {
     if (fc.geometry->vertexVelocities.empty()) {
       l = pressureLoadOnCollider(grid_, fractions_, pressure_.poisson, pressure_.pressure.data(), desc_.density,
                                  *fc.geometry, fc.geometry->shape.translation);
+      // The body takes the hydrostatic part anew at each of its steps (hydrostaticColliderLoad).
+      const PressureLoad hydrostatic = hydrostaticLoadOnCollider(grid_, liquidPhi(), desc_.density, st.input.gravity,
+                                                                 *fc.geometry, fc.geometry->shape.translation);
+      l.force -= hydrostatic.force;
+      l.torque -= hydrostatic.torque;
     } else {
       SurfacePressureLoad surface;
       surfacePressureLoad(*st.input.tasks, grid_, fractions_, pressure_.poisson, pressure_.pressure.data(),
                           liquidPhi(), desc_.density, *fc.geometry, &surface);
+      // The body takes the hydrostatic part anew at each of its steps (hydrostaticSurfaceLoad).
+      Array<Vec3> hydrostatic;
+      surfaceHydrostaticLoad(*st.input.tasks, grid_, liquidPhi(), desc_.density, st.input.gravity,
+                             fc.geometry->worldVertices, fc.geometry->triangles, &hydrostatic);
       Array<Vec3>& sum = st.vertexForceSum[c];
       if (sum.empty()) sum.assign(surface.vertexForces.size(), Vec3::Zero());
-      for (size_t v = 0; v < sum.size(); ++v) sum[v] += surface.vertexForces[v] / st.substeps;
+      for (size_t v = 0; v < sum.size(); ++v) sum[v] += (surface.vertexForces[v] - hydrostatic[v]) / st.substeps;
       l = surface.total;
     }
     st.loadSum[c].force += l.force / st.substeps;
@@ -669,38 +681,54 @@ void FluidActor::addSubstepLoads() {
   }
 }
 
+PressureLoad FluidActor::hydrostaticColliderLoad(const Vec3& gravity, const PreparedCollider& collider) const {
+  const bool liquid = desc_.kind == FluidKind::Liquid && !shown_.levelSet.empty();
+  return hydrostaticLoadOnCollider(grid_, liquid ? shown_.levelSet.data() : nullptr, desc_.density, gravity, collider,
+                                   collider.shape.translation);
+}
+
+void FluidActor::hydrostaticSurfaceLoad(TaskSystem& tasks, const Vec3& gravity, const Array<Eigen::Vector3d>& vertices,
+                                        const Array<Eigen::Vector3i>& triangles, Array<Vec3>* vertexForces) const {
+  const bool liquid = desc_.kind == FluidKind::Liquid && !shown_.levelSet.empty();
+  surfaceHydrostaticLoad(tasks, grid_, liquid ? shown_.levelSet.data() : nullptr, desc_.density, gravity, vertices,
+                         triangles, vertexForces);
+}
+
 void FluidActor::publish() {
   ++stepCount_;
+  if (step_ == nullptr) {  // the initial state
+    shown_.loads.clear();
+    publishFields();
+    return;
+  }
+  StepInProgress& st = *step_;
+  if (injectedVelocityScale_ != 1.0) {
+    for (Array<double>& u : grid_.velocity)
+      for (double& v : u) v *= injectedVelocityScale_;
+    injectedVelocityScale_ = 1.0;
+  }
+  // Non-finite or absurd speeds (the deformables' guard uses the same kind of bound) mean the
+  // step blew up, and so does a kinetic energy beyond what the step's sources can explain
+  // (fluid_step_energy.h). Its result is dropped: the fluid goes back to its last completed
+  // step, which is what readers see already (its loads too), rather than hand NaNs or absurd
+  // loads to the host and the bodies.
+  speedAtEnd_ = maxSpeed(*st.input.tasks);
+  if (!(std::isfinite(speedAtEnd_) && speedAtEnd_ <= kMaxFluidSpeed) || energyBlewUp()) {
+    restorePublished();
+    st.diverged = true;
+    return;
+  }
+  kineticAtEnd_ = st.energy.kineticEnd;
   shown_.loads.clear();
-  if (step_ != nullptr) {
-    StepInProgress& st = *step_;
-    // Non-finite or absurd speeds (the deformables' guard uses the same kind of bound) mean
-    // the step blew up. Its result is dropped: the fluid goes back to its last completed
-    // step, which is what readers see already, rather than hand NaNs or absurd loads to the
-    // host and the rigid bodies.
-    if (injectedVelocityScale_ != 1.0) {
-      for (Array<double>& u : grid_.velocity)
-        for (double& v : u) v *= injectedVelocityScale_;
-      injectedVelocityScale_ = 1.0;
-    }
-    speedAtEnd_ = maxSpeed(*st.input.tasks);
-    // So does a kinetic energy beyond what the step's sources can explain (fluid_step_energy.h).
-    if (!(std::isfinite(speedAtEnd_) && speedAtEnd_ <= kMaxFluidSpeed) || energyBlewUp()) {
-      restorePublished();
-      st.diverged = true;
-      return;
-    }
-    kineticAtEnd_ = st.energy.kineticEnd;
-    if (desc_.twoWayCoupling) {
-      // The load is the mean over this step and acts during the next one (a delay of one
-      // step: explicit coupling). Extrapolating it one step ahead to cancel the delay was
-      // tried and made a floating box unstable (the pressure also carries the added-mass
-      // reaction, which an extrapolation amplifies).
-      for (size_t c = 0; c < st.input.colliders.size(); ++c)
-        if (st.input.colliders[c].dynamic)
-          shown_.loads.push_back(FluidColliderLoad{st.input.colliders[c].index1, st.input.colliders[c].generation,
-                                                   st.loadSum[c], std::move(st.vertexForceSum[c])});
-    }
+  if (desc_.twoWayCoupling) {
+    // The load is the mean over this step and acts during the next one (a delay of one step:
+    // explicit coupling). Extrapolating it one step ahead to cancel the delay was tried and
+    // made a floating box unstable (the pressure also carries the added-mass reaction, which
+    // an extrapolation amplifies).
+    for (size_t c = 0; c < st.input.colliders.size(); ++c)
+      if (st.input.colliders[c].dynamic)
+        shown_.loads.push_back(FluidColliderLoad{st.input.colliders[c].index1, st.input.colliders[c].generation,
+                                                 st.loadSum[c], std::move(st.vertexForceSum[c]), st.seen[c]});
   }
   publishFields();
 }
@@ -799,7 +827,8 @@ FluidState FluidActor::saveState() const {
   s.kineticAtEnd = kineticAtEnd_;
   s.targetVolume = targetVolume_;
   for (const FluidColliderLoad& l : shown_.loads)
-    s.loads.push_back(FluidColliderLoadState{l.index1, l.generation, l.load, l.vertexForces});
+    s.loads.push_back(FluidColliderLoadState{l.index1, l.generation, l.load, l.vertexForces, l.seen});
+  s.solidMotions = solidMotions_.lastStep();
   s.stepCount = stepCount_;
   s.lastStepSlices = lastStepSlices_;
   for (const SliceSizer& sizer : slabs_) s.slabs.push_back(sizer.state());
@@ -836,7 +865,8 @@ void FluidActor::restoreState(FluidState&& s) {
   publishFields();
   shown_.loads.clear();
   for (FluidColliderLoadState& l : s.loads)
-    shown_.loads.push_back(FluidColliderLoad{l.index1, l.generation, l.load, std::move(l.vertexForces)});
+    shown_.loads.push_back(FluidColliderLoad{l.index1, l.generation, l.load, std::move(l.vertexForces), l.seen});
+  solidMotions_.restore(std::move(s.solidMotions));
   stepCount_ = s.stepCount;
   surfaceStep_ = ~uint64_t(0);
   lastStepSlices_ = s.lastStepSlices;

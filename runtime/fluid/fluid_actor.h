@@ -58,6 +58,7 @@
 #include "fluid/smoke_forces.h"
 #include "fluid/solids/face_fraction_field.h"
 #include "fluid/solids/pressure_forces.h"
+#include "fluid/solids/solid_motion_history.h"
 #include "fluid/surface/level_set_redistance.h"
 #include "fluid/surface/level_set_solid_extension.h"
 #include "fluid/surface/liquid_volume.h"
@@ -83,6 +84,7 @@ struct FluidCollider {
   // geometry unchanged until the step completes.
   std::shared_ptr<const PreparedCollider> keep;
   bool dynamic = false;  // receives pressure loads when two-way coupling is on
+  SolidMotion motion;    // the solid's motion as a rigid body's now (solids/solid_motion_history.h)
 };
 
 struct FluidStepInput {
@@ -94,8 +96,17 @@ struct FluidStepInput {
 
 struct FluidColliderLoad {
   uint32_t index1 = 0, generation = 0;
-  PressureLoad load;  // torque about the collider's origin (a deformable's: about the world origin)
-  Array<Vec3> vertexForces;  // a deformable surface's: the force on each of its vertices
+  // A rigid collider's: the pressure's load less its hydrostatic part at the step's pose
+  // (FluidActor::hydrostaticColliderLoad, which the body takes anew at each of its steps),
+  // torque about the collider's origin; a deformable's: the whole load, torque about the
+  // world origin.
+  PressureLoad load;
+  // A deformable surface's: the force on each of its vertices less its hydrostatic part there
+  // (FluidActor::hydrostaticSurfaceLoad, which the body takes anew at each of its steps).
+  Array<Vec3> vertexForces;
+  // The change of the solid's motion that the step saw (solids/solid_motion_history.h): the
+  // load holds the fluid's reaction to it, -load.addedMass x seen.linear.
+  SolidAcceleration seen;
 };
 
 // The liquid's free surface, oriented out of the liquid.
@@ -193,6 +204,12 @@ class FluidActor {
   Vec3 sampleVelocity(const Vec3& x) const { return shown_.grid.sampleVelocity(x); }
   // The pressure loads of the last completed step on dynamic colliders.
   const std::vector<FluidColliderLoad>& loads() const { return shown_.loads; }
+  // The hydrostatic part of the load on a rigid collider (torque about its origin) under the
+  // last completed step's free surface (solids/pressure_forces.h); zero for smoke.
+  PressureLoad hydrostaticColliderLoad(const Vec3& gravity, const PreparedCollider& collider) const;
+  // The same on a closed surface (its vertices, outward triangles; solids/surface_pressure_load.h).
+  void hydrostaticSurfaceLoad(TaskSystem& tasks, const Vec3& gravity, const Array<Eigen::Vector3d>& vertices,
+                              const Array<Eigen::Vector3i>& triangles, Array<Vec3>* vertexForces) const;
   // Total smoke (density integrated over the domain, density units * m^3).
   double totalSmoke() const;
   // Liquid volume in m^3 (0 for smoke).
@@ -275,6 +292,7 @@ class FluidActor {
     int substeps = 1;
     double h = 0.0;      // sub-step
     std::vector<PressureLoad> loadSum;  // per input collider
+    std::vector<SolidAcceleration> seen;  // per input collider
     std::vector<Array<Vec3>> vertexForceSum;  // per input collider (deforming surfaces only)
     std::vector<const PreparedCollider*> fractionColliders;  // the input's, with geometry
     SlabPasses fractionUpdate, surfaceFractionUpdate, cellWeightUpdate;
@@ -312,6 +330,7 @@ class FluidActor {
   MacGrid grid_;
   FaceFractionField fractions_;
   std::vector<ColliderSnapshot> snapshots_;  // the colliders the fractions were computed for
+  SolidMotionHistory solidMotions_;  // as the steps took them, for their loads
   bool fractionsValid_ = false;
   bool fractionsChanged_ = true;  // since the advection's open-face masks were built
   bool pressureOperatorStale_ = true;  // the fractions changed since the last projection

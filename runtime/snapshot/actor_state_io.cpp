@@ -68,7 +68,7 @@ void writeColliderState(StateWriter& out, const ColliderState& s) {
   if (s.target) writePose(out, *s.target);
   out.value(static_cast<uint8_t>(s.targetActive));
   for (const Vec3* v : {&s.hostForce, &s.hostTorque, &s.contactLinear, &s.contactMoment, &s.trackedVelocity,
-                        &s.lastVelocityChange, &s.trackedSpin, &s.lastSpinChange})
+                        &s.trackedSpin})
     writeVec(out, *v);
   out.value(static_cast<uint8_t>(s.hasGeometry));
   if (s.hasGeometry) {
@@ -97,7 +97,7 @@ void readColliderState(StateReader& in, bool hasGeometry, ColliderState* s) {
   if (in.value<uint8_t>() != 0) s->target = readPose(in, "a kinematic target");
   s->targetActive = in.value<uint8_t>() != 0;
   for (Vec3* v : {&s->hostForce, &s->hostTorque, &s->contactLinear, &s->contactMoment, &s->trackedVelocity,
-                  &s->lastVelocityChange, &s->trackedSpin, &s->lastSpinChange})
+                  &s->trackedSpin})
     *v = readVec(in, "a rigid body's load or velocity");
   s->hasGeometry = in.value<uint8_t>() != 0;
   in.expect("collider's exact geometry (0 or 1)", s->hasGeometry, hasGeometry);
@@ -186,9 +186,6 @@ void writeDeformableState(StateWriter& out, const DeformableState& s) {
   writeVecs(out, s.renderPositions);
   writeVecs(out, s.renderNormals);
   writeSchedule(out, s.schedule);
-  const FluidImmersion::Tracking& t = s.immersionTracking;
-  for (const Vec3* v : {&t.velocity, &t.acceleration, &t.spin, &t.spinAcceleration}) writeVec(out, *v);
-  out.value(t.stepDt);
   for (const PairFriction& f : s.pairFriction) writePairFriction(out, f);
   out.value(static_cast<uint64_t>(s.cornerFriction.size()));
   for (const CornerFriction& c : s.cornerFriction) {
@@ -230,12 +227,6 @@ void readDeformableState(StateReader& in, const DeformableBody& body, Deformable
   readVecs(in, &s->renderPositions, render, "deformable's render vertex count");
   readVecs(in, &s->renderNormals, render, "deformable's render normal count");
   readSchedule(in, &s->schedule);
-  FluidImmersion::Tracking& t = s->immersionTracking;
-  for (Vec3* v : {&t.velocity, &t.acceleration, &t.spin, &t.spinAcceleration})
-    *v = readVec(in, "a deformable's tracked motion");
-  t.stepDt = in.value<double>();
-  in.requireFinite("a deformable's tracked step", &t.stepDt, 1);
-  if (in.ok() && t.stepDt < 0.0) in.outOfRange("a deformable's tracked step");
   // One friction state per node, as many as the body has (not counted in the buffer).
   if (in.ok() && in.has(nodes, kPairFrictionBytes)) {
     s->pairFriction.resize(static_cast<size_t>(nodes));
@@ -282,6 +273,15 @@ void writeFluidState(StateWriter& out, const FluidState& s) {
     writeVec(out, l.load.torque);
     out.value(l.load.addedMass);
     writeVecs(out, l.vertexForces);
+    writeVec(out, l.seen.linear);
+    writeVec(out, l.seen.angular);
+  }
+  out.value(static_cast<uint64_t>(s.solidMotions.size()));
+  for (const SolidMotionHistory::Entry& e : s.solidMotions) {
+    out.value(e.index1);
+    out.value(e.generation);
+    writeVec(out, e.motion.velocity);
+    writeVec(out, e.motion.spin);
   }
   out.value(s.stepCount);
   out.value(s.lastStepSlices);
@@ -328,7 +328,7 @@ void readFluidState(StateReader& in, const FluidActor& fluid, FluidState* s) {
   const double scalars[] = {s->speedAtEnd, s->kineticAtEnd, s->targetVolume};
   in.requireFinite("fluid's speed, energy or volume", scalars, 3);
   const uint64_t loads = in.value<uint64_t>();
-  if (in.ok() && in.has(loads, 2 * sizeof(uint32_t) + 7 * sizeof(double))) {
+  if (in.ok() && in.has(loads, 2 * sizeof(uint32_t) + 13 * sizeof(double))) {
     s->loads.resize(static_cast<size_t>(loads));
     for (FluidColliderLoadState& l : s->loads) {
       l.index1 = in.value<uint32_t>();
@@ -339,6 +339,18 @@ void readFluidState(StateReader& in, const FluidActor& fluid, FluidState* s) {
       in.requireFinite("a fluid load", &l.load.addedMass, 1);
       // Checked against the deformable's surface when the world applies it.
       readVecsOfAnyCount(in, &l.vertexForces, "a fluid load's vertex forces");
+      l.seen.linear = readVec(in, "a fluid load's solid acceleration");
+      l.seen.angular = readVec(in, "a fluid load's solid acceleration");
+    }
+  }
+  const uint64_t motions = in.value<uint64_t>();
+  if (in.ok() && in.has(motions, 2 * sizeof(uint32_t) + 6 * sizeof(double))) {
+    s->solidMotions.resize(static_cast<size_t>(motions));
+    for (SolidMotionHistory::Entry& e : s->solidMotions) {
+      e.index1 = in.value<uint32_t>();
+      e.generation = in.value<uint32_t>();
+      e.motion.velocity = readVec(in, "a fluid's solid motion");
+      e.motion.spin = readVec(in, "a fluid's solid motion");
     }
   }
   s->stepCount = in.value<uint64_t>();

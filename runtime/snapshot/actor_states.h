@@ -21,6 +21,7 @@
 #include "deform/deformable_contacts.h"
 #include "deform/pair_contacts.h"
 #include "fluid/solids/pressure_forces.h"
+#include "fluid/solids/solid_motion_history.h"
 #include "frame_plan.h"
 
 namespace vp {
@@ -45,8 +46,7 @@ struct ColliderState {
   bool targetActive = false;
   Vec3 hostForce = Vec3::Zero(), hostTorque = Vec3::Zero();
   Vec3 contactLinear = Vec3::Zero(), contactMoment = Vec3::Zero();  // pending contact impulses
-  Vec3 trackedVelocity = Vec3::Zero(), lastVelocityChange = Vec3::Zero();
-  Vec3 trackedSpin = Vec3::Zero(), lastSpinChange = Vec3::Zero();
+  Vec3 trackedVelocity = Vec3::Zero(), trackedSpin = Vec3::Zero();
   // The pose and velocity its exact geometry was last brought to (colliders with one).
   bool hasGeometry = false;
   Quat geometryRotation = Quat::Identity();
@@ -59,7 +59,6 @@ struct DeformableState {
   Array<NodeContact> contacts;
   Array<Vec3> renderPositions, renderNormals;
   ActorSchedule schedule;
-  FluidImmersion::Tracking immersionTracking;  // for the fluids' loads
   // Contacts with deformables (deform/pair_contacts.h): per node, its friction state, those of
   // the rigid corners on its triangles, and the impulses the next step applies (3 per node).
   Array<PairFriction> pairFriction;
@@ -78,6 +77,7 @@ struct FluidColliderLoadState {
   uint32_t index1 = 0, generation = 0;
   PressureLoad load;
   Array<Vec3> vertexForces;  // a deformable surface's
+  SolidAcceleration seen;
 };
 
 struct FluidState {
@@ -89,6 +89,7 @@ struct FluidState {
   bool fractionsValid = false;
   double speedAtEnd = -1.0, kineticAtEnd = -1.0, targetVolume = 0.0;
   std::vector<FluidColliderLoadState> loads;
+  std::vector<SolidMotionHistory::Entry> solidMotions;  // as the last step took them
   uint64_t stepCount = 0;
   int32_t lastStepSlices = 0;
   std::vector<SliceSizer::State> slabs;  // per FluidSlice kind

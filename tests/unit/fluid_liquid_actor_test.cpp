@@ -46,7 +46,8 @@ TEST(FluidLiquid, HydrostaticRestAroundATiltedBoxAndASphere) {
   input.dt = 1.0 / 60.0;
   input.gravity = Vec3(0, -9.81, 0);
   input.tasks = tasks.get();
-  input.colliders = {FluidCollider{1, 1, &preparedBox, nullptr, false}, FluidCollider{2, 1, &preparedSphere, nullptr, false}};
+  input.colliders = {FluidCollider{1, 1, &preparedBox, nullptr, false, {}},
+                     FluidCollider{2, 1, &preparedSphere, nullptr, false, {}}};
   double worst = 0.0;
   for (int s = 0; s < 300; ++s) {
     ActorStats stats;

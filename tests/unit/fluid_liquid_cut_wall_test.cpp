@@ -48,7 +48,7 @@ double fastestLiquidFace(double cut) {
   input.dt = 1.0 / 60.0;
   input.gravity = Vec3(0, -9.81, 0);
   input.tasks = tasks.get();
-  input.colliders = {FluidCollider{1, 1, &prepared, nullptr, false}};
+  input.colliders = {FluidCollider{1, 1, &prepared, nullptr, false, {}}};
   double fastest = 0.0;
   for (int s = 0; s < 60; ++s) {
     ActorStats stats;

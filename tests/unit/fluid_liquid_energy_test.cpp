@@ -70,7 +70,7 @@ TEST(FluidLiquidEnergy, AClosedInviscidDamBreakLosesEnergyAndSettles) {
   input.dt = 1.0 / 60.0;
   input.gravity = Vec3(0, -kGravity, 0);
   input.tasks = tasks.get();
-  input.colliders = {FluidCollider{1, 1, &obstacle, nullptr, false}};
+  input.colliders = {FluidCollider{1, 1, &obstacle, nullptr, false, {}}};
 
   // The fractions are the obstacle's only once a step has seen it.
   ActorStats first;

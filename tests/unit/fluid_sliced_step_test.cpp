@@ -71,7 +71,7 @@ struct Colliders {
     EXPECT_EQ(prepareCollider(b, &ball), Status::Ok) << lastError();
   }
   std::vector<FluidCollider> list() const {
-    return {FluidCollider{1, 1, &paddle, nullptr, false}, FluidCollider{2, 1, &ball, nullptr, true}};
+    return {FluidCollider{1, 1, &paddle, nullptr, false, {}}, FluidCollider{2, 1, &ball, nullptr, true, {}}};
   }
 };
 

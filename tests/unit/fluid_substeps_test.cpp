@@ -31,7 +31,7 @@ int firstStepSubsteps(double speed) {
   FluidStepInput input;
   input.dt = 1.0 / 60.0;
   input.tasks = tasks.get();
-  input.colliders = {FluidCollider{1, 1, &prepared, nullptr, false}};
+  input.colliders = {FluidCollider{1, 1, &prepared, nullptr, false, {}}};
   ActorStats stats;
   actor->step(input, &stats, nullptr);
   return stats.completedStep ? stats.substeps : -1;

@@ -136,22 +136,26 @@ void extendIntoSolid(const MacGrid& grid, const FaceFractionField& fractions, co
 
 }  // namespace
 
-bool localPressureAround(const MacGrid& grid, const FaceFractionField& fractions, const CutCellPoisson& op,
-                         const double* pressure, const double* liquidPhi, const Aabb& bounds,
-                         const PreparedCollider* body, LocalPressure* out) {
-  const MacGridSpec& s = grid.spec;
+bool cellBoxAround(const MacGridSpec& s, const Aabb& bounds, LocalPressure* out) {
   const Eigen::Vector3i n(s.nx, s.ny, s.nz);
-  LocalPressure local;
   Eigen::Vector3i hi;
   for (int a = 0; a < 3; ++a) {
     // Two cells of margin: the extrapolation reads two known cells outside the body.
     const double l = (std::max(bounds.lo[a], s.origin[a] - s.h) - s.origin[a]) / s.h;
     const double u = (std::min(bounds.hi[a], s.origin[a] + (n[a] + 1) * s.h) - s.origin[a]) / s.h;
-    local.lo[a] = clampIndex(std::floor(l) - 2.0, 0, n[a]);
+    out->lo[a] = clampIndex(std::floor(l) - 2.0, 0, n[a]);
     hi[a] = clampIndex(std::ceil(u) + 2.0, -1, n[a] - 1);
-    if (local.lo[a] > hi[a]) return false;
+    if (out->lo[a] > hi[a]) return false;
   }
-  local.dims = hi - local.lo + Eigen::Vector3i::Ones();
+  out->dims = hi - out->lo + Eigen::Vector3i::Ones();
+  return true;
+}
+
+bool localPressureAround(const MacGrid& grid, const FaceFractionField& fractions, const CutCellPoisson& op,
+                         const double* pressure, const double* liquidPhi, const Aabb& bounds,
+                         const PreparedCollider* body, LocalPressure* out) {
+  LocalPressure local;
+  if (!cellBoxAround(grid.spec, bounds, &local)) return false;
   extendIntoSolid(grid, fractions, op, pressure, liquidPhi, body, local);
   *out = std::move(local);
   return true;

@@ -34,6 +34,10 @@ struct LocalPressure {
   }
 };
 
+// Sets out's box (lo, dims) to the cells around `bounds`, with the margin the extension needs;
+// false when they miss the grid.
+bool cellBoxAround(const MacGridSpec& spec, const Aabb& bounds, LocalPressure* out);
+
 // Fills `out` over the cells around `bounds`; false (out unchanged) when they miss the grid.
 // `liquidPhi` (cell-centred, null for smoke or for air at p = 0) gives air cells their ghost
 // values. Given `body`, the cells whose centres lie inside it are extended too, fluid or not:

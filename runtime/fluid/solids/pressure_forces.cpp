@@ -7,6 +7,7 @@
 
 #include "fluid/grid_index.h"
 #include "fluid/solids/extended_pressure.h"
+#include "fluid/surface/hydrostatic_pressure.h"
 
 namespace vp {
 namespace {
@@ -27,13 +28,13 @@ double dualCellSolidFraction(const PreparedCollider& collider, AxisFace face) {
 
 }  // namespace
 
-PressureLoad pressureLoadOnCollider(const MacGrid& grid, const FaceFractionField& fractions, const CutCellPoisson& op,
-                                    const double* pressure, double density, const PreparedCollider& collider,
-                                    const Vec3& centre) {
+namespace {
+
+// The sums of pressure_forces.h over the faces `collider` covers within local's box.
+PressureLoad loadOverCoveredFaces(const MacGrid& grid, const LocalPressure& local, double density,
+                                  const PreparedCollider& collider, const Vec3& centre) {
   PressureLoad load;
   const MacGridSpec& s = grid.spec;
-  LocalPressure local;
-  if (!localPressureAround(grid, fractions, op, pressure, nullptr, collider.bounds, nullptr, &local)) return load;
   const Eigen::Vector3i hi = local.lo + local.dims - Eigen::Vector3i::Ones();
   const double area = s.h * s.h;
   double wetVolume = 0.0;  // each axis' faces cover the volume once: a third from each
@@ -62,6 +63,39 @@ PressureLoad pressureLoadOnCollider(const MacGrid& grid, const FaceFractionField
         }
   load.addedMass = density * wetVolume;
   return load;
+}
+
+}  // namespace
+
+PressureLoad pressureLoadOnCollider(const MacGrid& grid, const FaceFractionField& fractions, const CutCellPoisson& op,
+                                    const double* pressure, double density, const PreparedCollider& collider,
+                                    const Vec3& centre) {
+  LocalPressure local;
+  if (!localPressureAround(grid, fractions, op, pressure, nullptr, collider.bounds, nullptr, &local))
+    return PressureLoad{};
+  return loadOverCoveredFaces(grid, local, density, collider, centre);
+}
+
+PressureLoad hydrostaticLoadOnCollider(const MacGrid& grid, const double* liquidPhi, double density,
+                                       const Vec3& gravity, const PreparedCollider& collider, const Vec3& centre) {
+  LocalPressure local;
+  if (liquidPhi == nullptr || !cellBoxAround(grid.spec, collider.bounds, &local)) return PressureLoad{};
+  const Aabb box{grid.cellCentre(local.lo.x(), local.lo.y(), local.lo.z()),
+                 grid.cellCentre(local.lo.x() + local.dims.x() - 1, local.lo.y() + local.dims.y() - 1,
+                                 local.lo.z() + local.dims.z() - 1)};
+  const HydrostaticPressure hydrostatic(grid, liquidPhi, density, gravity, box);
+  const size_t count = static_cast<size_t>(local.dims.prod());
+  local.value.assign(count, 0.0);
+  local.air.assign(count, 0);
+  for (int k = 0; k < local.dims.z(); ++k)
+    for (int j = 0; j < local.dims.y(); ++j)
+      for (int i = 0; i < local.dims.x(); ++i) {
+        const Eigen::Vector3i c = local.lo + Eigen::Vector3i(i, j, k);
+        const int64_t l = local.index(c);
+        local.value[l] = hydrostatic.at(grid.cellCentre(c.x(), c.y(), c.z()));
+        local.air[l] = local.value[l] > 0.0 ? 0 : 1;
+      }
+  return loadOverCoveredFaces(grid, local, density, collider, centre);
 }
 
 }  // namespace vp

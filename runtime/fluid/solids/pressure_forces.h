@@ -40,4 +40,12 @@ PressureLoad pressureLoadOnCollider(const MacGrid& grid, const FaceFractionField
                                     const double* pressure, double density, const PreparedCollider& collider,
                                     const Vec3& centre);
 
+// The part of that load that is the liquid's weight, by the same sums over the same faces with
+// the hydrostatic pressure under the free surface of liquidPhi
+// (fluid/surface/hydrostatic_pressure.h) in place of the solve's: a body takes it anew at its
+// own steps from the liquid's last level set, and the fluid's step the rest. Zero for smoke
+// (liquidPhi null).
+PressureLoad hydrostaticLoadOnCollider(const MacGrid& grid, const double* liquidPhi, double density,
+                                       const Vec3& gravity, const PreparedCollider& collider, const Vec3& centre);
+
 }  // namespace vp

@@ -43,4 +43,12 @@ void surfacePressureLoad(TaskSystem& tasks, const MacGrid& grid, const FaceFract
                          const CutCellPoisson& op, const double* pressure, const double* liquidPhi, double density,
                          const PreparedCollider& surface, SurfacePressureLoad* out);
 
+// The part of those forces that is the liquid's weight (fluid/surface/hydrostatic_pressure.h),
+// by the same rule, on a closed surface given by its vertices and outward triangles; zero for
+// smoke (liquidPhi null). A body takes it anew at its own steps from the liquid's last level
+// set (deform/fluid_immersion.h), and the fluid's step the rest of its load.
+void surfaceHydrostaticLoad(TaskSystem& tasks, const MacGrid& grid, const double* liquidPhi, double density,
+                            const Vec3& gravity, const Array<Eigen::Vector3d>& vertices,
+                            const Array<Eigen::Vector3i>& triangles, Array<Vec3>* vertexForces);
+
 }  // namespace vp
