@@ -42,10 +42,14 @@ void ContactSurface::refit(const Array<double>& x, const Array<double>& v, doubl
     const int64_t n = vertexNode_[i];
     positions_[i] = Vec3(x[3 * n], x[3 * n + 1], x[3 * n + 2]);
   }
+  auto velocity = [&](int64_t n) { return Vec3(v[3 * n], v[3 * n + 1], v[3 * n + 2]); };
+  frameVelocity_ = Vec3::Zero();
+  for (int32_t n : vertexNode_) frameVelocity_ += velocity(n);
+  if (!vertexNode_.empty()) frameVelocity_ /= static_cast<double>(vertexNode_.size());
   margins_.resize(triangleNodes_.size());
   for (size_t t = 0; t < triangleNodes_.size(); ++t) {
     double fastest = 0.0;
-    for (int32_t n : triangleNodes_[t]) fastest = std::max(fastest, Vec3(v[3 * n], v[3 * n + 1], v[3 * n + 2]).norm());
+    for (int32_t n : triangleNodes_[t]) fastest = std::max(fastest, (velocity(n) - frameVelocity_).norm());
     margins_[t] = h * fastest;
   }
   nodeNormals_.assign(static_cast<size_t>(nodeCount()), Vec3::Zero());

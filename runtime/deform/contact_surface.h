@@ -3,9 +3,11 @@
 // refit to the nodes' positions once per step (its shape is built once: a deformable keeps
 // its triangles), and which nodes share an element, so that self contact can leave out a
 // node's own neighbourhood (a node always lies on the triangles around it). Each triangle's
-// box is grown by how far its corners move in the coming step, so a node's search covers
-// only its own motion and not the body's fastest node's. The nodes' normals tell a node
-// lying on a triangle from one beside it (at a box's edge, on the face round the corner).
+// box is grown by how far its corners move in the coming step in a frame moving with the
+// surface's mean velocity, so a node's search covers only its own motion and not the body's
+// fastest node's, and a body falling fast does not search its whole self: a search against
+// the surface takes its motion in that frame too (frameVelocity). The nodes' normals tell a
+// node lying on a triangle from one beside it (at a box's edge, on the face round the corner).
 #pragma once
 
 #include <array>
@@ -25,10 +27,12 @@ class ContactSurface {
   void build(const SurfaceMesh& boundary, const Array<int32_t>& vertexNode, const Array<int32_t>& elementNodes,
              int nodesPerElement, int32_t nodeCount);
   // The triangles' boxes at node positions x (3 per node), each grown by h times its fastest
-  // corner's speed in v (3 per node).
+  // corner's speed in v (3 per node) relative to frameVelocity.
   void refit(const Array<double>& x, const Array<double>& v, double h);
 
   const RefitBvh& bvh() const { return bvh_; }
+  // The mean velocity of the surface's nodes at the last refit: the frame its boxes move with.
+  const Vec3& frameVelocity() const { return frameVelocity_; }
   const Array<RefitBvh::Triangle>& triangles() const { return triangleNodes_; }  // node ids
   // The corner nodes that share an element with node a (a itself included when it is a
   // corner), sorted: [first, last).
@@ -51,6 +55,7 @@ class ContactSurface {
   Array<Vec3> positions_;                    // boundary vertices, this step
   Array<double> margins_;                    // per triangle, this step
   Array<Vec3> nodeNormals_;                  // per node, this step
+  Vec3 frameVelocity_ = Vec3::Zero();
   RefitBvh bvh_;
   Array<int32_t> neighbourStart_, neighbourList_;  // per node, sorted corner neighbours
   bool hasInteriorNode_ = false;

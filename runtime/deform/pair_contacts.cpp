@@ -83,7 +83,7 @@ struct TouchQuery {
 template <class Skip, class Visit>
 void touchingTriangles(const TouchQuery& q, const PairContactBody& B, double h, double* lowest, const Skip& skip,
                        const Visit& visit) {
-  const double reach = h * q.v.norm() + q.rest + B.depth;
+  const double reach = h * (q.v - B.surface->frameVelocity()).norm() + q.rest + B.depth;
   const Vec3 lo = q.p - Vec3::Constant(reach), hi = q.p + Vec3::Constant(reach);
   const RefitBvh& bvh = B.surface->bvh();
   if ((lo.array() > bvh.hi().array()).any() || (hi.array() < bvh.lo().array()).any()) return;  // far off
@@ -197,7 +197,7 @@ void nearestRigid(const PairContactBody& A, int32_t a, int32_t node, const Rigid
   const PreparedCollider& c = *R.geometry;
   const Vec3 p = nodeVector(*A.x, node), vp = nodeVector(*A.v, node);
   // The node's reach over the step and the rigid body's own motion (its bounds are its pose now).
-  const double reach = h * vp.norm() + touchThreshold(A, node) + R.sweep(h) + 1e-9;
+  const double reach = h * vp.norm() + touchThreshold(A, node) + R.sweep(h, Vec3::Zero()) + 1e-9;
   if (!Aabb{p - Vec3::Constant(reach), p + Vec3::Constant(reach)}.overlaps(c.bounds)) return;
   const double phi = signedDistanceBound(c, p);
   if (phi > reach) return;
@@ -259,7 +259,7 @@ Vec3 roundSupport(const PreparedCollider& shape, const Vec3& d) {
 void roundContacts(const RigidContactBody& R, int32_t r, const std::vector<PairContactBody>& bodies, int32_t b,
                    double h, std::vector<PairContact>* out) {
   const PairContactBody& B = bodies[b];
-  const double reach = B.rest + B.depth + R.sweep(h);
+  const double reach = B.rest + B.depth + R.sweep(h, B.surface->frameVelocity());
   const Aabb near{R.geometry->bounds.lo - Vec3::Constant(reach), R.geometry->bounds.hi + Vec3::Constant(reach)};
   const Array<RefitBvh::Triangle>& triangles = B.surface->triangles();
   B.surface->bvh().visitBox(near.lo, near.hi, [&](int32_t t) {
@@ -292,7 +292,7 @@ void findCornerContacts(const std::vector<PairContactBody>& bodies, const std::v
     const RigidContactBody& R = rigids[r];
     for (size_t b = 0; b < bodies.size(); ++b) {
       const PairContactBody& B = bodies[b];
-      const double reach = B.rest + B.depth + 1e-9 + R.sweep(h);
+      const double reach = B.rest + B.depth + 1e-9 + R.sweep(h, B.surface->frameVelocity());
       const Aabb surface{B.surface->bvh().lo() - Vec3::Constant(reach), B.surface->bvh().hi() + Vec3::Constant(reach)};
       if (B.touchesRigid && B.filter.meets(R.filter) && surface.overlaps(R.geometry->bounds))
         nearBodies[r].push_back(static_cast<int32_t>(b));
@@ -367,7 +367,7 @@ void findPairContacts(const std::vector<PairContactBody>& bodies, const std::vec
     if (!A.touchesRigid) continue;
     for (size_t r = 0; r < rigids.size(); ++r) {
       const RigidContactBody& R = rigids[r];
-      const double reach = kPairContactKeep * A.rest + 1e-9 + R.sweep(h);
+      const double reach = kPairContactKeep * A.rest + 1e-9 + R.sweep(h, A.surface->frameVelocity());
       const Aabb surface{A.surface->bvh().lo() - Vec3::Constant(reach), A.surface->bvh().hi() + Vec3::Constant(reach)};
       if (A.filter.meets(R.filter) && surface.overlaps(R.geometry->bounds))
         nearRigids[a].push_back(static_cast<int32_t>(r));

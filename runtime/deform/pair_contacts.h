@@ -172,7 +172,11 @@ struct RigidContactBody {
   double frictionCoefficient = 0.5;
   Vec3 pointVelocity(const Vec3& arm) const { return linearVelocity + angularVelocity.cross(arm); }
   // How far any of its points can move over a step of h.
-  double sweep(double h) const { return h * (linearVelocity.norm() + angularVelocity.norm() * geometry->boundRadius); }
+  // How far its points move in a step of h, seen from a frame moving at `frame` (a deformable
+  // surface's boxes' frame, ContactSurface::frameVelocity).
+  double sweep(double h, const Vec3& frame) const {
+    return h * ((linearVelocity - frame).norm() + angularVelocity.norm() * geometry->boundRadius);
+  }
 };
 
 // The corners a rigid body's shape pokes into a deformable with (world frame, at its pose): a
