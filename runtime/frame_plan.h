@@ -104,6 +104,15 @@ class FramePlan {
   // its step never spans more than about kMaxInterval frames.
   static int64_t fluidMinWork(const Fluid& f);
 
+  // A deformable whose step blew up (and was restored) steps every frame again: the same step at
+  // the same length, from the same state, blew up again every time (a jelly at an interval of
+  // 8 frames stood still, restored eight frames after eight frames). Its interval climbs back
+  // as floors are missed, one frame at a time.
+  static void noteDiverged(ActorSchedule& s) {
+    s.interval = 1;
+    s.calmFrames = 0;
+  }
+
   // After the frame: a deformable that missed its floor raises the interval of the
   // lowest-priority deformable below the cap (`deformables` in slot order; `missed[i]`:
   // the i-th missed its floor); intervals come back down after kCalmFrames frames with

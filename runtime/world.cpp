@@ -663,8 +663,10 @@ bool World::stepDeformables(double dt, const Deadline& frame, StepStats* stats) 
     stats->maxSliceMs = std::max(stats->maxSliceMs, longestDeformableSliceMs(a));
     missed[i] = a.floorMissed;
     if (deadlines[i].forced && frame.expired()) stats->budgetInfeasible = true;
-    if (a.diverged)
+    if (a.diverged) {
       log(LogLevel::Warning, "deformable (%u, %u) diverged; restored its previous state", a.index1, a.generation);
+      FramePlan::noteDiverged(s);
+    }
     s.expectedMs = FramePlan::smoothed(s.expectedMs, a.totalMs);
     s.tailMs = FramePlan::smoothed(s.tailMs, a.phase(Phase::Contacts).ms + a.phase(Phase::Embed).ms);
     s.pendingDt = 0.0;

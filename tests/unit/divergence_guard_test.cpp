@@ -103,6 +103,28 @@ TEST(DivergenceGuard, ADeformableDrivenToAnAbsurdSpeedGoesBackToItsStateBeforeTh
   EXPECT_LT(body.positions()[1], x[1]);
 }
 
+// A step that blew up is not tried again at the same length from the same state: a body that
+// a frame budget has stepping every fourth frame steps every frame once its step diverged.
+TEST(DivergenceGuard, ADeformableWhoseLongStepDivergedStepsEveryFrameAgain) {
+  std::unique_ptr<World> world = testutil::unbudgetedWorld();
+  ASSERT_TRUE(world);
+  DeformableDesc d;
+  d.mesh = makeBoxTetMesh({3, 2, 2}, Vec3(0.6, 0.4, 0.4), Vec3::Zero());
+  d.pose.position = Vec3(0, 2, 0);
+  DeformableHandle h;
+  ASSERT_EQ(world->createDeformable(std::move(d), &h), Status::Ok) << lastError();
+  DeformableBody& body = *world->deformable(h);
+  body.schedule().interval = 4;
+  ASSERT_EQ(body.applyForce(0, Vec3(0, 1e30, 0)), Status::Ok);
+  bool diverged = false;
+  for (int i = 0; i < 4 && !diverged; ++i) {
+    ASSERT_EQ(world->step(1.0 / 60.0), Status::Ok);
+    diverged = divergedThisStep(*world, ActorKind::Deformable);
+  }
+  ASSERT_TRUE(diverged);
+  EXPECT_EQ(body.schedule().interval, 1);
+}
+
 // A kinematic paddle turned at an absurd rate stirs the liquid beyond any plausible speed in
 // one step; the step is dropped and the fluid is its last completed step again, bit for bit.
 TEST(DivergenceGuard, ADivergedFluidStepIsDroppedNotResetToRest) {
