@@ -22,14 +22,14 @@ bool FramePlan::due(uint64_t frame, int ordinal, int count, const ActorSchedule&
 
 FramePlan::DeformableDeadlines FramePlan::deformableDeadlines(const Deadline& frame, const ActorSchedule& s,
                                                               double laterFloorsMs, double fluidsMs,
-                                                              int remainingDeformables) {
+                                                              int remainingDeformables, bool heldEveryFrame) {
   DeformableDeadlines d;
   const double fraction = 1.0 / std::max(remainingDeformables, 1);
   // The solve ends early enough for the step's work after it.
   const double tailMs = kMargin * std::max(s.tailMs, 0.0);
   const double now = frame.unlimited() ? 0.0 : frame.clock().seconds();
   d.share = frame.shareLeaving(fraction, fluidsMs + tailMs, laterFloorsMs, now);
-  d.forced = s.interval >= kMaxInterval;
+  d.forced = s.interval >= kMaxInterval || heldEveryFrame;
   d.floor = d.forced ? Deadline() : frame.shareLeaving(fraction, tailMs, laterFloorsMs, now);
   return d;
 }
@@ -61,7 +61,7 @@ bool FramePlan::adjustIntervals(const std::vector<Deformable>& deformables, cons
     int chosen = -1;
     for (int i = 0; i < static_cast<int>(deformables.size()); ++i) {
       const ActorSchedule& s = *deformables[i].schedule;
-      if (s.interval >= kMaxInterval) continue;
+      if (s.interval >= kMaxInterval || deformables[i].heldEveryFrame) continue;
       if (chosen < 0 || deformables[i].priority <= deformables[chosen].priority) chosen = i;
     }
     for (const Deformable& d : deformables) d.schedule->calmFrames = 0;

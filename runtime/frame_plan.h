@@ -11,7 +11,8 @@
 //   2. When the floors do not fit, deformables lower their rate, never their accuracy: the
 //      lowest-priority deformable not yet at kMaxInterval steps every k-th frame with the
 //      time it skipped (backward Euler is stable at k dt). The interval comes back down
-//      after kCalmFrames frames in which the frame had room for it.
+//      after kCalmFrames frames in which the frame had room for it. A deformable within reach
+//      of a dynamic rigid body keeps stepping every frame (Deformable::heldEveryFrame).
 //   3. Fluids take what is left, by priority: a fluid is given what one whole step of it is
 //      expected to cost, then the next; fluids of equal priority share equally, and time
 //      one does not use passes on. A fluid step is resumable (fluid_actor.h): one that does
@@ -68,6 +69,11 @@ class FramePlan {
   struct Deformable {
     int priority = 0;
     ActorSchedule* schedule = nullptr;
+    // Within reach of a dynamic rigid body: it steps every frame and its interval is not raised.
+    // Bullet steps the rigid body every frame, and the two solve their contacts together only
+    // over the same dt; at a lowered rate the deformable met it late, deep inside, and its
+    // contacts' reactions threw it metres away (the default scene's buoy, at 14 m/s).
+    bool heldEveryFrame = false;
   };
   // A fluid as the plan sees it this frame.
   struct Fluid {
@@ -87,13 +93,18 @@ class FramePlan {
   // The two deadlines of a due deformable: `share` (stop there once at the floor) and
   // `floor` (stop there in any case). laterFloorsMs: the expected cost of the due
   // deformables after it; fluidsMs: what the fluids of at least its priority are expected to
-  // need this frame; remainingDeformables: itself and those after it.
+  // need this frame; remainingDeformables: itself and those after it; heldEveryFrame: as
+  // Deformable's, which cannot lower its rate either.
   struct DeformableDeadlines {
     Deadline share, floor;
-    bool forced = false;  // at the interval cap: the floor holds whatever the budget
+    // At the interval cap, or held every frame: the floor holds whatever the budget. A solve
+    // cut short above it hands a dynamic rigid body it shares the solve with a velocity far
+    // from the solution (a ball resting on a bar thrown up at 4.6 m/s after one iteration).
+    bool forced = false;
   };
   static DeformableDeadlines deformableDeadlines(const Deadline& frame, const ActorSchedule& s,
-                                                 double laterFloorsMs, double fluidsMs, int remainingDeformables);
+                                                 double laterFloorsMs, double fluidsMs, int remainingDeformables,
+                                                 bool heldEveryFrame = false);
 
   // A fluid's share of what is left of the frame: its expected cost of a whole step when
   // there are fluids of lower priority after it, an equal part among those of its

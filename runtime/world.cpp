@@ -254,6 +254,21 @@ void World::balanceWorkers(const Deadline& frame, double runDelayAtStart) {
 
 namespace {
 
+// Whether a deformable can meet one of the boxes `reach` within `lookahead` seconds at its
+// fastest node's speed.
+bool withinReach(const DeformableBody& body, const std::vector<Filtered<Aabb>>& reach, double lookahead) {
+  double fastest = 0.0;
+  const Array<double>& v = body.velocities();
+  for (size_t i = 0; i + 2 < v.size(); i += 3)
+    fastest = std::max(fastest, v[i] * v[i] + v[i + 1] * v[i + 1] + v[i + 2] * v[i + 2]);
+  const Aabb bounds = body.bounds();
+  const Vec3 travel = Vec3::Constant(lookahead * std::sqrt(fastest));
+  const Aabb box{bounds.lo - travel, bounds.hi + travel};
+  return std::any_of(reach.begin(), reach.end(), [&](const Filtered<Aabb>& r) {
+    return r.filter.meets(body.desc().filter) && r.entry.overlaps(box);
+  });
+}
+
 // Whether a fluid reaches a body within `bounds` and sees it (it then takes it as a solid).
 bool reaches(const FluidActor& fluid, const Aabb& bounds, const CollisionFilter& filter) {
   return fluid.domainBounds().overlaps(bounds) && fluid.desc().filter.meets(filter);
@@ -557,18 +572,37 @@ DeformableStepInput World::frameStepInput(const std::vector<DeformableHandle>& h
   return input;
 }
 
+std::vector<Filtered<Aabb>> World::dynamicBodiesReach(double lookahead) const {
+  std::vector<Filtered<Aabb>> reach;
+  colliders_.forEach([&](ColliderHandle, const Collider& c) {
+    if (c.bodyType() != BodyType::Dynamic || !c.geometry()) return;
+    const PreparedCollider& g = *c.geometry();
+    // Its speed, and what gravity adds (a ball at the top of its bounce is coming back).
+    const double travel = lookahead * (c.linearVelocity().norm() + c.angularVelocity().norm() * g.boundRadius) +
+                          0.5 * config_.gravity.norm() * lookahead * lookahead;
+    reach.push_back({c.filter(), Aabb{g.bounds.lo - Vec3::Constant(travel), g.bounds.hi + Vec3::Constant(travel)}});
+  });
+  return reach;
+}
+
 bool World::stepDeformables(double dt, const Deadline& frame, StepStats* stats) {
   const std::vector<Filtered<ContactCollider>> contactColliders = deformableContactColliders(colliders_);
   const std::vector<DeformableHandle> handles = deformableHandles();
   std::vector<FramePlan::Deformable> planned;
   std::vector<int> priorities;
   std::vector<bool> due;
+  // Where the dynamic rigid bodies and the deformables can go before a deformable at the
+  // highest interval would step again.
+  const double lookahead = FramePlan::kMaxInterval * dt;
+  const std::vector<Filtered<Aabb>> rigidReach =
+      frame.unlimited() ? std::vector<Filtered<Aabb>>{} : dynamicBodiesReach(lookahead);
   for (size_t i = 0; i < handles.size(); ++i) {
     DeformableBody& body = *deformable(handles[i]);
     ActorSchedule& s = body.schedule();
     s.pendingDt += dt;
-    if (frame.unlimited()) s.interval = 1;  // no budget: nothing lowers a rate
-    planned.push_back(FramePlan::Deformable{body.desc().priority, &s});
+    const bool held = !rigidReach.empty() && withinReach(body, rigidReach, lookahead);
+    if (frame.unlimited() || held) s.interval = 1;  // no budget: nothing lowers a rate
+    planned.push_back(FramePlan::Deformable{body.desc().priority, &s, held});
     priorities.push_back(body.desc().priority);
     due.push_back(FramePlan::due(stats->stepIndex, static_cast<int>(i), static_cast<int>(handles.size()), s));
   }
@@ -602,15 +636,17 @@ bool World::stepDeformables(double dt, const Deadline& frame, StepStats* stats) 
     // The group is planned as one actor: the first member's priority, every member's tail.
     ActorSchedule schedule = deformable(handles[first])->schedule();
     double tailsMs = 0.0;
+    bool held = false;
     for (int i : members) {
       const ActorSchedule& s = deformable(handles[i])->schedule();
       tailsMs += std::max(s.tailMs, 0.0);
       schedule.interval = std::max(schedule.interval, s.interval);
+      held = held || planned[i].heldEveryFrame;
     }
     if (members.size() > 1) schedule.tailMs = tailsMs;
     const FramePlan::DeformableDeadlines groupDeadlines = FramePlan::deformableDeadlines(
         frame, schedule, concurrent ? 0.0 : laterFloorsMs[n + 1], fluidsExpectedMs(priorities[first]),
-        concurrent ? 1 : static_cast<int>(groups.size()) - n);
+        concurrent ? 1 : static_cast<int>(groups.size()) - n, held);
     const double start = frame.elapsedMs();
     double mark = start;
     std::vector<DeformableStepInput> inputs(members.size());

@@ -152,6 +152,8 @@ class World {
                             const std::vector<RigidContactBody>& rigids, std::vector<PairContact>* pairs) const;
   // The dynamic bodies a deformable's step can solve with it (deform/contact_group_solve.h).
   std::vector<RigidContactBody> rigidContactBodies() const;
+  // The boxes the dynamic rigid bodies can reach within `lookahead` seconds, with their filters.
+  std::vector<Filtered<Aabb>> dynamicBodiesReach(double lookahead) const;
   // Deformables push back: each contact reaction of the body's last step acts on its dynamic
   // collider as an impulse (equal and opposite to the one on the node), applied when the next
   // rigid step begins (Collider::addContactImpulse).

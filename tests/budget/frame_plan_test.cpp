@@ -66,6 +66,16 @@ TEST(FramePlan, AMissedFloorRaisesTheLowestPriorityIntervalFirst) {
   EXPECT_FALSE(FramePlan::adjustIntervals(d, {true, false, false}, 0.0));  // infeasible
 }
 
+TEST(FramePlan, ADeformableHeldEveryFrameIsPassedOver) {
+  ActorSchedule hero, nearBall;
+  std::vector<FramePlan::Deformable> d = {{5, &hero}, {0, &nearBall, true}};
+  ASSERT_TRUE(FramePlan::adjustIntervals(d, {true, false}, 0.0));
+  EXPECT_EQ(nearBall.interval, 1);
+  EXPECT_EQ(hero.interval, 2);
+  hero.interval = FramePlan::kMaxInterval;
+  EXPECT_FALSE(FramePlan::adjustIntervals(d, {true, false}, 0.0));  // nothing left to raise
+}
+
 TEST(FramePlan, IntervalsComeDownOnlyAfterCalmFramesWithRoom) {
   ActorSchedule s;
   s.interval = 3;
@@ -204,27 +214,64 @@ TEST(FrameBudgetPlan, TwoLiquidsASmokeAndThreeDeformablesStayWithinEachBudget) {
   }
 }
 
-TEST(FrameBudgetPlan, ATightBudgetRaisesTheLowerPriorityIntervalFirst) {
-  // Two bars, each needing more ticks to reach its floor than half the budget leaves.
-  TickWorld w(1.2);
+// Two bars under a 1.2 ms tick budget, each needing more ticks to reach its floor than half the
+// budget leaves: a hero of priority 1 at y = 2 and an extra of priority 0 at y = 4.
+struct TwoBars {
+  TickWorld w{1.2};
   DeformableHandle hero, extra;
-  DeformableDesc heroDesc = bar(Vec3(0, 2, 0), 1);
-  DeformableDesc extraDesc = bar(Vec3(0, 4, 0), 0);
-  for (DeformableDesc* d : {&heroDesc, &extraDesc}) d->solver.tolerance = d->solver.targetResidual = 1e-6;
-  ASSERT_EQ(w.world->createDeformable(heroDesc, &hero), Status::Ok) << lastError();
-  ASSERT_EQ(w.world->createDeformable(extraDesc, &extra), Status::Ok) << lastError();
-  int heroMax = 1, extraMax = 1;
-  for (int frame = 0; frame < 20; ++frame) {
+  int heroMax = 1, extraMax = 1;  // the largest intervals seen
+
+  TwoBars() {
+    DeformableDesc heroDesc = bar(Vec3(0, 2, 0), 1);
+    DeformableDesc extraDesc = bar(Vec3(0, 4, 0), 0);
+    for (DeformableDesc* d : {&heroDesc, &extraDesc}) d->solver.tolerance = d->solver.targetResidual = 1e-6;
+    EXPECT_EQ(w.world->createDeformable(heroDesc, &hero), Status::Ok) << lastError();
+    EXPECT_EQ(w.world->createDeformable(extraDesc, &extra), Status::Ok) << lastError();
+  }
+  void step() {
     ASSERT_EQ(w.world->step(1.0 / 60.0), Status::Ok);
     for (const ActorStats& a : w.world->lastStats().actors) {
       if (a.kind != ActorKind::Deformable) continue;
-      (a.priority == 1 ? heroMax : extraMax) = std::max(a.priority == 1 ? heroMax : extraMax, a.interval);
-    }
-    if (extraMax < FramePlan::kMaxInterval) {
-      EXPECT_EQ(heroMax, 1) << "frame " << frame;
+      int& most = a.priority == 1 ? heroMax : extraMax;
+      most = std::max(most, a.interval);
     }
   }
-  EXPECT_GT(extraMax, 1);
+};
+
+TEST(FrameBudgetPlan, ATightBudgetRaisesTheLowerPriorityIntervalFirst) {
+  TwoBars bars;
+  for (int frame = 0; frame < 20; ++frame) {
+    bars.step();
+    if (bars.extraMax < FramePlan::kMaxInterval) {
+      EXPECT_EQ(bars.heroMax, 1) << "frame " << frame;
+    }
+  }
+  EXPECT_GT(bars.extraMax, 1);
+}
+
+// The same two bars, the lower-priority one on a static shelf with a dynamic ball resting on
+// it: that bar keeps stepping every frame (it solves its contacts with the ball only over the
+// frame's dt) and reaches its floor, and the hero's rate is lowered instead.
+TEST(FrameBudgetPlan, ADeformableWithinReachOfADynamicBodyKeepsSteppingEveryFrame) {
+  TwoBars bars;
+  ColliderDesc shelf;
+  shelf.bodyType = BodyType::Static;
+  shelf.shape.type = ShapeType::Box;
+  shelf.shape.halfExtents = Vec3(1.5, 0.1, 0.5);
+  shelf.pose.position = Vec3(1.0, 3.9, 0.2);
+  ColliderDesc ball;
+  ball.bodyType = BodyType::Dynamic;
+  ball.shape.type = ShapeType::Sphere;
+  ball.shape.radius = 0.1;
+  ball.pose.position = Vec3(1.0, 4.5, 0.2);  // on the bar's top face, at its middle
+  ColliderHandle shelfHandle, ballHandle;
+  ASSERT_EQ(bars.w.world->createCollider(shelf, &shelfHandle), Status::Ok) << lastError();
+  ASSERT_EQ(bars.w.world->createCollider(ball, &ballHandle), Status::Ok) << lastError();
+  for (int frame = 0; frame < 20; ++frame) bars.step();
+  EXPECT_EQ(bars.extraMax, 1);
+  EXPECT_GT(bars.heroMax, 1);
+  // Its solve reached its floor every frame (a solve cut above it threw the ball up).
+  EXPECT_LT(bars.w.world->collider(ballHandle)->pose().position.y(), 4.6);
 }
 
 TEST(FrameBudgetPlan, ABudgetTooSmallForAnyFloorCapsTheRatesAndSaysSo) {
