@@ -71,8 +71,8 @@ class FramePlan {
     ActorSchedule* schedule = nullptr;
     // Within reach of a dynamic rigid body: it steps every frame and its interval is not raised.
     // Bullet steps the rigid body every frame, and the two solve their contacts together only
-    // over the same dt; at a lowered rate the deformable met it late, deep inside, and its
-    // contacts' reactions threw it metres away (the default scene's buoy, at 14 m/s).
+    // over the same dt; at a lowered rate the deformable meets it late, deep inside, and its
+    // contacts' reactions throw it away (docs/choices.md, "Frame budget").
     bool heldEveryFrame = false;
   };
   // A fluid as the plan sees it this frame.
@@ -99,7 +99,7 @@ class FramePlan {
     Deadline share, floor;
     // At the interval cap, or held every frame: the floor holds whatever the budget. A solve
     // cut short above it hands a dynamic rigid body it shares the solve with a velocity far
-    // from the solution (a ball resting on a bar thrown up at 4.6 m/s after one iteration).
+    // from the solution.
     bool forced = false;
   };
   static DeformableDeadlines deformableDeadlines(const Deadline& frame, const ActorSchedule& s,
@@ -116,9 +116,8 @@ class FramePlan {
   static int64_t fluidMinWork(const Fluid& f);
 
   // A deformable whose step blew up (and was restored) steps every frame again: the same step at
-  // the same length, from the same state, blew up again every time (a jelly at an interval of
-  // 8 frames stood still, restored eight frames after eight frames). Its interval climbs back
-  // as floors are missed, one frame at a time.
+  // the same length, from the same state, blows up again, and the body stands still. Its
+  // interval climbs back as floors are missed, one frame at a time.
   static void noteDiverged(ActorSchedule& s) {
     s.interval = 1;
     s.calmFrames = 0;

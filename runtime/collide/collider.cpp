@@ -117,8 +117,8 @@ void Collider::trackVelocity() {
 
 // A liquid's load splits into its hydrostatic part, taken anew at every step from where the
 // body is (a fluid step may span several frames under a frame budget, and a buoyancy held
-// that long is a delayed spring that pumps the bobbing up: a floating ball was thrown metres
-// out of its tank), and the dynamic part of the fluid's last step, held until the next one.
+// that long is a delayed spring that pumps the bobbing up), and the dynamic part of the
+// fluid's last step, held until the next one.
 // That part was computed from a pressure that holds the fluid's reaction to the change of the
 // body's motion that the fluid's step saw: F = F_rest - m_a a_seen
 // (fluid/solids/solid_motion_history.h). Applied explicitly to a body lighter than its added

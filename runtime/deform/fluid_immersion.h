@@ -15,8 +15,8 @@
 // that part on every surface vertex, acting on the vertices' nodes through the steps that
 // follow until the next one completes, one step late like the rigid bodies' loads. A fluid
 // step may span several frames under a frame budget, and a buoyancy held that long is a
-// delayed spring: it pumps a floating body's bobbing up (a dropped jelly was thrown out of
-// its tank again and again), and a body falling in meets no liquid until the step completes.
+// delayed spring: it pumps a floating body's bobbing up, and a body falling in meets no
+// liquid until the step completes.
 // The
 // delay would make a light body unstable (the pressure carries the reaction of the fluid it
 // accelerates, its added mass m_a, one step late), so the loads are stabilized as a rigid
