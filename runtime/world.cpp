@@ -274,6 +274,11 @@ bool reaches(const FluidActor& fluid, const Aabb& bounds, const CollisionFilter&
   return fluid.domainBounds().overlaps(bounds) && fluid.desc().filter.meets(filter);
 }
 
+// Whether a liquid's weight acts on such a body: a two-way liquid that reaches it.
+bool weighsOn(const FluidActor& fluid, const Aabb& bounds, const CollisionFilter& filter) {
+  return fluid.desc().kind == FluidKind::Liquid && fluid.desc().twoWayCoupling && reaches(fluid, bounds, filter);
+}
+
 // A deformable step's slices are its non-iterative phases and its solver's iterations.
 double longestDeformableSliceMs(const ActorStats& a) {
   double longest = 0.0;
@@ -366,7 +371,7 @@ void World::stepRigidBodies(double dt, const Deadline& frame, StepStats* stats) 
     colliders_.forEach([&](ColliderHandle, Collider& c) {
       if (c.bodyType() != BodyType::Dynamic || !c.geometry()) return;
       fluids_.forEach([&](FluidHandle, const FluidActor& fluid) {
-        if (fluid.desc().twoWayCoupling && reaches(fluid, c.geometry()->bounds, c.filter()))
+        if (weighsOn(fluid, c.geometry()->bounds, c.filter()))
           hydrostatics.push_back({&c, fluid.hydrostaticColliderLoad(config_.gravity, *c.geometry())});
       });
     });
@@ -755,13 +760,14 @@ void World::setFluidLoads(DeformableHandle handle, DeformableBody& body) const {
   FluidImmersion& immersion = body.immersion();
   immersion.clearLoads();
   const Aabb bounds = body.bounds();
+  Array<Eigen::Vector3d> vertices;  // the surface now, once some liquid weighs on it
   fluids_.forEach([&](FluidHandle, const FluidActor& fluid) {
     // The hydrostatic part holds as soon as the liquid reaches the body, whether or not a step
     // of it has completed since (a body falling in meets the liquid at once).
-    if (fluid.desc().twoWayCoupling && reaches(fluid, bounds, body.desc().filter)) {
+    if (weighsOn(fluid, bounds, body.desc().filter)) {
+      if (vertices.empty()) vertices = immersion.vertices(body.positions());
       Array<Vec3> hydrostatic;
-      fluid.hydrostaticSurfaceLoad(*tasks_, config_.gravity, immersion.vertices(body.positions()),
-                                   immersion.triangles(), &hydrostatic);
+      fluid.hydrostaticSurfaceLoad(*tasks_, config_.gravity, vertices, immersion.triangles(), &hydrostatic);
       immersion.addHydrostaticLoad(hydrostatic);
     }
     for (const FluidColliderLoad& l : fluid.loads())

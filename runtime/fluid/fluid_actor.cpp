@@ -654,25 +654,19 @@ void FluidActor::addSubstepLoads() {
     if (!fc.dynamic || fc.geometry == nullptr) continue;
     sliceWork_ = 0;
     PressureLoad l;
+    // The dynamic part: the body takes the hydrostatic one anew at each of its steps
+    // (hydrostaticColliderLoad, hydrostaticSurfaceLoad).
+    const LiquidWeight weight{liquidPhi(), st.input.gravity};
     if (fc.geometry->vertexVelocities.empty()) {
       l = pressureLoadOnCollider(grid_, fractions_, pressure_.poisson, pressure_.pressure.data(), desc_.density,
-                                 *fc.geometry, fc.geometry->shape.translation);
-      // The body takes the hydrostatic part anew at each of its steps (hydrostaticColliderLoad).
-      const PressureLoad hydrostatic = hydrostaticLoadOnCollider(grid_, liquidPhi(), desc_.density, st.input.gravity,
-                                                                 *fc.geometry, fc.geometry->shape.translation);
-      l.force -= hydrostatic.force;
-      l.torque -= hydrostatic.torque;
+                                 *fc.geometry, fc.geometry->shape.translation, &weight);
     } else {
       SurfacePressureLoad surface;
       surfacePressureLoad(*st.input.tasks, grid_, fractions_, pressure_.poisson, pressure_.pressure.data(),
-                          liquidPhi(), desc_.density, *fc.geometry, &surface);
-      // The body takes the hydrostatic part anew at each of its steps (hydrostaticSurfaceLoad).
-      Array<Vec3> hydrostatic;
-      surfaceHydrostaticLoad(*st.input.tasks, grid_, liquidPhi(), desc_.density, st.input.gravity,
-                             fc.geometry->worldVertices, fc.geometry->triangles, &hydrostatic);
+                          liquidPhi(), desc_.density, *fc.geometry, &surface, &weight);
       Array<Vec3>& sum = st.vertexForceSum[c];
       if (sum.empty()) sum.assign(surface.vertexForces.size(), Vec3::Zero());
-      for (size_t v = 0; v < sum.size(); ++v) sum[v] += (surface.vertexForces[v] - hydrostatic[v]) / st.substeps;
+      for (size_t v = 0; v < sum.size(); ++v) sum[v] += surface.vertexForces[v] / st.substeps;
       l = surface.total;
     }
     st.loadSum[c].force += l.force / st.substeps;

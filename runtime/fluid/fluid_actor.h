@@ -96,10 +96,10 @@ struct FluidStepInput {
 
 struct FluidColliderLoad {
   uint32_t index1 = 0, generation = 0;
-  // A rigid collider's: the pressure's load less its hydrostatic part at the step's pose
-  // (FluidActor::hydrostaticColliderLoad, which the body takes anew at each of its steps),
-  // torque about the collider's origin; a deformable's: the whole load, torque about the
-  // world origin.
+  // The pressure's load less its hydrostatic part at the step's positions
+  // (FluidActor::hydrostaticColliderLoad and hydrostaticSurfaceLoad, which the body takes anew
+  // at each of its steps); torque about the collider's origin (a deformable's: about the world
+  // origin).
   PressureLoad load;
   // A deformable surface's: the force on each of its vertices less its hydrostatic part there
   // (FluidActor::hydrostaticSurfaceLoad, which the body takes anew at each of its steps).

@@ -8,8 +8,6 @@
 // completed before its state is taken), so one copy of each field is enough.
 #pragma once
 
-#include "deform/fluid_immersion.h"
-
 #include <cstdint>
 #include <optional>
 #include <vector>

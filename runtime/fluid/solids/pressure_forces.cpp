@@ -26,10 +26,6 @@ double dualCellSolidFraction(const PreparedCollider& collider, AxisFace face) {
   return 0.25 * sum;
 }
 
-}  // namespace
-
-namespace {
-
 // The sums of pressure_forces.h over the faces `collider` covers within local's box.
 PressureLoad loadOverCoveredFaces(const MacGrid& grid, const LocalPressure& local, double density,
                                   const PreparedCollider& collider, const Vec3& centre) {
@@ -65,14 +61,29 @@ PressureLoad loadOverCoveredFaces(const MacGrid& grid, const LocalPressure& loca
   return load;
 }
 
+// Adds `sign` times the hydrostatic pressure under the liquid's surface at each cell centre of
+// local's box.
+void addHydrostatic(const MacGrid& grid, double density, const LiquidWeight& liquid, double sign,
+                    LocalPressure* local) {
+  const Eigen::Vector3i hi = local->lo + local->dims - Eigen::Vector3i::Ones();
+  const Aabb box{grid.cellCentre(local->lo.x(), local->lo.y(), local->lo.z()),
+                 grid.cellCentre(hi.x(), hi.y(), hi.z())};
+  const HydrostaticPressure hydrostatic(grid, liquid.liquidPhi, density, liquid.gravity, box);
+  for (int k = local->lo.z(); k <= hi.z(); ++k)
+    for (int j = local->lo.y(); j <= hi.y(); ++j)
+      for (int i = local->lo.x(); i <= hi.x(); ++i)
+        local->value[local->index(Eigen::Vector3i(i, j, k))] += sign * hydrostatic.at(grid.cellCentre(i, j, k));
+}
+
 }  // namespace
 
 PressureLoad pressureLoadOnCollider(const MacGrid& grid, const FaceFractionField& fractions, const CutCellPoisson& op,
                                     const double* pressure, double density, const PreparedCollider& collider,
-                                    const Vec3& centre) {
+                                    const Vec3& centre, const LiquidWeight* less) {
   LocalPressure local;
   if (!localPressureAround(grid, fractions, op, pressure, nullptr, collider.bounds, nullptr, &local))
     return PressureLoad{};
+  if (less != nullptr && less->liquidPhi != nullptr) addHydrostatic(grid, density, *less, -1.0, &local);
   return loadOverCoveredFaces(grid, local, density, collider, centre);
 }
 
@@ -80,21 +91,11 @@ PressureLoad hydrostaticLoadOnCollider(const MacGrid& grid, const double* liquid
                                        const Vec3& gravity, const PreparedCollider& collider, const Vec3& centre) {
   LocalPressure local;
   if (liquidPhi == nullptr || !cellBoxAround(grid.spec, collider.bounds, &local)) return PressureLoad{};
-  const Aabb box{grid.cellCentre(local.lo.x(), local.lo.y(), local.lo.z()),
-                 grid.cellCentre(local.lo.x() + local.dims.x() - 1, local.lo.y() + local.dims.y() - 1,
-                                 local.lo.z() + local.dims.z() - 1)};
-  const HydrostaticPressure hydrostatic(grid, liquidPhi, density, gravity, box);
   const size_t count = static_cast<size_t>(local.dims.prod());
   local.value.assign(count, 0.0);
-  local.air.assign(count, 0);
-  for (int k = 0; k < local.dims.z(); ++k)
-    for (int j = 0; j < local.dims.y(); ++j)
-      for (int i = 0; i < local.dims.x(); ++i) {
-        const Eigen::Vector3i c = local.lo + Eigen::Vector3i(i, j, k);
-        const int64_t l = local.index(c);
-        local.value[l] = hydrostatic.at(grid.cellCentre(c.x(), c.y(), c.z()));
-        local.air[l] = local.value[l] > 0.0 ? 0 : 1;
-      }
+  addHydrostatic(grid, density, LiquidWeight{liquidPhi, gravity}, 1.0, &local);
+  local.air.resize(count);
+  for (size_t c = 0; c < count; ++c) local.air[c] = local.value[c] > 0.0 ? 0 : 1;
   return loadOverCoveredFaces(grid, local, density, collider, centre);
 }
 

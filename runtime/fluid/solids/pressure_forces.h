@@ -36,15 +36,22 @@ struct PressureLoad {
   double addedMass = 0.0;
 };
 
+// A liquid whose weight a load can leave out: its level set (null: none, smoke) and gravity.
+struct LiquidWeight {
+  const double* liquidPhi = nullptr;
+  Vec3 gravity = Vec3::Zero();
+};
+
+// `less`: the hydrostatic pressure under its free surface (hydrostaticLoadOnCollider) is taken
+// off the solve's in the same sums, which gives the dynamic part that a fluid step hands on.
 PressureLoad pressureLoadOnCollider(const MacGrid& grid, const FaceFractionField& fractions, const CutCellPoisson& op,
                                     const double* pressure, double density, const PreparedCollider& collider,
-                                    const Vec3& centre);
+                                    const Vec3& centre, const LiquidWeight* less = nullptr);
 
 // The part of that load that is the liquid's weight, by the same sums over the same faces with
 // the hydrostatic pressure under the free surface of liquidPhi
 // (fluid/surface/hydrostatic_pressure.h) in place of the solve's: a body takes it anew at its
-// own steps from the liquid's last level set, and the fluid's step the rest. Zero for smoke
-// (liquidPhi null).
+// own steps from the liquid's last level set. Zero for smoke (liquidPhi null).
 PressureLoad hydrostaticLoadOnCollider(const MacGrid& grid, const double* liquidPhi, double density,
                                        const Vec3& gravity, const PreparedCollider& collider, const Vec3& centre);
 

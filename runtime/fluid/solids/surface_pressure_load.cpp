@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "core/parallel_for.h"
 #include "fluid/grid_index.h"
@@ -51,7 +52,8 @@ struct TriangleLoad {
 
 // The traction -p n over each triangle by the midpoint rule on pieces of edge at most half of
 // cellSize (surface_pressure_load.h), in parallel, each triangle into its own slot.
-// pressureAt(point, &p) returns false where the point is dry (no pressure, not wetted).
+// pressureAt(point, &p) sets the pressure there (0: no traction) and returns whether the point
+// is wetted (it counts in the wetted area).
 template <class PressureAt>
 Array<TriangleLoad> integrateTractions(TaskSystem& tasks, const Array<Eigen::Vector3d>& x,
                                        const Array<Eigen::Vector3i>& triangles, double cellSize,
@@ -67,8 +69,8 @@ Array<TriangleLoad> integrateTractions(TaskSystem& tasks, const Array<Eigen::Vec
     auto piece = [&](double u, double v) {
       const Vec3 p = a + u * (b - a) + v * (c - a);
       double pressureHere = 0.0;
-      if (!pressureAt(p, &pressureHere)) return;
-      load->wetArea += pieceWeight * load->area;
+      if (pressureAt(p, &pressureHere)) load->wetArea += pieceWeight * load->area;
+      if (pressureHere == 0.0) return;
       const Vec3 f = -pressureHere * pieceWeight * areaVector;
       load->vertex[0] += (1.0 - u - v) * f;
       load->vertex[1] += u * f;
@@ -105,7 +107,7 @@ void gatherVertexForces(const Array<Eigen::Vector3i>& triangles, const Array<Tri
 
 void surfacePressureLoad(TaskSystem& tasks, const MacGrid& grid, const FaceFractionField& fractions,
                          const CutCellPoisson& op, const double* pressure, const double* liquidPhi, double density,
-                         const PreparedCollider& surface, SurfacePressureLoad* out) {
+                         const PreparedCollider& surface, SurfacePressureLoad* out, const LiquidWeight* less) {
   const Array<Eigen::Vector3d>& x = surface.worldVertices;
   out->vertexForces.assign(x.size(), Vec3::Zero());
   out->total = PressureLoad{};
@@ -114,16 +116,24 @@ void surfacePressureLoad(TaskSystem& tasks, const MacGrid& grid, const FaceFract
   const MacGridSpec& s = grid.spec;
   const Eigen::Vector3i hi = local.lo + local.dims - Eigen::Vector3i::Ones();
   const Eigen::Vector3i gridHi(s.nx - 1, s.ny - 1, s.nz - 1);
+  std::optional<HydrostaticPressure> hydrostatic;
+  if (less != nullptr && less->liquidPhi != nullptr)
+    hydrostatic.emplace(grid, less->liquidPhi, density, less->gravity, surface.bounds);
   // Dry where the point is in a liquid's air (p = 0 there).
-  auto pressureAt = [&](const Vec3& p, double* value) {
-    if (liquidPhi != nullptr && trilinear(s, Eigen::Vector3i::Zero(), gridHi, p, [&](int i, int j, int k) {
-          return liquidPhi[grid.cellIndex(i, j, k)];
-        }) > 0.0)
-      return false;
-    *value = trilinear(s, local.lo, hi, p, [&](int i, int j, int k) {
+  auto phiAt = [&](const Vec3& p) {
+    return trilinear(s, Eigen::Vector3i::Zero(), gridHi, p, [&](int i, int j, int k) {
+      return liquidPhi[grid.cellIndex(i, j, k)];
+    });
+  };
+  auto solvedAt = [&](const Vec3& p) {
+    return trilinear(s, local.lo, hi, p, [&](int i, int j, int k) {
       return local.value[local.index(Eigen::Vector3i(i, j, k))];
     });
-    return true;
+  };
+  auto pressureAt = [&](const Vec3& p, double* value) {
+    const bool wet = liquidPhi == nullptr || !(phiAt(p) > 0.0);
+    *value = (wet ? solvedAt(p) : 0.0) - (hydrostatic ? hydrostatic->at(p) : 0.0);
+    return wet;
   };
   const Array<TriangleLoad> loads = integrateTractions(tasks, x, surface.triangles, s.h, pressureAt);
   gatherVertexForces(surface.triangles, loads, x.size(), &out->vertexForces);

@@ -38,10 +38,13 @@ struct SurfacePressureLoad {
 constexpr int kMaxSubdivision = 8;
 
 // `surface` must be a deforming surface (vertexVelocities set); liquidPhi null for smoke. The
-// triangles are integrated in parallel; the result does not depend on the worker count.
+// triangles are integrated in parallel; the result does not depend on the worker count. `less`:
+// the hydrostatic pressure under its free surface (surfaceHydrostaticLoad) is taken off the
+// solve's at each point, which gives the dynamic part that a fluid step hands on (the added
+// mass stays the wetted one).
 void surfacePressureLoad(TaskSystem& tasks, const MacGrid& grid, const FaceFractionField& fractions,
                          const CutCellPoisson& op, const double* pressure, const double* liquidPhi, double density,
-                         const PreparedCollider& surface, SurfacePressureLoad* out);
+                         const PreparedCollider& surface, SurfacePressureLoad* out, const LiquidWeight* less = nullptr);
 
 // The part of those forces that is the liquid's weight (fluid/surface/hydrostatic_pressure.h),
 // by the same rule, on a closed surface given by its vertices and outward triangles; zero for
