@@ -115,14 +115,17 @@ class World {
 
  private:
   explicit World(const WorldConfig& config);
-  // The stages of a step (frame_plan.h has the policy).
+  // The stages of a step (frame_plan.h has the policy): the rigid bodies here, the
+  // deformables in world_deformables.cpp, the fluids in world_fluids.cpp.
   void stepRigidBodies(double dt, const Deadline& frame, StepStats* stats);
   // Returns whether every deformable that stepped reached its accuracy floor.
   bool stepDeformables(double dt, const Deadline& frame, StepStats* stats);
-  // One step of a contact group's members (deform/contact_groups.h; a lone body alone), indices
-  // into handles; inputs by member, actors by handle.
-  void stepGroup(const std::vector<DeformableHandle>& handles, const std::vector<int>& members,
-                 const std::vector<DeformableStepInput>& inputs, ActorStats* actors);
+  void stepFluids(double dt, const Deadline& frame, bool floorsHeld, StepStats* stats);
+  void finishStats(const Deadline& frame, StepStats* stats);
+
+  // The deformables' stage, in the order it runs.
+  struct DeformableFrame;  // the deformables of one frame as planned
+  DeformableFrame planDeformables(double dt, const Deadline& frame, uint64_t stepIndex);
   // The deformables' contacts of a frame, found once at its start for all their steps: which
   // bodies solve with the dynamic rigid bodies they touch, those bodies, the pair contacts
   // (attachment springs included) and the groups that solve together (deform/contact_groups.h).
@@ -132,9 +135,21 @@ class World {
     std::vector<PairContact> pairs;
     std::vector<std::vector<int>> groups;
   };
-  FrameContacts findFrameContacts(const std::vector<DeformableHandle>& handles, const std::vector<int>& served,
-                                  const std::vector<bool>& due, double dt, const Deadline& frame,
-                                  StepStats* stats);
+  FrameContacts findFrameContacts(const DeformableFrame& d, double dt, const Deadline& frame, StepStats* stats);
+  void stepContactGroups(DeformableFrame& d, const FrameContacts& contacts, const Deadline& frame);
+  // One group's step within `deadlines`: its members' inputs, the fluids' loads on them, the
+  // step, and its time shared out among them.
+  void stepGroupWithin(DeformableFrame& d, const std::vector<int>& members, const FrameContacts& contacts,
+                       const std::vector<Filtered<ContactCollider>>& colliders,
+                       const FramePlan::DeformableDeadlines& deadlines, const Deadline& frame);
+  // One step of a contact group's members (deform/contact_groups.h; a lone body alone), indices
+  // into the frame's handles; inputs by member.
+  void stepGroup(DeformableFrame& d, const std::vector<int>& members, const std::vector<DeformableStepInput>& inputs);
+  // The plan's bookkeeping of the bodies that stepped (and waited); returns by handle whether
+  // each missed its floor.
+  std::vector<bool> finishDeformableSteps(DeformableFrame& d, const Deadline& frame, StepStats* stats);
+
+  // What the deformables' stage reads.
   // Body handles[i]'s step input in this frame, bar its deadlines.
   DeformableStepInput frameStepInput(const std::vector<DeformableHandle>& handles, int i,
                                      const std::vector<Filtered<ContactCollider>>& colliders,
@@ -162,29 +177,34 @@ class World {
   // colliders its filter meets and the lookup of its attachments' colliders.
   template <class FilteredColliders>
   DeformableStepInput deformableStepInput(const DeformableBody& body, const FilteredColliders& colliders) const;
-  void stepFluids(double dt, const Deadline& frame, bool floorsHeld, StepStats* stats);
+
+  // The fluids' stage, in the order it runs.
+  struct FluidFrame;  // the fluids of one frame as planned
   // What the fluids see as solids: the colliders with exact geometry and the surfaces of the
   // deformables that reach into some fluid's domain (deform/fluid_immersion.h).
   std::vector<Filtered<FluidCollider>> fluidSolids(const Deadline& frame, StepStats* stats);
-  // The fluids' loads on a deformable, from their last completed steps, set before its step.
-  void setFluidLoads(DeformableHandle handle, DeformableBody& body) const;
-  void finishStats(const Deadline& frame, StepStats* stats);
+  FluidFrame planFluids(double dt, const Deadline& frame, bool floorsHeld, double budgetMs);
+  void advanceFluids(FluidFrame& f, const std::vector<Filtered<FluidCollider>>& solids, const Deadline& frame);
+  // The plan's bookkeeping of the fluids that ran.
+  void finishFluidSteps(FluidFrame& f, const Deadline& frame, bool floorsHeld, StepStats* stats);
   // A fluid step that completed: the plan's bookkeeping of its rate and cost.
   static void noteFluidStepCompleted(ActorSchedule& s);
-  // Runs the rest of every fluid step in progress (for a saved state).
-  Status completeFluidSteps();
-  std::vector<Collider*> collidersInSlotOrder() const;
+  // The fluids' loads on a deformable, from their last completed steps, set before its step.
+  void setFluidLoads(DeformableHandle handle, DeformableBody& body) const;
   // What the fluids of at least `priority` are expected to need this frame.
   double fluidsExpectedMs(int priority);
-  // Actors that do not depend on each other in a stage run side by side on the worker pool,
-  // each its own parallel loops inline, when there are at least two and no more than workers.
+  // Runs the rest of every fluid step in progress (for a saved state).
+  Status completeFluidSteps();
+
+  std::vector<Collider*> collidersInSlotOrder() const;
+  // Actors that do not depend on each other in a stage run side by side on the worker pool
+  // (world_stages.h), each its own parallel loops inline, when there are at least two and no
+  // more than workers.
   bool runsConcurrently(int actors) const;
   // The built-in pool's workers go off while other work keeps the cores busy
   // (core/worker_contention.h); the run delay is that of the pool's threads and the caller.
   double poolRunDelayMs() const;
   void balanceWorkers(const Deadline& frame, double runDelayAtStart);
-  template <class Work>
-  void runActors(bool concurrent, int count, const Work& work);
   ActorStats actorStats(ActorKind kind, uint32_t index1, uint32_t generation, int priority, double dt) const;
 
   WorldConfig config_;
