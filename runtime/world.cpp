@@ -250,6 +250,26 @@ void World::balanceWorkers(const Deadline& frame, double runDelayAtStart) {
   }
 }
 
+namespace {
+
+// What a rigid step's guards did, and the blocks Bullet took from the system heap because the
+// host's allocator refused them.
+void logRigidStep(const CollisionWorld::StepResult& result, uint64_t allocationRefusals) {
+  if (allocationRefusals > 0)
+    log(LogLevel::Warning, "the host allocator refused %llu block(s) Bullet needed in this step; they came from the "
+                           "system heap", static_cast<unsigned long long>(allocationRefusals));
+  if (result.energyBlewUp)
+    log(LogLevel::Warning, "rigid step blew up: the dynamic bodies' energy rose %g J beyond the %g J its work "
+        "explains (kinetic %g -> %g)", StepEnergyGuard::unexplainedGain(result.energy),
+        result.energy.gravityWork + result.energy.appliedWork + result.energy.boundedWork, result.energy.kineticStart,
+        result.energy.kineticEnd);
+  if (result.restoredBodies > 0)
+    log(LogLevel::Warning, "%d rigid bod%s diverged; restored to their state before the step", result.restoredBodies,
+        result.restoredBodies == 1 ? "y" : "ies");
+}
+
+}  // namespace
+
 bool World::runsConcurrently(int actors) const {
   // An injected clock is read on the stepping thread only, in plan order: its readings, and
   // so every budget decision, are then the same for any worker count (vpClockFn).
@@ -273,9 +293,35 @@ ActorStats World::actorStats(ActorKind kind, uint32_t index1, uint32_t generatio
 void World::stepRigidBodies(double dt, const Deadline& frame, StepStats* stats) {
   ActorStats rigid = actorStats(ActorKind::Rigid, 0, 0, 0, dt);
   const double start = frame.elapsedMs();
-  std::vector<Collider*> kinematics, loaded;
+  std::vector<Collider*> kinematics;
   colliders_.forEach([&](ColliderHandle, Collider& c) {
     if (c.bodyType() == BodyType::Kinematic) kinematics.push_back(&c);
+  });
+  const std::vector<Collider*> loaded = prepareRigidLoads(dt);
+  const uint64_t refusals = hostAllocationRefusals();
+  const CollisionWorld::StepResult result = collision_.step(dt, config_.rigidMaxSubstep, kinematics.data(),
+                                                            static_cast<int>(kinematics.size()), loaded.data(),
+                                                            static_cast<int>(loaded.size()));
+  logRigidStep(result, hostAllocationRefusals() - refusals);
+  stats->rigidSubsteps = result.substeps;
+  rigid.diverged = result.restoredBodies > 0;
+  for (Collider* c : loaded) {
+    c->clearFluidLoad();
+    c->clearHostLoad();
+    c->clearContactLoad();
+  }
+  colliders_.forEach([](ColliderHandle, Collider& c) { c.syncGeometry(); });
+  rigid.phase(Phase::Rigid).ms = frame.elapsedMs() - start;
+  rigid.totalMs = rigid.phase(Phase::Rigid).ms;
+  rigid.slices = 1;
+  rigid.completedStep = true;
+  stats->maxSliceMs = std::max(stats->maxSliceMs, rigid.totalMs);
+  stats->actors.push_back(rigid);
+}
+
+std::vector<Collider*> World::prepareRigidLoads(double dt) {
+  std::vector<Collider*> loaded;
+  colliders_.forEach([&](ColliderHandle, Collider& c) {
     if (c.hasHostLoad() || c.hasContactLoad()) loaded.push_back(&c);
   });
   // The loads of each fluid's last completed step; those of several fluids on one body add
@@ -314,35 +360,7 @@ void World::stepRigidBodies(double dt, const Deadline& frame, StepStats* stats) 
     c->prepareFluidLoad(config_.gravity);
     c->prepareContactLoad(dt);  // the deformables' pushes of the last frame
   }
-  const uint64_t refusals = hostAllocationRefusals();
-  const CollisionWorld::StepResult result = collision_.step(dt, config_.rigidMaxSubstep, kinematics.data(),
-                                                            static_cast<int>(kinematics.size()), loaded.data(),
-                                                            static_cast<int>(loaded.size()));
-  stats->rigidSubsteps = result.substeps;
-  if (const uint64_t refused = hostAllocationRefusals() - refusals)
-    log(LogLevel::Warning, "the host allocator refused %llu block(s) Bullet needed in this step; they came from the "
-                           "system heap", static_cast<unsigned long long>(refused));
-  rigid.diverged = result.restoredBodies > 0;
-  if (result.energyBlewUp)
-    log(LogLevel::Warning, "rigid step blew up: the dynamic bodies' energy rose %g J beyond the %g J its work "
-        "explains (kinetic %g -> %g)", StepEnergyGuard::unexplainedGain(result.energy),
-        result.energy.gravityWork + result.energy.appliedWork + result.energy.boundedWork, result.energy.kineticStart,
-        result.energy.kineticEnd);
-  if (rigid.diverged)
-    log(LogLevel::Warning, "%d rigid bod%s diverged; restored to their state before the step", result.restoredBodies,
-        result.restoredBodies == 1 ? "y" : "ies");
-  for (Collider* c : loaded) {
-    c->clearFluidLoad();
-    c->clearHostLoad();
-    c->clearContactLoad();
-  }
-  colliders_.forEach([](ColliderHandle, Collider& c) { c.syncGeometry(); });
-  rigid.phase(Phase::Rigid).ms = frame.elapsedMs() - start;
-  rigid.totalMs = rigid.phase(Phase::Rigid).ms;
-  rigid.slices = 1;
-  rigid.completedStep = true;
-  stats->maxSliceMs = std::max(stats->maxSliceMs, rigid.totalMs);
-  stats->actors.push_back(rigid);
+  return loaded;
 }
 
 void World::finishStats(const Deadline& frame, StepStats* stats) {

@@ -122,6 +122,10 @@ class World {
   bool stepDeformables(double dt, const Deadline& frame, StepStats* stats);
   void stepFluids(double dt, const Deadline& frame, bool floorsHeld, StepStats* stats);
   void finishStats(const Deadline& frame, StepStats* stats);
+  // The loads the rigid bodies take in this step, set on them: the host's, the deformables'
+  // pushes of the last frame, each fluid's from its last completed step and each liquid's
+  // weight where the body is now. Returns the bodies loaded, once each.
+  std::vector<Collider*> prepareRigidLoads(double dt);
 
   // The deformables' stage, in the order it runs.
   struct DeformableFrame;  // the deformables of one frame as planned

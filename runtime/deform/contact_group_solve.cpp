@@ -239,7 +239,7 @@ void ContactGroupSolve::storeCouplingProduct() {
   for (size_t m = 0; m < members_.size(); ++m) {
     DeformableBody& body = *members_[m].body;
     const auto first = product_.begin() + memberOffset_[m];
-    body.pairCoupling_.assign(first, first + static_cast<int64_t>(body.vNext_.size()));
+    body.pair_.coupling.assign(first, first + static_cast<int64_t>(body.vNext_.size()));
   }
 }
 

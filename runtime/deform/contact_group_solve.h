@@ -63,7 +63,7 @@ class ContactGroupSolve {
   void lap(Phase phase);
   // x_ = every member's current solved velocities (the rigid members' too).
   void gatherVelocities();
-  // Each member's pairCoupling_ at the members' current solved velocities.
+  // Each member's pair_.coupling at the members' current solved velocities.
   void storeCouplingProduct();
 
   // A dynamic rigid body in the solve (see above): pair body pairBody, at offset in the vectors.

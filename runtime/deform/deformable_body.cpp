@@ -6,13 +6,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <map>
 
 #include "core/log.h"
 #include "core/parallel_for.h"
 #include "deform/bb_element_matrices.h"
 #include "deform/bb_evaluation.h"
 #include "deform/bb_multi_index.h"
+#include "deform/bb_node_numbering.h"
 #include "deform/bb_rotated_stiffness.h"
 #include "deform/contact_group_solve.h"
 #include "deform/corotated_element.h"
@@ -43,149 +43,143 @@ Status DeformableBody::create(DeformableDesc desc, std::unique_ptr<DeformableBod
   VP_TRY(validateDeformableDesc(desc));
   std::unique_ptr<DeformableBody> body(new DeformableBody());
   DeformableBody& b = *body;
-  const TetMesh& mesh = desc.mesh;
-  const int64_t elements = static_cast<int64_t>(mesh.tets.size());
-  const int degree = desc.degree;
-  const int N = bbNodeCount(degree);
-  b.degree_ = degree;
-  b.nodesPerElement_ = N;
+  b.degree_ = desc.degree;
+  b.nodesPerElement_ = bbNodeCount(desc.degree);
   b.lambda_ = desc.material.lameLambda();
   b.mu_ = desc.material.lameMu();
-
-  // Nodes: the mesh vertices keep their indices; for degree > 1 the edge and face control
-  // points follow, one per BB node key (shared between the tets around an edge or face).
-  Array<Vec3> restNodes(mesh.vertices.begin(), mesh.vertices.end());
-  b.nodeSupport_.assign(restNodes.size(), {-1, -1, -1});
-  b.elementNodes_.resize(static_cast<size_t>(N * elements));
-  std::map<std::array<int32_t, 10>, int32_t> nodeOfKey;
-  for (int64_t e = 0; e < elements; ++e) {
-    double corners[12], nodePositions[3 * kBBMaxNodes];
-    for (int a = 0; a < 4; ++a)
-      for (int k = 0; k < 3; ++k) corners[3 * a + k] = mesh.vertices[mesh.tets[e][a]][k];
-    if (degree > 1) bbRestNodePositions(degree, corners, nodePositions);
-    for (int a = 0; a < N; ++a) {
-      if (a < 4) {
-        b.elementNodes_[N * e + a] = mesh.tets[e][a];
-        continue;
-      }
-      BBNodeKey key;
-      VP_TRY(bbNodeKey(degree, a, mesh.tets[e].data(), &key));
-      const std::array<int32_t, 10> id{key.count, key.vertices[0], key.vertices[1], key.vertices[2], key.vertices[3],
-                                       key.exponents[0], key.exponents[1], key.exponents[2], key.exponents[3],
-                                       key.slot};
-      auto [it, inserted] = nodeOfKey.emplace(id, static_cast<int32_t>(restNodes.size()));
-      if (inserted) {
-        restNodes.emplace_back(nodePositions[3 * a], nodePositions[3 * a + 1], nodePositions[3 * a + 2]);
-        b.nodeSupport_.push_back({key.vertices[0], key.vertices[1], key.count > 2 ? key.vertices[2] : -1});
-      }
-      b.elementNodes_[N * e + a] = it->second;
-    }
-  }
-  b.nodeCount_ = static_cast<int32_t>(restNodes.size());
-
-  b.restX_.resize(3 * static_cast<size_t>(b.nodeCount_));
-  b.x_.resize(b.restX_.size());
-  b.v_.resize(b.restX_.size());
-  for (int32_t i = 0; i < b.nodeCount_; ++i) {
-    const Vec3& X = restNodes[i];
-    const Vec3 x = desc.pose.apply(X);
-    for (int k = 0; k < 3; ++k) {
-      b.restX_[3 * i + k] = X[k];
-      b.x_[3 * i + k] = x[k];
-      b.v_[3 * i + k] = desc.linearVelocity[k];
-    }
-  }
-  b.restGradients_.resize(12 * static_cast<size_t>(elements));
-  b.restVolume_.resize(static_cast<size_t>(elements));
-  b.rotations_.resize(4 * static_cast<size_t>(elements));
-  b.mass_.assign(static_cast<size_t>(b.nodeCount_), 0.0);
-  for (int64_t e = 0; e < elements; ++e) {
-    double corners[12], lumped[kBBMaxNodes];
-    for (int a = 0; a < 4; ++a)
-      for (int k = 0; k < 3; ++k) corners[3 * a + k] = mesh.vertices[mesh.tets[e][a]][k];
-    Status s = bbBarycentricGradients(corners, &b.restGradients_[12 * e], &b.restVolume_[e]);
-    if (!ok(s)) return addErrorContext(s, "mesh tet " + std::to_string(e));
-    // Lumped BB mass: every Bernstein function integrates to V / C(n+3, 3), all positive.
-    VP_TRY(bbLumpedMass(degree, corners, desc.material.density, lumped));
-    for (int a = 0; a < N; ++a) b.mass_[b.elementNodes_[N * e + a]] += lumped[a];
-    const Quat& q = desc.pose.rotation;
-    double* r = &b.rotations_[4 * e];
-    r[0] = q.w(), r[1] = q.x(), r[2] = q.y(), r[3] = q.z();
-  }
-  // Node -> (element, corner) incidence, in element order, for the gather assembly.
-  b.incidence_.build(b.nodeCount_, b.elementNodes_.data(), elements, N);
-  b.elementForce_.resize(3 * static_cast<size_t>(N * elements));
-  if (degree == 1) b.rotatedGradients_.resize(12 * static_cast<size_t>(elements));
-  else {
-    b.gradientPairs_.resize(144 * static_cast<size_t>(elements));
-    b.stiffnessTerms_ = bbStiffnessTerms(degree);
-    b.stiffnessStructure_ = bbStiffnessStructure(degree);
-  }
-  buildElementPattern(b.nodeCount_, b.elementNodes_.data(), elements, N, &b.matrix_, &b.scatter_);
-  StepPreconditioner::Mesh pcMesh{degree, b.elementNodes_.data(), elements, b.nodeCount_, b.restVolume_.data(),
-                                  desc.material.density};
-  VP_TRY(b.preconditioner_.build(desc.solver, pcMesh, b.matrix_));
-  const size_t n3 = b.restX_.size();
-  b.externalForce_.assign(n3, 0.0);
-  for (double m : b.mass_) b.totalMass_ += m;
-  b.force_.resize(n3);
-  b.rhs_.resize(n3);
-  b.vNext_.resize(n3);
-  b.pinned_.assign(static_cast<size_t>(b.nodeCount_), 0);
-  b.held_.resize(b.nodeCount_);
-  b.contacts_.resize(b.nodeCount_);
-  // Nodes this close count as touching, so a resting body keeps a stable contact set
-  // instead of alternating between "just above" and "landing" every step.
-  b.contactMargin_ = 0.02 * meanTetEdgeLength(mesh);
-  const SurfaceMesh boundary = tetMeshBoundary(mesh, &b.surfaceNodes_);
-  if (degree > 1) {
-    // Control points of boundary edges and faces collide too (an approximation: BB control
-    // points off the vertices lie near, not on, the curved surface).
-    Array<uint8_t> onBoundary(static_cast<size_t>(b.nodeCount_), 0);
-    for (int32_t v : b.surfaceNodes_) onBoundary[v] = 1;
-    for (int32_t i = static_cast<int32_t>(mesh.vertices.size()); i < b.nodeCount_; ++i) {
-      const auto& sup = b.nodeSupport_[i];
-      if (onBoundary[sup[0]] && onBoundary[sup[1]] && (sup[2] < 0 || onBoundary[sup[2]])) b.surfaceNodes_.push_back(i);
-    }
-  }
-  b.renderRest_ = desc.renderMesh ? *desc.renderMesh : boundary;
-  // The boundary's vertices are the first surface nodes, in the boundary's order.
-  const Array<int32_t> boundaryNodes(b.surfaceNodes_.begin(), b.surfaceNodes_.begin() + boundary.vertices.size());
-  Status immersed = b.immersion_.build(boundary, boundaryNodes, b.x_);
-  b.contactSurface_.build(boundary, boundaryNodes, b.elementNodes_, N, b.nodeCount_);
-  b.pairFriction_.assign(static_cast<size_t>(b.nodeCount_), PairFriction());
-  b.pendingImpulse_.assign(3 * static_cast<size_t>(b.nodeCount_), 0.0);
-  b.pairContactDepth_ = kPairContactDepthEdges * meanTetEdgeLength(mesh);
-  if (!ok(immersed)) return addErrorContext(immersed, "boundary surface");
-  Status embedded = embedPoints(mesh, b.renderRest_.vertices, &b.embedding_);
-  if (!ok(embedded)) return addErrorContext(embedded, "render mesh");
-  b.meshQuality_ = tetMeshQuality(mesh, b.renderRest_);
+  VP_TRY(b.placeNodes(desc));
+  VP_TRY(b.measureElements(desc));
+  VP_TRY(b.buildStepSystem(desc));
+  VP_TRY(b.buildSurfaces(desc));
   b.desc_ = std::move(desc);
-  b.desc_.renderMesh.reset();  // kept once, in renderRest_
+  b.desc_.renderMesh.reset();  // kept once, in renderMesh_
   b.updateRenderMesh(*TaskSystem::create(TaskHooks{}, 1));
   *out = std::move(body);
   return Status::Ok;
 }
 
+Status DeformableBody::placeNodes(const DeformableDesc& desc) {
+  BBNodeNumbering nodes;
+  VP_TRY(numberBBNodes(desc.mesh, degree_, &nodes));
+  nodeCount_ = nodes.nodeCount;
+  elementNodes_ = std::move(nodes.elementNodes);
+  nodeSupport_ = std::move(nodes.support);
+  restX_.resize(3 * static_cast<size_t>(nodeCount_));
+  x_.resize(restX_.size());
+  v_.resize(restX_.size());
+  for (int32_t i = 0; i < nodeCount_; ++i) {
+    const Vec3& X = nodes.restPositions[i];
+    const Vec3 x = desc.pose.apply(X);
+    for (int k = 0; k < 3; ++k) {
+      restX_[3 * i + k] = X[k];
+      x_[3 * i + k] = x[k];
+      v_[3 * i + k] = desc.linearVelocity[k];
+    }
+  }
+  return Status::Ok;
+}
+
+Status DeformableBody::measureElements(const DeformableDesc& desc) {
+  const TetMesh& mesh = desc.mesh;
+  const int64_t elements = static_cast<int64_t>(mesh.tets.size());
+  const int N = nodesPerElement_;
+  restGradients_.resize(12 * static_cast<size_t>(elements));
+  restVolume_.resize(static_cast<size_t>(elements));
+  rotations_.resize(4 * static_cast<size_t>(elements));
+  mass_.assign(static_cast<size_t>(nodeCount_), 0.0);
+  for (int64_t e = 0; e < elements; ++e) {
+    double corners[12], lumped[kBBMaxNodes];
+    for (int a = 0; a < 4; ++a)
+      for (int k = 0; k < 3; ++k) corners[3 * a + k] = mesh.vertices[mesh.tets[e][a]][k];
+    Status s = bbBarycentricGradients(corners, &restGradients_[12 * e], &restVolume_[e]);
+    if (!ok(s)) return addErrorContext(s, "mesh tet " + std::to_string(e));
+    // Lumped BB mass: every Bernstein function integrates to V / C(n+3, 3), all positive.
+    VP_TRY(bbLumpedMass(degree_, corners, desc.material.density, lumped));
+    for (int a = 0; a < N; ++a) mass_[elementNodes_[N * e + a]] += lumped[a];
+    const Quat& q = desc.pose.rotation;
+    double* r = &rotations_[4 * e];
+    r[0] = q.w(), r[1] = q.x(), r[2] = q.y(), r[3] = q.z();
+  }
+  for (double m : mass_) totalMass_ += m;
+  return Status::Ok;
+}
+
+Status DeformableBody::buildStepSystem(const DeformableDesc& desc) {
+  const int64_t elements = elementCount();
+  const int N = nodesPerElement_;
+  // Node -> (element, corner) incidence, in element order, for the gather assembly.
+  incidence_.build(nodeCount_, elementNodes_.data(), elements, N);
+  elementForce_.resize(3 * static_cast<size_t>(N * elements));
+  if (degree_ == 1) {
+    rotatedGradients_.resize(12 * static_cast<size_t>(elements));
+  } else {
+    gradientPairs_.resize(144 * static_cast<size_t>(elements));
+    stiffnessTerms_ = bbStiffnessTerms(degree_);
+    stiffnessStructure_ = bbStiffnessStructure(degree_);
+  }
+  buildElementPattern(nodeCount_, elementNodes_.data(), elements, N, &matrix_, &scatter_);
+  StepPreconditioner::Mesh pcMesh{degree_, elementNodes_.data(), elements, nodeCount_, restVolume_.data(),
+                                  desc.material.density};
+  VP_TRY(preconditioner_.build(desc.solver, pcMesh, matrix_));
+  const size_t n3 = restX_.size();
+  externalForce_.assign(n3, 0.0);
+  force_.resize(n3);
+  rhs_.resize(n3);
+  vNext_.resize(n3);
+  pinned_.assign(static_cast<size_t>(nodeCount_), 0);
+  held_.resize(nodeCount_);
+  return Status::Ok;
+}
+
+Status DeformableBody::buildSurfaces(const DeformableDesc& desc) {
+  const TetMesh& mesh = desc.mesh;
+  contacts_.resize(nodeCount_);
+  // Nodes this close count as touching, so a resting body keeps a stable contact set
+  // instead of alternating between "just above" and "landing" every step.
+  contactMargin_ = 0.02 * meanTetEdgeLength(mesh);
+  const SurfaceMesh boundary = tetMeshBoundary(mesh, &surfaceNodes_);
+  if (degree_ > 1) {
+    // Control points of boundary edges and faces collide too (an approximation: BB control
+    // points off the vertices lie near, not on, the curved surface).
+    Array<uint8_t> onBoundary(static_cast<size_t>(nodeCount_), 0);
+    for (int32_t v : surfaceNodes_) onBoundary[v] = 1;
+    for (int32_t i = static_cast<int32_t>(mesh.vertices.size()); i < nodeCount_; ++i) {
+      const auto& sup = nodeSupport_[i];
+      if (onBoundary[sup[0]] && onBoundary[sup[1]] && (sup[2] < 0 || onBoundary[sup[2]])) surfaceNodes_.push_back(i);
+    }
+  }
+  // The boundary's vertices are the first surface nodes, in the boundary's order.
+  const Array<int32_t> boundaryNodes(surfaceNodes_.begin(), surfaceNodes_.begin() + boundary.vertices.size());
+  Status immersed = immersion_.build(boundary, boundaryNodes, x_);
+  if (!ok(immersed)) return addErrorContext(immersed, "boundary surface");
+  pair_.surface.build(boundary, boundaryNodes, elementNodes_, nodesPerElement_, nodeCount_);
+  pair_.friction.assign(static_cast<size_t>(nodeCount_), PairFriction());
+  pair_.pendingImpulse.assign(3 * static_cast<size_t>(nodeCount_), 0.0);
+  pair_.depth = kPairContactDepthEdges * meanTetEdgeLength(mesh);
+  Status embedded = renderMesh_.build(mesh, desc.renderMesh ? *desc.renderMesh : boundary);
+  if (!ok(embedded)) return addErrorContext(embedded, "render mesh");
+  return Status::Ok;
+}
+
 bool DeformableBody::selfCollision() const {
-  if (desc_.selfCollision == SelfCollision::Auto) return contactSurface_.hasInteriorNode();
+  if (desc_.selfCollision == SelfCollision::Auto) return pair_.surface.hasInteriorNode();
   return desc_.selfCollision == SelfCollision::On;
 }
 
 PairContactBody DeformableBody::pairContactBody(double h) {
-  contactSurface_.refit(x_, v_, h);
+  pair_.surface.refit(x_, v_, h);
   PairContactBody b;
   b.x = &x_;
   b.v = &v_;
   b.mass = &mass_;
   b.surfaceNodes = &surfaceNodes_;
-  b.surface = &contactSurface_;
-  b.friction = &pairFriction_;
-  b.cornerFriction = &cornerFriction_;
+  b.surface = &pair_.surface;
+  b.friction = &pair_.friction;
+  b.cornerFriction = &pair_.cornerFriction;
   b.filter = desc_.filter;
   b.frictionCoefficient = desc_.material.friction;
   b.rest = contactMargin_;
-  b.depth = pairContactDepth_;
+  b.depth = pair_.depth;
   b.selfCollision = selfCollision();
   return b;
 }
@@ -271,7 +265,7 @@ Status DeformableBody::applyForce(int32_t node, const Vec3& force) {
 }
 
 void DeformableBody::addContactImpulse(int32_t node, const Vec3& impulse) {
-  for (int k = 0; k < 3; ++k) pendingImpulse_[3 * node + k] += impulse[k];
+  for (int k = 0; k < 3; ++k) pair_.pendingImpulse[3 * node + k] += impulse[k];
 }
 
 Status DeformableBody::applyImpulse(int32_t node, const Vec3& impulse) {
@@ -440,32 +434,7 @@ void DeformableBody::elasticForces(TaskSystem& tasks, Array<double>* out) {
 }
 
 void DeformableBody::updateRenderMesh(TaskSystem& tasks) {
-  renderPositions_.resize(embedding_.size());
-  parallelFor(tasks, static_cast<int64_t>(embedding_.size()), 2048, [&](int64_t begin, int64_t end) {
-    for (int64_t p = begin; p < end; ++p) {
-      // The BB polynomial of the element at the point's barycentric coordinates (for degree
-      // 1 the plain barycentric combination of the corners).
-      const EmbeddedPoint& e = embedding_[p];
-      const int N = nodesPerElement_;
-      double coeffs[3 * kBBMaxNodes], value[3];
-      for (int a = 0; a < N; ++a) {
-        const int32_t node = elementNodes_[N * static_cast<int64_t>(e.tet) + a];
-        for (int k = 0; k < 3; ++k) coeffs[3 * a + k] = x_[3 * node + k];
-      }
-      bbEvaluate(degree_, coeffs, e.barycentric.data(), value);
-      renderPositions_[p] = Vec3(value[0], value[1], value[2]);
-    }
-  });
-  computeVertexNormals(renderPositions_, renderRest_.triangles, &renderNormals_);
-  ++renderVersion_;
-}
-
-const RefitBvh& DeformableBody::renderSurfaceBvh() const {
-  if (renderBvhVersion_ == renderVersion_) return renderBvh_;
-  if (renderBvh_.empty()) renderBvh_.rebuild(renderPositions_, renderRest_.triangles);
-  else renderBvh_.refit(renderPositions_, renderRest_.triangles);
-  renderBvhVersion_ = renderVersion_;
-  return renderBvh_;
+  renderMesh_.update(tasks, degree_, nodesPerElement_, elementNodes_, x_);
 }
 
 void DeformableBody::refreshPreconditioner(TaskSystem& tasks, double massScale) {
@@ -611,7 +580,7 @@ StepEnergy DeformableBody::solvedStepEnergy(TaskSystem& tasks, double h, const V
         sum.kineticStart += 0.5 * m * v[k] * v[k];
         sum.kineticEnd += 0.5 * m * vn[k] * vn[k];
         sum.gravity += h * m * gravity[k] * vn[k];
-        sum.applied += (h * externalForce_[3 * i + k] + pendingImpulse_[3 * i + k] + impulse[k]) * vn[k];
+        sum.applied += (h * externalForce_[3 * i + k] + pair_.pendingImpulse[3 * i + k] + impulse[k]) * vn[k];
       }
     }
     return sum;
@@ -663,7 +632,7 @@ void DeformableBody::beginStep(const DeformableStepInput& in, PhaseTimer& timer)
   backupX_.assign(x_.begin(), x_.end());
   backupV_.assign(v_.begin(), v_.end());
   stepBegun_ = true;
-  pairCoupling_.clear();
+  pair_.coupling.clear();
   holdNodes(in);
   timer.lap(Phase::Contacts);
   corotateAndAssemble(*in.tasks, in.dt * desc_.material.stiffnessDamping + in.dt * in.dt);
@@ -671,17 +640,17 @@ void DeformableBody::beginStep(const DeformableStepInput& in, PhaseTimer& timer)
   if (in.pairContacts) addPairContactStiffness(*in.pairContacts, in.pairBody, in.dt, &matrix_);
   assembleStepSystem(in);
   if (in.pairContacts) addPairContactRhs(*in.pairContacts, in.pairBody, in.dt, &rhs_);
-  for (size_t k = 0; k < rhs_.size(); ++k) rhs_[k] += pendingImpulse_[k];
+  for (size_t k = 0; k < rhs_.size(); ++k) rhs_[k] += pair_.pendingImpulse[k];
   timer.lap(Phase::Assemble);
 }
 
 void DeformableBody::finishStep(const DeformableStepInput& in, bool reachedFloor, const PairVelocities& solved,
                                 PhaseTimer& timer, ActorStats* stats) {
   if (in.pairContacts)
-    updatePairFriction(*in.pairContacts, in.pairBody, in.dt, vNext_, solved, &pairFriction_, &cornerFriction_);
+    updatePairFriction(*in.pairContacts, in.pairBody, in.dt, vNext_, solved, &pair_.friction, &pair_.cornerFriction);
   integrateAndGuard(in, reachedFloor, solved, stats);  // its energy passes are timed with the embedding
   std::fill(externalForce_.begin(), externalForce_.end(), 0.0);
-  std::fill(pendingImpulse_.begin(), pendingImpulse_.end(), 0.0);
+  std::fill(pair_.pendingImpulse.begin(), pair_.pendingImpulse.end(), 0.0);
   updateRenderMesh(*in.tasks);
   timer.lap(Phase::Embed);
   stepBegun_ = false;
@@ -838,12 +807,12 @@ DeformableState DeformableBody::saveState() const {
   s.externalForce = externalForce_;
   s.rotations = rotations_;
   contacts_.saveTo(&s);
-  s.renderPositions = renderPositions_;
-  s.renderNormals = renderNormals_;
+  s.renderPositions = renderMesh_.positions();
+  s.renderNormals = renderMesh_.normals();
   s.schedule = schedule_;
-  s.pairFriction = pairFriction_;
-  s.cornerFriction = cornerFriction_;
-  s.pendingImpulse = pendingImpulse_;
+  s.pairFriction = pair_.friction;
+  s.cornerFriction = pair_.cornerFriction;
+  s.pendingImpulse = pair_.pendingImpulse;
   return s;
 }
 
@@ -854,13 +823,11 @@ void DeformableBody::restoreState(DeformableState&& s) {
   externalForce_ = std::move(s.externalForce);
   rotations_ = std::move(s.rotations);
   contacts_.restoreFrom(&s);
-  renderPositions_ = std::move(s.renderPositions);
-  renderNormals_ = std::move(s.renderNormals);
-  ++renderVersion_;
+  renderMesh_.restore(std::move(s.renderPositions), std::move(s.renderNormals));
   schedule_ = s.schedule;
-  pairFriction_ = std::move(s.pairFriction);
-  cornerFriction_ = std::move(s.cornerFriction);
-  pendingImpulse_ = std::move(s.pendingImpulse);
+  pair_.friction = std::move(s.pairFriction);
+  pair_.cornerFriction = std::move(s.cornerFriction);
+  pair_.pendingImpulse = std::move(s.pendingImpulse);
 }
 
 }  // namespace vp

@@ -33,6 +33,7 @@
 #include "deform/step_preconditioner.h"
 #include "deform/degree_level_assembly.h"
 #include "deform/element_incidence.h"
+#include "deform/embedded_render_mesh.h"
 #include "deform/fluid_immersion.h"
 #include "frame_plan.h"
 #include "phase_timer.h"
@@ -163,15 +164,13 @@ class DeformableBody {
 
   // The render mesh: the desc's, else the tet mesh's boundary; embedded in the tets and
   // moved with them each step. Positions and normals are in the world frame.
-  const SurfaceMesh& renderMeshRest() const { return renderRest_; }
-  const Array<Vec3>& renderPositions() const { return renderPositions_; }
-  const Array<Vec3>& renderNormals() const { return renderNormals_; }
-  // The render surface at its current positions as a BVH, for scene queries: built on the
-  // first request, refit on a request after the positions moved (queries hold the world, so
-  // no two requests run at once).
-  const RefitBvh& renderSurfaceBvh() const;
+  const SurfaceMesh& renderMeshRest() const { return renderMesh_.rest(); }
+  const Array<Vec3>& renderPositions() const { return renderMesh_.positions(); }
+  const Array<Vec3>& renderNormals() const { return renderMesh_.normals(); }
+  // The render surface at its current positions as a BVH, for scene queries.
+  const RefitBvh& renderSurfaceBvh() const { return renderMesh_.bvh(); }
   // The tet mesh's dihedral angles and volume against its render surface's, at creation.
-  const TetMeshQuality& meshQuality() const { return meshQuality_; }
+  const TetMeshQuality& meshQuality() const { return renderMesh_.quality(); }
 
   // What evolves from step to step (snapshot/actor_states.h); restoreState takes a state
   // read for this body (its sizes checked) and cannot fail.
@@ -222,6 +221,14 @@ class DeformableBody {
   bool stepBlewUp(TaskSystem& tasks, StepEnergy energy, bool solveReachedFloor);
   friend class ContactGroupSolve;  // solves the members' step systems as one
   DeformableBody() = default;
+  // The stages of create(), after degree_ and the material's Lamé parameters: the nodes
+  // numbered and placed at the desc's pose and velocity; the elements' rest gradients, volumes,
+  // lumped masses and rotations; the step system's pattern, preconditioner and buffers; the
+  // surfaces (contact nodes, the fluids' and other deformables' views, the render mesh).
+  Status placeNodes(const DeformableDesc& desc);
+  Status measureElements(const DeformableDesc& desc);
+  Status buildStepSystem(const DeformableDesc& desc);
+  Status buildSurfaces(const DeformableDesc& desc);
   void corotateAndAssemble(TaskSystem& tasks, double stiffnessScale);
   void corotateAndAssembleBB(TaskSystem& tasks, double stiffnessScale);  // degree 2, 3
   template <class AddBlock>
@@ -235,7 +242,7 @@ class DeformableBody {
                          ActorStats* stats);
   // Scalar k of the coupled pair contacts' terms between different nodes at the solved
   // velocities (0 outside a coupled solve): part of A v' at a node, for its impulses.
-  double pairCouplingAt(size_t k) const { return pairCoupling_.empty() ? 0.0 : pairCoupling_[k]; }
+  double pairCouplingAt(size_t k) const { return pair_.coupling.empty() ? 0.0 : pair_.coupling[k]; }
   // After the solve: what the step's contacts did to dynamic colliders (reactions_), the collider
   // contacts' and the coupled pair contacts' with rigid bodies (`solved` as finishStep's).
   void recordReactions(TaskSystem& tasks, const DeformableStepInput& in, const PairVelocities& solved);
@@ -281,13 +288,7 @@ class DeformableBody {
   Array<double> rotatedGradients_;  // 12 per element, this step
   BlockSparseMatrix<double> matrix_;
   Array<int32_t> scatter_;          // 16 block indices per element
-  SurfaceMesh renderRest_;
-  TetMeshQuality meshQuality_;
-  Array<EmbeddedPoint> embedding_;
-  Array<Vec3> renderPositions_, renderNormals_;
-  uint64_t renderVersion_ = 0;               // counts moves of the render positions
-  mutable RefitBvh renderBvh_;
-  mutable uint64_t renderBvhVersion_ = ~uint64_t(0);  // the version the BVH's boxes are of
+  EmbeddedRenderMesh renderMesh_;
   // Per-step scratch kept to avoid allocation in the hot path.
   Array<double> force_, rhs_, vNext_, backupX_, backupV_;
   NodeConstraints held_;        // what the solve prescribes at each node this step
@@ -297,13 +298,16 @@ class DeformableBody {
   Array<NodeContact> rigidContacts_;
   FluidImmersion immersion_;
   double contactMargin_ = 0.0;
-  ContactSurface contactSurface_;        // what other deformables and the body itself touch
-  Array<PairFriction> pairFriction_;     // per node, its pair contact's friction state
-  Array<CornerFriction> cornerFriction_;  // of the rigid corners on its triangles
-  Array<double> pendingImpulse_;         // 3 per node, for the next step (addContactImpulse)
-  double pairContactDepth_ = 0.0;
+  // Its contacts with other deformables, itself and dynamic rigid bodies (pair_contacts.h).
+  struct PairContactState {
+    ContactSurface surface;                // what other deformables and the body itself touch
+    Array<PairFriction> friction;          // per node, its pair contact's friction state
+    Array<CornerFriction> cornerFriction;  // of the rigid corners on its triangles
+    Array<double> pendingImpulse;          // 3 per node, for the next step (addContactImpulse)
+    double depth = 0.0;                    // kPairContactDepthEdges mean edges
+    Array<double> coupling;  // 3 per node in a coupled solve, else empty (pairCouplingAt)
+  } pair_;
   bool stepBegun_ = false;               // between beginStep's backups and finishStep's end
-  Array<double> pairCoupling_;           // 3 per node in a coupled solve, else empty (pairCouplingAt)
   CgWorkspace cg_;
   StepPreconditioner preconditioner_;
   std::unique_ptr<DeviceStepSolve> deviceSolve_;  // set: the solve runs on the CUDA device
