@@ -28,10 +28,9 @@ struct DeformableMaterial {
   }
 };
 
-// Auto's choice for degree >= 2 was measured: on the 5184-tet cubic beam PCG to 1e-6 takes
-// 16 iterations with p-multigrid against 57 with aggregation multigrid on the cubic matrix
-// (BM_DeformSolve/{pmg_pcg,amg_pcg}/cubic, ~1.5x less time), and the 13056-tet quadratic
-// beam's steps 8.5 against 20 (BM_DeformQuadraticBeam{,AggregationMultigrid}/13000).
+// Auto takes p-multigrid for degree >= 2: fewer CG iterations and less time than aggregation
+// multigrid on the same matrix (BM_DeformSolve/{pmg_pcg,amg_pcg}/cubic,
+// BM_DeformQuadraticBeam{,AggregationMultigrid}/13000; figures in docs/choices.md, p-multigrid).
 enum class Preconditioner : int {
   Auto = 0,         // above kMultigridMinNodes nodes p-multigrid for degree >= 2, aggregation
                     // multigrid for degree 1; block-Jacobi below
@@ -42,15 +41,13 @@ enum class Preconditioner : int {
 };
 
 // Below this many nodes the multigrid's setup costs more than the CG iterations it saves. A
-// body in contact pays the setup again after every contact pass that changes its constraints:
-// the default scene's duck jelly, then voxelized (711 nodes, linear), took 10.6 ms per frame
-// with aggregation multigrid (90 CG iterations) and 7.7 ms with block-Jacobi (234), median of
-// 120 frames each, run one after the other on the loaded 2-core machine; hence 1000 rather
-// than the 400 that a contact-free beam suggested.
+// body in contact pays the setup again after every contact pass that changes its constraints,
+// so the bound comes from a jelly in contact, not a contact-free beam (docs/choices.md,
+// Preconditioner).
 constexpr int kMultigridMinNodes = 1000;
 
-// How p-multigrid gets its coarse operators. Re-discretized is the default: 0-4% more CG
-// iterations than Galerkin, a half to a third less setup (measured in linalg/p_multigrid.h).
+// How p-multigrid gets its coarse operators. Re-discretized is the default: a few more CG
+// iterations than Galerkin for a much cheaper setup (linalg/p_multigrid.h; docs/choices.md).
 enum class PMultigridCoarseOperator : int {
   Galerkin = 0,       // P̃ᵀ A P̃ with the constrained prolongation
   Rediscretized = 1,  // assembled at each coarse degree with the fine level's element rotations

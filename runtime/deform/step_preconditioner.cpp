@@ -6,8 +6,8 @@
 namespace vp {
 namespace {
 
-// The p-multigrid levels below each degree. Cubic goes through quadratic: see the figures
-// in tests/bench/deform_solve_bench.cpp (3->1 directly leaves too much for the smoother).
+// The p-multigrid levels below each degree. Cubic goes through quadratic: 3->1 directly
+// leaves too much for the smoother (BM_DeformSolve; docs/choices.md, p-multigrid).
 std::vector<int> pMultigridDegrees(int degree) {
   if (degree == 3) return {3, 2, 1};
   return {degree, 1};
@@ -15,8 +15,8 @@ std::vector<int> pMultigridDegrees(int degree) {
 
 // One Chebyshev step per side for quadratic elements: at the step's usual tolerance
 // (warm-started) the coarse correction does most of the work and a second step costs more
-// fine-level products than the iterations it saves; cubic keeps two (figures:
-// tests/bench/deform_solve_bench.cpp, BM_DeformQuadraticBeam and BM_DeformSolve).
+// fine-level products than the iterations it saves; cubic keeps two (BM_DeformQuadraticBeam,
+// BM_DeformSolve; figures in docs/choices.md, p-multigrid).
 PMultigridSettings pMultigridSettings(int degree) {
   PMultigridSettings settings;
   if (degree == 2) settings.sweeps = 1;

@@ -22,14 +22,13 @@ constexpr double kMaxFluidSpeed = 1e3;
 
 // The projection sets the flux A_f u_f of a face, and its velocity counts with weight A_f in
 // the kinetic energy it minimizes, so on a sliver (a face nearly closed by a solid) the
-// velocity is barely constrained: where a static ball crossed the water line, faces 1.4% open
-// gained g dt a step that their ghost-fluid pressure difference did not take back (-6.2 m/s
-// after 2 s), and advection, which samples a face at full weight, carried that into the flow.
-// The liquid around such a face is tied to its well-open neighbours, so after each projection
-// slivers take their velocity from them (a flux error of at most a quarter of the difference,
-// which the volume correction absorbs). Measured in that tank: at 10%, faces 22% open at the
-// water line still fell in bursts (8.8 m/s at 12.9 s); at 25% no liquid cell passed 2.7 m/s
-// in 15 s.
+// velocity is barely constrained: where a static ball crossed the water line, such faces
+// gained g dt a step that their ghost-fluid pressure difference did not take back, and
+// advection, which samples a face at full weight, carried that into the flow. The liquid
+// around such a face is tied to its well-open neighbours, so after each projection faces less
+// open than this take their velocity from them (a flux error of at most this fraction of the
+// difference, which the volume correction absorbs). A lower bound left faces at the water line
+// falling in bursts (docs/choices.md, Fluids: the stirred tank).
 constexpr double kMinExtrapolationSourceOpenFraction = 0.25;
 
 namespace {

@@ -18,32 +18,18 @@
 //    degree's own control points on it, P F_c maps into the constrained fine space, and the
 //    constrained coarse operator is the Galerkin operator of that conforming coarse space
 //    (tests/unit/linalg_p_multigrid_test.cpp checks it densely). With the union rule below
-//    instead, the coarse nodes on a clamped face's edges stayed free in a coarse problem
-//    that believes the face moves with them: 39 CG iterations instead of 16 on
-//    BM_DeformSolve, and the cycle alone did not converge.
+//    instead, the coarse nodes on a clamped face's edges stay free in a coarse problem that
+//    believes the face moves with them: CG needs far more iterations on BM_DeformSolve and
+//    the cycle alone does not converge (docs/choices.md, p-multigrid).
 //  - Galerkin: A_c = P̃ᵀ A P̃ with the constrained prolongation P̃ = F_f P F_c, F_c the
 //    projector onto the directions some fine reader may move in (the range of Σ F_i: I where
 //    any reader is free, 0 where all are pinned). The product truncates coarse functions at
 //    constrained fine nodes: a larger coarse space, the best correction in the energy norm
 //    over it, at the price of one sparse triple product per level and update.
-// Measured on the 2-core machine, the two in the same runs (random interleaving, load
-// 0.5-1.5), medians; the rest of the setup (smoother diagonals, λmax, coarsest multigrid) is
-// common to both:
-//                                     Galerkin                 re-discretized
-//   BM_DeformSolve/pmg_pcg/cubic      16 it, setup 90 ms,      16 it, setup 58 ms,
-//     (pinned face, PCG to 1e-6)      446 ms in all            381 ms in all
-//   BM_DeformSolve/pmg/cubic          42 cycles, 1031 ms       42 cycles, 969 ms
-//   BM_DeformContact (cubic cube      11.66 it/step, setup     12.18 it/step, setup
-//     tumbling onto a plane)          13.6 ms/step, 10.5 s CPU  5.0 ms/step, 7.8 s CPU
-//   BM_DeformQuadraticBeam/13000      8.47 it/step, setup      8.58 it/step, setup
-//     (quadratic, 2 -> 1, pinned)     16.8 ms/step, 10.2 Hz    10.2 ms/step, 10.4 Hz
-// (BM_DeformContact and BM_DeformQuadraticBeam: the step's assemble phase, mostly this
-// setup. On a quiet machine, load 0.3: BM_DeformSolve setup 64 against 44 ms.) The
-// conforming coarse space costs 0-4% more iterations; the cheaper setup more than pays for
-// it, most where contacts change the constraint set within a step, since every active-set
-// pass that does sets the cycle up again. So re-discretized is the default. The smoother and cycle figures
-// below were taken with Galerkin operators; with re-discretized ones the same runs give the
-// same counts to ±1 iteration.
+// Re-discretized is the default: a few more iterations than Galerkin for a much cheaper
+// setup, which every active-set pass that changes the constraint set pays again
+// (BM_DeformSolve, BM_DeformContact, BM_DeformQuadraticBeam against their Galerkin variants;
+// figures in docs/choices.md, p-multigrid).
 // Either way, all levels' node filters are the caller's CG filters at update time: after a
 // change of constraints the cycle must be updated before it is applied again.
 //
@@ -55,22 +41,9 @@
 // λmax by power iteration (refreshed every few updates: the corotated matrix changes slowly).
 // Coloured Gauss–Seidel was not tried: BB control points of degree 3 touch ~100 neighbours,
 // so a colouring needs many colours, each a sweep with poor locality.
-// Measured with BM_DeformSolve (cubic 5184-tet beam, 85K unknowns, PCG to 1e-6 from zero),
-// CG iterations for `sweeps` smoothing steps per side and c coarsest cycles (3 -> 2 -> 1),
-// Galerkin coarse operators:
-//                      c = 1    2    4    8   16
-//   Chebyshev, 2 steps     33   26   20   16   15
-//   Chebyshev, 1 step      38   31   29   27   27
-//   damped Jacobi, 1 step  39   35   33   32   32
-//   (c = 8: damped Jacobi 2 steps 24, Chebyshev 3 steps 14; 3 -> 1 directly, Chebyshev 2: 19)
-// A cycle costs 2·sweeps fine-level products (+1 for CG's own), the degree-2 level ~18% of
-// a fine product each, and the coarsest cycles little (the linear level has 1.3% of the fine
-// blocks). So Chebyshev needs fewer fine products than damped Jacobi for the same residual
-// (16 x 5 = 80 against 32 x 3 = 96 or 24 x 5 = 120; 3 steps: 14 x 7 = 98), the coarsest
-// level is worth 8 cycles, and 3 -> 2 -> 1
-// and 3 -> 1 cost about the same (16 x 5.7 against 19 x 5 products); the defaults are
-// Chebyshev, 2 steps, 8 cycles. Timings on the shared 2-core machine vary ±30% with the
-// other builds, which is why the choice rests on these counts.
+// The default smoother, `sweeps` and `coarseCycles` need the fewest fine-level products to
+// reach the residual on BM_DeformSolve (CG iterations times 2·sweeps + 1 per cycle): counts
+// rather than timings, which the shared machine makes noisy (docs/choices.md, p-multigrid).
 //
 // The coarsest level (degree 1) is solved with `coarseCycles` V-cycles of the aggregation
 // multigrid (rigid-body modes; linalg/aggregation_multigrid.h). Its node i must be fine node

@@ -19,7 +19,7 @@
 // 446 ms (16 it; 90 ms setup), pmg 969 ms (42 cycles), pmg_galerkin 1031 ms, amg_pcg 644 ms
 // (57 it): pmg_pcg 6.0x faster than pcg, the standalone cycle 2.3x, aggregation multigrid
 // alone 3.5x. (Earlier, under load 6-7: pcg 4372 ms, Galerkin pmg_pcg 960 ms, 4.6x.)
-// The iteration counts of the cycle's variants are in linalg/p_multigrid.h.
+// The iteration counts of the cycle's variants are in docs/choices.md (p-multigrid).
 #include <benchmark/benchmark.h>
 
 #include <Eigen/Dense>

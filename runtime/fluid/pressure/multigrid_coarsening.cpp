@@ -184,10 +184,8 @@ void addCoarseFacePass(SlabPasses* passes, const Dims& f, const Dims& c, int a, 
 // surface. A fluid coarse cell whose centre lies in the air has p close to 0 in the linear
 // extrapolation the prolongation makes, so it gets the smallest theta. Summing the children's
 // terms instead (the rule of the other Dirichlet parts) keeps the fine theta in units of each
-// coarse spacing, so the coarse surface lies too high by a depth that grows with the level: at
-// 64^3 with the surface at y = 0.61 the level-1 cells under it summed to theta 0.54 where their
-// centres lie 0.02 of a cell below the surface. Iterations to 1e-6 on the liquid tank without
-// colliders, 64/128^3: 7/7 summed, 6/6 placed again.
+// coarse spacing, so the coarse surface lies too high by a depth that grows with the level, and
+// the cycle needs more iterations (figures in docs/choices.md, Pressure solve).
 // Where no such face exists (air pockets smaller than the coarse cell), the summed rule stays.
 // Both passes run over every coarse cell: the level set moves wherever the liquid does. With
 // `todo`, a row whose surface terms changed is raised in `changed` and set in todo.

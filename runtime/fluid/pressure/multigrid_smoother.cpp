@@ -19,9 +19,9 @@ using poisson_rows::Row;
 using poisson_rows::SweepStart;
 using poisson_rows::Stencil;
 
-// Boundary lists are short (about 1% of the cells at 128^3) and swept 16 times per level and
-// cycle: chunks this large keep lists below it on the calling thread, where a dispatch to the
-// pool would cost more than the sweep.
+// Boundary lists are a small part of the grid and are swept `boundarySweeps` times per level
+// and cycle: chunks this large keep lists below it on the calling thread, where a dispatch to
+// the pool would cost more than the sweep.
 constexpr int64_t kBoundaryCellsPerChunk = 16384;
 // Slabs of planes a fused red-black sweep is cut into (fixed, so the work split never depends
 // on the worker count; the values never depend on it at all).

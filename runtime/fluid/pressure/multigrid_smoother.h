@@ -9,18 +9,11 @@
 //
 // Damped Jacobi: x += w D^-1 (b - A x), symmetric by itself.
 //
-// Measured (BM_PressureSolve, cutcell_mgpcg vs cutcell_mgpcg_jacobi, 2 sweeps each plus the
-// Gauss-Seidel boundary sweeps; 2-core machine shared with other builds, medians of 3; the
-// plate figures are from before the series coarse couplings, which took GS to 8/8/11 and
-// Jacobi to 8/9 at 64/128^3):
-//   iterations to 1e-6   sphere 64/128/192^3: GS 7/7/8,  Jacobi 8/8/9
-//                        plate  64/128/192^3: GS 11/12/13, Jacobi 12/12/14
-//   ms                   sphere: GS 130/1407/5555, Jacobi 324/1437/5223
-//                        plate:  GS 428/2413/9471, Jacobi 206/1955/7917
 // A Jacobi sweep is one contiguous (vectorizable) pass, a fused red-black sweep one strided pass
-// plus a second phase on two planes per slab: Jacobi costs ~15% less per sweep and needs ~10%
-// more iterations, so the two are level within this machine's noise. Gauss-Seidel stays the
-// default for the lower iteration count (fewer CG dot products and operator applications).
+// plus a second phase on two planes per slab: Jacobi's cheaper sweeps and its extra iterations
+// come out level in time (BM_PressureSolve, cutcell_mgpcg against cutcell_mgpcg_jacobi; figures
+// in docs/benchmarks.md), so Gauss-Seidel stays the default for the lower iteration count
+// (fewer CG dot products and operator applications).
 //
 // Non-fluid cells (diagonal 0) are never written: they hold 0 and keep it.
 #pragma once

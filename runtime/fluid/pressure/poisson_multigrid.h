@@ -55,10 +55,8 @@ struct MultigridSettings {
   int coarsestSize = 4;      // stop coarsening before any grid dimension falls below this
   int coarsestSweeps = 24;   // sweeps, then as many adjoint sweeps, on the coarsest level
   // Extra Gauss-Seidel sweeps on cells near cut faces (findBoundaryCells), before and after the
-  // coarse correction. Iterations to 1e-6 on the plate tank at 64/128/192^3: 13/21/- with 2,
-  // 12/12/19 with 8, 11/12/13 with 16; the sweeps cost about 1% of a full sweep each. Since the
-  // coarse couplings take thin solids in series (multigrid_coarsening.h), plate/liquid tank at
-  // 64^3: 11/10 with 4, 8/8 with 8, 8/7 with 16.
+  // coarse correction: without enough of them the iteration count grows with resolution on thin
+  // solids, and each costs little, the lists being short (docs/choices.md, Pressure solve).
   int boundarySweeps = 16;
 };
 

@@ -5,9 +5,8 @@
 // plate one cell thick slanted at 30 degrees: the cell spans 1.37 h across it) can cut a cell
 // into two pieces on the two sides of the plate, each with its own open faces. The operator
 // then couples the two sides through that cell, the projection sends fluid through the plate,
-// and smoke follows (measured, tests/unit/fluid_smoke_test.cpp: 5.1e-2 of the smoke above
-// such a plate after 200 steps, 8e-3 m^3 of fluid through 108 open faces across its
-// mid-plane; with the smaller pieces closed and nothing else changed, 5e-7).
+// and smoke follows; closing the smaller pieces alone stops it (tests/unit/fluid_smoke_test.cpp;
+// figures in docs/choices.md, Fluids).
 //
 // What. For every cut cell (some face neither fully open nor fully closed) the collider union
 // is sampled at the 8^3 nodes of a lattice that includes the cell's corners, edges and faces
@@ -35,8 +34,7 @@
 // leaves the cell in one piece when its open corners see each other through open space (the
 // distance bound clears the segments between them), since every piece of a cube minus a
 // convex solid holds a corner: those cells are not sampled either. So spheres, capsules and
-// boxes a few cells across keep their exact fractions bit for bit, and a plate one cell thick
-// (24^3 cells, 30 degrees) has ~900 cells sampled, ~260 split, ~500 faces closed.
+// boxes a few cells across keep their exact fractions bit for bit.
 //
 // Limits. Separators thinner than the node spacing (h/7 along the worst axis) can fall
 // between nodes and are not seen; an opening narrower than the spacing can be missed and its
@@ -45,10 +43,10 @@
 // in the cells on that side.
 //
 // Cost: per sampled cell one signed-distance evaluation per node where the distance's
-// Lipschitz bound does not settle a whole block of nodes at once (about 200 for a flat cut,
-// 512 at most) and a bit-parallel flood fill, ~10 us of CPU per sampled cell: a plate 1.3 h
-// thick at 64^3 has 2830 sampled cells, 14 ms on 2 threads next to the fractions' 6 ms.
-// Static colliders pay it once; moving ones in the region they swept, every step.
+// Lipschitz bound does not settle a whole block of nodes at once (all 8^3 at worst) and a
+// bit-parallel flood fill, far more than a cell's face fractions: hence sampling only the cells
+// above (figures in docs/choices.md, Fluids). Static colliders pay it once; moving ones in the
+// region they swept, every step.
 #pragma once
 
 #include <cstdint>
