@@ -135,6 +135,16 @@ void AggregationMultigrid::update(TaskSystem& tasks, const BlockSparseMatrix<dou
                                   const double* filters) {
   fine_ = &fine;
   filters_ = filters;
+  invertFineDiagonal(tasks, fine, filters);
+  for (size_t l = 0; l < levels_.size(); ++l) updateLevel(tasks, l, fine, positions, filters);
+  // The corotated matrix changes little from step to step, so the dampings are refreshed
+  // every kDampingRefresh updates rather than each time (it cost a third of the setup).
+  if (updates_++ % kDampingRefresh == 0) refreshDampings(tasks, fine);
+  factorCoarsest();
+}
+
+void AggregationMultigrid::invertFineDiagonal(TaskSystem& tasks, const BlockSparseMatrix<double>& fine,
+                                              const double* filters) {
   // Fine smoother: F D⁻¹ F per node (symmetric, zero on pinned directions).
   parallelFor(tasks, fine.blockRows, kRowGrain, [&](int64_t begin, int64_t end) {
     for (int64_t i = begin; i < end; ++i) {
@@ -147,87 +157,89 @@ void AggregationMultigrid::update(TaskSystem& tasks, const BlockSparseMatrix<dou
       out = inv;
     }
   });
-  for (size_t l = 0; l < levels_.size(); ++l) {
-    Level& L = levels_[l];
-    const int b = L.fineBlock;
-    // Centroids of this level's aggregates, from the positions of their members.
-    const double* memberPositions = l == 0 ? positions : levels_[l - 1].centroids.data();
-    for (int32_t a = 0; a < L.aggregates; ++a) {
-      Eigen::Vector3d c = Eigen::Vector3d::Zero();
-      for (int32_t m = L.memberStart[a]; m < L.memberStart[a + 1]; ++m)
-        c += Eigen::Map<const Eigen::Vector3d>(memberPositions + 3 * static_cast<int64_t>(L.members[m]));
-      Eigen::Map<Eigen::Vector3d>(&L.centroids[3 * a]) = c / double(L.memberStart[a + 1] - L.memberStart[a]);
-    }
-    // Prolongation blocks: rigid modes about the centroid (filtered at level 0).
-    parallelFor(tasks, L.fineNodes, kRowGrain, [&](int64_t begin, int64_t end) {
-      for (int64_t i = begin; i < end; ++i) {
-        const Eigen::Vector3d r = Eigen::Map<const Eigen::Vector3d>(memberPositions + 3 * i) -
-                                  Eigen::Map<const Eigen::Vector3d>(&L.centroids[3 * L.aggregateOf[i]]);
-        if (b == 3) {
-          Mat36 P;
-          P << Mat3R::Identity(), -skew(r);
-          if (filters) P = Eigen::Map<const Mat3R>(filters + 9 * i) * P;
-          Eigen::Map<Mat36>(&L.prolongation[18 * i]) = P;
-        } else {
-          Mat6R P = Mat6R::Identity();
-          P.topRightCorner<3, 3>() = -skew(r);
-          Eigen::Map<Mat6R>(&L.prolongation[36 * i]) = P;
-        }
+}
+
+void AggregationMultigrid::updateLevel(TaskSystem& tasks, size_t l, const BlockSparseMatrix<double>& fine,
+                                       const double* positions, const double* filters) {
+  Level& L = levels_[l];
+  const int b = L.fineBlock;
+  // Centroids of this level's aggregates, from the positions of their members.
+  const double* memberPositions = l == 0 ? positions : levels_[l - 1].centroids.data();
+  for (int32_t a = 0; a < L.aggregates; ++a) {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (int32_t m = L.memberStart[a]; m < L.memberStart[a + 1]; ++m)
+      c += Eigen::Map<const Eigen::Vector3d>(memberPositions + 3 * static_cast<int64_t>(L.members[m]));
+    Eigen::Map<Eigen::Vector3d>(&L.centroids[3 * a]) = c / double(L.memberStart[a + 1] - L.memberStart[a]);
+  }
+  // Prolongation blocks: rigid modes about the centroid (filtered at level 0).
+  parallelFor(tasks, L.fineNodes, kRowGrain, [&](int64_t begin, int64_t end) {
+    for (int64_t i = begin; i < end; ++i) {
+      const Eigen::Vector3d r = Eigen::Map<const Eigen::Vector3d>(memberPositions + 3 * i) -
+                                Eigen::Map<const Eigen::Vector3d>(&L.centroids[3 * L.aggregateOf[i]]);
+      if (b == 3) {
+        Mat36 P;
+        P << Mat3R::Identity(), -skew(r);
+        if (filters) P = Eigen::Map<const Mat3R>(filters + 9 * i) * P;
+        Eigen::Map<Mat36>(&L.prolongation[18 * i]) = P;
+      } else {
+        Mat6R P = Mat6R::Identity();
+        P.topRightCorner<3, 3>() = -skew(r);
+        Eigen::Map<Mat6R>(&L.prolongation[36 * i]) = P;
       }
-    });
-    // Nodes whose filter is the identity (most of them) take the cheap product below.
-    Array<uint8_t> unfiltered(static_cast<size_t>(L.fineNodes), 0);
-    if (l == 0)
-      for (int32_t i = 0; i < L.fineNodes; ++i)
-        unfiltered[i] = !filters || Eigen::Map<const Mat3R>(filters + 9 * static_cast<int64_t>(i)).isIdentity(0.0);
-    // Galerkin product, one coarse row at a time (each row owned by one task: no races).
-    const double* fineValues = l == 0 ? fine.values.data() : levels_[l - 1].values.data();
-    const int32_t* fineRowStart = l == 0 ? fine.rowStart.data() : levels_[l - 1].rowStart.data();
-    const int32_t* fineColumns = l == 0 ? fine.columns.data() : levels_[l - 1].columns.data();
-    parallelFor(tasks, L.aggregates, 16, [&](int64_t begin, int64_t end) {
-      for (int64_t a = begin; a < end; ++a) {
-        for (int32_t k = L.rowStart[a]; k < L.rowStart[a + 1]; ++k)
-          Eigen::Map<Mat6R>(&L.values[36 * static_cast<int64_t>(k)]).setZero();
-        for (int32_t m = L.memberStart[a]; m < L.memberStart[a + 1]; ++m) {
-          const int32_t i = L.members[m];
-          for (int32_t k = fineRowStart[i]; k < fineRowStart[i + 1]; ++k) {
-            const int32_t j = fineColumns[k];
-            Eigen::Map<Mat6R> target(&L.values[36 * static_cast<int64_t>(L.coarseOfFine[k])]);
-            if (b == 3) {
-              const Eigen::Map<const Mat36> Pi(&L.prolongation[18 * static_cast<int64_t>(i)]);
-              const Eigen::Map<const Mat36> Pj(&L.prolongation[18 * static_cast<int64_t>(j)]);
-              const Eigen::Map<const Mat3R> A(fineValues + 9 * static_cast<int64_t>(k));
-              if (unfiltered[i] && unfiltered[j]) {
-                // P = [I | −[r]×] for free nodes: the product needs three 3x3 products, not
-                // the 6x3·3x3·3x6 of the general case.
-                const Mat3R AH = A * Pj.rightCols<3>();
-                const Mat3R HtA = Pi.rightCols<3>().transpose() * A;
-                target.topLeftCorner<3, 3>() += A;
-                target.topRightCorner<3, 3>() += AH;
-                target.bottomLeftCorner<3, 3>() += HtA;
-                target.bottomRightCorner<3, 3>().noalias() += Pi.rightCols<3>().transpose() * AH;
-              } else {
-                target.noalias() += Pi.transpose() * (A * Pj);
-              }
+    }
+  });
+  // Nodes whose filter is the identity (most of them) take the cheap product below.
+  Array<uint8_t> unfiltered(static_cast<size_t>(L.fineNodes), 0);
+  if (l == 0)
+    for (int32_t i = 0; i < L.fineNodes; ++i)
+      unfiltered[i] = !filters || Eigen::Map<const Mat3R>(filters + 9 * static_cast<int64_t>(i)).isIdentity(0.0);
+  // Galerkin product, one coarse row at a time (each row owned by one task: no races).
+  const double* fineValues = l == 0 ? fine.values.data() : levels_[l - 1].values.data();
+  const int32_t* fineRowStart = l == 0 ? fine.rowStart.data() : levels_[l - 1].rowStart.data();
+  const int32_t* fineColumns = l == 0 ? fine.columns.data() : levels_[l - 1].columns.data();
+  parallelFor(tasks, L.aggregates, 16, [&](int64_t begin, int64_t end) {
+    for (int64_t a = begin; a < end; ++a) {
+      for (int32_t k = L.rowStart[a]; k < L.rowStart[a + 1]; ++k)
+        Eigen::Map<Mat6R>(&L.values[36 * static_cast<int64_t>(k)]).setZero();
+      for (int32_t m = L.memberStart[a]; m < L.memberStart[a + 1]; ++m) {
+        const int32_t i = L.members[m];
+        for (int32_t k = fineRowStart[i]; k < fineRowStart[i + 1]; ++k) {
+          const int32_t j = fineColumns[k];
+          Eigen::Map<Mat6R> target(&L.values[36 * static_cast<int64_t>(L.coarseOfFine[k])]);
+          if (b == 3) {
+            const Eigen::Map<const Mat36> Pi(&L.prolongation[18 * static_cast<int64_t>(i)]);
+            const Eigen::Map<const Mat36> Pj(&L.prolongation[18 * static_cast<int64_t>(j)]);
+            const Eigen::Map<const Mat3R> A(fineValues + 9 * static_cast<int64_t>(k));
+            if (unfiltered[i] && unfiltered[j]) {
+              // P = [I | −[r]×] for free nodes: the product needs three 3x3 products, not
+              // the 6x3·3x3·3x6 of the general case.
+              const Mat3R AH = A * Pj.rightCols<3>();
+              const Mat3R HtA = Pi.rightCols<3>().transpose() * A;
+              target.topLeftCorner<3, 3>() += A;
+              target.topRightCorner<3, 3>() += AH;
+              target.bottomLeftCorner<3, 3>() += HtA;
+              target.bottomRightCorner<3, 3>().noalias() += Pi.rightCols<3>().transpose() * AH;
             } else {
-              const Eigen::Map<const Mat6R> Pi(&L.prolongation[36 * static_cast<int64_t>(i)]);
-              const Eigen::Map<const Mat6R> Pj(&L.prolongation[36 * static_cast<int64_t>(j)]);
-              const Eigen::Map<const Mat6R> A(fineValues + 36 * static_cast<int64_t>(k));
               target.noalias() += Pi.transpose() * (A * Pj);
             }
+          } else {
+            const Eigen::Map<const Mat6R> Pi(&L.prolongation[36 * static_cast<int64_t>(i)]);
+            const Eigen::Map<const Mat6R> Pj(&L.prolongation[36 * static_cast<int64_t>(j)]);
+            const Eigen::Map<const Mat6R> A(fineValues + 36 * static_cast<int64_t>(k));
+            target.noalias() += Pi.transpose() * (A * Pj);
           }
         }
-        Eigen::Map<Mat6R>(&L.diagonalInverse[36 * a]) =
-            symmetricPseudoInverse<6>(Eigen::Map<const Mat6R>(&L.values[36 * static_cast<int64_t>(L.diagonal[a])]));
       }
-    });
-  }
+      Eigen::Map<Mat6R>(&L.diagonalInverse[36 * a]) =
+          symmetricPseudoInverse<6>(Eigen::Map<const Mat6R>(&L.values[36 * static_cast<int64_t>(L.diagonal[a])]));
+    }
+  });
+}
+
+void AggregationMultigrid::refreshDampings(TaskSystem& tasks, const BlockSparseMatrix<double>& fine) {
   // Smoother damping 4/(3 λmax(D⁻¹A)) per level: the choice that damps the upper two
   // thirds of the spectrum best for Jacobi; λmax by power iteration from a fixed vector.
-  // The corotated matrix changes little from step to step, so λmax is refreshed every
-  // kDampingRefresh updates rather than each time (it cost a third of the setup).
-  const bool refreshDamping = updates_++ % kDampingRefresh == 0;
-  for (size_t level = 0; refreshDamping && level < levels_.size(); ++level) {
+  for (size_t level = 0; level < levels_.size(); ++level) {
     const int64_t n = level == 0 ? 3 * static_cast<int64_t>(fine.blockRows) : 6 * levels_[level - 1].aggregates;
     Array<double> v(static_cast<size_t>(n)), w(static_cast<size_t>(n));
     for (int64_t i = 0; i < n; ++i) v[i] = 1.0 + 0.01 * static_cast<double>(i % 7);
@@ -258,6 +270,9 @@ void AggregationMultigrid::update(TaskSystem& tasks, const BlockSparseMatrix<dou
     if (level == 0) fineDamping_ = damping;
     else levels_[level - 1].damping = damping;
   }
+}
+
+void AggregationMultigrid::factorCoarsest() {
   // Coarsest level: dense LDLT, with a whisper of regularization so aggregates made only of
   // pinned nodes (zero rows) do not break the factorization; their right-hand sides are zero.
   const Level* last = levels_.empty() ? nullptr : &levels_.back();

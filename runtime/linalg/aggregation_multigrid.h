@@ -74,6 +74,15 @@ class AggregationMultigrid {
   static void aggregate(int32_t nodes, const Array<int32_t>& rowStart, const Array<int32_t>& columns,
                         Array<int32_t>* aggregateOf, int32_t* count);
 
+  // The stages of update(): the fine smoother's filtered block inverses; level l's centroids,
+  // prolongation and Galerkin operator with its block inverses; every level's smoother
+  // damping; the coarsest level's factorization.
+  void invertFineDiagonal(TaskSystem& tasks, const BlockSparseMatrix<double>& fine, const double* filters);
+  void updateLevel(TaskSystem& tasks, size_t l, const BlockSparseMatrix<double>& fine, const double* positions,
+                   const double* filters);
+  void refreshDampings(TaskSystem& tasks, const BlockSparseMatrix<double>& fine);
+  void factorCoarsest();
+
   void cycle(TaskSystem& tasks, int level, const double* r, double* z);
   // y = A_l x on coarse level l (l >= 1: 6x6 blocks of levels_[l-1]).
   void coarseMultiply(TaskSystem& tasks, int level, const double* x, double* y) const;
