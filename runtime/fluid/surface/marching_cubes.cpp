@@ -159,28 +159,15 @@ struct Lattice {
   }
 };
 
+constexpr int kLiquidBit = 8;  // a node's bit beside its three crossing bits
+
 int popcount3(int bits) { return (bits & 1) + ((bits >> 1) & 1) + ((bits >> 2) & 1); }
 
-}  // namespace
-
-Status extractLiquidSurface(TaskSystem& tasks, const MacGridSpec& grid, const double* phi, SurfaceMesh* mesh,
-                            Array<Eigen::Vector3d>* normals, MarchingCubesWorkspace& workspace) {
-  if (phi == nullptr || mesh == nullptr || normals == nullptr)
-    return fail(Status::InvalidArgument, "marching cubes: phi, mesh and normals must not be null");
-  if (grid.nx <= 0 || grid.ny <= 0 || grid.nz <= 0 || !(grid.h > 0.0))
-    return fail(Status::InvalidArgument, "marching cubes: grid (%d, %d, %d, h %g) is empty", grid.nx, grid.ny,
-                grid.nz, grid.h);
-  const Lattice lattice(grid, phi);
+// Each node's crossing mask (which of its +x, +y, +z lattice edges the surface crosses) and
+// whether it is liquid; the vertices each slab of nodes will place.
+void markCrossings(TaskSystem& tasks, const Lattice& lattice, MarchingCubesWorkspace& workspace) {
   const int nx = lattice.n[0], ny = lattice.n[1], nz = lattice.n[2];
-  const size_t nodes = static_cast<size_t>(nx) * ny * nz;
-  if (nodes > static_cast<size_t>(INT32_MAX / 3))
-    return fail(Status::InvalidArgument, "marching cubes: %zu nodes exceed the 32-bit vertex index range", nodes);
-  workspace.firstVertex.resize(nodes);
-  workspace.nodeBits.resize(nodes);
   uint8_t* bits = workspace.nodeBits.data();
-  constexpr int kLiquidBit = 8;
-  workspace.slabCount.assign(static_cast<size_t>(nz) + 1, 0);
-
   parallelFor(tasks, nz, 1, [&](int64_t begin, int64_t end) {
     for (int64_t K = begin; K < end; ++K) {
       int64_t count = 0;
@@ -194,14 +181,14 @@ Status extractLiquidSurface(TaskSystem& tasks, const MacGridSpec& grid, const do
       workspace.slabCount[static_cast<size_t>(K) + 1] = count;
     }
   });
-  for (int K = 0; K < nz; ++K) workspace.slabCount[K + 1] += workspace.slabCount[K];
-  const int64_t vertexCount = workspace.slabCount[static_cast<size_t>(nz)];
-  if (vertexCount > INT32_MAX)
-    return fail(Status::InvalidArgument, "marching cubes: %lld surface vertices exceed the 32-bit index range",
-                static_cast<long long>(vertexCount));
-  mesh->vertices.resize(static_cast<size_t>(vertexCount));
-  normals->resize(static_cast<size_t>(vertexCount));
+}
 
+// One vertex per crossed edge, at the linear crossing, with the interpolated gradient as its
+// normal; each node's first vertex index.
+void placeVertices(TaskSystem& tasks, const Lattice& lattice, MarchingCubesWorkspace& workspace, SurfaceMesh* mesh,
+                   Array<Eigen::Vector3d>* normals) {
+  const int nx = lattice.n[0], ny = lattice.n[1], nz = lattice.n[2];
+  const uint8_t* bits = workspace.nodeBits.data();
   parallelFor(tasks, nz, 1, [&](int64_t begin, int64_t end) {
     for (int64_t K64 = begin; K64 < end; ++K64) {
       const int K = static_cast<int>(K64);
@@ -233,6 +220,13 @@ Status extractLiquidSurface(TaskSystem& tasks, const MacGridSpec& grid, const do
     }
   });
 
+}
+
+// The triangles of every cube by its liquid corners' case, slab by slab, joined in slab order.
+void connectTriangles(TaskSystem& tasks, const Lattice& lattice, const MarchingCubesWorkspace& workspace,
+                      Array<std::array<int32_t, 3>>* joined) {
+  const int nx = lattice.n[0], ny = lattice.n[1], nz = lattice.n[2];
+  const uint8_t* bits = workspace.nodeBits.data();
   const std::array<CaseTriangles, 256>& table = caseTable();
   std::vector<Array<std::array<int32_t, 3>>> slabTriangles(static_cast<size_t>(nz - 1));
   parallelFor(tasks, nz - 1, 1, [&](int64_t begin, int64_t end) {
@@ -263,8 +257,39 @@ Status extractLiquidSurface(TaskSystem& tasks, const MacGridSpec& grid, const do
         }
     }
   });
-  mesh->triangles.clear();
-  for (const auto& slab : slabTriangles) mesh->triangles.insert(mesh->triangles.end(), slab.begin(), slab.end());
+  joined->clear();
+  for (const auto& slab : slabTriangles) joined->insert(joined->end(), slab.begin(), slab.end());
+}
+
+}  // namespace
+
+Status extractLiquidSurface(TaskSystem& tasks, const MacGridSpec& grid, const double* phi, SurfaceMesh* mesh,
+                            Array<Eigen::Vector3d>* normals, MarchingCubesWorkspace& workspace) {
+  if (phi == nullptr || mesh == nullptr || normals == nullptr)
+    return fail(Status::InvalidArgument, "marching cubes: phi, mesh and normals must not be null");
+  if (grid.nx <= 0 || grid.ny <= 0 || grid.nz <= 0 || !(grid.h > 0.0))
+    return fail(Status::InvalidArgument, "marching cubes: grid (%d, %d, %d, h %g) is empty", grid.nx, grid.ny,
+                grid.nz, grid.h);
+  const Lattice lattice(grid, phi);
+  const int nx = lattice.n[0], ny = lattice.n[1], nz = lattice.n[2];
+  const size_t nodes = static_cast<size_t>(nx) * ny * nz;
+  if (nodes > static_cast<size_t>(INT32_MAX / 3))
+    return fail(Status::InvalidArgument, "marching cubes: %zu nodes exceed the 32-bit vertex index range", nodes);
+  workspace.firstVertex.resize(nodes);
+  workspace.nodeBits.resize(nodes);
+  workspace.slabCount.assign(static_cast<size_t>(nz) + 1, 0);
+
+  markCrossings(tasks, lattice, workspace);
+  for (int K = 0; K < nz; ++K) workspace.slabCount[K + 1] += workspace.slabCount[K];
+  const int64_t vertexCount = workspace.slabCount[static_cast<size_t>(nz)];
+  if (vertexCount > INT32_MAX)
+    return fail(Status::InvalidArgument, "marching cubes: %lld surface vertices exceed the 32-bit index range",
+                static_cast<long long>(vertexCount));
+  mesh->vertices.resize(static_cast<size_t>(vertexCount));
+  normals->resize(static_cast<size_t>(vertexCount));
+
+  placeVertices(tasks, lattice, workspace, mesh, normals);
+  connectTriangles(tasks, lattice, workspace, &mesh->triangles);
   return Status::Ok;
 }
 
