@@ -105,10 +105,10 @@ void addColumnConductances(const double* in, const double* inner, int64_t first,
       for (int64_t m = 0; m < n; ++m)
         term[m] = kernels::seriesConductance(low[2 * m], shared[2 * m], high[2 * m]);
       for (int64_t m = 0; m < n; ++m)
-        out[m] += (shared[2 * m] > 0.0) & (low[2 * m] > 0.0) & (high[2 * m] > 0.0) ? term[m] : 0.0;
+        out[m] += ((shared[2 * m] > 0.0) & (low[2 * m] > 0.0) & (high[2 * m] > 0.0)) ? term[m] : 0.0;
     } else {
       for (int64_t m = 0; m < n; ++m) term[m] = kernels::endConductance(low[2 * m], shared[2 * m]);
-      for (int64_t m = 0; m < n; ++m) out[m] += (shared[2 * m] > 0.0) & (low[2 * m] > 0.0) ? term[m] : 0.0;
+      for (int64_t m = 0; m < n; ++m) out[m] += ((shared[2 * m] > 0.0) & (low[2 * m] > 0.0)) ? term[m] : 0.0;
     }
   }
 }
