@@ -19,8 +19,7 @@ namespace vp {
 struct World::DeformableFrame {
   std::vector<DeformableHandle> handles;
   std::vector<DeformableBody*> bodies;
-  std::vector<FramePlan::Deformable> planned;  // each body's schedule, as the plan reads it
-  std::vector<int> priorities;
+  std::vector<FramePlan::Deformable> planned;  // each body's priority and schedule
   std::vector<bool> due;    // it steps this frame
   std::vector<int> served;  // the due ones, by priority
   std::vector<ActorStats> actors;
@@ -132,6 +131,7 @@ World::DeformableFrame World::planDeformables(double dt, const Deadline& frame, 
   const double lookahead = FramePlan::kMaxInterval * dt;
   const std::vector<Filtered<Aabb>> rigidReach =
       frame.unlimited() ? std::vector<Filtered<Aabb>>{} : dynamicBodiesReach(lookahead);
+  std::vector<int> priorities;
   for (int i = 0; i < count; ++i) {
     const DeformableHandle h = d.handles[static_cast<size_t>(i)];
     DeformableBody& body = *deformable(h);
@@ -142,12 +142,12 @@ World::DeformableFrame World::planDeformables(double dt, const Deadline& frame, 
     const int priority = body.desc().priority;
     d.bodies.push_back(&body);
     d.planned.push_back(FramePlan::Deformable{priority, &s, held});
-    d.priorities.push_back(priority);
+    priorities.push_back(priority);
     d.due.push_back(FramePlan::due(stepIndex, i, count, s));
     d.actors.push_back(actorStats(ActorKind::Deformable, h.index1, h.generation, priority, 0.0));
     d.actors.back().interval = s.interval;
   }
-  for (int i : FramePlan::byPriority(d.priorities))
+  for (int i : FramePlan::byPriority(priorities))
     if (d.due[i]) d.served.push_back(i);
   d.deadlines.resize(d.handles.size());
   return d;
@@ -350,7 +350,8 @@ World::FrameContacts World::findFrameContacts(const DeformableFrame& d, double d
   contacts.touchesRigid.resize(count);
   for (size_t i = 0; i < count; ++i) {
     const DeformableBody& body = *d.bodies[i];
-    candidates[i] = ContactGroupCandidate{static_cast<bool>(d.due[i]), !body.solvesOnDevice(), d.planned[i].schedule->pendingDt};
+    candidates[i] =
+        ContactGroupCandidate{static_cast<bool>(d.due[i]), !body.solvesOnDevice(), d.planned[i].schedule->pendingDt};
     contacts.touchesRigid[i] = candidates[i].steps && candidates[i].onCpu && candidates[i].dt == dt;
   }
   if (std::find(contacts.touchesRigid.begin(), contacts.touchesRigid.end(), true) != contacts.touchesRigid.end())
