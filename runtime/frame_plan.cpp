@@ -14,7 +14,10 @@ std::vector<int> FramePlan::byPriority(const std::vector<int>& priorities) {
   return order;
 }
 
-bool FramePlan::due(uint64_t frame, int ordinal, int count, const ActorSchedule& s) {
+bool FramePlan::due(uint64_t frame, int ordinal, int count, const Deformable& d) {
+  const ActorSchedule& s = *d.schedule;
+  if (d.pacing == Pacing::EveryFrame) return true;
+  if (d.pacing == Pacing::WithLiquids) return d.liquidSteps != s.liquidSteps || s.waitedFrames + 1 >= kMaxInterval;
   const uint64_t k = static_cast<uint64_t>(std::max(s.interval, 1));
   const uint64_t offset = static_cast<uint64_t>(ordinal) * k / static_cast<uint64_t>(std::max(count, 1));
   return s.waitedFrames + 1 >= s.interval || (frame + offset) % k == 0;
@@ -22,14 +25,14 @@ bool FramePlan::due(uint64_t frame, int ordinal, int count, const ActorSchedule&
 
 FramePlan::DeformableDeadlines FramePlan::deformableDeadlines(const Deadline& frame, const ActorSchedule& s,
                                                               double laterFloorsMs, double fluidsMs,
-                                                              int remainingDeformables, bool heldEveryFrame) {
+                                                              int remainingDeformables, bool ownRate) {
   DeformableDeadlines d;
   const double fraction = 1.0 / std::max(remainingDeformables, 1);
   // The solve ends early enough for the step's work after it.
   const double tailMs = kMargin * std::max(s.tailMs, 0.0);
   const double now = frame.unlimited() ? 0.0 : frame.clock().seconds();
   d.share = frame.shareLeaving(fraction, fluidsMs + tailMs, laterFloorsMs, now);
-  d.forced = s.interval >= kMaxInterval || heldEveryFrame;
+  d.forced = s.interval >= kMaxInterval || !ownRate;
   d.floor = d.forced ? Deadline() : frame.shareLeaving(fraction, tailMs, laterFloorsMs, now);
   return d;
 }
@@ -61,7 +64,7 @@ bool FramePlan::adjustIntervals(const std::vector<Deformable>& deformables, cons
     int chosen = -1;
     for (int i = 0; i < static_cast<int>(deformables.size()); ++i) {
       const ActorSchedule& s = *deformables[i].schedule;
-      if (s.interval >= kMaxInterval || deformables[i].heldEveryFrame) continue;
+      if (s.interval >= kMaxInterval || !deformables[i].ownRate()) continue;
       if (chosen < 0 || deformables[i].priority <= deformables[chosen].priority) chosen = i;
     }
     for (const Deformable& d : deformables) d.schedule->calmFrames = 0;

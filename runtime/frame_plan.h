@@ -11,8 +11,10 @@
 //   2. When the floors do not fit, deformables lower their rate, never their accuracy: the
 //      lowest-priority deformable not yet at kMaxInterval steps every k-th frame with the
 //      time it skipped (backward Euler is stable at k dt). The interval comes back down
-//      after kCalmFrames frames in which the frame had room for it. A deformable within reach
-//      of a dynamic rigid body keeps stepping every frame (Deformable::heldEveryFrame).
+//      after kCalmFrames frames in which the frame had room for it. Two kinds of deformable
+//      keep the rate of what they exchange forces with instead (Pacing): one within reach of
+//      a dynamic rigid body steps every frame, as Bullet does; one that a two-way liquid
+//      weighs on steps when the liquid completes a step.
 //   3. Fluids take what is left, by priority: a fluid is given what one whole step of it is
 //      expected to cost, then the next; fluids of equal priority share equally, and time
 //      one does not use passes on. A fluid step is resumable (fluid_actor.h): one that does
@@ -45,6 +47,8 @@ struct ActorSchedule {
   double tailMs = -1.0;      // deformable: smoothed cost of what follows its solve (contacts, embedding)
   int stepFrames = 0;        // fluid: frames since its last step completed
   double stepMs = 0.0;       // fluid: what the step in progress has cost so far
+  uint64_t liquidSteps = 0;  // deformable paced by liquids: their completed steps at its last step
+  int ownRateFrames = 0;     // deformable: frames it keeps its own rate after a step blew up
 };
 
 class FramePlan {
@@ -65,15 +69,31 @@ class FramePlan {
   static constexpr double kSliceFraction = 1.0 / 8.0;
   static double targetSliceMs(double budgetMs) { return budgetMs > 0.0 ? kSliceFraction * budgetMs : 0.0; }
 
+  // Who sets a deformable's rate. Only Own deformables have their interval raised; the others
+  // are at the rate of what they exchange forces with, cannot lower it on their own, and so
+  // reach their floor whatever the budget (DeformableDeadlines::forced).
+  enum class Pacing {
+    Own,  // the plan (policy 2)
+    // A two-way liquid weighs on it: it steps when one such liquid completes a step (dueWithLiquids),
+    // with the time since its last step, so a liquid's load acts over the time the liquid
+    // computed it for, as unbudgeted. Held over the frames of a liquid step that spans them,
+    // the load lagged the body's motion, and a delayed reaction does work on the body:
+    // bobbing was pumped up, and a body stepped at its own interval missed the buoyancy
+    // that would lift it off the floor (docs/choices.md, "Deformables in fluids").
+    WithLiquids,
+    // Within reach of a dynamic rigid body: it steps every frame, as Bullet steps the rigid
+    // body, and the two solve their contacts together only over the same dt; at a lowered rate
+    // the deformable meets it late, deep inside, and its contacts' reactions throw it away
+    // (docs/choices.md, "Frame budget"). Wins over WithLiquids.
+    EveryFrame,
+  };
   // A deformable as the plan sees it this frame.
   struct Deformable {
     int priority = 0;
     ActorSchedule* schedule = nullptr;
-    // Within reach of a dynamic rigid body: it steps every frame and its interval is not raised.
-    // Bullet steps the rigid body every frame, and the two solve their contacts together only
-    // over the same dt; at a lowered rate the deformable meets it late, deep inside, and its
-    // contacts' reactions throw it away (docs/choices.md, "Frame budget").
-    bool heldEveryFrame = false;
+    Pacing pacing = Pacing::Own;
+    uint64_t liquidSteps = 0;  // WithLiquids: the completed steps of the liquids that weigh on it, summed
+    bool ownRate() const { return pacing == Pacing::Own; }
   };
   // A fluid as the plan sees it this frame.
   struct Fluid {
@@ -87,24 +107,27 @@ class FramePlan {
   static std::vector<int> byPriority(const std::vector<int>& priorities);
 
   // Whether a deformable steps this frame (frame, its position in slot order among
-  // `count`): deformables at the same interval are staggered over it.
-  static bool due(uint64_t frame, int ordinal, int count, const ActorSchedule& s);
+  // `count`): deformables at the same interval are staggered over it; one paced by liquids
+  // steps when one of them completed a step since its own last step, or at the latest
+  // kMaxInterval frames after it (a liquid that has not completed a step yet).
+  static bool due(uint64_t frame, int ordinal, int count, const Deformable& d);
 
   // The two deadlines of a due deformable: `share` (stop there once at the floor) and
   // `floor` (stop there in any case). laterFloorsMs: the expected cost of the due
   // deformables after it; fluidsMs: what the fluids of at least its priority are expected to
-  // need this frame; remainingDeformables: itself and those after it; heldEveryFrame: as
-  // Deformable's, which cannot lower its rate either.
+  // need this frame; remainingDeformables: itself and those after it; ownRate: as
+  // Deformable's (one that is not can not lower its rate either).
   struct DeformableDeadlines {
     Deadline share, floor;
-    // At the interval cap, or held every frame: the floor holds whatever the budget. A solve
-    // cut short above it hands a dynamic rigid body it shares the solve with a velocity far
-    // from the solution.
+    // At the interval cap, or at another actor's rate: the floor holds whatever the budget. A
+    // solve cut short above it hands a dynamic rigid body it shares the solve with a velocity
+    // far from the solution, and leaves a body in a liquid on the floor under forces it has
+    // not answered.
     bool forced = false;
   };
   static DeformableDeadlines deformableDeadlines(const Deadline& frame, const ActorSchedule& s,
                                                  double laterFloorsMs, double fluidsMs, int remainingDeformables,
-                                                 bool heldEveryFrame = false);
+                                                 bool ownRate = true);
 
   // A fluid's share of what is left of the frame: its expected cost of a whole step when
   // there are fluids of lower priority after it, an equal part among those of its
@@ -117,10 +140,12 @@ class FramePlan {
 
   // A deformable whose step blew up (and was restored) steps every frame again: the same step at
   // the same length, from the same state, blows up again, and the body stands still. Its
-  // interval climbs back as floors are missed, one frame at a time.
+  // interval climbs back as floors are missed, one frame at a time; one paced by liquids keeps
+  // its own rate for kCalmFrames frames (its solve did not converge at the liquid's interval).
   static void noteDiverged(ActorSchedule& s) {
     s.interval = 1;
     s.calmFrames = 0;
+    s.ownRateFrames = kCalmFrames;
   }
 
   // After the frame: a deformable that missed its floor raises the interval of the

@@ -130,6 +130,11 @@ class World {
   // The deformables' stage, in the order it runs.
   struct DeformableFrame;  // the deformables of one frame as planned
   DeformableFrame planDeformables(double dt, const Deadline& frame, uint64_t stepIndex);
+  // `planned` with its pacing under a budget (FramePlan::Pacing): every frame when it can meet
+  // a dynamic rigid body within `lookahead` seconds (rigidReach: where they can go), else with
+  // the two-way liquids that weigh on it.
+  FramePlan::Deformable pacedDeformable(FramePlan::Deformable planned, const DeformableBody& body,
+                                        const std::vector<Filtered<Aabb>>& rigidReach, double lookahead) const;
   // The deformables' contacts of a frame, found once at its start for all their steps: which
   // bodies solve with the dynamic rigid bodies they touch, those bodies, the pair contacts
   // (attachment springs included) and the groups that solve together (deform/contact_groups.h).

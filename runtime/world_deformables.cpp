@@ -66,21 +66,21 @@ std::vector<Filtered<ContactCollider>> deformableContactColliders(const SlotMap<
 }
 
 // A contact group is planned as one actor: its first member's schedule at the members' highest
-// interval, with every member's tail; held every frame when one of them is.
+// interval, with every member's tail; paced as its most constrained member (Pacing's order).
 FramePlan::Deformable groupAsOne(const std::vector<FramePlan::Deformable>& planned, const std::vector<int>& members,
                                  ActorSchedule* schedule) {
   const FramePlan::Deformable& first = planned[members.front()];
   *schedule = *first.schedule;
   double tailsMs = 0.0;
-  bool held = false;
+  FramePlan::Pacing pacing = FramePlan::Pacing::Own;
   for (int i : members) {
     const ActorSchedule& s = *planned[i].schedule;
     tailsMs += std::max(s.tailMs, 0.0);
     schedule->interval = std::max(schedule->interval, s.interval);
-    held = held || planned[i].heldEveryFrame;
+    pacing = std::max(pacing, planned[i].pacing);
   }
   if (members.size() > 1) schedule->tailMs = tailsMs;
-  return FramePlan::Deformable{first.priority, schedule, held};
+  return FramePlan::Deformable{first.priority, schedule, pacing};
 }
 
 // What the groups served after each are expected to need (infinite while one of their bodies
@@ -137,20 +137,39 @@ World::DeformableFrame World::planDeformables(double dt, const Deadline& frame, 
     DeformableBody& body = *deformable(h);
     ActorSchedule& s = body.schedule();
     s.pendingDt += dt;
-    const bool held = !rigidReach.empty() && withinReach(body, rigidReach, lookahead);
-    if (frame.unlimited() || held) s.interval = 1;  // no budget: nothing lowers a rate
+    if (s.ownRateFrames > 0) --s.ownRateFrames;
     const int priority = body.desc().priority;
+    FramePlan::Deformable planned{priority, &s};
+    if (!frame.unlimited()) planned = pacedDeformable(planned, body, rigidReach, lookahead);
+    if (frame.unlimited() || !planned.ownRate()) s.interval = 1;  // no budget: nothing lowers a rate
     d.bodies.push_back(&body);
-    d.planned.push_back(FramePlan::Deformable{priority, &s, held});
+    d.planned.push_back(planned);
     priorities.push_back(priority);
-    d.due.push_back(FramePlan::due(stepIndex, i, count, s));
+    d.due.push_back(FramePlan::due(stepIndex, i, count, planned));
     d.actors.push_back(actorStats(ActorKind::Deformable, h.index1, h.generation, priority, 0.0));
-    d.actors.back().interval = s.interval;
+    // Paced by liquids, the frames its step spans.
+    d.actors.back().interval = planned.pacing == FramePlan::Pacing::WithLiquids ? s.waitedFrames + 1 : s.interval;
   }
   for (int i : FramePlan::byPriority(priorities))
     if (d.due[i]) d.served.push_back(i);
   d.deadlines.resize(d.handles.size());
   return d;
+}
+
+FramePlan::Deformable World::pacedDeformable(FramePlan::Deformable planned, const DeformableBody& body,
+                                             const std::vector<Filtered<Aabb>>& rigidReach, double lookahead) const {
+  if (!rigidReach.empty() && withinReach(body, rigidReach, lookahead)) {
+    planned.pacing = FramePlan::Pacing::EveryFrame;
+    return planned;
+  }
+  if (planned.schedule->ownRateFrames > 0) return planned;
+  const Aabb bounds = body.bounds();
+  fluids_.forEach([&](FluidHandle, const FluidActor& fluid) {
+    if (!weighsOn(fluid, bounds, body.desc().filter)) return;
+    planned.pacing = FramePlan::Pacing::WithLiquids;
+    planned.liquidSteps += fluid.stepCount();
+  });
+  return planned;
 }
 
 void World::stepContactGroups(DeformableFrame& d, const FrameContacts& contacts, const Deadline& frame) {
@@ -166,7 +185,7 @@ void World::stepContactGroups(DeformableFrame& d, const FrameContacts& contacts,
     const FramePlan::Deformable group = groupAsOne(d.planned, members, &schedule);
     const FramePlan::DeformableDeadlines deadlines = FramePlan::deformableDeadlines(
         frame, schedule, concurrent ? 0.0 : laterMs[static_cast<size_t>(n) + 1], fluidsExpectedMs(group.priority),
-        concurrent ? 1 : count - n, group.heldEveryFrame);
+        concurrent ? 1 : count - n, group.ownRate());
     stepGroupWithin(d, members, contacts, colliders, deadlines, frame);
   });
 }
@@ -228,6 +247,7 @@ std::vector<bool> World::finishDeformableSteps(DeformableFrame& d, const Deadlin
     s.tailMs = FramePlan::smoothed(s.tailMs, a.phase(Phase::Contacts).ms + a.phase(Phase::Embed).ms);
     s.pendingDt = 0.0;
     s.waitedFrames = 0;
+    if (d.planned[i].pacing == FramePlan::Pacing::WithLiquids) s.liquidSteps = d.planned[i].liquidSteps;
   }
   return missed;
 }

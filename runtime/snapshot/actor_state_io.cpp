@@ -44,16 +44,20 @@ void readFiniteArray(StateReader& in, A* a, uint64_t expected, const char* what)
 
 // Field by field: the struct has padding, which must not reach the buffer.
 void writeSchedule(StateWriter& out, const ActorSchedule& s) {
-  for (int v : {s.interval, s.waitedFrames, s.calmFrames, s.stepFrames}) out.value(static_cast<int32_t>(v));
+  for (int v : {s.interval, s.waitedFrames, s.calmFrames, s.stepFrames, s.ownRateFrames})
+    out.value(static_cast<int32_t>(v));
   for (double v : {s.pendingDt, s.expectedMs, s.tailMs, s.stepMs}) out.value(v);
+  out.value(s.liquidSteps);
 }
 void readSchedule(StateReader& in, ActorSchedule* s) {
-  for (int* v : {&s->interval, &s->waitedFrames, &s->calmFrames, &s->stepFrames}) *v = in.value<int32_t>();
+  for (int* v : {&s->interval, &s->waitedFrames, &s->calmFrames, &s->stepFrames, &s->ownRateFrames})
+    *v = in.value<int32_t>();
   for (double* v : {&s->pendingDt, &s->expectedMs, &s->tailMs, &s->stepMs}) *v = in.value<double>();
+  s->liquidSteps = in.value<uint64_t>();
   const double values[] = {s->pendingDt, s->expectedMs, s->tailMs, s->stepMs};
   in.requireFinite("a schedule", values, 4);
   if (in.ok() && (s->interval < 1 || s->waitedFrames < 0 || s->calmFrames < 0 || s->stepFrames < 0 ||
-                  s->pendingDt < 0.0))
+                  s->ownRateFrames < 0 || s->pendingDt < 0.0))
     in.outOfRange("a schedule's counts");
 }
 

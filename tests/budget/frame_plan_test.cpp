@@ -23,13 +23,34 @@ TEST(FramePlan, ServesHigherPrioritiesFirstAndEqualOnesInSlotOrder) {
 TEST(FramePlan, StaggersDeformablesOverTheirInterval) {
   ActorSchedule s;
   s.interval = 4;
+  const FramePlan::Deformable d{0, &s};
   // Two deformables at interval 4 step on frames 0 and 2 mod 4 (ordinal 0 and 1 of 2).
   for (uint64_t frame = 0; frame < 4; ++frame) {
-    EXPECT_EQ(FramePlan::due(frame, 0, 2, s), frame % 4 == 0) << frame;
-    EXPECT_EQ(FramePlan::due(frame, 1, 2, s), frame % 4 == 2) << frame;
+    EXPECT_EQ(FramePlan::due(frame, 0, 2, d), frame % 4 == 0) << frame;
+    EXPECT_EQ(FramePlan::due(frame, 1, 2, d), frame % 4 == 2) << frame;
   }
   s.waitedFrames = 3;  // it has waited its interval out: due whatever the frame
-  EXPECT_TRUE(FramePlan::due(1, 0, 2, s));
+  EXPECT_TRUE(FramePlan::due(1, 0, 2, d));
+}
+
+TEST(FramePlan, ADeformablePacedByLiquidsStepsWhenOneOfThemCompletedAStep) {
+  ActorSchedule s;
+  s.interval = 4;
+  s.liquidSteps = 7;  // the liquids' completed steps when it last stepped
+  FramePlan::Deformable d{0, &s, FramePlan::Pacing::WithLiquids, 7};
+  for (uint64_t frame = 0; frame < 8; ++frame) EXPECT_FALSE(FramePlan::due(frame, 0, 1, d)) << frame;
+  d.liquidSteps = 8;
+  EXPECT_TRUE(FramePlan::due(1, 0, 1, d));  // whatever its interval and the frame
+  d.liquidSteps = 7;
+  s.waitedFrames = FramePlan::kMaxInterval - 1;  // no liquid step since kMaxInterval frames
+  EXPECT_TRUE(FramePlan::due(1, 0, 1, d));
+  const FramePlan::Deformable nearBall{0, &s, FramePlan::Pacing::EveryFrame};
+  s.waitedFrames = 0;
+  for (uint64_t frame = 0; frame < 8; ++frame) EXPECT_TRUE(FramePlan::due(frame, 0, 1, nearBall)) << frame;
+  // A step that blew up at the liquid's interval: its own rate (every frame) for a while.
+  FramePlan::noteDiverged(s);
+  EXPECT_EQ(s.interval, 1);
+  EXPECT_EQ(s.ownRateFrames, FramePlan::kCalmFrames);
 }
 
 TEST(FramePlan, AFluidStepMustGoItsShareOfTheWayEachFrameAtTheCap) {
@@ -66,14 +87,20 @@ TEST(FramePlan, AMissedFloorRaisesTheLowestPriorityIntervalFirst) {
   EXPECT_FALSE(FramePlan::adjustIntervals(d, {true, false, false}, 0.0));  // infeasible
 }
 
-TEST(FramePlan, ADeformableHeldEveryFrameIsPassedOver) {
-  ActorSchedule hero, nearBall;
-  std::vector<FramePlan::Deformable> d = {{5, &hero}, {0, &nearBall, true}};
-  ASSERT_TRUE(FramePlan::adjustIntervals(d, {true, false}, 0.0));
+TEST(FramePlan, ADeformablePacedByAnotherActorIsPassedOver) {
+  ActorSchedule hero, nearBall, inWater;
+  std::vector<FramePlan::Deformable> d = {
+      {5, &hero}, {0, &nearBall, FramePlan::Pacing::EveryFrame}, {0, &inWater, FramePlan::Pacing::WithLiquids}};
+  ASSERT_TRUE(FramePlan::adjustIntervals(d, {true, false, false}, 0.0));
   EXPECT_EQ(nearBall.interval, 1);
+  EXPECT_EQ(inWater.interval, 1);
   EXPECT_EQ(hero.interval, 2);
   hero.interval = FramePlan::kMaxInterval;
-  EXPECT_FALSE(FramePlan::adjustIntervals(d, {true, false}, 0.0));  // nothing left to raise
+  EXPECT_FALSE(FramePlan::adjustIntervals(d, {true, false, false}, 0.0));  // nothing left to raise
+  // Their floors hold whatever the budget: they cannot lower their rates to make room.
+  for (const FramePlan::Deformable& paced : {d[1], d[2]})
+    EXPECT_TRUE(FramePlan::deformableDeadlines(Deadline(), *paced.schedule, 0.0, 0.0, 1, paced.ownRate()).forced);
+  EXPECT_FALSE(FramePlan::deformableDeadlines(Deadline(), ActorSchedule{}, 0.0, 0.0, 1, true).forced);
 }
 
 TEST(FramePlan, IntervalsComeDownOnlyAfterCalmFramesWithRoom) {

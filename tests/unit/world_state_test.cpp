@@ -145,6 +145,30 @@ TEST(WorldState, SavingTwiceGivesTheSameBuffer) {
   EXPECT_EQ(a, b);
 }
 
+// The frame plan's state of each actor travels with it: a deformable paced by a liquid
+// (FramePlan::Pacing::WithLiquids) must not take the liquid's completed steps for new ones
+// after a restore, nor forget that a blown-up step gave it back its own rate for a while.
+TEST(WorldState, TheFramePlansStateOfADeformableIsInTheState) {
+  SceneWorld w(VP_TEST_DATA_DIR "/../../sample_host/scenes/default.json", 16.0);
+  w.run(20);
+  const DeformableHandle duck = w.world->deformableHandles().front();
+  ActorSchedule& s = w.world->deformable(duck)->schedule();
+  s.liquidSteps = 12345;
+  s.ownRateFrames = 7;
+  s.calmFrames = 3;
+  const ActorSchedule saved = s;
+  std::vector<uint8_t> state;
+  ASSERT_EQ(w.world->saveState(&state), Status::Ok) << lastError();
+  SceneWorld fresh(VP_TEST_DATA_DIR "/../../sample_host/scenes/default.json", 16.0);
+  ASSERT_EQ(fresh.world->restoreState(state.data(), state.size()), Status::Ok) << lastError();
+  const ActorSchedule& restored = fresh.world->deformable(duck)->schedule();
+  EXPECT_EQ(restored.liquidSteps, saved.liquidSteps);
+  EXPECT_EQ(restored.ownRateFrames, saved.ownRateFrames);
+  EXPECT_EQ(restored.calmFrames, saved.calmFrames);
+  EXPECT_EQ(restored.interval, saved.interval);
+  EXPECT_EQ(restored.waitedFrames, saved.waitedFrames);
+}
+
 // The rebuild a save does keeps Bullet's contact points (its warm start): a resting stack's
 // manifolds are the same after the save as before it.
 TEST(WorldState, SavingKeepsBulletsContactPoints) {

@@ -246,7 +246,9 @@ typedef struct vpWorldDef {
                                   accuracy floor), else at the frame's end less what the later
                                   floors need. When floors do not fit, the lowest-priority
                                   deformable steps every k-th frame with k * dt (k <= 8), never
-                                  below its floor. Fluids take what is left, by priority: a fluid
+                                  below its floor; one within reach of a dynamic rigid body steps
+                                  every frame, one in a two-way liquid when the liquid completes
+                                  a step (both held to their floors). Fluids take what is left, by priority: a fluid
                                   step is a sequence of slices that may span frames (each step
                                   simulates the time since the last), readers see the last
                                   completed step, and slicing never changes results. A slice
