@@ -132,7 +132,8 @@ bool FluidActor::keepLevelSetHealthySlice() {
       if (!done) return false;
       u.stage = LevelSetUpkeep::Redistancing;
       if (failed("redistancing",
-                 u.redistance.prepare(tasks, grid_.spec, phi_.data(), RedistanceSettings{}, redistance_, slice)))
+                 u.redistance.prepare(tasks, grid_.spec, phi_.data(), RedistanceSettings{}, redistance_, slice,
+                                      cellWeights_.size() == phi_.size() ? cellWeights_.data() : nullptr)))
         u.redistance = RedistanceRun{};
       return false;
     case LevelSetUpkeep::Redistancing:

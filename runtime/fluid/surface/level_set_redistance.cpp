@@ -1,5 +1,6 @@
 // Narrow-band redistancing (see level_set_redistance.h).
 #include "fluid/surface/level_set_redistance.h"
+#include "fluid/solids/sliver_cells.h"
 
 #include <algorithm>
 #include <cmath>
@@ -67,7 +68,8 @@ Status redistanceLevelSet(TaskSystem& tasks, const MacGridSpec& grid, double* ph
 }
 
 Status RedistanceRun::prepare(TaskSystem& tasks, const MacGridSpec& grid, double* phi,
-                              const RedistanceSettings& settings, RedistanceWorkspace& ws, int64_t samplesPerSlice) {
+                              const RedistanceSettings& settings, RedistanceWorkspace& ws, int64_t samplesPerSlice,
+                              const double* cellWeights) {
   pass_ = Pass::Done;
   if (phi == nullptr) return fail(Status::InvalidArgument, "redistance: phi is null");
   const int64_t cells = static_cast<int64_t>(grid.nx) * grid.ny * grid.nz;
@@ -85,6 +87,7 @@ Status RedistanceRun::prepare(TaskSystem& tasks, const MacGridSpec& grid, double
   tasks_ = &tasks;
   grid_ = grid;
   phi_ = phi;
+  cellWeights_ = cellWeights;
   settings_ = settings;
   ws_ = &ws;
   samplesPerSlice_ = samplesPerSlice;
@@ -153,6 +156,8 @@ void RedistanceRun::detectSurface(int64_t begin, int64_t end) {
   double* dist = ws_->distance.data();
   uint8_t* layer = ws_->layer.data();
   const int64_t chunks = (end - begin + kCellGrain - 1) / kCellGrain;
+  const double* weights = cellWeights_;
+  auto covered = [weights](int64_t cell) { return weights != nullptr && weights[cell] < kSliverCellWeight; };
   std::vector<Array<int32_t>>& found = ws_->chunkSurface;
   if (static_cast<int64_t>(found.size()) < chunks) found.resize(static_cast<size_t>(chunks));
   parallelFor(*tasks_, chunks, 1, [&](int64_t first, int64_t last) {
@@ -163,7 +168,9 @@ void RedistanceRun::detectSurface(int64_t begin, int64_t end) {
       forCellsInRange(grid_, chunkBegin, chunkEnd, [&](int64_t c, int i, int j, int k) {
         const bool liquid = isLiquid(phi[c]);
         bool surface = false;
-        lat.forNeighbours(c, i, j, k, [&](int64_t n) { surface = surface || isLiquid(phi[n]) != liquid; });
+        if (!covered(c))
+          lat.forNeighbours(c, i, j, k,
+                            [&](int64_t n) { surface = surface || (!covered(n) && isLiquid(phi[n]) != liquid); });
         if (!surface) {
           dist[c] = kernels::unreachedDistance();
           layer[c] = kOutside;
@@ -173,9 +180,11 @@ void RedistanceRun::detectSurface(int64_t begin, int64_t end) {
         const int64_t count[3] = {lat.nx, lat.ny, lat.nz}, stride[3] = {1, lat.sy, lat.sz};
         double gradient2 = 0.0;
         for (int a = 0; a < 3; ++a) {
-          const double minus = ijk[a] > 0 ? phi[c] - phi[c - stride[a]] : 0.0;
-          const double plus = ijk[a] + 1 < count[a] ? phi[c + stride[a]] - phi[c] : 0.0;
-          const bool both = ijk[a] > 0 && ijk[a] + 1 < count[a];
+          const bool hasMinus = ijk[a] > 0 && !covered(c - stride[a]);
+          const bool hasPlus = ijk[a] + 1 < count[a] && !covered(c + stride[a]);
+          const double minus = hasMinus ? phi[c] - phi[c - stride[a]] : 0.0;
+          const double plus = hasPlus ? phi[c + stride[a]] - phi[c] : 0.0;
+          const bool both = hasMinus && hasPlus;
           // Central where phi is monotone along the axis (O(h^2)); the larger one-sided
           // difference at an extremum (a thin sheet), where the central one would vanish.
           const double slope = (both && minus * plus > 0.0 ? 0.5 * std::fabs(plus + minus)

@@ -82,8 +82,14 @@ Status redistanceLevelSet(TaskSystem& tasks, const MacGridSpec& grid, double* ph
 // belong to the run: nothing else may touch them.
 class RedistanceRun {
  public:
+  // cellWeights (null: none): the cells' open weights (solids/sliver_cells.h). A cell below
+  // kSliverCellWeight is covered by a solid and holds the level set extended into it
+  // (level_set_solid_extension.h), which is no surface: it seeds no distance, and a surface
+  // cell beside it reads no crossing and no slope across it. Seeded from it, the liquid's
+  // surface beside a solid at its waterline followed the extension's means every step and kept
+  // a current of a few mm/s going there.
   Status prepare(TaskSystem& tasks, const MacGridSpec& grid, double* phi, const RedistanceSettings& settings,
-                 RedistanceWorkspace& workspace, int64_t samplesPerSlice);
+                 RedistanceWorkspace& workspace, int64_t samplesPerSlice, const double* cellWeights = nullptr);
   // Runs one slice; true once all is done (also after a failed or missing prepare()).
   bool advance();
   bool done() const { return pass_ == Pass::Done; }
@@ -103,6 +109,7 @@ class RedistanceRun {
   TaskSystem* tasks_ = nullptr;
   MacGridSpec grid_;
   double* phi_ = nullptr;
+  const double* cellWeights_ = nullptr;
   RedistanceSettings settings_;
   RedistanceWorkspace* ws_ = nullptr;
   int64_t samplesPerSlice_ = 1, cells_ = 0, lastSliceSamples_ = 0;
