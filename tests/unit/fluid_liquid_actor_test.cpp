@@ -116,7 +116,8 @@ TEST(FluidLiquid, HydrostaticRestAroundABoxAtTheWaterline) {
   box.translation = Vec3(0.5, fill, 0.5);  // half under the surface
   PreparedCollider prepared;
   ASSERT_EQ(prepareCollider(box, &prepared), Status::Ok);
-  const double worst = fastestLiquidFaceAtRest(*actor, *tasks, {FluidCollider{1, 1, &prepared, nullptr, false, {}}}, 120);
+  const double worst =
+      fastestLiquidFaceAtRest(*actor, *tasks, {FluidCollider{1, 1, &prepared, nullptr, false, {}}}, 120);
   // At rest the discrete equations hold exactly; what moves comes from the pressure solve's
   // tolerance and the level set's upkeep: a ten-thousandth of the gravity wave speed.
   const double limit = 1e-4 * std::sqrt(9.81 * fill);
