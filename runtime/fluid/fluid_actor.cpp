@@ -1,6 +1,7 @@
 // Fluid actor step (see fluid_actor.h).
 #include "fluid/fluid_actor.h"
 #include "fluid/solids/surface_pressure_load.h"
+#include "fluid/solids/viscous_traction.h"
 
 #include <algorithm>
 #include <cmath>
@@ -664,6 +665,8 @@ void FluidActor::addSubstepLoads() {
       SurfacePressureLoad surface;
       surfacePressureLoad(*st.input.tasks, grid_, fractions_, pressure_.poisson, pressure_.pressure.data(),
                           liquidPhi(), desc_.density, *fc.geometry, &surface, &weight);
+      if (desc_.kinematicViscosity > 0.0)
+        addViscousTraction(grid_, viscosity_, desc_.density, st.h, *fc.geometry, &surface);
       Array<Vec3>& sum = st.vertexForceSum[c];
       if (sum.empty()) sum.assign(surface.vertexForces.size(), Vec3::Zero());
       for (size_t v = 0; v < sum.size(); ++v) sum[v] += surface.vertexForces[v] / st.substeps;

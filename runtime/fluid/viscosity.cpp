@@ -86,17 +86,19 @@ int axisOf(const ViscosityWorkspace& w, int64_t unknown) {
 
 // visit(neighbourUnknown, weight) for the unknowns coupled to `unknown`, and returns through
 // `diagonal` and `dirichlet` the sums of the stencil weights and of weight * boundary value
-// (viscosity.h gives the table), in units of 1 / h^2.
+// (viscosity.h gives the table), in units of 1 / h^2; `solidWeight`, where set, the part of
+// the weights that couples to solids.
 template <class Visit>
 void stencil(const MacGrid& grid, const FaceFractionField& fractions, const double* liquidPhi,
-             const ViscosityWorkspace& w, int64_t unknown, double* diagonal, double* dirichlet, const Visit& visit) {
+             const ViscosityWorkspace& w, int64_t unknown, double* diagonal, double* dirichlet, const Visit& visit,
+             double* solidWeight = nullptr) {
   const int a = axisOf(w, unknown);
   const Eigen::Vector3i dims = grid.faceDims(a);
   const int64_t face = w.face[static_cast<size_t>(unknown)];
   const Eigen::Vector3i f = faceCoords(dims, face);
   const double openHere = w.open[static_cast<size_t>(unknown)];
   const Array<double>& solid = fractions.solidVelocity[a];
-  double diag = 0.0, boundary = 0.0;
+  double diag = 0.0, boundary = 0.0, toSolids = 0.0;
   for (int b = 0; b < 3; ++b)
     for (int high = 0; high < 2; ++high) {
       Eigen::Vector3i n = f;
@@ -118,15 +120,18 @@ void stencil(const MacGrid& grid, const FaceFractionField& fractions, const doub
         const double coupling = std::min(openHere, openThere);
         diag += 1.0;
         boundary += (1.0 - coupling) * solid[openHere < openThere ? static_cast<size_t>(face) : nb];
+        toSolids += 1.0 - coupling;
         visit(other, coupling);
       } else if (touchesFluid(grid, liquidPhi, a, n)) {
         // Closed by a solid next to the fluid.
         diag += 1.0;
         boundary += solid[nb];
+        toSolids += 1.0;
       }
     }
   *diagonal = diag;
   *dirichlet = boundary;
+  if (solidWeight != nullptr) *solidWeight = toSolids;
 }
 
 }  // namespace
@@ -142,6 +147,7 @@ Status applyViscosity(TaskSystem& tasks, MacGrid& grid, const FaceFractionField&
     return fail(Status::InvalidArgument, "viscosity: dt = %g must be positive and finite", dt);
   if (!sameGrid(grid.spec, fractions.grid))
     return fail(Status::InvalidArgument, "viscosity: the face fractions belong to another grid");
+  w.solved = false;
   if (kinematicViscosity == 0.0) return Status::Ok;
 
   numberUnknowns(tasks, grid, fractions, liquidPhi, w);
@@ -191,12 +197,29 @@ Status applyViscosity(TaskSystem& tasks, MacGrid& grid, const FaceFractionField&
   cg.minIterations = settings.minIterations;
   const CgResult result = solveConjugateGradient(tasks, system, w.rhs.data(), w.velocity.data(), cg, deadline, w.cg);
 
+  w.solidChange.resize(static_cast<size_t>(n));
   parallelFor(tasks, n, kUnknownGrain, [&](int64_t begin, int64_t end) {
-    for (int64_t u = begin; u < end; ++u)
-      grid.velocity[axisOf(w, u)][static_cast<size_t>(w.face[static_cast<size_t>(u)])] = w.velocity[static_cast<size_t>(u)];
+    for (int64_t u = begin; u < end; ++u) {
+      const size_t i = static_cast<size_t>(u);
+      grid.velocity[axisOf(w, u)][static_cast<size_t>(w.face[i])] = w.velocity[i];
+      double unusedDiag, boundary, toSolids;
+      stencil(grid, fractions, liquidPhi, w, u, &unusedDiag, &boundary, [](int64_t, double) {}, &toSolids);
+      w.solidChange[i] = c * (boundary - toSolids * w.velocity[i]);
+    }
   });
+  w.solved = true;
   if (stats != nullptr) stats->solve = result;
   return Status::Ok;
+}
+
+void forEachSolidExchange(const MacGrid& grid, const ViscosityWorkspace& w,
+                          const std::function<void(int, const Eigen::Vector3i&, double)>& visit) {
+  if (!w.solved) return;
+  for (size_t u = 0; u < w.solidChange.size(); ++u) {
+    if (w.solidChange[u] == 0.0) continue;
+    const int a = axisOf(w, static_cast<int64_t>(u));
+    visit(a, faceCoords(grid.faceDims(a), w.face[u]), w.solidChange[u]);
+  }
 }
 
 }  // namespace vp

@@ -39,6 +39,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "core/allocator.h"
@@ -72,6 +73,10 @@ struct ViscosityWorkspace {
   Array<double> open, diagonal, rhs, velocity;   // per unknown
   Array<int64_t> rowStart;                       // per face row (j, k) of an axis: first unknown
   CgWorkspace cg;
+  // Per unknown, after a solve: the change of its velocity that its solid terms made,
+  // nu dt / h^2 times the sum over its solid neighbours of weight * (g - u_new).
+  Array<double> solidChange;
+  bool solved = false;  // the last applyViscosity solved (solidChange is its)
 };
 
 // liquidPhi: nullptr for smoke (every cell is fluid), else the liquid level set (free_surface.h).
@@ -79,5 +84,12 @@ struct ViscosityWorkspace {
 Status applyViscosity(TaskSystem& tasks, MacGrid& grid, const FaceFractionField& fractions,
                       const double* liquidPhi, double kinematicViscosity, double dt, const Deadline& deadline,
                       const ViscositySettings& settings, ViscosityWorkspace& work, ViscosityStats* stats);
+
+// What the solids gave the fluid in the last applyViscosity that solved: visit(axis, face,
+// velocity change) for each fluid face whose solid terms changed it. The momentum of face f
+// changed by rho h^3 times it, so the solids took the opposite: a body's viscous traction
+// (fluid/solids/viscous_traction.h).
+void forEachSolidExchange(const MacGrid& grid, const ViscosityWorkspace& work,
+                          const std::function<void(int, const Eigen::Vector3i&, double)>& visit);
 
 }  // namespace vp
