@@ -74,12 +74,10 @@ class FramePlan {
   // reach their floor whatever the budget (DeformableDeadlines::forced).
   enum class Pacing {
     Own,  // the plan (policy 2)
-    // A two-way liquid weighs on it: it steps when one such liquid completes a step (dueWithLiquids),
-    // with the time since its last step, so a liquid's load acts over the time the liquid
-    // computed it for, as unbudgeted. Held over the frames of a liquid step that spans them,
-    // the load lagged the body's motion, and a delayed reaction does work on the body:
-    // bobbing was pumped up, and a body stepped at its own interval missed the buoyancy
-    // that would lift it off the floor (docs/choices.md, "Deformables in fluids").
+    // A two-way liquid weighs on it: it steps when one such liquid completes a step (due), with
+    // the time since its last step, so the liquid's load acts over the time it was computed
+    // for, as unbudgeted; held over body steps the liquid never saw, the delayed reaction did
+    // work on the body (docs/choices.md, "Deformables in fluids").
     WithLiquids,
     // Within reach of a dynamic rigid body: it steps every frame, as Bullet steps the rigid
     // body, and the two solve their contacts together only over the same dt; at a lowered rate
@@ -116,7 +114,7 @@ class FramePlan {
   // `floor` (stop there in any case). laterFloorsMs: the expected cost of the due
   // deformables after it; fluidsMs: what the fluids of at least its priority are expected to
   // need this frame; remainingDeformables: itself and those after it; ownRate: as
-  // Deformable's (one that is not can not lower its rate either).
+  // Deformable's (one that is not cannot lower its rate either).
   struct DeformableDeadlines {
     Deadline share, floor;
     // At the interval cap, or at another actor's rate: the floor holds whatever the budget. A
