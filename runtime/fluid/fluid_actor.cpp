@@ -194,9 +194,14 @@ bool FluidActor::extrapolateLiquidVelocitySlice() {
 
 void FluidActor::diffuseVelocity() {
   ViscosityStats vs;
+  ViscositySettings settings;
+  // A deforming dynamic body takes its viscous traction from the solve (addSubstepLoads).
+  for (const FluidCollider& c : step_->input.colliders)
+    settings.recordSolidExchange = settings.recordSolidExchange ||
+                                   (c.dynamic && c.geometry != nullptr && !c.geometry->vertexVelocities.empty());
   phaseOk(Phase::Viscosity, "viscosity",
           applyViscosity(*step_->input.tasks, grid_, fractions_, liquidPhi(), desc_.kinematicViscosity, step_->h,
-                         Deadline{}, ViscositySettings{}, viscosity_, &vs));
+                         Deadline{}, settings, viscosity_, &vs));
   PhaseStats& phase = step_->stats->phase(Phase::Viscosity);
   phase.iterations += vs.solve.iterations;
   phase.residual = std::max(phase.residual, vs.solve.relativeResidual);

@@ -197,17 +197,19 @@ Status applyViscosity(TaskSystem& tasks, MacGrid& grid, const FaceFractionField&
   cg.minIterations = settings.minIterations;
   const CgResult result = solveConjugateGradient(tasks, system, w.rhs.data(), w.velocity.data(), cg, deadline, w.cg);
 
-  w.solidChange.resize(static_cast<size_t>(n));
+  const bool record = settings.recordSolidExchange;
+  if (record) w.solidChange.resize(static_cast<size_t>(n));
   parallelFor(tasks, n, kUnknownGrain, [&](int64_t begin, int64_t end) {
     for (int64_t u = begin; u < end; ++u) {
       const size_t i = static_cast<size_t>(u);
       grid.velocity[axisOf(w, u)][static_cast<size_t>(w.face[i])] = w.velocity[i];
+      if (!record) continue;
       double unusedDiag, boundary, toSolids;
       stencil(grid, fractions, liquidPhi, w, u, &unusedDiag, &boundary, [](int64_t, double) {}, &toSolids);
       w.solidChange[i] = c * (boundary - toSolids * w.velocity[i]);
     }
   });
-  w.solved = true;
+  w.solved = record;
   if (stats != nullptr) stats->solve = result;
   return Status::Ok;
 }

@@ -58,6 +58,9 @@ struct ViscositySettings {
   double tolerance = 1e-5;
   int maxIterations = 200;
   int minIterations = 2;  // run even past the deadline, like the pressure's
+  // Keep what the solids gave each face (ViscosityWorkspace::solidChange) for a deforming
+  // body's traction; a stencil pass more after the solve, so only when one takes it.
+  bool recordSolidExchange = false;
 };
 
 struct ViscosityStats {
@@ -73,10 +76,11 @@ struct ViscosityWorkspace {
   Array<double> open, diagonal, rhs, velocity;   // per unknown
   Array<int64_t> rowStart;                       // per face row (j, k) of an axis: first unknown
   CgWorkspace cg;
-  // Per unknown, after a solve: the change of its velocity that its solid terms made,
-  // nu dt / h^2 times the sum over its solid neighbours of weight * (g - u_new).
+  // Per unknown, after a solve that recorded it (ViscositySettings::recordSolidExchange): the
+  // change of its velocity that its solid terms made, nu dt / h^2 times the sum over its solid
+  // neighbours of weight * (g - u_new).
   Array<double> solidChange;
-  bool solved = false;  // the last applyViscosity solved (solidChange is its)
+  bool solved = false;  // the last applyViscosity solved and recorded solidChange
 };
 
 // liquidPhi: nullptr for smoke (every cell is fluid), else the liquid level set (free_surface.h).
@@ -85,7 +89,7 @@ Status applyViscosity(TaskSystem& tasks, MacGrid& grid, const FaceFractionField&
                       const double* liquidPhi, double kinematicViscosity, double dt, const Deadline& deadline,
                       const ViscositySettings& settings, ViscosityWorkspace& work, ViscosityStats* stats);
 
-// What the solids gave the fluid in the last applyViscosity that solved: visit(axis, face,
+// What the solids gave the fluid in the last applyViscosity, if it solved and recorded it: visit(axis, face,
 // velocity change) for each fluid face whose solid terms changed it. The momentum of face f
 // changed by rho h^3 times it, so the solids took the opposite: a body's viscous traction
 // (fluid/solids/viscous_traction.h).

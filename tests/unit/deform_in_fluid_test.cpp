@@ -486,6 +486,7 @@ TEST(DeformableInFluid, TheViscousTractionIsMinusWhatTheFluidsViscousStepTook) {
   ViscositySettings settings;
   settings.tolerance = 1e-12;
   settings.maxIterations = 1000;
+  settings.recordSolidExchange = true;
   ViscosityWorkspace work;
   ViscosityStats stats;
   std::unique_ptr<TaskSystem> tasks = TaskSystem::create(TaskHooks{}, 2);

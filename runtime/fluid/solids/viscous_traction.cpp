@@ -1,6 +1,7 @@
 #include "fluid/solids/viscous_traction.h"
 
 #include "collide/face_coverage_detail.h"
+#include "geometry/closest_point_on_triangle.h"
 
 namespace vp {
 
@@ -19,16 +20,8 @@ void addViscousTraction(const MacGrid& grid, const ViscosityWorkspace& work, dou
     if (triangle < 0 || (p - x).norm() > reach) return;
     const Vec3 force = (-faceMass * change / dt) * Vec3::Unit(axis);
     const Eigen::Vector3i& t = surface.triangles[static_cast<size_t>(triangle)];
-    const Vec3 &a = surface.worldVertices[t[0]], &b = surface.worldVertices[t[1]], &c = surface.worldVertices[t[2]];
-    // Barycentric weights of p in the triangle (p lies on it).
-    const Vec3 n = (b - a).cross(c - a);
-    const double area2 = n.squaredNorm();
-    Vec3 weights(1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0);
-    if (area2 > 0.0) {
-      weights[1] = (p - a).cross(c - a).dot(n) / area2;
-      weights[2] = (b - a).cross(p - a).dot(n) / area2;
-      weights[0] = 1.0 - weights[1] - weights[2];
-    }
+    const Vec3 weights =
+        barycentricWeights(p, surface.worldVertices[t[0]], surface.worldVertices[t[1]], surface.worldVertices[t[2]]);
     for (int k = 0; k < 3; ++k) load->vertexForces[static_cast<size_t>(t[k])] += weights[k] * force;
     load->total.force += force;
     load->total.torque += p.cross(force);
