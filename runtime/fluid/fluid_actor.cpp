@@ -195,10 +195,9 @@ bool FluidActor::extrapolateLiquidVelocitySlice() {
 void FluidActor::diffuseVelocity() {
   ViscosityStats vs;
   ViscositySettings settings;
-  // A deforming dynamic body takes its viscous traction from the solve (addSubstepLoads).
+  // A dynamic body takes its viscous traction from the solve (addSubstepLoads).
   for (const FluidCollider& c : step_->input.colliders)
-    settings.recordSolidExchange = settings.recordSolidExchange ||
-                                   (c.dynamic && c.geometry != nullptr && !c.geometry->vertexVelocities.empty());
+    settings.recordSolidExchange = settings.recordSolidExchange || (c.dynamic && c.geometry != nullptr);
   phaseOk(Phase::Viscosity, "viscosity",
           applyViscosity(*step_->input.tasks, grid_, fractions_, liquidPhi(), desc_.kinematicViscosity, step_->h,
                          Deadline{}, settings, viscosity_, &vs));
@@ -666,6 +665,9 @@ void FluidActor::addSubstepLoads() {
     if (fc.geometry->vertexVelocities.empty()) {
       l = pressureLoadOnCollider(grid_, fractions_, pressure_.poisson, pressure_.pressure.data(), desc_.density,
                                  *fc.geometry, fc.geometry->shape.translation, &weight);
+      if (desc_.kinematicViscosity > 0.0)
+        addViscousTractionOnCollider(grid_, viscosity_, desc_.density, st.h, *fc.geometry,
+                                     fc.geometry->shape.translation, &l);
     } else {
       SurfacePressureLoad surface;
       surfacePressureLoad(*st.input.tasks, grid_, fractions_, pressure_.poisson, pressure_.pressure.data(),

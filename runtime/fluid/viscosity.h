@@ -58,7 +58,7 @@ struct ViscositySettings {
   double tolerance = 1e-5;
   int maxIterations = 200;
   int minIterations = 2;  // run even past the deadline, like the pressure's
-  // Keep what the solids gave each face (ViscosityWorkspace::solidChange) for a deforming
+  // Keep what the solids gave each face (ViscosityWorkspace::solidChange) for a dynamic
   // body's traction; a stencil pass more after the solve, so only when one takes it.
   bool recordSolidExchange = false;
 };

@@ -16,6 +16,7 @@
 #include "geometry/isosurface_stuffing.h"
 #include "geometry_test_shapes.h"
 #include "liquid_tank_world.h"
+#include "viscous_exchange_step.h"
 #include "world.h"
 
 namespace vp {
@@ -479,19 +480,10 @@ TEST(DeformableInFluid, TheViscousTractionIsMinusWhatTheFluidsViscousStepTook) {
   const Vec3 velocity(0.3, -0.2, 0.1);
   MovingBlock block;
   fractionsOfMovingBlock([&](const Vec3&) { return velocity; }, &block);
-  MacGrid grid;
-  grid.spec = block.grid;
-  for (int a = 0; a < 3; ++a) grid.velocity[a].assign(block.field.open[a].size(), 0.0);
   const double nu = 1e-3, dt = 1.0 / 60.0, density = 1000.0, h = block.grid.h;
-  ViscositySettings settings;
-  settings.tolerance = 1e-12;
-  settings.maxIterations = 1000;
-  settings.recordSolidExchange = true;
+  MacGrid grid;
   ViscosityWorkspace work;
-  ViscosityStats stats;
-  std::unique_ptr<TaskSystem> tasks = TaskSystem::create(TaskHooks{}, 2);
-  ASSERT_EQ(applyViscosity(*tasks, grid, block.field, nullptr, nu, dt, Deadline{}, settings, work, &stats),
-            Status::Ok);
+  ASSERT_NO_FATAL_FAILURE(testutil::viscousStepFromRest(block.field, nu, dt, &grid, &work));
   Vec3 momentum = Vec3::Zero();
   for (int a = 0; a < 3; ++a)
     for (double u : grid.velocity[a]) momentum[a] += density * h * h * h * u;
