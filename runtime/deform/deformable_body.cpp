@@ -18,6 +18,7 @@
 #include "deform/corotated_element.h"
 #include "deform/deformation_gradient.h"
 #include "deform/degree_hierarchy.h"
+#include "deform/rotating_position_update.h"
 #include "deform/degree_level_assembly.h"
 #include "deform/pair_contact_terms.h"
 #include "geometry/tet_mesh_boundary.h"
@@ -740,10 +741,9 @@ Status DeformableBody::setSolveOnDevice(bool onDevice) {
 void DeformableBody::integrateAndGuard(const DeformableStepInput& in, bool solveReachedFloor,
                                        const PairVelocities& solved, ActorStats* stats) {
   const StepEnergy energy = solvedStepEnergy(*in.tasks, in.dt, in.gravity, in.pairContacts, in.pairBody, solved);
-  for (size_t i = 0; i < x_.size(); ++i) {
-    v_[i] = vNext_[i];
-    x_[i] += in.dt * vNext_[i];
-  }
+  const bool held = !attachments_.empty() || std::any_of(pinned_.begin(), pinned_.end(), [](uint8_t p) { return p != 0; });
+  if (held) moveAlongStraightLines(in.dt, vNext_, &x_, &v_);
+  else moveRotatingBody(mass_, in.dt, vNext_, &x_, &v_);
   stats->diverged = stepBlewUp(*in.tasks, energy, solveReachedFloor);
   if (stats->diverged) {
     restoreStepStart();

@@ -1,38 +1,12 @@
 // A deformable's surface in the fluids and their loads on it (see fluid_immersion.h).
 #include "deform/fluid_immersion.h"
 
-#include <Eigen/Dense>
+#include "deform/rigid_view.h"
 
 namespace vp {
 namespace {
 
-Vec3 nodeVector(const Array<double>& a, size_t node) { return Vec3(a[3 * node], a[3 * node + 1], a[3 * node + 2]); }
-
-// The body as a rigid body: mass, centre of mass, inertia about it, momentum and angular momentum.
-struct RigidView {
-  double mass = 0.0;
-  Vec3 centre = Vec3::Zero(), momentum = Vec3::Zero(), angularMomentum = Vec3::Zero();
-  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
-
-  RigidView(const Array<double>& x, const Array<double>* v, const Array<double>& m) {
-    for (size_t i = 0; i < m.size(); ++i) mass += m[i], centre += m[i] * nodeVector(x, i);
-    if (!(mass > 0.0)) return;
-    centre /= mass;
-    for (size_t i = 0; i < m.size(); ++i) {
-      const Vec3 r = nodeVector(x, i) - centre;
-      inertia += m[i] * (r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose());
-      if (v == nullptr) continue;
-      momentum += m[i] * nodeVector(*v, i);
-      angularMomentum += m[i] * r.cross(nodeVector(*v, i));
-    }
-  }
-  // I^-1 b; zero where the inertia is singular (a body of collinear nodes cannot spin).
-  Vec3 solveInertia(const Vec3& b) const {
-    const Eigen::LDLT<Eigen::Matrix3d> ldlt(inertia);
-    if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().minCoeff() > 1e-12 * inertia.trace())) return Vec3::Zero();
-    return ldlt.solve(b);
-  }
-};
+Vec3 nodeVector(const Array<double>& a, size_t node) { return RigidView::at(a, node); }
 
 }  // namespace
 
