@@ -51,10 +51,12 @@ std::vector<Filtered<FluidCollider>> World::fluidSolids(const Deadline& frame, S
   std::vector<Filtered<FluidCollider>> solids;
   if (fluids_.size() == 0) return solids;
   colliders_.forEach([&](ColliderHandle h, const Collider& c) {
-    if (c.geometry())
-      solids.push_back({c.filter(), FluidCollider{h.index1, h.generation, c.geometry(), c.sharedGeometry(),
-                                                  c.bodyType() == BodyType::Dynamic,
-                                                  SolidMotion{c.linearVelocity(), c.angularVelocity()}}});
+    if (!c.geometry()) return;
+    RigidInertia inertia;
+    if (!c.massProperties(&inertia.mass, &inertia.inertia)) inertia = RigidInertia{};
+    solids.push_back({c.filter(), FluidCollider{h.index1, h.generation, c.geometry(), c.sharedGeometry(),
+                                                c.bodyType() == BodyType::Dynamic,
+                                                SolidMotion{c.linearVelocity(), c.angularVelocity()}, inertia}});
   });
   // A deformable that no fluid both reaches and sees is left out rather than kept up to date
   // for nothing.

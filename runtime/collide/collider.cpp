@@ -133,8 +133,9 @@ void Collider::trackVelocity() {
 // rolls itself over without it); its added inertia is taken as the body's own inertia I
 // scaled by k = m_a / m, which gives
 //     tau_applied = (tau + k I alpha_seen) / (1 + k).
-// Except for a sphere: pressure acts along its normals, through its centre, so the fluid
-// exerts no torque on it and it has no added inertia. The model would still feed k/(1+k) of
+// Except for a sphere: pressure acts along its normals, through its centre, so the pressure
+// exerts no torque on it and it has no added inertia (a viscous liquid's traction turns it,
+// fluid/solids/viscous_traction.h, and takes no added inertia either). The model would still feed k/(1+k) of
 // every spin change back as torque the next step: a spin given by a contact (a paddle's
 // friction) came back tripled in all, and a floating ball pushed by a paddle was spun up and
 // rolled out of its tank.

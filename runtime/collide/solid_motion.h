@@ -15,6 +15,13 @@ struct SolidMotion {
   Vec3 velocity = Vec3::Zero(), spin = Vec3::Zero();
 };
 
+// A rigid body's mass and its inertia about its centre of mass in the world frame; mass 0
+// where the solid is no dynamic rigid body.
+struct RigidInertia {
+  double mass = 0.0;
+  Mat3 inertia = Mat3::Zero();
+};
+
 // Rates of change of a SolidMotion (m/s², rad/s²).
 struct SolidAcceleration {
   Vec3 linear = Vec3::Zero(), angular = Vec3::Zero();

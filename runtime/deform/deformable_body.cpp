@@ -738,12 +738,19 @@ Status DeformableBody::setSolveOnDevice(bool onDevice) {
   return DeviceStepSolve::create(matrix_, &deviceSolve_);
 }
 
+bool DeformableBody::pinnedOrAttached() const {
+  return !attachments_.empty() || std::any_of(pinned_.begin(), pinned_.end(), [](uint8_t p) { return p != 0; });
+}
+
 void DeformableBody::integrateAndGuard(const DeformableStepInput& in, bool solveReachedFloor,
                                        const PairVelocities& solved, ActorStats* stats) {
-  const StepEnergy energy = solvedStepEnergy(*in.tasks, in.dt, in.gravity, in.pairContacts, in.pairBody, solved);
-  const bool held = !attachments_.empty() || std::any_of(pinned_.begin(), pinned_.end(), [](uint8_t p) { return p != 0; });
-  if (held) moveAlongStraightLines(in.dt, vNext_, &x_, &v_);
-  else moveRotatingBody(mass_, in.dt, vNext_, &x_, &v_);
+  StepEnergy energy = solvedStepEnergy(*in.tasks, in.dt, in.gravity, in.pairContacts, in.pairBody, solved);
+  if (pinnedOrAttached()) {
+    moveAlongStraightLines(in.dt, vNext_, &x_, &v_);
+  } else {
+    moveRotatingBody(mass_, in.dt, vNext_, &x_, &v_);
+    energy.kineticEnd = kineticEnergy();  // the turn's spin correction may change it a little
+  }
   stats->diverged = stepBlewUp(*in.tasks, energy, solveReachedFloor);
   if (stats->diverged) {
     restoreStepStart();

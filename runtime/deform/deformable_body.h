@@ -238,6 +238,8 @@ class DeformableBody {
   // the corotated stiffness. integrateAndGuard: x += h v', restored if it blew up.
   void holdNodes(const DeformableStepInput& in);
   void assembleStepSystem(const DeformableStepInput& in);
+  // Whether a node is pinned or attached (deform/rotating_position_update.h).
+  bool pinnedOrAttached() const;
   void integrateAndGuard(const DeformableStepInput& in, bool solveReachedFloor, const PairVelocities& solved,
                          ActorStats* stats);
   // Scalar k of the coupled pair contacts' terms between different nodes at the solved

@@ -196,8 +196,9 @@ void FluidActor::diffuseVelocity() {
   ViscosityStats vs;
   ViscositySettings settings;
   // A dynamic body takes its viscous traction from the solve (addSubstepLoads).
-  for (const FluidCollider& c : step_->input.colliders)
-    settings.recordSolidExchange = settings.recordSolidExchange || (c.dynamic && c.geometry != nullptr);
+  settings.recordSolidExchange =
+      desc_.twoWayCoupling &&
+      anySolid(step_->input, [](const FluidCollider& c) { return c.dynamic && c.geometry != nullptr; });
   phaseOk(Phase::Viscosity, "viscosity",
           applyViscosity(*step_->input.tasks, grid_, fractions_, liquidPhi(), desc_.kinematicViscosity, step_->h,
                          Deadline{}, settings, viscosity_, &vs));
@@ -667,7 +668,7 @@ void FluidActor::addSubstepLoads() {
                                  *fc.geometry, fc.geometry->shape.translation, &weight);
       if (desc_.kinematicViscosity > 0.0)
         addViscousTractionOnCollider(grid_, viscosity_, desc_.density, st.h, *fc.geometry,
-                                     fc.geometry->shape.translation, &l);
+                                     fc.geometry->shape.translation, fc.inertia, st.input.dt, &l);
     } else {
       SurfacePressureLoad surface;
       surfacePressureLoad(*st.input.tasks, grid_, fractions_, pressure_.poisson, pressure_.pressure.data(),

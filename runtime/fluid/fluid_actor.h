@@ -85,6 +85,7 @@ struct FluidCollider {
   std::shared_ptr<const PreparedCollider> keep;
   bool dynamic = false;  // receives pressure loads when two-way coupling is on
   SolidMotion motion;    // the solid's motion as a rigid body's now (solids/solid_motion_history.h)
+  RigidInertia inertia = {};  // a dynamic rigid body's, for its viscous traction (solids/viscous_traction.h)
 };
 
 struct FluidStepInput {

@@ -198,7 +198,10 @@ Status applyViscosity(TaskSystem& tasks, MacGrid& grid, const FaceFractionField&
   const CgResult result = solveConjugateGradient(tasks, system, w.rhs.data(), w.velocity.data(), cg, deadline, w.cg);
 
   const bool record = settings.recordSolidExchange;
-  if (record) w.solidChange.resize(static_cast<size_t>(n));
+  if (record) {
+    w.solidChange.resize(static_cast<size_t>(n));
+    w.solidCoupling.resize(static_cast<size_t>(n));
+  }
   parallelFor(tasks, n, kUnknownGrain, [&](int64_t begin, int64_t end) {
     for (int64_t u = begin; u < end; ++u) {
       const size_t i = static_cast<size_t>(u);
@@ -207,6 +210,7 @@ Status applyViscosity(TaskSystem& tasks, MacGrid& grid, const FaceFractionField&
       double unusedDiag, boundary, toSolids;
       stencil(grid, fractions, liquidPhi, w, u, &unusedDiag, &boundary, [](int64_t, double) {}, &toSolids);
       w.solidChange[i] = c * (boundary - toSolids * w.velocity[i]);
+      w.solidCoupling[i] = c * toSolids;
     }
   });
   w.solved = record;
@@ -215,12 +219,12 @@ Status applyViscosity(TaskSystem& tasks, MacGrid& grid, const FaceFractionField&
 }
 
 void forEachSolidExchange(const MacGrid& grid, const ViscosityWorkspace& w,
-                          const std::function<void(int, const Eigen::Vector3i&, double)>& visit) {
+                          const std::function<void(int, const Eigen::Vector3i&, double, double)>& visit) {
   if (!w.solved) return;
   for (size_t u = 0; u < w.solidChange.size(); ++u) {
     if (w.solidChange[u] == 0.0) continue;
     const int a = axisOf(w, static_cast<int64_t>(u));
-    visit(a, faceCoords(grid.faceDims(a), w.face[u]), w.solidChange[u]);
+    visit(a, faceCoords(grid.faceDims(a), w.face[u]), w.solidChange[u], w.solidCoupling[u]);
   }
 }
 

@@ -78,8 +78,9 @@ struct ViscosityWorkspace {
   CgWorkspace cg;
   // Per unknown, after a solve that recorded it (ViscositySettings::recordSolidExchange): the
   // change of its velocity that its solid terms made, nu dt / h^2 times the sum over its solid
-  // neighbours of weight * (g - u_new).
-  Array<double> solidChange;
+  // neighbours of weight * (g - u_new), and that change per unit of the solids' velocity g,
+  // nu dt / h^2 times the sum of those weights.
+  Array<double> solidChange, solidCoupling;
   bool solved = false;  // the last applyViscosity solved and recorded solidChange
 };
 
@@ -90,10 +91,11 @@ Status applyViscosity(TaskSystem& tasks, MacGrid& grid, const FaceFractionField&
                       const ViscositySettings& settings, ViscosityWorkspace& work, ViscosityStats* stats);
 
 // What the solids gave the fluid in the last applyViscosity, if it solved and recorded it: visit(axis, face,
-// velocity change) for each fluid face whose solid terms changed it. The momentum of face f
-// changed by rho h^3 times it, so the solids took the opposite: a body's viscous traction
-// (fluid/solids/viscous_traction.h).
+// velocity change, coupling) for each fluid face whose solid terms changed it. The momentum of
+// face f changed by rho h^3 times it, so the solids took the opposite: a body's viscous
+// traction (fluid/solids/viscous_traction.h); `coupling` is that change per unit of the solids'
+// velocity (ViscosityWorkspace::solidCoupling).
 void forEachSolidExchange(const MacGrid& grid, const ViscosityWorkspace& work,
-                          const std::function<void(int, const Eigen::Vector3i&, double)>& visit);
+                          const std::function<void(int, const Eigen::Vector3i&, double, double)>& visit);
 
 }  // namespace vp

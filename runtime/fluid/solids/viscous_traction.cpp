@@ -6,19 +6,20 @@
 namespace vp {
 namespace {
 
-// visit(face centre, force on the body) for each face whose solid terms changed it, within the
-// reach of `body`'s bounding box (each visit then decides whether the body itself is near).
-// Serial, in the unknowns' order: the sums do not depend on the worker count.
+// visit(face centre, axis, force on the body, drag per unit of the solids' velocity) for each
+// face whose solid terms changed it, within the reach of `body`'s bounding box (each visit then
+// decides whether the body itself is near). Serial, in the unknowns' order: the sums do not
+// depend on the worker count.
 template <class Visit>
 void forEachExchangeNear(const MacGrid& grid, const ViscosityWorkspace& work, double density, double dt,
                          const PreparedCollider& body, Visit&& visit) {
   const double h = grid.spec.h, reach = kReachCells * h;
   const Aabb near{body.bounds.lo - Vec3::Constant(reach), body.bounds.hi + Vec3::Constant(reach)};
   const double faceMass = density * h * h * h;
-  forEachSolidExchange(grid, work, [&](int axis, const Eigen::Vector3i& f, double change) {
+  forEachSolidExchange(grid, work, [&](int axis, const Eigen::Vector3i& f, double change, double coupling) {
     const Vec3 x = grid.faceCentre(axis, f.x(), f.y(), f.z());
     if ((x.array() < near.lo.array()).any() || (x.array() > near.hi.array()).any()) return;
-    visit(x, reach, Vec3((-faceMass * change / dt) * Vec3::Unit(axis)));
+    visit(x, reach, axis, Vec3((-faceMass * change / dt) * Vec3::Unit(axis)), faceMass * coupling / dt);
   });
 }
 
@@ -26,7 +27,8 @@ void forEachExchangeNear(const MacGrid& grid, const ViscosityWorkspace& work, do
 
 void addViscousTraction(const MacGrid& grid, const ViscosityWorkspace& work, double density, double dt,
                         const PreparedCollider& surface, SurfacePressureLoad* load) {
-  forEachExchangeNear(grid, work, density, dt, surface, [&](const Vec3& x, double reach, const Vec3& force) {
+  forEachExchangeNear(grid, work, density, dt, surface, [&](const Vec3& x, double reach, int, const Vec3& force,
+                                                             double) {
     int triangle = -1;
     Vec3 p;
     detail::meshClosestPoint(surface, x, &triangle, &p);
@@ -41,12 +43,26 @@ void addViscousTraction(const MacGrid& grid, const ViscosityWorkspace& work, dou
 }
 
 void addViscousTractionOnCollider(const MacGrid& grid, const ViscosityWorkspace& work, double density, double dt,
-                                  const PreparedCollider& collider, const Vec3& centre, PressureLoad* load) {
-  forEachExchangeNear(grid, work, density, dt, collider, [&](const Vec3& x, double reach, const Vec3& force) {
-    if (!(signedDistanceBound(collider, x) <= reach)) return;
-    load->force += force;
-    load->torque += (x - centre).cross(force);
-  });
+                                  const PreparedCollider& collider, const Vec3& centre, const RigidInertia& inertia,
+                                  double heldFor, PressureLoad* load) {
+  Vec3 force = Vec3::Zero(), torque = Vec3::Zero(), drag = Vec3::Zero();
+  Mat3 spinDrag = Mat3::Zero();
+  forEachExchangeNear(grid, work, density, dt, collider,
+                      [&](const Vec3& x, double reach, int axis, const Vec3& f, double faceDrag) {
+                        if (!(signedDistanceBound(collider, x) <= reach)) return;
+                        const Vec3 arm = (x - centre).cross(Vec3::Unit(axis));
+                        force += f;
+                        torque += (x - centre).cross(f);
+                        drag[axis] += faceDrag;
+                        spinDrag += faceDrag * arm * arm.transpose();
+                      });
+  if (inertia.mass > 0.0) {
+    for (int a = 0; a < 3; ++a) force[a] *= inertia.mass / (inertia.mass + drag[a] * heldFor);
+    const Mat3 resisted = inertia.inertia + spinDrag * heldFor;
+    torque = inertia.inertia * resisted.ldlt().solve(torque);
+  }
+  load->force += force;
+  load->torque += torque;
 }
 
 }  // namespace vp
