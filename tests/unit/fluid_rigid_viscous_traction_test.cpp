@@ -74,6 +74,21 @@ TEST(FluidViscousTraction, ARigidBodyTakesMinusWhatTheFluidsViscousStepTookLinea
   EXPECT_LT(load.torque.dot(spin), 0.0);
 }
 
+// A dynamic ball of `density` in the test tank's liquid, spinning about the vertical and moving
+// along x, without Bullet's damping.
+ColliderDesc ballInTheTank(double density, double radius, double spin, double speed) {
+  ColliderDesc d;
+  d.bodyType = BodyType::Dynamic;
+  d.shape.type = ShapeType::Sphere;
+  d.shape.radius = radius;
+  d.mass = density * 4.0 / 3.0 * M_PI * radius * radius * radius;
+  d.angularDamping = 0.0;
+  d.pose.position = Vec3(0.5, 0.4, 0.5);
+  d.angularVelocity = Vec3(0.0, spin, 0.0);
+  d.linearVelocity = Vec3(speed, 0.0, 0.0);
+  return d;
+}
+
 // A rigid ball of the liquid's density spinning about the vertical in a still liquid, in zero
 // gravity and without Bullet's damping: the fraction of its spin left after `seconds`.
 double rigidSpinLeft(double kinematicViscosity, double seconds) {
@@ -82,16 +97,8 @@ double rigidSpinLeft(double kinematicViscosity, double seconds) {
   std::unique_ptr<World> world = testutil::worldWithOpenTank(24, 0.85, 1e-8, &fluid, kinematicViscosity);
   if (!world) return 0.0;
   EXPECT_EQ(world->setGravity(Vec3::Zero()), Status::Ok);
-  ColliderDesc d;
-  d.bodyType = BodyType::Dynamic;
-  d.shape.type = ShapeType::Sphere;
-  d.shape.radius = radius;
-  d.mass = 1000.0 * 4.0 / 3.0 * M_PI * radius * radius * radius;
-  d.angularDamping = 0.0;
-  d.pose.position = Vec3(0.5, 0.4, 0.5);
-  d.angularVelocity = Vec3(0.0, spin, 0.0);
   ColliderHandle ball;
-  EXPECT_EQ(world->createCollider(d, &ball), Status::Ok) << lastError();
+  EXPECT_EQ(world->createCollider(ballInTheTank(1000.0, radius, spin, 0.0), &ball), Status::Ok) << lastError();
   for (int s = 0; s < static_cast<int>(std::lround(seconds * 60.0)); ++s)
     EXPECT_EQ(world->step(1.0 / 60.0), Status::Ok);
   return world->collider(ball)->angularVelocity().y() / spin;
@@ -122,17 +129,8 @@ TEST(FluidViscousTraction, ALightBallInAThickLiquidSpinsAndSlowsDownWithoutOvers
   std::unique_ptr<World> world = testutil::worldWithOpenTank(24, 0.85, 1e-8, &fluid, 0.05);
   ASSERT_TRUE(world);
   ASSERT_EQ(world->setGravity(Vec3::Zero()), Status::Ok);
-  ColliderDesc d;
-  d.bodyType = BodyType::Dynamic;
-  d.shape.type = ShapeType::Sphere;
-  d.shape.radius = radius;
-  d.mass = 200.0 * 4.0 / 3.0 * M_PI * radius * radius * radius;
-  d.angularDamping = 0.0;
-  d.pose.position = Vec3(0.5, 0.4, 0.5);
-  d.angularVelocity = Vec3(0.0, spin, 0.0);
-  d.linearVelocity = Vec3(speed, 0.0, 0.0);
   ColliderHandle ball;
-  ASSERT_EQ(world->createCollider(d, &ball), Status::Ok) << lastError();
+  ASSERT_EQ(world->createCollider(ballInTheTank(200.0, radius, spin, speed), &ball), Status::Ok) << lastError();
   double lastSpin = spin, lastSpeed = speed;
   for (int s = 0; s < 60; ++s) {
     ASSERT_EQ(world->step(1.0 / 60.0), Status::Ok);
