@@ -31,9 +31,16 @@ struct RigidView {
   }
   // I^-1 b; zero where the inertia is singular (a body of collinear nodes cannot spin).
   Vec3 solveInertia(const Vec3& b) const {
-    const Eigen::LDLT<Eigen::Matrix3d> ldlt(inertia);
-    if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().minCoeff() > 1e-12 * inertia.trace())) return Vec3::Zero();
-    return ldlt.solve(b);
+    Vec3 out = Vec3::Zero();
+    solve(inertia, b, &out);
+    return out;
+  }
+  // The same for any inertia; false (and *out untouched) where it is singular.
+  static bool solve(const Eigen::Matrix3d& I, const Vec3& b, Vec3* out) {
+    const Eigen::LDLT<Eigen::Matrix3d> ldlt(I);
+    if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().minCoeff() > 1e-12 * I.trace())) return false;
+    *out = ldlt.solve(b);
+    return true;
   }
 };
 

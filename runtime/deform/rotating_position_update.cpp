@@ -23,14 +23,6 @@ Eigen::Matrix3d turnBy(const Vec3& spin, double h) {
   return Eigen::AngleAxisd(angle, spin / spin.norm()).toRotationMatrix();
 }
 
-// The spin of angular momentum L about `inertia`; false where the inertia is singular.
-bool spinAbout(const Eigen::Matrix3d& inertia, const Vec3& L, Vec3* spin) {
-  const Eigen::LDLT<Eigen::Matrix3d> ldlt(inertia);
-  if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().minCoeff() > 1e-12 * inertia.trace())) return false;
-  *spin = ldlt.solve(L);
-  return true;
-}
-
 // The body's turn over h: in sub-turns, each about the spin at its middle, the spin the
 // angular momentum has about the inertia turned by half of it (the implicit midpoint rule).
 // Turned about each step's starting spin instead, a free body whose spin is not along a
@@ -42,7 +34,7 @@ Eigen::Matrix3d bodyTurn(const RigidView& body, const Vec3& spin, double h, int 
   for (int s = 0; s < subTurns; ++s) {
     for (int iteration = 0; iteration < kMidpointIterations; ++iteration) {
       const Eigen::Matrix3d half = turnBy(middle, 0.5 * part);
-      if (!spinAbout(half * inertia * half.transpose(), body.angularMomentum, &middle)) break;
+      if (!RigidView::solve(half * inertia * half.transpose(), body.angularMomentum, &middle)) break;
     }
     const Eigen::Matrix3d step = turnBy(middle, part);
     turn = step * turn;
@@ -57,7 +49,7 @@ void moveRotatingBody(const Array<double>& mass, double h, const Array<double>& 
                       Array<double>* v) {
   const RigidView body(*x, &vSolved, mass);
   Vec3 spin = Vec3::Zero();
-  if (!(body.mass > 0.0) || !spinAbout(body.inertia, body.angularMomentum, &spin))
+  if (!(body.mass > 0.0) || !RigidView::solve(body.inertia, body.angularMomentum, &spin))
     return moveAlongStraightLines(h, vSolved, x, v);
   const double angle = spin.norm() * h;
   if (!(angle > 0.0) || !(angle <= kMaxSubTurns * kMaxSubTurn)) return moveAlongStraightLines(h, vSolved, x, v);
