@@ -18,8 +18,8 @@ namespace vp {
 namespace {
 
 // A sphere translating and spinning through still fluid, its walls 14 cells away (the implicit
-// step's spread there is below round-off). Over one step the fluid's momentum grows by minus the impulse the ball takes. Its
-// angular momentum about the ball's centre does so only up to what the viscous step moves
+// step's spread there is below round-off). Over one step the fluid's momentum grows by minus
+// the impulse the ball takes. Its angular momentum about the ball's centre does so only up to what the viscous step moves
 // between faces: the Laplacian form of the viscous force conserves angular momentum only for a
 // divergence-free flow, which one step without a projection is not (a few thousandths of it
 // here; docs/choices.md has the figure).

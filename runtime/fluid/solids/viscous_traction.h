@@ -19,9 +19,8 @@
 // The traction acts on a rigid body explicitly, held over the fluid's step. A body light
 // against the drag of the faces it couples to (D T > m, D the drag a unit of its velocity
 // meets, T the time the load acts) would then overshoot the liquid's velocity each step, and
-// further each time: a 0.1 m ball of density 200 spinning in a liquid of nu = 0.05 reached
-// 1e4 rad/s. So a rigid body takes what backward Euler gives a drag -D (v - v_liquid) over T,
-// m (m + D T)^-1 of the force and I (I + D_w T)^-1 of the torque, which never reverses its
+// further each time (docs/choices.md has the light ball that did). So a rigid body takes what
+// backward Euler gives a drag -D (v - v_liquid) over T, m (m + D T)^-1 of the force and I (I + D_w T)^-1 of the torque, which never reverses its
 // motion relative to the liquid; D sums, over the faces each axis's force comes from, rho h^3
 // times their coupling to the solids over dt (ViscosityWorkspace::solidCoupling), D_w the same
 // with each face's arm, sum D_f (r x e_a)(r x e_a)^T: bounds on the drag, since the liquid's
