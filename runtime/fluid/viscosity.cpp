@@ -213,6 +213,10 @@ Status applyViscosity(TaskSystem& tasks, MacGrid& grid, const FaceFractionField&
       w.solidCoupling[i] = c * toSolids;
     }
   });
+  w.exchanged.clear();
+  if (record)
+    for (int64_t u = 0; u < n; ++u)
+      if (w.solidChange[static_cast<size_t>(u)] != 0.0) w.exchanged.push_back(u);
   w.solved = record;
   if (stats != nullptr) stats->solve = result;
   return Status::Ok;
@@ -221,10 +225,10 @@ Status applyViscosity(TaskSystem& tasks, MacGrid& grid, const FaceFractionField&
 void forEachSolidExchange(const MacGrid& grid, const ViscosityWorkspace& w,
                           const std::function<void(int, const Eigen::Vector3i&, double, double)>& visit) {
   if (!w.solved) return;
-  for (size_t u = 0; u < w.solidChange.size(); ++u) {
-    if (w.solidChange[u] == 0.0) continue;
-    const int a = axisOf(w, static_cast<int64_t>(u));
-    visit(a, faceCoords(grid.faceDims(a), w.face[u]), w.solidChange[u], w.solidCoupling[u]);
+  for (const int64_t u : w.exchanged) {
+    const int a = axisOf(w, u);
+    const size_t i = static_cast<size_t>(u);
+    visit(a, faceCoords(grid.faceDims(a), w.face[i]), w.solidChange[i], w.solidCoupling[i]);
   }
 }
 

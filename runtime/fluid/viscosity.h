@@ -81,6 +81,9 @@ struct ViscosityWorkspace {
   // neighbours of weight * (g - u_new), and that change per unit of the solids' velocity g,
   // nu dt / h^2 times the sum of those weights.
   Array<double> solidChange, solidCoupling;
+  // The unknowns whose solid terms changed them, in order: what each body's traction walks,
+  // rather than every unknown once per body.
+  Array<int64_t> exchanged;
   bool solved = false;  // the last applyViscosity solved and recorded solidChange
 };
 

@@ -105,6 +105,16 @@ TEST(RotatingPositionUpdate, MomentaAreThoseOfTheSolvedVelocities) {
 // of kinetic, and the first step blows up. A rigid spin is in the linearized
 // stiffness's null space, so the solve keeps it and the brick stays rigid to round-off (it
 // loses the centrifugal strain, rho w^2 L^2 / E = 2e-4 here, which a step never saw).
+// Gives every node of `body` the velocity of a spin about `point`.
+Status spinAbout(DeformableBody& body, const Vec3& spin, const Vec3& point) {
+  Array<double> v(body.positions().size());
+  for (int32_t i = 0; i < body.nodeCount(); ++i) {
+    const Vec3 vi = spin.cross(RigidView::at(body.positions(), static_cast<size_t>(i)) - point);
+    for (int k = 0; k < 3; ++k) v[3 * i + k] = vi[k];
+  }
+  return body.setVelocities(v.data(), static_cast<int64_t>(v.size()));
+}
+
 struct SpinningBrick {
   double kinetic = 0.0, worstElastic = 0.0, finalKinetic = 0.0;
   Vec3 angularMomentum = Vec3::Zero(), finalAngularMomentum = Vec3::Zero();
@@ -121,12 +131,7 @@ SpinningBrick spinBrick(const Vec3& spin, int steps) {
   std::unique_ptr<DeformableBody> body;
   EXPECT_EQ(DeformableBody::create(std::move(desc), &body), Status::Ok) << lastError();
   if (!body) return out;
-  Array<double> v(body->positions().size());
-  for (int32_t i = 0; i < body->nodeCount(); ++i) {
-    const Vec3 vi = spin.cross(RigidView::at(body->positions(), static_cast<size_t>(i)));
-    for (int k = 0; k < 3; ++k) v[3 * i + k] = vi[k];
-  }
-  EXPECT_EQ(body->setVelocities(v.data(), static_cast<int64_t>(v.size())), Status::Ok);
+  EXPECT_EQ(spinAbout(*body, spin, Vec3::Zero()), Status::Ok);
   auto tasks = TaskSystem::create(TaskHooks{}, 2);
   DeformableStepInput in;
   in.tasks = tasks.get();
@@ -206,12 +211,7 @@ TEST(RotatingPositionUpdate, APinnedNodeStaysWhereItIs) {
   const int32_t corner = 0;
   ASSERT_EQ(body->setPinned(&corner, 1, true), Status::Ok);
   const Vec3 pinned = RigidView::at(body->positions(), corner);
-  Array<double> v(body->positions().size());
-  for (int32_t i = 0; i < body->nodeCount(); ++i) {
-    const Vec3 vi = Vec3(0.0, 3.0, 0.0).cross(RigidView::at(body->positions(), static_cast<size_t>(i)) - pinned);
-    for (int k = 0; k < 3; ++k) v[3 * i + k] = vi[k];
-  }
-  ASSERT_EQ(body->setVelocities(v.data(), static_cast<int64_t>(v.size())), Status::Ok);
+  ASSERT_EQ(spinAbout(*body, Vec3(0.0, 3.0, 0.0), pinned), Status::Ok);
   auto tasks = TaskSystem::create(TaskHooks{}, 2);
   DeformableStepInput in;
   in.tasks = tasks.get();
