@@ -195,7 +195,7 @@ void World::setFluidLoads(DeformableHandle handle, DeformableBody& body) const {
     }
     for (const FluidColliderLoad& l : fluid.loads())
       if (l.index1 == handle.index1 && l.generation == (handle.generation | kDeformableSolidBit))
-        immersion.addLoad(l.vertexForces, l.load.addedMass, l.seen);
+        immersion.addLoad(l.vertexForces, l.load.addedMass, l.seen, l.drag);
   });
 }
 

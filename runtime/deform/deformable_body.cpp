@@ -124,6 +124,7 @@ Status DeformableBody::buildStepSystem(const DeformableDesc& desc) {
   VP_TRY(preconditioner_.build(desc.solver, pcMesh, matrix_));
   const size_t n3 = restX_.size();
   externalForce_.assign(n3, 0.0);
+  fluidDrag_.assign(n3, 0.0);
   force_.resize(n3);
   rhs_.resize(n3);
   vNext_.resize(n3);
@@ -255,6 +256,8 @@ void DeformableBody::applyFluidLoads(const Vec3& gravity) {
   Array<uint8_t> touching(static_cast<size_t>(nodeCount_), 0);
   for (const NodeContact& c : contacts_.contacts()) touching[c.node] = 1;
   immersion_.addNodeForces(x_, mass_, gravity, touching, &externalForce_);
+  std::fill(fluidDrag_.begin(), fluidDrag_.end(), 0.0);
+  immersion_.addNodeDrag(touching, &fluidDrag_, &externalForce_);
 }
 
 Status DeformableBody::applyForce(int32_t node, const Vec3& force) {
@@ -582,6 +585,7 @@ StepEnergy DeformableBody::solvedStepEnergy(TaskSystem& tasks, double h, const V
         sum.kineticEnd += 0.5 * m * vn[k] * vn[k];
         sum.gravity += h * m * gravity[k] * vn[k];
         sum.applied += (h * externalForce_[3 * i + k] + pair_.pendingImpulse[3 * i + k] + impulse[k]) * vn[k];
+        sum.applied -= h * fluidDrag_[3 * i + k] * vn[k] * vn[k];
       }
     }
     return sum;
@@ -621,6 +625,7 @@ void DeformableBody::abandonStep() {
   if (stepBegun_) restoreStepStart();
   stepBegun_ = false;
   std::fill(externalForce_.begin(), externalForce_.end(), 0.0);
+  std::fill(fluidDrag_.begin(), fluidDrag_.end(), 0.0);
 }
 
 void DeformableBody::step(const DeformableStepInput& in, ActorStats* stats) {
@@ -651,6 +656,7 @@ void DeformableBody::finishStep(const DeformableStepInput& in, bool reachedFloor
     updatePairFriction(*in.pairContacts, in.pairBody, in.dt, vNext_, solved, &pair_.friction, &pair_.cornerFriction);
   integrateAndGuard(in, reachedFloor, solved, stats);  // its energy passes are timed with the embedding
   std::fill(externalForce_.begin(), externalForce_.end(), 0.0);
+  std::fill(fluidDrag_.begin(), fluidDrag_.end(), 0.0);
   std::fill(pair_.pendingImpulse.begin(), pair_.pendingImpulse.end(), 0.0);
   updateRenderMesh(*in.tasks);
   timer.lap(Phase::Embed);
@@ -694,14 +700,15 @@ void DeformableBody::holdNodes(const DeformableStepInput& in) {
 double DeformableBody::massScale(double h) const { return 1.0 + h * desc_.material.massDamping; }
 
 void DeformableBody::assembleStepSystem(const DeformableStepInput& in) {
-  // (M (1 + h α) + (h β + h²) K) v' = M v + h (f + M g + f_ext), the stiffness part assembled.
+  // (M (1 + h α) + h C + (h β + h²) K) v' = M v + h (f + M g + f_ext), the stiffness part
+  // assembled; C the fluids' viscous drag.
   const double h = in.dt;
   const double scale = massScale(h);
   parallelFor(*in.tasks, nodeCount_, 1024, [&](int64_t begin, int64_t end) {
     for (int64_t i = begin; i < end; ++i) {
       double* diag = &matrix_.values[9 * static_cast<int64_t>(matrix_.diagonal[i])];
       const double m = mass_[i];
-      for (int k = 0; k < 3; ++k) diag[4 * k] += scale * m;
+      for (int k = 0; k < 3; ++k) diag[4 * k] += scale * m + h * fluidDrag_[3 * i + k];
       for (int k = 0; k < 3; ++k)
         rhs_[3 * i + k] = m * v_[3 * i + k] + h * (force_[3 * i + k] + m * in.gravity[k] + externalForce_[3 * i + k]);
       Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> inv(preconditioner_.inverseDiagonal(i));

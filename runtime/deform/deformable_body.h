@@ -159,7 +159,8 @@ class DeformableBody {
   std::shared_ptr<const PreparedCollider> fluidSurface() { return immersion_.surface(x_, v_); }
   SolidMotion rigidMotion() const { return FluidImmersion::rigidMotion(x_, v_, mass_); }
   FluidImmersion& immersion() { return immersion_; }
-  // Before its step: the fluids' loads set in immersion() act on the nodes during it.
+  // Before its step: the fluids' loads set in immersion() act on the nodes during it, their
+  // viscous drag on the nodes' new velocities.
   void applyFluidLoads(const Vec3& gravity);
 
   // The render mesh: the desc's, else the tet mesh's boundary; embedded in the tets and
@@ -269,6 +270,8 @@ class DeformableBody {
   int32_t nodeCount_ = 0;
   double lambda_ = 0.0, mu_ = 0.0;
   Array<double> restX_, x_, v_, mass_, externalForce_;
+  // Per node and axis, the fluids' viscous drag its next step solves implicitly (applyFluidLoads).
+  Array<double> fluidDrag_;
   double totalMass_ = 0.0;
   double elasticEnergyAtX_ = -1.0;  // elasticEnergy() at x_; < 0: not known (x_ or the material changed)
   int degree_ = 1;

@@ -1,6 +1,8 @@
 // A deformable's surface in the fluids and their loads on it (see fluid_immersion.h).
 #include "deform/fluid_immersion.h"
 
+#include <algorithm>
+
 #include "deform/rigid_view.h"
 
 namespace vp {
@@ -45,6 +47,7 @@ std::shared_ptr<const PreparedCollider> FluidImmersion::surface(const Array<doub
 void FluidImmersion::clearLoads() {
   forces_.assign(vertexNode_.size(), Vec3::Zero());
   hydrostaticForces_.assign(vertexNode_.size(), Vec3::Zero());
+  drag_ = VertexDrag{};
   addedMass_ = 0.0;
   reaction_ = spinReaction_ = Vec3::Zero();
   loaded_ = false;
@@ -57,8 +60,23 @@ bool FluidImmersion::addHydrostaticLoad(const Array<Vec3>& vertexForces) {
   return true;
 }
 
-bool FluidImmersion::addLoad(const Array<Vec3>& dynamicForces, double addedMass, const SolidAcceleration& seen) {
+bool FluidImmersion::addLoad(const Array<Vec3>& dynamicForces, double addedMass, const SolidAcceleration& seen,
+                             const VertexDrag& drag) {
   if (dynamicForces.size() != forces_.size() || !(addedMass >= 0.0)) return false;
+  if (!drag.empty()) {
+    const bool sized = drag.coefficient.size() == forces_.size() && drag.atRest.size() == forces_.size();
+    if (!sized || !std::all_of(drag.coefficient.begin(), drag.coefficient.end(),
+                               [](const Vec3& c) { return (c.array() >= 0.0).all(); }))
+      return false;
+    if (drag_.empty()) {
+      drag_.coefficient.assign(forces_.size(), Vec3::Zero());
+      drag_.atRest.assign(forces_.size(), Vec3::Zero());
+    }
+    for (size_t i = 0; i < forces_.size(); ++i) {
+      drag_.coefficient[i] += drag.coefficient[i];
+      drag_.atRest[i] += drag.atRest[i];
+    }
+  }
   for (size_t i = 0; i < forces_.size(); ++i) forces_[i] += dynamicForces[i];
   addedMass_ += addedMass;
   reaction_ += addedMass * seen.linear;
@@ -108,6 +126,18 @@ void FluidImmersion::addNodeForces(const Array<double>& x, const Array<double>& 
     const Vec3 rest = nodeVector(f, i) - mass[i] * (linear + angular.cross(r));
     const Vec3 out = rest / (1.0 + k) + mass[i] * (linearOut + angularOut.cross(r));
     for (int c = 0; c < 3; ++c) (*force)[3 * i + c] += out[c];
+  }
+}
+
+void FluidImmersion::addNodeDrag(const Array<uint8_t>& touching, Array<double>* drag, Array<double>* force) const {
+  if (drag_.empty()) return;
+  for (size_t v = 0; v < vertexNode_.size(); ++v) {
+    const int32_t node = vertexNode_[v];
+    if (touching[node]) continue;
+    for (int k = 0; k < 3; ++k) {
+      (*drag)[3 * node + k] += drag_.coefficient[v][k];
+      (*force)[3 * node + k] += drag_.atRest[v][k];
+    }
   }
 }
 

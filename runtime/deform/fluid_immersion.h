@@ -29,6 +29,11 @@
 // fluid's step saw (fluid/solids/solid_motion_history.h), with m_a a_seen summed over the
 // fluids and limited to the reaction the dynamic part shows (collide/solid_motion.h,
 // shownReaction); the rest is scaled by 1 / (1 + k) too.
+// In a viscous fluid the load also holds the viscous traction, a drag
+// (fluid/solids/viscous_traction.h): per node and axis a coefficient C that the body's
+// implicit step solves with its new velocity v', and the force at rest, f0 - C v' in all. It
+// carries no added-mass reaction and takes no part in the stabilization, which would scale it
+// down.
 #pragma once
 
 #include <cstdint>
@@ -39,6 +44,7 @@
 #include "core/allocator.h"
 #include "core/math_types.h"
 #include "core/status.h"
+#include "fluid/solids/surface_pressure_load.h"
 #include "geometry/surface_mesh.h"
 
 namespace vp {
@@ -58,7 +64,8 @@ class FluidImmersion {
   // whose vertex count is not this surface's is ignored and returns false).
   void clearLoads();
   bool addHydrostaticLoad(const Array<Vec3>& vertexForces);
-  bool addLoad(const Array<Vec3>& dynamicForces, double addedMass, const SolidAcceleration& seen);
+  bool addLoad(const Array<Vec3>& dynamicForces, double addedMass, const SolidAcceleration& seen,
+               const VertexDrag& drag = {});
   bool loaded() const { return loaded_; }
   // The surface's vertices at node positions x, and its outward triangles.
   Array<Eigen::Vector3d> vertices(const Array<double>& x) const;
@@ -72,6 +79,9 @@ class FluidImmersion {
   // there, pressed down by the liquid on its top.
   void addNodeForces(const Array<double>& x, const Array<double>& mass, const Vec3& gravity,
                      const Array<uint8_t>& touching, Array<double>* force) const;
+  // The viscous drag on the nodes not touching a collider (3 per node each): C added to `drag`,
+  // the force at rest to `force`.
+  void addNodeDrag(const Array<uint8_t>& touching, Array<double>* drag, Array<double>* force) const;
 
   // A body of nodes at x with velocities v and masses `mass` (3, 3 and 1 per node) as a rigid
   // body: its centre of mass's velocity and its angular momentum about it over its inertia.
@@ -82,6 +92,7 @@ class FluidImmersion {
   std::shared_ptr<PreparedCollider> surface_;
   Array<Eigen::Vector3d> positions_, velocities_;  // scratch
   Array<Vec3> forces_, hydrostaticForces_;  // per vertex, summed over the loads
+  VertexDrag drag_;                          // per vertex, summed over the loads; empty without any
   double addedMass_ = 0.0;
   // The sums over the loads of added mass times the linear and the angular accelerations seen.
   Vec3 reaction_ = Vec3::Zero(), spinReaction_ = Vec3::Zero();

@@ -40,6 +40,12 @@ bool anySolid(const FluidStepInput& input, const Which& which) {
   return std::any_of(input.colliders.begin(), input.colliders.end(), which);
 }
 
+// Adds a sub-step's per-vertex values to their mean over the step (sized at the first).
+void addMeanOverSubsteps(const Array<Vec3>& values, int substeps, Array<Vec3>* mean) {
+  if (mean->empty()) mean->assign(values.size(), Vec3::Zero());
+  for (size_t v = 0; v < mean->size(); ++v) (*mean)[v] += values[v] / substeps;
+}
+
 }  // namespace
 
 Status FluidActor::create(FluidDesc desc, TaskSystem& tasks, std::unique_ptr<FluidActor>* out) {
@@ -536,6 +542,7 @@ void FluidActor::planSubsteps() {
   work_.expectParts(st.substeps);
   st.loadSum.assign(st.input.colliders.size(), PressureLoad{});
   st.vertexForceSum.assign(st.input.colliders.size(), Array<Vec3>{});
+  st.dragSum.assign(st.input.colliders.size(), VertexDrag{});
   for (int sub = 0; sub < st.substeps; ++sub) queueSubstep(sub);
   job_.thenOnce(static_cast<int>(FluidSlice::Publish), [this] { publish(); });
 }
@@ -675,9 +682,11 @@ void FluidActor::addSubstepLoads() {
                           liquidPhi(), desc_.density, *fc.geometry, &surface, &weight);
       if (desc_.kinematicViscosity > 0.0)
         addViscousTraction(grid_, viscosity_, desc_.density, st.h, *fc.geometry, &surface);
-      Array<Vec3>& sum = st.vertexForceSum[c];
-      if (sum.empty()) sum.assign(surface.vertexForces.size(), Vec3::Zero());
-      for (size_t v = 0; v < sum.size(); ++v) sum[v] += surface.vertexForces[v] / st.substeps;
+      addMeanOverSubsteps(surface.vertexForces, st.substeps, &st.vertexForceSum[c]);
+      if (!surface.drag.empty()) {
+        addMeanOverSubsteps(surface.drag.coefficient, st.substeps, &st.dragSum[c].coefficient);
+        addMeanOverSubsteps(surface.drag.atRest, st.substeps, &st.dragSum[c].atRest);
+      }
       l = surface.total;
     }
     st.loadSum[c].force += l.force / st.substeps;
@@ -733,7 +742,8 @@ void FluidActor::publish() {
     for (size_t c = 0; c < st.input.colliders.size(); ++c)
       if (st.input.colliders[c].dynamic)
         shown_.loads.push_back(FluidColliderLoad{st.input.colliders[c].index1, st.input.colliders[c].generation,
-                                                 st.loadSum[c], std::move(st.vertexForceSum[c]), st.seen[c]});
+                                                 st.loadSum[c], std::move(st.vertexForceSum[c]), st.seen[c],
+                                                 std::move(st.dragSum[c])});
   }
   publishFields();
 }
@@ -832,7 +842,7 @@ FluidState FluidActor::saveState() const {
   s.kineticAtEnd = kineticAtEnd_;
   s.targetVolume = targetVolume_;
   for (const FluidColliderLoad& l : shown_.loads)
-    s.loads.push_back(FluidColliderLoadState{l.index1, l.generation, l.load, l.vertexForces, l.seen});
+    s.loads.push_back(FluidColliderLoadState{l.index1, l.generation, l.load, l.vertexForces, l.seen, l.drag});
   s.solidMotions = solidMotions_.lastStep();
   s.stepCount = stepCount_;
   s.lastStepSlices = lastStepSlices_;
@@ -870,7 +880,8 @@ void FluidActor::restoreState(FluidState&& s) {
   publishFields();
   shown_.loads.clear();
   for (FluidColliderLoadState& l : s.loads)
-    shown_.loads.push_back(FluidColliderLoad{l.index1, l.generation, l.load, std::move(l.vertexForces), l.seen});
+    shown_.loads.push_back(
+        FluidColliderLoad{l.index1, l.generation, l.load, std::move(l.vertexForces), l.seen, std::move(l.drag)});
   solidMotions_.restore(std::move(s.solidMotions));
   stepCount_ = s.stepCount;
   surfaceStep_ = ~uint64_t(0);

@@ -108,6 +108,8 @@ struct FluidColliderLoad {
   // The change of the solid's motion that the step saw (solids/solid_motion_history.h): the
   // load holds the fluid's reaction to it, -load.addedMass x seen.linear.
   SolidAcceleration seen;
+  // A deformable surface's in a viscous fluid: the traction's response to its motion.
+  VertexDrag drag;
 };
 
 // The liquid's free surface, oriented out of the liquid.
@@ -295,6 +297,7 @@ class FluidActor {
     std::vector<PressureLoad> loadSum;  // per input collider
     std::vector<SolidAcceleration> seen;  // per input collider
     std::vector<Array<Vec3>> vertexForceSum;  // per input collider (deforming surfaces only)
+    std::vector<VertexDrag> dragSum;           // per input collider (deforming surfaces only)
     std::vector<const PreparedCollider*> fractionColliders;  // the input's, with geometry
     SlabPasses fractionUpdate, surfaceFractionUpdate, cellWeightUpdate;
     SlabPasses forces;  // the sub-step's body forces

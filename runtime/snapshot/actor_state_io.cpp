@@ -142,6 +142,15 @@ void readVecsOfAnyCount(StateReader& in, Array<Vec3>* a, const char* what) {
   readVecElements(in, a, in.value<uint64_t>(), what);
 }
 
+// A fluid load's vertex drag (fluid/solids/surface_pressure_load.h): coefficients that are not
+// negative, and as many forces at rest.
+void readVecDrag(StateReader& in, VertexDrag* drag) {
+  readVecsOfAnyCount(in, &drag->coefficient, "a fluid load's vertex drag");
+  readVecs(in, &drag->atRest, drag->coefficient.size(), "a fluid load's vertex drag at rest");
+  for (const Vec3& c : drag->coefficient)
+    if (in.ok() && (c.array() < 0.0).any()) in.outOfRange("a fluid load's vertex drag");
+}
+
 // Arrays a step sizes on first use: empty, or of their full size.
 template <class A>
 void readEmptyOrFull(StateReader& in, A* a, uint64_t full, const char* what) {
@@ -279,6 +288,8 @@ void writeFluidState(StateWriter& out, const FluidState& s) {
     writeVecs(out, l.vertexForces);
     writeVec(out, l.seen.linear);
     writeVec(out, l.seen.angular);
+    writeVecs(out, l.drag.coefficient);
+    writeVecs(out, l.drag.atRest);
   }
   out.value(static_cast<uint64_t>(s.solidMotions.size()));
   for (const SolidMotionHistory::Entry& e : s.solidMotions) {
@@ -332,7 +343,7 @@ void readFluidState(StateReader& in, const FluidActor& fluid, FluidState* s) {
   const double scalars[] = {s->speedAtEnd, s->kineticAtEnd, s->targetVolume};
   in.requireFinite("fluid's speed, energy or volume", scalars, 3);
   const uint64_t loads = in.value<uint64_t>();
-  if (in.ok() && in.has(loads, 2 * sizeof(uint32_t) + 13 * sizeof(double))) {
+  if (in.ok() && in.has(loads, 2 * sizeof(uint32_t) + 13 * sizeof(double) + 3 * sizeof(uint64_t))) {
     s->loads.resize(static_cast<size_t>(loads));
     for (FluidColliderLoadState& l : s->loads) {
       l.index1 = in.value<uint32_t>();
@@ -345,6 +356,7 @@ void readFluidState(StateReader& in, const FluidActor& fluid, FluidState* s) {
       readVecsOfAnyCount(in, &l.vertexForces, "a fluid load's vertex forces");
       l.seen.linear = readVec(in, "a fluid load's solid acceleration");
       l.seen.angular = readVec(in, "a fluid load's solid acceleration");
+      readVecDrag(in, &l.drag);
     }
   }
   const uint64_t motions = in.value<uint64_t>();

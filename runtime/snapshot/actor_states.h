@@ -20,6 +20,7 @@
 #include "deform/pair_contacts.h"
 #include "fluid/solids/pressure_forces.h"
 #include "fluid/solids/solid_motion_history.h"
+#include "fluid/solids/surface_pressure_load.h"
 #include "frame_plan.h"
 
 namespace vp {
@@ -76,6 +77,7 @@ struct FluidColliderLoadState {
   PressureLoad load;
   Array<Vec3> vertexForces;  // a deformable surface's
   SolidAcceleration seen;
+  VertexDrag drag;  // a deformable surface's in a viscous fluid
 };
 
 struct FluidState {

@@ -4,6 +4,7 @@
 
 #include <cinttypes>
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
 
 namespace vp {
@@ -12,7 +13,7 @@ namespace {
 
 constexpr char kMagic[8] = {'V', 'P', 'S', 'T', 'A', 'T', 'E', '\0'};
 // Raised whenever what a payload holds, or its order, changes.
-constexpr uint32_t kFormatVersion = 12;
+constexpr uint32_t kFormatVersion = 13;
 constexpr uint32_t kByteOrderMark = 0x01020304u;
 
 struct Header {
@@ -24,6 +25,7 @@ struct Header {
   uint64_t payloadSize;
   uint64_t checksum;
 };
+static_assert(sizeof(Header) == kStateHeaderBytes && offsetof(Header, checksum) == kStateChecksumOffset);
 
 }  // namespace
 

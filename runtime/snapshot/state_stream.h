@@ -122,4 +122,7 @@ class StateReader {
 // The checksum of the format (64-bit FNV-1a).
 uint64_t stateChecksum(const uint8_t* data, size_t size);
 
+// Where the header ends (the payload begins) and where in it the payload's checksum lies.
+constexpr size_t kStateHeaderBytes = 40, kStateChecksumOffset = 32;
+
 }  // namespace vp

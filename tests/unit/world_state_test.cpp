@@ -6,11 +6,14 @@
 
 #include <cstdint>
 #include <cstring>
+#include <string>
+#include <algorithm>
 #include <memory>
 #include <vector>
 
 #include "../budget/tick_clock.h"
 #include "scene/scene_loader.h"
+#include "snapshot/state_stream.h"
 #include "world.h"
 
 namespace vp {
@@ -129,6 +132,42 @@ TEST(WorldState, AJellyAndTheDynamicBoxOnItContinueBitwise) {
 }
 
 TEST(WorldState, FluidsContinueBitwise) { checkRoundTrip(VP_TEST_DATA_DIR "/scenes/fluid_pair.json", 0.0, 20, 20); }
+
+// A jelly falling into a viscous liquid: the load its surface took from the liquid's last step,
+// the viscous drag included (fluid/solids/surface_pressure_load.h), is in the state.
+TEST(WorldState, AJellyInAViscousLiquidContinuesBitwise) {
+  checkRoundTrip(VP_TEST_DATA_DIR "/scenes/jelly_in_viscous_tank.json", 0.0, 20, 20);
+}
+
+// A negative viscous drag coefficient (a push that grows with the speed) cannot come from a
+// fluid's step; a buffer holding one, under a valid checksum, is refused and changes nothing.
+TEST(WorldState, ANegativeViscousDragIsRefused) {
+  SceneWorld scene(VP_TEST_DATA_DIR "/scenes/jelly_in_viscous_tank.json", 0.0);
+  scene.run(20);
+  const FluidActor& tank = *scene.world->fluid(scene.world->fluidHandles().front());
+  ASSERT_EQ(tank.loads().size(), 1u);
+  double coefficient = 0.0;
+  for (const Vec3& c : tank.loads().front().drag.coefficient) coefficient = std::max(coefficient, c.maxCoeff());
+  ASSERT_GT(coefficient, 0.0) << "no drag in the load: the test would prove nothing";
+  std::vector<uint8_t> state;
+  ASSERT_EQ(scene.world->saveState(&state), Status::Ok) << lastError();
+  std::vector<uint8_t> bad = state;
+  size_t found = 0;
+  for (size_t at = kStateHeaderBytes; at + sizeof coefficient <= bad.size(); ++at)
+    if (std::memcmp(bad.data() + at, &coefficient, sizeof coefficient) == 0) {
+      const double negative = -coefficient;
+      std::memcpy(bad.data() + at, &negative, sizeof negative);
+      ++found;
+    }
+  ASSERT_GT(found, 0u);
+  const uint64_t sum = stateChecksum(bad.data() + kStateHeaderBytes, bad.size() - kStateHeaderBytes);
+  std::memcpy(bad.data() + kStateChecksumOffset, &sum, sizeof sum);
+  EXPECT_EQ(scene.world->restoreState(bad.data(), bad.size()), Status::ParseError);
+  EXPECT_NE(std::string(lastError()).find("vertex drag is out of range"), std::string::npos) << lastError();
+  std::vector<uint8_t> after;
+  ASSERT_EQ(scene.world->saveState(&after), Status::Ok) << lastError();
+  EXPECT_EQ(after, state);
+}
 
 // Under a budget (tick clock: deterministic) fluid steps span frames; the save lands on one
 // (at frame 50 or the first after it with a fluid step in progress), then 50 frames more.

@@ -28,8 +28,19 @@
 
 namespace vp {
 
+// The viscous traction on a deforming surface (viscous_traction.h), kept apart from the
+// pressure's forces because it is a drag: per vertex and axis the drag coefficient C that the
+// fluid faces coupled to it put up (N s/m), and the force at rest. A vertex moving at v takes
+// atRest - C v, which at the velocity the fluid's step saw is what the step took from it; the
+// body solves it with its new velocity, as backward Euler takes a drag.
+struct VertexDrag {
+  Array<Vec3> coefficient, atRest;  // one each per surface vertex, or none
+  bool empty() const { return coefficient.empty(); }
+};
+
 struct SurfacePressureLoad {
   Array<Vec3> vertexForces;  // one per surface vertex (N)
+  VertexDrag drag;           // sized as vertexForces by addViscousTraction, else empty
   // The total force; torque about the origin; and the added mass: the fluid's density times
   // the body's volume times the wetted share of its surface (the area below the liquid).
   PressureLoad total;

@@ -27,8 +27,13 @@ void forEachExchangeNear(const MacGrid& grid, const ViscosityWorkspace& work, do
 
 void addViscousTraction(const MacGrid& grid, const ViscosityWorkspace& work, double density, double dt,
                         const PreparedCollider& surface, SurfacePressureLoad* load) {
-  forEachExchangeNear(grid, work, density, dt, surface, [&](const Vec3& x, double reach, int, const Vec3& force,
-                                                             double) {
+  VertexDrag& drag = load->drag;
+  if (drag.empty()) {
+    drag.coefficient.assign(surface.worldVertices.size(), Vec3::Zero());
+    drag.atRest.assign(surface.worldVertices.size(), Vec3::Zero());
+  }
+  forEachExchangeNear(grid, work, density, dt, surface, [&](const Vec3& x, double reach, int axis, const Vec3& force,
+                                                             double faceDrag) {
     int triangle = -1;
     Vec3 p;
     detail::meshClosestPoint(surface, x, &triangle, &p);
@@ -36,7 +41,13 @@ void addViscousTraction(const MacGrid& grid, const ViscosityWorkspace& work, dou
     const Eigen::Vector3i& t = surface.triangles[static_cast<size_t>(triangle)];
     const Vec3 weights =
         barycentricWeights(p, surface.worldVertices[t[0]], surface.worldVertices[t[1]], surface.worldVertices[t[2]]);
-    for (int k = 0; k < 3; ++k) load->vertexForces[static_cast<size_t>(t[k])] += weights[k] * force;
+    for (int k = 0; k < 3; ++k) {
+      // The face's drag on p varies as -faceDrag times p's velocity, sum_b w_b v_b: vertex k's
+      // share lumped by rows (w_k faceDrag), which keeps a translation's drag whole.
+      const size_t v = static_cast<size_t>(t[k]);
+      drag.coefficient[v][axis] += weights[k] * faceDrag;
+      drag.atRest[v][axis] += weights[k] * (force[axis] + faceDrag * surface.vertexVelocities[v][axis]);
+    }
     load->total.force += force;
     load->total.torque += p.cross(force);
   });

@@ -11,20 +11,26 @@
 // A face within kReachCells cells of the body gives it its share; a face farther away exchanged
 // with another solid.
 //   Deforming surface: the share goes to the surface point nearest the face's centre, split
-//   among that triangle's vertices by their barycentric weights (the nodes carry it).
+//   among that triangle's vertices by their barycentric weights (the nodes carry it), as a
+//   drag apart from the pressure's forces (SurfacePressureLoad::drag).
 //   Rigid collider: the share acts at the face's centre, where the fluid's momentum changed, so
 //   the body takes the fluid's change of angular momentum exactly too. Which faces are within
 //   reach is read from signedDistanceBound, a lower bound outside a convex hull: near a hull's
 //   corners a face a little farther than the reach counts too.
-// The traction acts on a rigid body explicitly, held over the fluid's step. A body light
-// against the drag of the faces it couples to (D T > m, D the drag a unit of its velocity
-// meets, T the time the load acts) would then overshoot the liquid's velocity each step, and
-// further each time (docs/choices.md has the light ball that did). So a rigid body takes what
-// backward Euler gives a drag -D (v - v_liquid) over T, m (m + D T)^-1 of the force and I (I + D_w T)^-1 of the torque, which never reverses its
-// motion relative to the liquid; D sums, over the faces each axis's force comes from, rho h^3
-// times their coupling to the solids over dt (ViscosityWorkspace::solidCoupling), D_w the same
-// with each face's arm, sum D_f (r x e_a)(r x e_a)^T: bounds on the drag, since the liquid's
-// own response to the body lowers it.
+// Held explicitly over the fluid's step, the traction would make a body light against the
+// drag of the faces it couples to (D T > m, D the drag a unit of its velocity meets, T the
+// time the load acts) overshoot the liquid's velocity each step, and further each time
+// (docs/choices.md has the light balls that did). So a body takes it as backward Euler takes a
+// drag -D (v - v_liquid), each face's D_f being rho h^3 times its coupling to the solids over
+// dt (ViscosityWorkspace::solidCoupling), a bound on the drag (the liquid's own response to the
+// body lowers it):
+//   Deforming surface: per vertex and axis the drag C of its faces, which the body's implicit
+//   step solves with its new velocity v': f(v') = f + C (v_seen - v'), f the share at the
+//   velocity v_seen the step saw. Apart from the pressure's forces, it takes no part in their
+//   added-mass stabilization (deform/fluid_immersion.h), which would scale it down.
+//   Rigid collider: m (m + D T)^-1 of the force per axis and I (I + D_w T)^-1 of the torque,
+//   D summed over the faces each axis's force comes from, D_w the same with each face's arm,
+//   sum D_f (r x e_a)(r x e_a)^T; T the fluid's step.
 // Limit: a face within reach of the body and of another solid gives the body both.
 #pragma once
 
@@ -43,8 +49,8 @@ namespace vp {
 constexpr double kReachCells = 1.0 + 0.70710678118654757;
 
 // `surface` a deforming surface; `work` the viscous step's workspace after it solved (nothing
-// is added otherwise); dt the time step it took. Adds to load->vertexForces (sized to the
-// surface's vertices) and to load->total's force and torque (about the origin).
+// is added otherwise); dt the time step it took. Adds to load->drag (sized to the surface's
+// vertices when empty) and to load->total's force and torque (about the origin).
 void addViscousTraction(const MacGrid& grid, const ViscosityWorkspace& work, double density, double dt,
                         const PreparedCollider& surface, SurfacePressureLoad* load);
 
