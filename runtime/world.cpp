@@ -352,13 +352,13 @@ std::vector<Collider*> World::prepareRigidLoads(double dt) {
   loaded.erase(std::unique(loaded.begin(), loaded.end()), loaded.end());
   for (Collider* c : loaded) c->clearFluidLoad();
   forEachFluidLoad([](Collider& c, const FluidColliderLoad& l) {
-    c.addFluidLoad(l.load.force, l.load.torque, l.load.addedMass, l.seen);
+    c.addFluidLoad(l.load.force, l.load.torque, l.load.addedMass, l.seen, l.rigidDrag);
   });
   for (const Hydrostatic& h : hydrostatics) h.collider->addHydrostaticLoad(h.load.force, h.load.torque);
   colliders_.forEach([](ColliderHandle, Collider& c) { c.trackVelocity(); });
   for (Collider* c : loaded) {
-    c->prepareFluidLoad(config_.gravity);
     c->prepareContactLoad(dt);  // the deformables' pushes of the last frame
+    c->prepareFluidLoad(config_.gravity, dt);
   }
   return loaded;
 }

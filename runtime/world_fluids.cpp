@@ -52,11 +52,9 @@ std::vector<Filtered<FluidCollider>> World::fluidSolids(const Deadline& frame, S
   if (fluids_.size() == 0) return solids;
   colliders_.forEach([&](ColliderHandle h, const Collider& c) {
     if (!c.geometry()) return;
-    RigidInertia inertia;
-    if (!c.massProperties(&inertia.mass, &inertia.inertia)) inertia = RigidInertia{};
     solids.push_back({c.filter(), FluidCollider{h.index1, h.generation, c.geometry(), c.sharedGeometry(),
                                                 c.bodyType() == BodyType::Dynamic,
-                                                SolidMotion{c.linearVelocity(), c.angularVelocity()}, inertia}});
+                                                SolidMotion{c.linearVelocity(), c.angularVelocity()}}});
   });
   // A deformable that no fluid both reaches and sees is left out rather than kept up to date
   // for nothing.

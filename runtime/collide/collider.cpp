@@ -2,6 +2,8 @@
 
 #include <btBulletDynamicsCommon.h>
 
+#include <Eigen/LU>
+
 #include "collide/bullet_doubles.h"
 #include "core/log.h"
 
@@ -93,8 +95,10 @@ Collider::Collider(ColliderDesc desc) : desc_(std::move(desc)), shape_(buildBull
 Collider::~Collider() = default;
 
 
-void Collider::addFluidLoad(const Vec3& force, const Vec3& torque, double addedMass, const SolidAcceleration& seen) {
+void Collider::addFluidLoad(const Vec3& force, const Vec3& torque, double addedMass, const SolidAcceleration& seen,
+                            const RigidDrag& drag) {
   if (desc_.bodyType != BodyType::Dynamic) return;
+  fluidDrag_ += drag;
   fluidForce_ += force;
   fluidTorque_ += torque;
   fluidAddedMass_ += addedMass;
@@ -123,29 +127,44 @@ void Collider::trackVelocity() {
 // body's motion that the fluid's step saw: F = F_rest - m_a a_seen
 // (fluid/solids/solid_motion_history.h). Applied explicitly to a body lighter than its added
 // mass m_a, that reaction overshoots every step and the motion blows up (the added-mass
-// instability of partitioned coupling). Moving m_a to the left-hand side,
-//     (m + m_a) a = m g + F + m_a a_seen,
+// instability of partitioned coupling). Moving m_a to the left-hand side, with F_o the other
+// forces on the body (the host's, the deformables' pushes),
+//     (m + m_a) a = m g + F_o + F + m_a a_seen,
 // is unconditionally stable for this model and changes nothing at rest (a_seen = 0 and
-// F = -m g give a = 0). Bullet integrates m a = m g + F_applied, so
-//     F_applied = m / (m + m_a) (F + m_a (a_seen - g)),
+// F = -m g - F_o give a = 0). Bullet integrates m a = m g + F_o + F_applied, so
+//     F_applied = m / (m + m_a) (F + m_a (a_seen - g - F_o / m)),
 // with m_a a_seen summed over the fluids and limited to the reaction the dynamic part shows
 // (solid_motion.h, shownReaction). Rotation has the same problem (a flat floating box
 // rolls itself over without it); its added inertia is taken as the body's own inertia I
 // scaled by k = m_a / m, which gives
-//     tau_applied = (tau + k I alpha_seen) / (1 + k).
+//     tau_applied = (tau + k I alpha_seen - k tau_o) / (1 + k).
 // Except for a sphere: pressure acts along its normals, through its centre, so the pressure
 // exerts no torque on it and it has no added inertia (a viscous liquid's traction turns it,
 // fluid/solids/viscous_traction.h, and takes no added inertia either). The model would still feed k/(1+k) of
 // every spin change back as torque the next step: a spin given by a contact (a paddle's
 // friction) came back tripled in all, and a floating ball pushed by a paddle was spun up and
 // rolled out of its tank.
-void Collider::prepareFluidLoad(const Vec3& gravity) {
+// A viscous fluid's drag (collide/solid_motion.h, RigidDrag: F_0 - D v and tau_0 - D_w w) is
+// solved with the body's velocities at the end of the step, over the step's dt = T, with the
+// other forces the body takes (gravity, the host's and the deformables' pushes, F_o and tau_o):
+//     (m + m_a + D T) a = m g + F_o + F + m_a a_seen + F_0 - D v,
+// per axis, so that a light body in a thick liquid never overshoots and its terminal velocity
+// is (m g + F_o + F + F_0) / D, whatever its mass; Bullet adding m g + F_o itself,
+//     F_applied = m / (m + m_a + D T) (F + m_a (a_seen - g) + F_0 - D v - D T g - (m_a + D T) F_o / m),
+// and for the spin, with I^-1 the world's inverse inertia (which a locked axis leaves singular),
+//     ((1 + k) 1 + T D_w I^-1) tau_applied = tau + k I alpha_seen + tau_0 - D_w w - (k 1 + T D_w I^-1) tau_o.
+// The other forces take the added mass (held steady against the fluid's drag, they would
+// otherwise need it to push back (1 + k) times as hard). Impulses
+// (vpColliderApplyImpulse, Bullet's contacts) change the velocity outside these sums; at rest on
+// a floor the drag's share of the weight, D T / (m + m_a + D T), is taken off the body's push on
+// it.
+void Collider::prepareFluidLoad(const Vec3& gravity, double dt) {
   if (desc_.bodyType != BodyType::Dynamic) return;
   const double inverseMass = body_->getInvMass();
   if (!(inverseMass > 0.0)) return;
   const double m = 1.0 / inverseMass, ma = fluidAddedMass_;
   const Vec3 reaction = shownReaction(fluidReaction_, fluidForce_);
-  appliedFluidForce_ = m / (m + ma) * (fluidForce_ + hydrostaticForce_ + reaction - ma * gravity);
+  const Vec3 pressureForce = fluidForce_ + hydrostaticForce_ + reaction - ma * gravity;
   const bool sphere = desc_.shape.type == ShapeType::Sphere;
   const double k = sphere ? 0.0 : ma / m;
   const Vec3 kAlpha = sphere ? Vec3::Zero() : Vec3(fluidSpinReaction_ / m);
@@ -155,7 +174,30 @@ void Collider::prepareFluidLoad(const Vec3& gravity) {
       std::abs(invInertia.determinant()) > 0 ? invInertia.inverse() * bt(kAlpha) : btVector3(0, 0, 0);
   const Vec3 spinReaction =
       shownReaction(Vec3(inertiaTimesKAlpha.x(), inertiaTimesKAlpha.y(), inertiaTimesKAlpha.z()), fluidTorque_);
-  appliedFluidTorque_ = (fluidTorque_ + hydrostaticTorque_ + spinReaction) / (1.0 + k);
+  const Vec3 pressureTorque = fluidTorque_ + hydrostaticTorque_ + spinReaction;
+  const RigidDrag& drag = fluidDrag_;
+  const Vec3 otherForce = hostForce_ + contactForce_;
+  const Vec3 otherTorque = hostTorque_ + contactMomentRate_ - pose().position.cross(contactForce_);
+  if (drag.linear.isZero() && drag.angular.isZero()) {
+    appliedFluidForce_ = m / (m + ma) * (pressureForce - ma * otherForce / m);
+    appliedFluidTorque_ = (pressureTorque - k * otherTorque) / (1.0 + k);
+    return;
+  }
+  const Vec3 velocity = linearVelocity();
+  for (int a = 0; a < 3; ++a) {
+    const double dragT = drag.linear[a] * dt;
+    appliedFluidForce_[a] = m / (m + ma + dragT) *
+                            (pressureForce[a] + drag.forceAtRest[a] - drag.linear[a] * velocity[a] -
+                             dragT * gravity[a] - (ma + dragT) * otherForce[a] / m);
+  }
+  Mat3 inverseInertia;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) inverseInertia(r, c) = invInertia[r][c];
+  const Mat3 dragTOverInertia = dt * drag.angular * inverseInertia;
+  const Mat3 resisted = (1.0 + k) * Mat3::Identity() + dragTOverInertia;
+  appliedFluidTorque_ = resisted.partialPivLu().solve(pressureTorque + drag.torqueAtRest -
+                                                      drag.angular * angularVelocity() -
+                                                      (k * Mat3::Identity() + dragTOverInertia) * otherTorque);
 }
 
 void Collider::applyExternalLoads() {
@@ -262,6 +304,7 @@ void Collider::clearFluidLoad() {
   hydrostaticForce_ = hydrostaticTorque_ = Vec3::Zero();
   fluidReaction_ = fluidSpinReaction_ = Vec3::Zero();
   fluidAddedMass_ = 0.0;
+  fluidDrag_ = RigidDrag{};
 }
 
 void Collider::syncGeometry() {

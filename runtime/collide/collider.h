@@ -77,15 +77,17 @@ class Collider {
   void syncGeometry();
 
   // Loads from the fluids: the dynamic part of a fluid step's (force, torque about the body's
-  // origin, the added mass: the fluid that has to accelerate with the body, and the change of
-  // the body's motion that the step saw, fluid/solids/solid_motion_history.h), and the
-  // hydrostatic part at the body's pose now. Applied on every Bullet sub-step of the next world
-  // step, then cleared. Dynamic bodies only; others ignore them.
-  void addFluidLoad(const Vec3& force, const Vec3& torque, double addedMass, const SolidAcceleration& seen);
+  // origin, the added mass: the fluid that has to accelerate with the body, the change of the
+  // body's motion that the step saw, fluid/solids/solid_motion_history.h, and a viscous
+  // fluid's drag), and the hydrostatic part at the body's pose now. Applied on every Bullet
+  // sub-step of the next world step, then cleared. Dynamic bodies only; others ignore them.
+  void addFluidLoad(const Vec3& force, const Vec3& torque, double addedMass, const SolidAcceleration& seen,
+                    const RigidDrag& drag = {});
   void addHydrostaticLoad(const Vec3& force, const Vec3& torque);
-  // Once per world step, before its sub-steps: turns the accumulated load into the force
-  // Bullet applies, stabilized for the added mass (collider.cpp says how).
-  void prepareFluidLoad(const Vec3& gravity);
+  // Once per world step of dt, before its sub-steps and after prepareContactLoad: turns the
+  // accumulated load into the force Bullet applies, stabilized for the added mass and the drag
+  // (collider.cpp says how).
+  void prepareFluidLoad(const Vec3& gravity, double dt);
   // Before each sub-step (Bullet clears forces after each one): the fluid's load and the host's.
   void applyExternalLoads();
   void clearFluidLoad();
@@ -121,6 +123,7 @@ class Collider {
   Vec3 hydrostaticForce_ = Vec3::Zero(), hydrostaticTorque_ = Vec3::Zero();
   Vec3 appliedFluidForce_ = Vec3::Zero(), appliedFluidTorque_ = Vec3::Zero();
   double fluidAddedMass_ = 0.0;
+  RigidDrag fluidDrag_;
   // The fluid's reactions to the motion changes their steps saw: the sums of added mass times
   // the linear and the angular accelerations.
   Vec3 fluidReaction_ = Vec3::Zero(), fluidSpinReaction_ = Vec3::Zero();

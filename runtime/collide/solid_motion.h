@@ -15,11 +15,21 @@ struct SolidMotion {
   Vec3 velocity = Vec3::Zero(), spin = Vec3::Zero();
 };
 
-// A rigid body's mass and its inertia about its centre of mass in the world frame; mass 0
-// where the solid is no dynamic rigid body.
-struct RigidInertia {
-  double mass = 0.0;
-  Mat3 inertia = Mat3::Zero();
+// A drag on a rigid body, linear in its motion: at velocity v and spin w it is
+// forceAtRest - linear v (per axis) and torqueAtRest - angular w about its centre of mass (a
+// viscous fluid's traction, fluid/solids/viscous_traction.h). The body solves it with its new
+// motion (collide/collider.cpp).
+struct RigidDrag {
+  Vec3 linear = Vec3::Zero();    // N s/m, per axis
+  Mat3 angular = Mat3::Zero();   // N m s, symmetric, positive semi-definite
+  Vec3 forceAtRest = Vec3::Zero(), torqueAtRest = Vec3::Zero();
+  RigidDrag& operator+=(const RigidDrag& o) {
+    linear += o.linear;
+    angular += o.angular;
+    forceAtRest += o.forceAtRest;
+    torqueAtRest += o.torqueAtRest;
+    return *this;
+  }
 };
 
 // Rates of change of a SolidMotion (m/s², rad/s²).

@@ -46,6 +46,11 @@ void addMeanOverSubsteps(const Array<Vec3>& values, int substeps, Array<Vec3>* m
   for (size_t v = 0; v < mean->size(); ++v) (*mean)[v] += values[v] / substeps;
 }
 
+// A sub-step's share of a rigid body's drag over the step.
+RigidDrag meanShare(const RigidDrag& d, int substeps) {
+  return RigidDrag{d.linear / substeps, d.angular / substeps, d.forceAtRest / substeps, d.torqueAtRest / substeps};
+}
+
 }  // namespace
 
 Status FluidActor::create(FluidDesc desc, TaskSystem& tasks, std::unique_ptr<FluidActor>* out) {
@@ -543,6 +548,7 @@ void FluidActor::planSubsteps() {
   st.loadSum.assign(st.input.colliders.size(), PressureLoad{});
   st.vertexForceSum.assign(st.input.colliders.size(), Array<Vec3>{});
   st.dragSum.assign(st.input.colliders.size(), VertexDrag{});
+  st.rigidDragSum.assign(st.input.colliders.size(), RigidDrag{});
   for (int sub = 0; sub < st.substeps; ++sub) queueSubstep(sub);
   job_.thenOnce(static_cast<int>(FluidSlice::Publish), [this] { publish(); });
 }
@@ -673,9 +679,11 @@ void FluidActor::addSubstepLoads() {
     if (fc.geometry->vertexVelocities.empty()) {
       l = pressureLoadOnCollider(grid_, fractions_, pressure_.poisson, pressure_.pressure.data(), desc_.density,
                                  *fc.geometry, fc.geometry->shape.translation, &weight);
-      if (desc_.kinematicViscosity > 0.0)
-        addViscousTractionOnCollider(grid_, viscosity_, desc_.density, st.h, *fc.geometry,
-                                     fc.geometry->shape.translation, fc.inertia, st.input.dt, &l);
+      if (desc_.kinematicViscosity > 0.0) {
+        RigidDrag drag;
+        addViscousTractionOnCollider(grid_, viscosity_, desc_.density, st.h, *fc.geometry, &drag);
+        st.rigidDragSum[c] += meanShare(drag, st.substeps);
+      }
     } else {
       SurfacePressureLoad surface;
       surfacePressureLoad(*st.input.tasks, grid_, fractions_, pressure_.poisson, pressure_.pressure.data(),
@@ -743,7 +751,7 @@ void FluidActor::publish() {
       if (st.input.colliders[c].dynamic)
         shown_.loads.push_back(FluidColliderLoad{st.input.colliders[c].index1, st.input.colliders[c].generation,
                                                  st.loadSum[c], std::move(st.vertexForceSum[c]), st.seen[c],
-                                                 std::move(st.dragSum[c])});
+                                                 std::move(st.dragSum[c]), st.rigidDragSum[c]});
   }
   publishFields();
 }
@@ -842,7 +850,8 @@ FluidState FluidActor::saveState() const {
   s.kineticAtEnd = kineticAtEnd_;
   s.targetVolume = targetVolume_;
   for (const FluidColliderLoad& l : shown_.loads)
-    s.loads.push_back(FluidColliderLoadState{l.index1, l.generation, l.load, l.vertexForces, l.seen, l.drag});
+    s.loads.push_back(
+        FluidColliderLoadState{l.index1, l.generation, l.load, l.vertexForces, l.seen, l.drag, l.rigidDrag});
   s.solidMotions = solidMotions_.lastStep();
   s.stepCount = stepCount_;
   s.lastStepSlices = lastStepSlices_;
@@ -881,7 +890,8 @@ void FluidActor::restoreState(FluidState&& s) {
   shown_.loads.clear();
   for (FluidColliderLoadState& l : s.loads)
     shown_.loads.push_back(
-        FluidColliderLoad{l.index1, l.generation, l.load, std::move(l.vertexForces), l.seen, std::move(l.drag)});
+        FluidColliderLoad{l.index1, l.generation, l.load, std::move(l.vertexForces), l.seen, std::move(l.drag),
+                          l.rigidDrag});
   solidMotions_.restore(std::move(s.solidMotions));
   stepCount_ = s.stepCount;
   surfaceStep_ = ~uint64_t(0);

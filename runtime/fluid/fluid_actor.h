@@ -85,7 +85,6 @@ struct FluidCollider {
   std::shared_ptr<const PreparedCollider> keep;
   bool dynamic = false;  // receives pressure loads when two-way coupling is on
   SolidMotion motion;    // the solid's motion as a rigid body's now (solids/solid_motion_history.h)
-  RigidInertia inertia = {};  // a dynamic rigid body's, for its viscous traction (solids/viscous_traction.h)
 };
 
 struct FluidStepInput {
@@ -108,8 +107,10 @@ struct FluidColliderLoad {
   // The change of the solid's motion that the step saw (solids/solid_motion_history.h): the
   // load holds the fluid's reaction to it, -load.addedMass x seen.linear.
   SolidAcceleration seen;
-  // A deformable surface's in a viscous fluid: the traction's response to its motion.
+  // The viscous traction (solids/viscous_traction.h), apart from the pressure's load: a
+  // deformable surface's on its vertices, a rigid body's on the whole.
   VertexDrag drag;
+  RigidDrag rigidDrag;
 };
 
 // The liquid's free surface, oriented out of the liquid.
@@ -298,6 +299,7 @@ class FluidActor {
     std::vector<SolidAcceleration> seen;  // per input collider
     std::vector<Array<Vec3>> vertexForceSum;  // per input collider (deforming surfaces only)
     std::vector<VertexDrag> dragSum;           // per input collider (deforming surfaces only)
+    std::vector<RigidDrag> rigidDragSum;       // per input collider (rigid ones only)
     std::vector<const PreparedCollider*> fractionColliders;  // the input's, with geometry
     SlabPasses fractionUpdate, surfaceFractionUpdate, cellWeightUpdate;
     SlabPasses forces;  // the sub-step's body forces

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include <Eigen/Eigenvalues>
+
 #include "deform/deformable_body.h"
 #include "fluid/fluid_actor.h"
 
@@ -151,6 +153,30 @@ void readVecDrag(StateReader& in, VertexDrag* drag) {
     if (in.ok() && (c.array() < 0.0).any()) in.outOfRange("a fluid load's vertex drag");
 }
 
+// A fluid load's drag on a rigid body (collide/solid_motion.h): per-axis coefficients that are
+// not negative, a symmetric positive semi-definite angular one (to round-off).
+void writeRigidDrag(StateWriter& out, const RigidDrag& d) {
+  writeVec(out, d.linear);
+  out.doubles(d.angular.data(), 9);
+  writeVec(out, d.forceAtRest);
+  writeVec(out, d.torqueAtRest);
+}
+
+RigidDrag readRigidDrag(StateReader& in) {
+  RigidDrag d;
+  d.linear = readVec(in, "a fluid load's rigid drag");
+  in.doubles(d.angular.data(), 9);
+  in.requireFinite("a fluid load's rigid drag", d.angular.data(), 9);
+  d.forceAtRest = readVec(in, "a fluid load's rigid drag");
+  d.torqueAtRest = readVec(in, "a fluid load's rigid drag");
+  if (!in.ok()) return d;
+  const double tolerance = 1e-12 * d.angular.cwiseAbs().maxCoeff();
+  const bool semiDefinite = (d.angular - d.angular.transpose()).cwiseAbs().maxCoeff() <= tolerance &&
+                            Eigen::SelfAdjointEigenSolver<Mat3>(d.angular).eigenvalues().minCoeff() >= -tolerance;
+  if ((d.linear.array() < 0.0).any() || !semiDefinite) in.outOfRange("a fluid load's rigid drag");
+  return d;
+}
+
 // Arrays a step sizes on first use: empty, or of their full size.
 template <class A>
 void readEmptyOrFull(StateReader& in, A* a, uint64_t full, const char* what) {
@@ -290,6 +316,7 @@ void writeFluidState(StateWriter& out, const FluidState& s) {
     writeVec(out, l.seen.angular);
     writeVecs(out, l.drag.coefficient);
     writeVecs(out, l.drag.atRest);
+    writeRigidDrag(out, l.rigidDrag);
   }
   out.value(static_cast<uint64_t>(s.solidMotions.size()));
   for (const SolidMotionHistory::Entry& e : s.solidMotions) {
@@ -343,7 +370,7 @@ void readFluidState(StateReader& in, const FluidActor& fluid, FluidState* s) {
   const double scalars[] = {s->speedAtEnd, s->kineticAtEnd, s->targetVolume};
   in.requireFinite("fluid's speed, energy or volume", scalars, 3);
   const uint64_t loads = in.value<uint64_t>();
-  if (in.ok() && in.has(loads, 2 * sizeof(uint32_t) + 13 * sizeof(double) + 3 * sizeof(uint64_t))) {
+  if (in.ok() && in.has(loads, 2 * sizeof(uint32_t) + 31 * sizeof(double) + 3 * sizeof(uint64_t))) {
     s->loads.resize(static_cast<size_t>(loads));
     for (FluidColliderLoadState& l : s->loads) {
       l.index1 = in.value<uint32_t>();
@@ -357,6 +384,7 @@ void readFluidState(StateReader& in, const FluidActor& fluid, FluidState* s) {
       l.seen.linear = readVec(in, "a fluid load's solid acceleration");
       l.seen.angular = readVec(in, "a fluid load's solid acceleration");
       readVecDrag(in, &l.drag);
+      l.rigidDrag = readRigidDrag(in);
     }
   }
   const uint64_t motions = in.value<uint64_t>();

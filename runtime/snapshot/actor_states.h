@@ -77,7 +77,8 @@ struct FluidColliderLoadState {
   PressureLoad load;
   Array<Vec3> vertexForces;  // a deformable surface's
   SolidAcceleration seen;
-  VertexDrag drag;  // a deformable surface's in a viscous fluid
+  VertexDrag drag;      // a deformable surface's in a viscous fluid
+  RigidDrag rigidDrag;  // a rigid body's in a viscous fluid
 };
 
 struct FluidState {

@@ -13,7 +13,7 @@ namespace {
 
 constexpr char kMagic[8] = {'V', 'P', 'S', 'T', 'A', 'T', 'E', '\0'};
 // Raised whenever what a payload holds, or its order, changes.
-constexpr uint32_t kFormatVersion = 13;
+constexpr uint32_t kFormatVersion = 14;
 constexpr uint32_t kByteOrderMark = 0x01020304u;
 
 struct Header {

@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <memory>
 
+#include <Eigen/Eigenvalues>
+
 #include "fluid/solids/face_fraction_field.h"
 #include "fluid/solids/viscous_traction.h"
 #include "fluid/viscosity.h"
@@ -59,8 +61,14 @@ TEST(FluidViscousTraction, ARigidBodyTakesMinusWhatTheFluidsViscousStepTookLinea
           angular += (grid.faceCentre(a, i, j, k) - centre).cross(p);
         }
   }
+  RigidDrag drag;
+  addViscousTractionOnCollider(grid, work, density, dt, ball, &drag);
+  // The drag at the motion the step saw.
   PressureLoad load;
-  addViscousTractionOnCollider(grid, work, density, dt, ball, centre, RigidInertia{}, dt, &load);
+  load.force = drag.forceAtRest - drag.linear.cwiseProduct(velocity);
+  load.torque = drag.torqueAtRest - drag.angular * spin;
+  EXPECT_TRUE((drag.linear.array() > 0.0).all());
+  EXPECT_GE(Eigen::SelfAdjointEigenSolver<Mat3>(drag.angular).eigenvalues().minCoeff(), 0.0);
   std::printf("fluid momentum %.6g %.6g %.6g, angular %.6g %.6g %.6g; ball impulse %.6g %.6g %.6g, angular "
               "%.6g %.6g %.6g\n",
               momentum.x(), momentum.y(), momentum.z(), angular.x(), angular.y(), angular.z(), load.force.x() * dt,
@@ -141,6 +149,46 @@ TEST(FluidViscousTraction, ALightBallInAThickLiquidSpinsAndSlowsDownWithoutOvers
               last.speed / speed);
   EXPECT_LT(last.spin, 0.1 * spin);
   EXPECT_LT(last.speed, 0.1 * speed);
+}
+
+// A ball of R = 0.1 m pushed by a steady host force of 5 N through a still liquid of nu = 0.05
+// (Reynolds number below 1), zero gravity: its speed along the push, the mean over frames 60-89.
+double terminalSpeed(double density) {
+  const double radius = 0.1, force = 5.0;
+  FluidHandle fluid;
+  std::unique_ptr<World> world = testutil::worldWithOpenTank(24, 0.85, 1e-8, &fluid, 0.05);
+  if (!world) return 0.0;
+  EXPECT_EQ(world->setGravity(Vec3::Zero()), Status::Ok);
+  ColliderDesc d = ballInTheTank(density, radius, 0.0, 0.0);
+  d.linearDamping = 0.0;
+  d.pose.position.x() = 0.35;
+  ColliderHandle ball;
+  EXPECT_EQ(world->createCollider(d, &ball), Status::Ok) << lastError();
+  double sum = 0.0;
+  for (int s = 0; s < 90; ++s) {
+    world->collider(ball)->addHostLoad(Vec3(force, 0.0, 0.0), Vec3::Zero());
+    EXPECT_EQ(world->step(1.0 / 60.0), Status::Ok);
+    if (s >= 60) sum += world->collider(ball)->linearVelocity().x() / 30.0;
+  }
+  return sum;
+}
+
+// At its terminal speed the drag balances the push, whatever the ball's mass: a light ball and
+// a heavy one move alike. Stokes' drag 6 pi mu R v of an unbounded liquid is a lower bound on
+// the drag here (the tank's walls and the no-slip condition a cell out add to it), so the speed
+// is at most F / (6 pi mu R), and no less than half of it (walls 2.5 radii away). While the
+// stabilizations scaled the traction down by 1 + (m_a + D T) / m, the light ball outran
+// Stokes' speed many times over (docs/choices.md).
+TEST(FluidViscousTraction, APushedBallsTerminalSpeedIsStokesAndDoesNotDependOnItsMass) {
+  const double mu = 1000.0 * 0.05, stokes = 5.0 / (6.0 * M_PI * mu * 0.1);
+  const double light = terminalSpeed(200.0), heavy = terminalSpeed(2000.0);
+  std::printf("terminal speed of a ball pushed with 5 N: density 200 %.5f, 2000 %.5f m/s (Stokes %.5f)\n", light,
+              heavy, stokes);
+  EXPECT_NEAR(light, heavy, 0.05 * heavy);
+  for (double v : {light, heavy}) {
+    EXPECT_LE(v, stokes);
+    EXPECT_GE(v, 0.5 * stokes);
+  }
 }
 
 }  // namespace

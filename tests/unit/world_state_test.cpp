@@ -133,24 +133,19 @@ TEST(WorldState, AJellyAndTheDynamicBoxOnItContinueBitwise) {
 
 TEST(WorldState, FluidsContinueBitwise) { checkRoundTrip(VP_TEST_DATA_DIR "/scenes/fluid_pair.json", 0.0, 20, 20); }
 
-// A jelly falling into a viscous liquid: the load its surface took from the liquid's last step,
-// the viscous drag included (fluid/solids/surface_pressure_load.h), is in the state.
-TEST(WorldState, AJellyInAViscousLiquidContinuesBitwise) {
+// A jelly and a rigid ball falling into a viscous liquid: the loads they took from the liquid's
+// last step, the viscous drags included (fluid/solids/surface_pressure_load.h,
+// collide/solid_motion.h), are in the state.
+TEST(WorldState, BodiesInAViscousLiquidContinueBitwise) {
   checkRoundTrip(VP_TEST_DATA_DIR "/scenes/jelly_in_viscous_tank.json", 0.0, 20, 20);
 }
 
 // A negative viscous drag coefficient (a push that grows with the speed) cannot come from a
 // fluid's step; a buffer holding one, under a valid checksum, is refused and changes nothing.
-TEST(WorldState, ANegativeViscousDragIsRefused) {
-  SceneWorld scene(VP_TEST_DATA_DIR "/scenes/jelly_in_viscous_tank.json", 0.0);
-  scene.run(20);
-  const FluidActor& tank = *scene.world->fluid(scene.world->fluidHandles().front());
-  ASSERT_EQ(tank.loads().size(), 1u);
-  double coefficient = 0.0;
-  for (const Vec3& c : tank.loads().front().drag.coefficient) coefficient = std::max(coefficient, c.maxCoeff());
+void expectANegatedDragRefused(World& world, double coefficient, const char* message) {
   ASSERT_GT(coefficient, 0.0) << "no drag in the load: the test would prove nothing";
   std::vector<uint8_t> state;
-  ASSERT_EQ(scene.world->saveState(&state), Status::Ok) << lastError();
+  ASSERT_EQ(world.saveState(&state), Status::Ok) << lastError();
   std::vector<uint8_t> bad = state;
   size_t found = 0;
   for (size_t at = kStateHeaderBytes; at + sizeof coefficient <= bad.size(); ++at)
@@ -162,11 +157,25 @@ TEST(WorldState, ANegativeViscousDragIsRefused) {
   ASSERT_GT(found, 0u);
   const uint64_t sum = stateChecksum(bad.data() + kStateHeaderBytes, bad.size() - kStateHeaderBytes);
   std::memcpy(bad.data() + kStateChecksumOffset, &sum, sizeof sum);
-  EXPECT_EQ(scene.world->restoreState(bad.data(), bad.size()), Status::ParseError);
-  EXPECT_NE(std::string(lastError()).find("vertex drag is out of range"), std::string::npos) << lastError();
+  EXPECT_EQ(world.restoreState(bad.data(), bad.size()), Status::ParseError);
+  EXPECT_NE(std::string(lastError()).find(message), std::string::npos) << lastError();
   std::vector<uint8_t> after;
-  ASSERT_EQ(scene.world->saveState(&after), Status::Ok) << lastError();
+  ASSERT_EQ(world.saveState(&after), Status::Ok) << lastError();
   EXPECT_EQ(after, state);
+}
+
+TEST(WorldState, ANegativeViscousDragIsRefused) {
+  SceneWorld scene(VP_TEST_DATA_DIR "/scenes/jelly_in_viscous_tank.json", 0.0);
+  scene.run(20);
+  const FluidActor& tank = *scene.world->fluid(scene.world->fluidHandles().front());
+  ASSERT_EQ(tank.loads().size(), 2u);
+  double onVertex = 0.0, onBody = 0.0;
+  for (const FluidColliderLoad& l : tank.loads()) {
+    for (const Vec3& c : l.drag.coefficient) onVertex = std::max(onVertex, c.maxCoeff());
+    onBody = std::max(onBody, l.rigidDrag.linear.maxCoeff());
+  }
+  expectANegatedDragRefused(*scene.world, onVertex, "vertex drag is out of range");
+  expectANegatedDragRefused(*scene.world, onBody, "rigid drag is out of range");
 }
 
 // Under a budget (tick clock: deterministic) fluid steps span frames; the save lands on one

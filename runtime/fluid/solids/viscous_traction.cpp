@@ -54,26 +54,22 @@ void addViscousTraction(const MacGrid& grid, const ViscosityWorkspace& work, dou
 }
 
 void addViscousTractionOnCollider(const MacGrid& grid, const ViscosityWorkspace& work, double density, double dt,
-                                  const PreparedCollider& collider, const Vec3& centre, const RigidInertia& inertia,
-                                  double heldFor, PressureLoad* load) {
-  Vec3 force = Vec3::Zero(), torque = Vec3::Zero(), drag = Vec3::Zero();
-  Mat3 spinDrag = Mat3::Zero();
+                                  const PreparedCollider& collider, RigidDrag* drag) {
+  const Vec3& centre = collider.shape.translation;
+  RigidDrag sum;
   forEachExchangeNear(grid, work, density, dt, collider,
                       [&](const Vec3& x, double reach, int axis, const Vec3& f, double faceDrag) {
                         if (!(signedDistanceBound(collider, x) <= reach)) return;
                         const Vec3 arm = (x - centre).cross(Vec3::Unit(axis));
-                        force += f;
-                        torque += (x - centre).cross(f);
-                        drag[axis] += faceDrag;
-                        spinDrag += faceDrag * arm * arm.transpose();
+                        sum.forceAtRest += f;
+                        sum.torqueAtRest += (x - centre).cross(f);
+                        sum.linear[axis] += faceDrag;
+                        sum.angular += faceDrag * (arm * arm.transpose());  // symmetric to the bit
                       });
-  if (inertia.mass > 0.0) {
-    for (int a = 0; a < 3; ++a) force[a] *= inertia.mass / (inertia.mass + drag[a] * heldFor);
-    const Mat3 resisted = inertia.inertia + spinDrag * heldFor;
-    torque = inertia.inertia * resisted.ldlt().solve(torque);
-  }
-  load->force += force;
-  load->torque += torque;
+  // What the step took is the drag at the motion it saw.
+  sum.forceAtRest += sum.linear.cwiseProduct(collider.shape.linearVelocity);
+  sum.torqueAtRest += sum.angular * collider.shape.angularVelocity;
+  *drag += sum;
 }
 
 }  // namespace vp
