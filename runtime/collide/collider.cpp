@@ -144,20 +144,13 @@ void Collider::trackVelocity() {
 // every spin change back as torque the next step: a spin given by a contact (a paddle's
 // friction) came back tripled in all, and a floating ball pushed by a paddle was spun up and
 // rolled out of its tank.
-// A viscous fluid's drag (collide/solid_motion.h, RigidDrag: F_0 - D v and tau_0 - D_w w) is
-// solved with the body's velocities at the end of the step, over the step's dt = T, with the
-// other forces the body takes (gravity, the host's and the deformables' pushes, F_o and tau_o):
-//     (m + m_a + D T) a = m g + F_o + F + m_a a_seen + F_0 - D v,
-// per axis, so that a light body in a thick liquid never overshoots and its terminal velocity
-// is (m g + F_o + F + F_0) / D, whatever its mass; Bullet adding m g + F_o itself,
+// A viscous fluid's drag (RigidDrag: F_0 - D v, tau_0 - D_w w) is solved over the step T
+// with the body's other forces, so a light body never overshoots and a steady push meets a
+// drag that balances it whatever the mass (docs/choices.md derives it):
 //     F_applied = m / (m + m_a + D T) (F + m_a (a_seen - g) + F_0 - D v - D T g - (m_a + D T) F_o / m),
-// and for the spin, with I^-1 the world's inverse inertia (which a locked axis leaves singular),
-//     ((1 + k) 1 + T D_w I^-1) tau_applied = tau + k I alpha_seen + tau_0 - D_w w - (k 1 + T D_w I^-1) tau_o.
-// The other forces take the added mass (held steady against the fluid's drag, they would
-// otherwise need it to push back (1 + k) times as hard). Impulses
-// (vpColliderApplyImpulse, Bullet's contacts) change the velocity outside these sums; at rest on
-// a floor the drag's share of the weight, D T / (m + m_a + D T), is taken off the body's push on
-// it.
+//     ((1 + k) 1 + T D_w I^-1) tau_applied = tau + k I alpha_seen + tau_0 - D_w w - (k 1 + T D_w I^-1) tau_o,
+// per axis, I^-1 the world's inverse inertia (a locked axis leaves it singular; the matrix on
+// the left stays invertible).
 void Collider::prepareFluidLoad(const Vec3& gravity, double dt) {
   if (desc_.bodyType != BodyType::Dynamic) return;
   const double inverseMass = body_->getInvMass();
@@ -178,7 +171,7 @@ void Collider::prepareFluidLoad(const Vec3& gravity, double dt) {
   const RigidDrag& drag = fluidDrag_;
   const Vec3 otherForce = hostForce_ + contactForce_;
   const Vec3 otherTorque = hostTorque_ + contactMomentRate_ - pose().position.cross(contactForce_);
-  if (drag.linear.isZero() && drag.angular.isZero()) {
+  if (drag.linear.isZero(0.0) && drag.angular.isZero(0.0)) {
     appliedFluidForce_ = m / (m + ma) * (pressureForce - ma * otherForce / m);
     appliedFluidTorque_ = (pressureTorque - k * otherTorque) / (1.0 + k);
     return;

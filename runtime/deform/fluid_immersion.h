@@ -60,8 +60,9 @@ class FluidImmersion {
 
   // The loads of the fluids on this body: cleared, then added one by one: the hydrostatic
   // vertex forces of each liquid at the body's positions now, and the dynamic ones of each
-  // fluid's last completed step with the change of the body's motion that step saw (a load
-  // whose vertex count is not this surface's is ignored and returns false).
+  // fluid's last completed step with the change of the body's motion that step saw and, in a
+  // viscous fluid, its drag (a load whose vertex count is not this surface's, or whose drag is
+  // of another count or has a negative coefficient, is ignored whole and returns false).
   void clearLoads();
   bool addHydrostaticLoad(const Array<Vec3>& vertexForces);
   bool addLoad(const Array<Vec3>& dynamicForces, double addedMass, const SolidAcceleration& seen,

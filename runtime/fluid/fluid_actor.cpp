@@ -688,6 +688,7 @@ void FluidActor::addSubstepLoads() {
       SurfacePressureLoad surface;
       surfacePressureLoad(*st.input.tasks, grid_, fractions_, pressure_.poisson, pressure_.pressure.data(),
                           liquidPhi(), desc_.density, *fc.geometry, &surface, &weight);
+      l = surface.total;  // the pressure's, as a rigid body's: the traction goes in the drag
       if (desc_.kinematicViscosity > 0.0)
         addViscousTraction(grid_, viscosity_, desc_.density, st.h, *fc.geometry, &surface);
       addMeanOverSubsteps(surface.vertexForces, st.substeps, &st.vertexForceSum[c]);
@@ -695,7 +696,6 @@ void FluidActor::addSubstepLoads() {
         addMeanOverSubsteps(surface.drag.coefficient, st.substeps, &st.dragSum[c].coefficient);
         addMeanOverSubsteps(surface.drag.atRest, st.substeps, &st.dragSum[c].atRest);
       }
-      l = surface.total;
     }
     st.loadSum[c].force += l.force / st.substeps;
     st.loadSum[c].torque += l.torque / st.substeps;

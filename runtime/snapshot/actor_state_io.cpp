@@ -144,10 +144,11 @@ void readVecsOfAnyCount(StateReader& in, Array<Vec3>* a, const char* what) {
   readVecElements(in, a, in.value<uint64_t>(), what);
 }
 
-// A fluid load's vertex drag (fluid/solids/surface_pressure_load.h): coefficients that are not
-// negative, and as many forces at rest.
-void readVecDrag(StateReader& in, VertexDrag* drag) {
+// A fluid load's vertex drag (fluid/solids/surface_pressure_load.h): none, or one per vertex of
+// the load's forces; coefficients that are not negative, and as many forces at rest.
+void readVecDrag(StateReader& in, size_t vertices, VertexDrag* drag) {
   readVecsOfAnyCount(in, &drag->coefficient, "a fluid load's vertex drag");
+  if (!drag->coefficient.empty()) in.expect("a fluid load's vertex drag count", drag->coefficient.size(), vertices);
   readVecs(in, &drag->atRest, drag->coefficient.size(), "a fluid load's vertex drag at rest");
   for (const Vec3& c : drag->coefficient)
     if (in.ok() && (c.array() < 0.0).any()) in.outOfRange("a fluid load's vertex drag");
@@ -383,7 +384,7 @@ void readFluidState(StateReader& in, const FluidActor& fluid, FluidState* s) {
       readVecsOfAnyCount(in, &l.vertexForces, "a fluid load's vertex forces");
       l.seen.linear = readVec(in, "a fluid load's solid acceleration");
       l.seen.angular = readVec(in, "a fluid load's solid acceleration");
-      readVecDrag(in, &l.drag);
+      readVecDrag(in, l.vertexForces.size(), &l.drag);
       l.rigidDrag = readRigidDrag(in);
     }
   }

@@ -42,7 +42,9 @@ struct SurfacePressureLoad {
   Array<Vec3> vertexForces;  // one per surface vertex (N)
   VertexDrag drag;           // sized as vertexForces by addViscousTraction, else empty
   // The total force; torque about the origin; and the added mass: the fluid's density times
-  // the body's volume times the wetted share of its surface (the area below the liquid).
+  // the body's volume times the wetted share of its surface (the area below the liquid). The
+  // total holds the viscous traction at the velocities the step saw too (what the fluid's step
+  // exchanged with the body in all); the body takes it through `drag`, not from here.
   PressureLoad total;
 };
 
