@@ -170,12 +170,7 @@ void Collider::prepareFluidLoad(const Vec3& gravity, double dt) {
   const Vec3 pressureTorque = fluidTorque_ + hydrostaticTorque_ + spinReaction;
   const RigidDrag& drag = fluidDrag_;
   const Vec3 otherForce = hostForce_ + contactForce_;
-  const Vec3 otherTorque = hostTorque_ + contactMomentRate_ - pose().position.cross(contactForce_);
-  if (drag.linear.isZero(0.0) && drag.angular.isZero(0.0)) {
-    appliedFluidForce_ = m / (m + ma) * (pressureForce - ma * otherForce / m);
-    appliedFluidTorque_ = (pressureTorque - k * otherTorque) / (1.0 + k);
-    return;
-  }
+  const Vec3 otherTorque = hostTorque_ + contactTorque();
   const Vec3 velocity = linearVelocity();
   for (int a = 0; a < 3; ++a) {
     const double dragT = drag.linear[a] * dt;
@@ -196,12 +191,13 @@ void Collider::prepareFluidLoad(const Vec3& gravity, double dt) {
 void Collider::applyExternalLoads() {
   if (desc_.bodyType != BodyType::Dynamic) return;
   body_->activate(true);
-  // The contact load acts where the contacts were, not at the moving body's point: its moment
-  // about the origin, the deformables' reactions' one, is then the same in every sub-step.
-  const Vec3 contactTorque = contactMomentRate_ - pose().position.cross(contactForce_);
   body_->applyCentralForce(bt(appliedFluidForce_ + hostForce_ + contactForce_));
-  body_->applyTorque(bt(appliedFluidTorque_ + hostTorque_ + contactTorque));
+  body_->applyTorque(bt(appliedFluidTorque_ + hostTorque_ + contactTorque()));
 }
+
+// The contact load acts where the contacts were, not at the moving body's point: its moment
+// about the origin, the deformables' reactions' one, is then the same in every sub-step.
+Vec3 Collider::contactTorque() const { return contactMomentRate_ - pose().position.cross(contactForce_); }
 
 void Collider::addHostLoad(const Vec3& force, const Vec3& torque) {
   if (desc_.bodyType != BodyType::Dynamic) return;

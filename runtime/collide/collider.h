@@ -82,7 +82,7 @@ class Collider {
   // fluid's drag), and the hydrostatic part at the body's pose now. Applied on every Bullet
   // sub-step of the next world step, then cleared. Dynamic bodies only; others ignore them.
   void addFluidLoad(const Vec3& force, const Vec3& torque, double addedMass, const SolidAcceleration& seen,
-                    const RigidDrag& drag = {});
+                    const RigidDrag& drag);
   void addHydrostaticLoad(const Vec3& force, const Vec3& torque);
   // Once per world step of dt, before its sub-steps and after prepareContactLoad: turns the
   // accumulated load into the force Bullet applies, stabilized for the added mass and the drag
@@ -110,6 +110,8 @@ class Collider {
   void endKinematicStep();
 
  private:
+  // The deformables' contact load's torque about the body's centre of mass.
+  Vec3 contactTorque() const;
   ColliderDesc desc_;
   BulletShape shape_;
   std::unique_ptr<btDefaultMotionState> motionState_;

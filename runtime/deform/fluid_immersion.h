@@ -66,7 +66,7 @@ class FluidImmersion {
   void clearLoads();
   bool addHydrostaticLoad(const Array<Vec3>& vertexForces);
   bool addLoad(const Array<Vec3>& dynamicForces, double addedMass, const SolidAcceleration& seen,
-               const VertexDrag& drag = {});
+               const VertexDrag& drag);
   bool loaded() const { return loaded_; }
   // The surface's vertices at node positions x, and its outward triangles.
   Array<Eigen::Vector3d> vertices(const Array<double>& x) const;

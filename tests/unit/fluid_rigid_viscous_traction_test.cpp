@@ -12,6 +12,7 @@
 #include "fluid/solids/face_fraction_field.h"
 #include "fluid/solids/viscous_traction.h"
 #include "fluid/viscosity.h"
+#include "fluid_liquid_test_util.h"
 #include "liquid_tank_world.h"
 #include "spin_down_check.h"
 #include "viscous_exchange_step.h"
@@ -49,18 +50,12 @@ TEST(FluidViscousTraction, ARigidBodyTakesMinusWhatTheFluidsViscousStepTookLinea
   ASSERT_NO_FATAL_FAILURE(testutil::viscousStepFromRest(field, nu, dt, &grid, &work));
   // The fluid's faces only: a covered face's velocity is the solid's, not fluid momentum.
   Vec3 momentum = Vec3::Zero(), angular = Vec3::Zero();
-  for (int a = 0; a < 3; ++a) {
-    const Eigen::Vector3i d = field.faceDims(a);
-    for (int k = 0; k < d.z(); ++k)
-      for (int j = 0; j < d.y(); ++j)
-        for (int i = 0; i < d.x(); ++i) {
-          const size_t f = field.faceIndex(a, i, j, k);
-          if (work.unknownOfFace[a][f] < 0) continue;
-          const Vec3 p = density * h * h * h * grid.velocity[a][f] * Vec3::Unit(a);
-          momentum += p;
-          angular += (grid.faceCentre(a, i, j, k) - centre).cross(p);
-        }
-  }
+  testutil::forEachFace(grid, [&](int a, int i, int j, int k, size_t f) {
+    if (work.unknownOfFace[a][f] < 0) return;
+    const Vec3 p = density * h * h * h * grid.velocity[a][f] * Vec3::Unit(a);
+    momentum += p;
+    angular += (grid.faceCentre(a, i, j, k) - centre).cross(p);
+  });
   RigidDrag drag;
   addViscousTractionOnCollider(grid, work, density, dt, ball, &drag);
   // The drag at the motion the step saw.
