@@ -130,6 +130,7 @@ bool ContactGroupSolve::solve() {
     settings.maxIterations = std::max(settings.maxIterations, m.body->desc_.solver.maxIterations);
   }
   if (in_.solverMaxIterations > 0) settings.maxIterations = in_.solverMaxIterations;
+  for (const ContactGroupMember& m : members_) m.body->choosePreconditioner(in_.dt);
   refreshPreconditioners();
   CgResult cg = solveOnce(settings);
   int iterations = cg.iterations;

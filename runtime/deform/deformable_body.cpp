@@ -88,10 +88,13 @@ Status DeformableBody::measureElements(const DeformableDesc& desc) {
   restVolume_.resize(static_cast<size_t>(elements));
   rotations_.resize(4 * static_cast<size_t>(elements));
   mass_.assign(static_cast<size_t>(nodeCount_), 0.0);
+  double edgeSum = 0.0;
   for (int64_t e = 0; e < elements; ++e) {
     double corners[12], lumped[kBBMaxNodes];
     for (int a = 0; a < 4; ++a)
       for (int k = 0; k < 3; ++k) corners[3 * a + k] = mesh.vertices[mesh.tets[e][a]][k];
+    for (int a = 0; a < 4; ++a)
+      for (int b = a + 1; b < 4; ++b) edgeSum += (mesh.vertices[mesh.tets[e][a]] - mesh.vertices[mesh.tets[e][b]]).norm();
     Status s = bbBarycentricGradients(corners, &restGradients_[12 * e], &restVolume_[e]);
     if (!ok(s)) return addErrorContext(s, "mesh tet " + std::to_string(e));
     // Lumped BB mass: every Bernstein function integrates to V / C(n+3, 3), all positive.
@@ -102,6 +105,7 @@ Status DeformableBody::measureElements(const DeformableDesc& desc) {
     r[0] = q.w(), r[1] = q.x(), r[2] = q.y(), r[3] = q.z();
   }
   for (double m : mass_) totalMass_ += m;
+  nodeSpacing_ = elements > 0 ? edgeSum / (6.0 * static_cast<double>(elements) * degree_) : 0.0;
   return Status::Ok;
 }
 
@@ -119,9 +123,7 @@ Status DeformableBody::buildStepSystem(const DeformableDesc& desc) {
     stiffnessStructure_ = bbStiffnessStructure(degree_);
   }
   buildElementPattern(nodeCount_, elementNodes_.data(), elements, N, &matrix_, &scatter_);
-  StepPreconditioner::Mesh pcMesh{degree_, elementNodes_.data(), elements, nodeCount_, restVolume_.data(),
-                                  desc.material.density};
-  VP_TRY(preconditioner_.build(desc.solver, pcMesh, matrix_));
+  VP_TRY(preconditioner_.build(desc.solver, preconditionerMesh(desc.material.density), matrix_));
   const size_t n3 = restX_.size();
   externalForce_.assign(n3, 0.0);
   fluidDrag_.assign(n3, 0.0);
@@ -443,6 +445,22 @@ void DeformableBody::updateRenderMesh(TaskSystem& tasks) {
 
 void DeformableBody::refreshPreconditioner(TaskSystem& tasks, double massScale) {
   preconditioner_.refresh(tasks, matrix_, x_.data(), held_, gradientPairs_.data(), massScale);
+}
+
+StepPreconditioner::Mesh DeformableBody::preconditionerMesh(double density) const {
+  return {degree_, elementNodes_.data(), elementCount(), nodeCount_, restVolume_.data(), density};
+}
+
+double DeformableBody::elasticWaveCrossings(double h) const {
+  const DeformableMaterial& m = desc_.material;
+  const double waveSpeed = std::sqrt((m.lameLambda() + 2.0 * m.lameMu()) / m.density);
+  return std::sqrt((h * h + h * m.stiffnessDamping) / massScale(h)) * waveSpeed / nodeSpacing_;
+}
+
+void DeformableBody::choosePreconditioner(double h) {
+  if (deviceSolve_) return;  // its solve reads the block-Jacobi blocks only
+  const Status s = preconditioner_.chooseForStep(elasticWaveCrossings(h), preconditionerMesh(desc_.material.density), matrix_);
+  if (!ok(s)) log(LogLevel::Warning, "deformable '%s': %s; block-Jacobi from now on", desc_.name.c_str(), lastError());
 }
 
 void DeformableBody::contactImpulses(TaskSystem& tasks, Array<Vec3>* impulses) {

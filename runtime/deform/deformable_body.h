@@ -255,6 +255,12 @@ class DeformableBody {
                              double massScale);
   // After the matrix or the constraints changed (deform/step_preconditioner.h).
   void refreshPreconditioner(TaskSystem& tasks, double massScale);
+  // The preconditioner for a step of h (StepPreconditioner::chooseForStep); block-Jacobi on the device.
+  void choosePreconditioner(double h);
+  // Node spacings an elastic pressure wave crosses in a step of h, as the step system sees it:
+  // sqrt((h² + h β) / (1 + h α)) c_p / spacing (Rayleigh's α and β as assembleStepSystem's).
+  double elasticWaveCrossings(double h) const;
+  StepPreconditioner::Mesh preconditionerMesh(double density) const;
   // Constraint impulse of each contact from the solved velocities: A v' − b at its node.
   void contactImpulses(TaskSystem& tasks, Array<Vec3>* impulses);
   Status checkNode(const char* what, int32_t node) const;
@@ -273,6 +279,7 @@ class DeformableBody {
   // Per node and axis, the fluids' viscous drag its next step solves implicitly (applyFluidLoads).
   Array<double> fluidDrag_;
   double totalMass_ = 0.0;
+  double nodeSpacing_ = 0.0;  // the elements' mean edge over the degree, at rest
   double elasticEnergyAtX_ = -1.0;  // elasticEnergy() at x_; < 0: not known (x_ or the material changed)
   int degree_ = 1;
   int nodesPerElement_ = 4;

@@ -45,6 +45,10 @@ enum class Preconditioner : int {
 // so the bound comes from a jelly in contact, not a contact-free beam (docs/choices.md,
 // Preconditioner).
 constexpr int kMultigridMinNodes = 1000;
+// Below kMultigridMinNodes, Auto still takes the multigrid for a step over which an elastic
+// pressure wave crosses more than this many node spacings: block-Jacobi's CG iterations grow
+// with that count, the multigrid's stay flat (docs/choices.md, Preconditioner).
+constexpr double kMultigridWaveCrossings = 10.0;
 
 // How p-multigrid gets its coarse operators. Re-discretized is the default: a few more CG
 // iterations than Galerkin for a much cheaper setup (linalg/p_multigrid.h; docs/choices.md).

@@ -36,10 +36,44 @@ Preconditioner chosen(Preconditioner asked, int degree, int32_t nodeCount) {
 
 Status StepPreconditioner::build(const DeformableSolverSettings& settings, const Mesh& mesh,
                                  const BlockSparseMatrix<double>& matrix) {
+  settings_ = settings;
   kind_ = chosen(settings.preconditioner, mesh.degree, mesh.nodeCount);
+  // Linear elements only: p-multigrid's setup on a small mesh costs more than block-Jacobi's
+  // iterations, whose count grows more slowly there (docs/choices.md, Preconditioner).
+  const bool autoSmall = settings.preconditioner == Preconditioner::Auto && kind_ == Preconditioner::BlockJacobi;
+  longStepKind_ = autoSmall && mesh.degree == 1 ? Preconditioner::Multigrid : Preconditioner::BlockJacobi;
   nodeCount_ = mesh.nodeCount;
-  if (kind_ == Preconditioner::Multigrid) multigrid_.build(matrix);
-  if (kind_ == Preconditioner::PMultigrid) {
+  diagInverse_.resize(9 * static_cast<size_t>(mesh.nodeCount));
+  if (kind_ == Preconditioner::BlockJacobi) return Status::Ok;
+  return buildMultigrid(kind_, settings, mesh, matrix, AggregationMultigrid::kDampingRefresh);
+}
+
+Status StepPreconditioner::chooseForStep(double waveCrossings, const Mesh& mesh,
+                                         const BlockSparseMatrix<double>& matrix) {
+  if (longStepKind_ == Preconditioner::BlockJacobi) return Status::Ok;
+  if (!(waveCrossings > kMultigridWaveCrossings)) {
+    kind_ = Preconditioner::BlockJacobi;
+    return Status::Ok;
+  }
+  if (!longStepBuilt_) {
+    // Its dampings follow each step's matrix alone: which steps were long is not part of a
+    // saved world's state, and a restored one must continue bitwise.
+    const Status built = buildMultigrid(longStepKind_, settings_, mesh, matrix, 1);
+    if (!ok(built)) {
+      longStepKind_ = kind_ = Preconditioner::BlockJacobi;  // block-Jacobi for good
+      return built;
+    }
+    longStepBuilt_ = true;
+  }
+  kind_ = longStepKind_;
+  return Status::Ok;
+}
+
+Status StepPreconditioner::buildMultigrid(Preconditioner kind, const DeformableSolverSettings& settings,
+                                          const Mesh& mesh, const BlockSparseMatrix<double>& matrix,
+                                          int dampingRefresh) {
+  if (kind == Preconditioner::Multigrid) multigrid_.build(matrix, AggregationMultigrid::kMaxCoarsestNodes, dampingRefresh);
+  if (kind == Preconditioner::PMultigrid) {
     DegreeHierarchy hierarchy;
     VP_TRY(buildDegreeHierarchy(pMultigridDegrees(mesh.degree), mesh.elementNodes, mesh.elements, mesh.nodeCount,
                                 &hierarchy));
@@ -54,8 +88,7 @@ Status StepPreconditioner::build(const DeformableSolverSettings& settings, const
     pMultigrid_.build(matrix, std::move(hierarchy.prolongations), pMultigridSettings(mesh.degree),
                       std::move(rediscretized));
   }
-  if (needsRefresh()) nodeFilters_.assign(9 * static_cast<size_t>(mesh.nodeCount), 0.0);
-  diagInverse_.resize(9 * static_cast<size_t>(mesh.nodeCount));
+  nodeFilters_.assign(9 * static_cast<size_t>(mesh.nodeCount), 0.0);
   return Status::Ok;
 }
 

@@ -1,5 +1,6 @@
-// The preconditioner of a deformable's implicit solve, chosen once when the body is created
-// (DeformableSolverSettings::preconditioner; Auto: a multigrid from kMultigridMinNodes nodes):
+// The preconditioner of a deformable's implicit solve (DeformableSolverSettings::preconditioner;
+// Auto: a multigrid from kMultigridMinNodes nodes; below that block-Jacobi, but for linear
+// elements the multigrid in the steps an elastic wave crosses many node spacings, chooseForStep):
 // - block-Jacobi: the inverse of each node's 3x3 diagonal block, written by the assembly;
 // - aggregation multigrid (linear elements): near-null-space aggregation on the fine matrix;
 // - p-multigrid (degree 2 and 3): down the degrees to linear, on the Galerkin or the
@@ -36,6 +37,13 @@ class StepPreconditioner {
 
   // Chooses and builds it; `matrix` must have its final pattern.
   Status build(const DeformableSolverSettings& settings, const Mesh& mesh, const BlockSparseMatrix<double>& matrix);
+  // Auto on a linear mesh under kMultigridMinNodes: block-Jacobi for a step over which an
+  // elastic wave crosses at most kMultigridWaveCrossings node spacings, else aggregation
+  // multigrid (built the first time it is needed). Block-Jacobi's CG iterations grow with the
+  // crossings, the multigrid's do not: a body paced by a liquid steps several frames at once.
+  // A fixed choice stays as it is. Should the multigrid fail to build, block-Jacobi stays for good.
+  Status chooseForStep(double waveCrossings, const Mesh& mesh, const BlockSparseMatrix<double>& matrix);
+  // The preconditioner of the step being solved (build's choice until a step chose).
   Preconditioner kind() const { return kind_; }
   // Block-Jacobi's inverse diagonal block of a node (9, row-major), for the assembly to write.
   double* inverseDiagonal(int64_t node) { return &diagInverse_[9 * node]; }
@@ -50,7 +58,14 @@ class StepPreconditioner {
   void scaleMasses(double ratio);
 
  private:
+  Status buildMultigrid(Preconditioner kind, const DeformableSolverSettings& settings, const Mesh& mesh,
+                        const BlockSparseMatrix<double>& matrix, int dampingRefresh);
+
   Preconditioner kind_ = Preconditioner::BlockJacobi;
+  // Auto below kMultigridMinNodes: the multigrid for long steps (BlockJacobi: the choice is fixed).
+  Preconditioner longStepKind_ = Preconditioner::BlockJacobi;
+  bool longStepBuilt_ = false;
+  DeformableSolverSettings settings_;
   int32_t nodeCount_ = 0;
   Array<double> diagInverse_;  // 9 per node
   AggregationMultigrid multigrid_;

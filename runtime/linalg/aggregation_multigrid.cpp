@@ -21,7 +21,6 @@ Mat3R skew(const Eigen::Vector3d& r) {
 
 constexpr int64_t kRowGrain = 256;
 constexpr int kPowerIterations = 6;
-constexpr uint64_t kDampingRefresh = 8;
 
 }  // namespace
 
@@ -56,14 +55,15 @@ void AggregationMultigrid::aggregate(int32_t nodes, const Array<int32_t>& rowSta
   *count = next;
 }
 
-void AggregationMultigrid::build(const BlockSparseMatrix<double>& fine, int maxCoarsestNodes) {
+void AggregationMultigrid::build(const BlockSparseMatrix<double>& fine, int maxCoarsestNodes, int dampingRefresh) {
   levels_.clear();
   updates_ = 0;
+  dampingRefresh_ = static_cast<uint64_t>(std::max(dampingRefresh, 1));
   Array<int32_t> rowStart(fine.rowStart.begin(), fine.rowStart.end());
   Array<int32_t> columns(fine.columns.begin(), fine.columns.end());
   int32_t nodes = fine.blockRows;
   int block = 3;
-  while (nodes > maxCoarsestNodes) {
+  while (nodes > maxCoarsestNodes || levels_.empty()) {
     Level L;
     L.fineNodes = nodes;
     L.fineBlock = block;
@@ -137,9 +137,7 @@ void AggregationMultigrid::update(TaskSystem& tasks, const BlockSparseMatrix<dou
   filters_ = filters;
   invertFineDiagonal(tasks, fine, filters);
   for (size_t l = 0; l < levels_.size(); ++l) updateLevel(tasks, l, fine, positions, filters);
-  // The corotated matrix changes little from step to step, so the dampings are refreshed
-  // every kDampingRefresh updates rather than each time (it cost a third of the setup).
-  if (updates_++ % kDampingRefresh == 0) refreshDampings(tasks, fine);
+  if (updates_++ % dampingRefresh_ == 0) refreshDampings(tasks, fine);
   factorCoarsest();
 }
 

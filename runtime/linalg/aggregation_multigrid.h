@@ -34,8 +34,16 @@ namespace vp {
 
 class AggregationMultigrid {
  public:
-  // Builds aggregates and coarse patterns from the fine matrix's pattern.
-  void build(const BlockSparseMatrix<double>& fine, int maxCoarsestNodes = 48);  // resets the hierarchy
+  // Builds aggregates and coarse patterns from the fine matrix's pattern (at least one coarse
+  // level, however small the mesh: the coarsest solve is over a level's aggregates).
+  // dampingRefresh: the smoothers' dampings are estimated again every that many updates (1:
+  // every update, so the cycle depends on the matrix of the update alone, not on earlier ones).
+  void build(const BlockSparseMatrix<double>& fine, int maxCoarsestNodes = kMaxCoarsestNodes,
+             int dampingRefresh = kDampingRefresh);  // resets the hierarchy
+  static constexpr int kMaxCoarsestNodes = 48;
+  // The corotated matrix changes little from step to step: refreshing the dampings every
+  // update cost a third of the setup.
+  static constexpr int kDampingRefresh = 8;
 
   // Recomputes prolongations, coarse operators, smoothers and the coarsest factorization.
   // positions: 3 per fine node; filters: 9 per fine node (row-major 3x3 projector, the same
@@ -97,6 +105,7 @@ class AggregationMultigrid {
   // Coarsest level: dense Cholesky.
   Eigen::LDLT<Eigen::MatrixXd> coarsest_;
   uint64_t updates_ = 0;
+  uint64_t dampingRefresh_ = kDampingRefresh;
   int64_t coarsestSize_ = 0;
 };
 

@@ -96,5 +96,30 @@ TEST(AggregationMultigrid, IterationsStayFlatUnderRefinement) {
   EXPECT_GT(jacobiFine, 1.5 * jacobiCoarse);  // the baseline really does degrade
 }
 
+// A mesh no larger than the coarsest level still gets a coarse level: with none, the cycle had
+// no coarsest system to solve and returned nothing (CG stalled at a relative residual near 1).
+TEST(AggregationMultigrid, AMeshNoLargerThanTheCoarsestLevelConverges) {
+  DeformableDesc d;
+  d.mesh = makeBoxTetMesh({3, 2, 3}, Vec3(0.3, 0.2, 0.3), Vec3::Zero());
+  d.material.youngsModulus = 2e5;
+  d.solver.tolerance = 1e-8;
+  d.solver.maxIterations = 500;
+  d.solver.preconditioner = Preconditioner::Multigrid;
+  std::unique_ptr<DeformableBody> body;
+  ASSERT_EQ(DeformableBody::create(d, &body), Status::Ok) << lastError();
+  ASSERT_LE(body->nodeCount(), AggregationMultigrid::kMaxCoarsestNodes);
+  deform_test::pinNodesAtX(*body, 0.0);
+  auto tasks = TaskSystem::create(TaskHooks{}, 2);
+  DeformableStepInput in;
+  in.tasks = tasks.get();
+  in.dt = 0.1;
+  in.gravity = Vec3(0, -9.81, 0);
+  ActorStats stats;
+  body->step(in, &stats);
+  EXPECT_LE(stats.phase(Phase::Solve).residual, 1e-8);
+  // Two levels: the coarse solve is exact on the aggregates' rigid modes; the smoother does the rest.
+  EXPECT_LT(stats.phase(Phase::Solve).iterations, 60);
+}
+
 }  // namespace
 }  // namespace vp
