@@ -44,8 +44,7 @@ Status StepPreconditioner::build(const DeformableSolverSettings& settings, const
   longStepKind_ = autoSmall && mesh.degree == 1 ? Preconditioner::Multigrid : Preconditioner::BlockJacobi;
   nodeCount_ = mesh.nodeCount;
   diagInverse_.resize(9 * static_cast<size_t>(mesh.nodeCount));
-  if (kind_ == Preconditioner::BlockJacobi) return Status::Ok;
-  return buildMultigrid(kind_, settings, mesh, matrix, AggregationMultigrid::kDampingRefresh);
+  return kind_ == Preconditioner::BlockJacobi ? Status::Ok : buildMultigrid(kind_, settings, mesh, matrix);
 }
 
 Status StepPreconditioner::chooseForStep(double waveCrossings, const Mesh& mesh,
@@ -56,9 +55,7 @@ Status StepPreconditioner::chooseForStep(double waveCrossings, const Mesh& mesh,
     return Status::Ok;
   }
   if (!longStepBuilt_) {
-    // Its dampings follow each step's matrix alone: which steps were long is not part of a
-    // saved world's state, and a restored one must continue bitwise.
-    const Status built = buildMultigrid(longStepKind_, settings_, mesh, matrix, 1);
+    const Status built = buildMultigrid(longStepKind_, settings_, mesh, matrix);
     if (!ok(built)) {
       longStepKind_ = kind_ = Preconditioner::BlockJacobi;  // block-Jacobi for good
       return built;
@@ -66,13 +63,15 @@ Status StepPreconditioner::chooseForStep(double waveCrossings, const Mesh& mesh,
     longStepBuilt_ = true;
   }
   kind_ = longStepKind_;
+  // Dampings from this step's matrix, kept for its contact passes' updates: which earlier steps
+  // were long is not part of a saved world's state, and a restored one must continue bitwise.
+  multigrid_.restartDampingCount();
   return Status::Ok;
 }
 
 Status StepPreconditioner::buildMultigrid(Preconditioner kind, const DeformableSolverSettings& settings,
-                                          const Mesh& mesh, const BlockSparseMatrix<double>& matrix,
-                                          int dampingRefresh) {
-  if (kind == Preconditioner::Multigrid) multigrid_.build(matrix, AggregationMultigrid::kMaxCoarsestNodes, dampingRefresh);
+                                          const Mesh& mesh, const BlockSparseMatrix<double>& matrix) {
+  if (kind == Preconditioner::Multigrid) multigrid_.build(matrix);
   if (kind == Preconditioner::PMultigrid) {
     DegreeHierarchy hierarchy;
     VP_TRY(buildDegreeHierarchy(pMultigridDegrees(mesh.degree), mesh.elementNodes, mesh.elements, mesh.nodeCount,

@@ -59,7 +59,7 @@ class StepPreconditioner {
 
  private:
   Status buildMultigrid(Preconditioner kind, const DeformableSolverSettings& settings, const Mesh& mesh,
-                        const BlockSparseMatrix<double>& matrix, int dampingRefresh);
+                        const BlockSparseMatrix<double>& matrix);
 
   Preconditioner kind_ = Preconditioner::BlockJacobi;
   // Auto below kMultigridMinNodes: the multigrid for long steps (BlockJacobi: the choice is fixed).

@@ -55,10 +55,9 @@ void AggregationMultigrid::aggregate(int32_t nodes, const Array<int32_t>& rowSta
   *count = next;
 }
 
-void AggregationMultigrid::build(const BlockSparseMatrix<double>& fine, int maxCoarsestNodes, int dampingRefresh) {
+void AggregationMultigrid::build(const BlockSparseMatrix<double>& fine, int maxCoarsestNodes) {
   levels_.clear();
   updates_ = 0;
-  dampingRefresh_ = static_cast<uint64_t>(std::max(dampingRefresh, 1));
   Array<int32_t> rowStart(fine.rowStart.begin(), fine.rowStart.end());
   Array<int32_t> columns(fine.columns.begin(), fine.columns.end());
   int32_t nodes = fine.blockRows;
@@ -137,7 +136,7 @@ void AggregationMultigrid::update(TaskSystem& tasks, const BlockSparseMatrix<dou
   filters_ = filters;
   invertFineDiagonal(tasks, fine, filters);
   for (size_t l = 0; l < levels_.size(); ++l) updateLevel(tasks, l, fine, positions, filters);
-  if (updates_++ % dampingRefresh_ == 0) refreshDampings(tasks, fine);
+  if (updates_++ % kDampingRefresh == 0) refreshDampings(tasks, fine);
   factorCoarsest();
 }
 

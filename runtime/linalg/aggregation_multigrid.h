@@ -36,14 +36,14 @@ class AggregationMultigrid {
  public:
   // Builds aggregates and coarse patterns from the fine matrix's pattern (at least one coarse
   // level, however small the mesh: the coarsest solve is over a level's aggregates).
-  // dampingRefresh: the smoothers' dampings are estimated again every that many updates (1:
-  // every update, so the cycle depends on the matrix of the update alone, not on earlier ones).
-  void build(const BlockSparseMatrix<double>& fine, int maxCoarsestNodes = kMaxCoarsestNodes,
-             int dampingRefresh = kDampingRefresh);  // resets the hierarchy
+  void build(const BlockSparseMatrix<double>& fine, int maxCoarsestNodes = kMaxCoarsestNodes);  // resets the hierarchy
   static constexpr int kMaxCoarsestNodes = 48;
-  // The corotated matrix changes little from step to step: refreshing the dampings every
-  // update cost a third of the setup.
+  // The smoothers' dampings are estimated again every kDampingRefresh updates, counted from the
+  // build or from restartDampingCount: the corotated matrix changes little from step to step,
+  // and refreshing them at every update cost a third of the setup.
   static constexpr int kDampingRefresh = 8;
+  // The next update estimates the dampings again and counts from there.
+  void restartDampingCount() { updates_ = 0; }
 
   // Recomputes prolongations, coarse operators, smoothers and the coarsest factorization.
   // positions: 3 per fine node; filters: 9 per fine node (row-major 3x3 projector, the same
@@ -105,7 +105,6 @@ class AggregationMultigrid {
   // Coarsest level: dense Cholesky.
   Eigen::LDLT<Eigen::MatrixXd> coarsest_;
   uint64_t updates_ = 0;
-  uint64_t dampingRefresh_ = kDampingRefresh;
   int64_t coarsestSize_ = 0;
 };
 
