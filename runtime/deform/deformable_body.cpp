@@ -452,6 +452,7 @@ StepPreconditioner::Mesh DeformableBody::preconditionerMesh(double density) cons
 }
 
 double DeformableBody::elasticWaveCrossings(double h) const {
+  if (!(nodeSpacing_ > 0.0)) return 0.0;
   const DeformableMaterial& m = desc_.material;
   const double waveSpeed = std::sqrt((m.lameLambda() + 2.0 * m.lameMu()) / m.density);
   return std::sqrt((h * h + h * m.stiffnessDamping) / massScale(h)) * waveSpeed / nodeSpacing_;
