@@ -459,8 +459,9 @@ double DeformableBody::elasticWaveCrossings(double h) const {
 }
 
 void DeformableBody::choosePreconditioner(double h) {
-  if (deviceSolve_) return;  // its solve reads the block-Jacobi blocks only
-  const Status s = preconditioner_.chooseForStep(elasticWaveCrossings(h), preconditionerMesh(desc_.material.density), matrix_);
+  // On the device block-Jacobi (its solve reads those blocks only), as for a short step.
+  const double crossings = deviceSolve_ ? 0.0 : elasticWaveCrossings(h);
+  const Status s = preconditioner_.chooseForStep(crossings, preconditionerMesh(desc_.material.density), matrix_);
   if (!ok(s)) log(LogLevel::Warning, "deformable '%s': %s; block-Jacobi from now on", desc_.name.c_str(), lastError());
 }
 
@@ -749,6 +750,7 @@ CgResult DeformableBody::solveLinearSystem(const DeformableStepInput& in, const 
     log(LogLevel::Warning, "deformable '%s': %s; its solves run on the CPU from now on", desc_.name.c_str(),
         lastError());
     deviceSolve_.reset();
+    choosePreconditioner(in.dt);
     if (preconditioner_.needsRefresh()) refreshPreconditioner(*in.tasks, massScale);
   }
   return solveConjugateGradient(*in.tasks, system, rhs_.data(), vNext_.data(), settings, in.deadline, cg_, floor,

@@ -33,7 +33,8 @@ struct DeformableMaterial {
 // BM_DeformQuadraticBeam{,AggregationMultigrid}/13000; figures in docs/choices.md, p-multigrid).
 enum class Preconditioner : int {
   Auto = 0,         // above kMultigridMinNodes nodes p-multigrid for degree >= 2, aggregation
-                    // multigrid for degree 1; block-Jacobi below
+                    // multigrid for degree 1; block-Jacobi below, but aggregation multigrid for
+                    // a linear mesh's long steps (kMultigridWaveCrossings)
   BlockJacobi = 1,
   Multigrid = 2,    // aggregation multigrid with rigid-body modes (linalg/aggregation_multigrid.h)
   PMultigrid = 3,   // V-cycle over the degrees, aggregation multigrid on the linear level

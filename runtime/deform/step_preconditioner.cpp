@@ -38,8 +38,8 @@ Status StepPreconditioner::build(const DeformableSolverSettings& settings, const
                                  const BlockSparseMatrix<double>& matrix) {
   settings_ = settings;
   kind_ = chosen(settings.preconditioner, mesh.degree, mesh.nodeCount);
-  // Linear elements only: p-multigrid's setup on a small mesh costs more than block-Jacobi's
-  // iterations, whose count grows more slowly there (docs/choices.md, Preconditioner).
+  // Linear elements only: on the default scene's small cubic jelly p-multigrid's setup cost more
+  // than the block-Jacobi iterations it saved (docs/choices.md, Preconditioner).
   const bool autoSmall = settings.preconditioner == Preconditioner::Auto && kind_ == Preconditioner::BlockJacobi;
   longStepKind_ = autoSmall && mesh.degree == 1 ? Preconditioner::Multigrid : Preconditioner::BlockJacobi;
   nodeCount_ = mesh.nodeCount;

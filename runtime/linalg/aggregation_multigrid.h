@@ -34,8 +34,9 @@ namespace vp {
 
 class AggregationMultigrid {
  public:
-  // Builds aggregates and coarse patterns from the fine matrix's pattern (at least one coarse
-  // level, however small the mesh: the coarsest solve is over a level's aggregates).
+  // Builds aggregates and coarse patterns from the fine matrix's pattern, with at least one
+  // coarse level however small the mesh (the coarsest solve is over a level's aggregates)
+  // unless no two nodes are joined, which a tet mesh never has.
   void build(const BlockSparseMatrix<double>& fine, int maxCoarsestNodes = kMaxCoarsestNodes);  // resets the hierarchy
   static constexpr int kMaxCoarsestNodes = 48;
   // The smoothers' dampings are estimated again every kDampingRefresh updates, counted from the

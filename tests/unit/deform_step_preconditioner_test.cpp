@@ -11,8 +11,8 @@ namespace vp {
 namespace {
 
 constexpr double kFrameDt = 1.0 / 60.0;
-// The sample scene's jelly material on 0.125 m cells: a pressure wave of about 20 m/s crosses
-// about 3 spacings in a frame and about 27 in this step, either side of kMultigridWaveCrossings.
+// On the jelly's 0.125 m cells a pressure wave crosses fewer than kMultigridWaveCrossings node
+// spacings in a frame's dt and more in this step (DeformableBody::elasticWaveCrossings).
 constexpr double kLongDt = 0.2;
 
 struct HangingJelly {
@@ -94,8 +94,8 @@ TEST(AutoStepPreconditioner, TheLongStepConvergesInFarFewerIterationsToTheSameSt
   double largest = 0.0;
   for (size_t k = 0; k < xa.size(); ++k) largest = std::max(largest, std::abs(xa[k] - xb[k]));
   // Two solves to a relative residual of 1e-6 from the same state: velocities within about 1e-6
-  // of their scale (a few m/s), times the step.
-  EXPECT_LT(largest, 1e-6);
+  // of their scale (centimetres per second here), times the step, with room for the condition.
+  EXPECT_LT(largest, 1e-8);
 }
 
 }  // namespace

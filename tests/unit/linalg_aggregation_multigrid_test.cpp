@@ -117,8 +117,9 @@ TEST(AggregationMultigrid, AMeshNoLargerThanTheCoarsestLevelConverges) {
   ActorStats stats;
   body->step(in, &stats);
   EXPECT_LE(stats.phase(Phase::Solve).residual, 1e-8);
-  // Two levels: the coarse solve is exact on the aggregates' rigid modes; the smoother does the rest.
-  EXPECT_LT(stats.phase(Phase::Solve).iterations, 60);
+  // Two levels: the coarse solve is exact on the aggregates' rigid modes, and the cycle needs
+  // well under block-Jacobi's iterations on the same system (about twice the bound).
+  EXPECT_LT(stats.phase(Phase::Solve).iterations, 30);
 }
 
 }  // namespace
