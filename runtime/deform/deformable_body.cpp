@@ -123,7 +123,9 @@ Status DeformableBody::buildStepSystem(const DeformableDesc& desc) {
     stiffnessStructure_ = bbStiffnessStructure(degree_);
   }
   buildElementPattern(nodeCount_, elementNodes_.data(), elements, N, &matrix_, &scatter_);
-  VP_TRY(preconditioner_.build(desc.solver, preconditionerMesh(desc.material.density), matrix_));
+  StepPreconditioner::Mesh pcMesh{degree_, elementNodes_.data(), elements, nodeCount_, restVolume_.data(),
+                                  desc.material.density};
+  VP_TRY(preconditioner_.build(desc.solver, pcMesh, matrix_));
   const size_t n3 = restX_.size();
   externalForce_.assign(n3, 0.0);
   fluidDrag_.assign(n3, 0.0);
@@ -447,10 +449,6 @@ void DeformableBody::refreshPreconditioner(TaskSystem& tasks, double massScale) 
   preconditioner_.refresh(tasks, matrix_, x_.data(), held_, gradientPairs_.data(), massScale);
 }
 
-StepPreconditioner::Mesh DeformableBody::preconditionerMesh(double density) const {
-  return {degree_, elementNodes_.data(), elementCount(), nodeCount_, restVolume_.data(), density};
-}
-
 double DeformableBody::elasticWaveCrossings(double h) const {
   if (!(nodeSpacing_ > 0.0)) return 0.0;
   const DeformableMaterial& m = desc_.material;
@@ -460,9 +458,7 @@ double DeformableBody::elasticWaveCrossings(double h) const {
 
 void DeformableBody::choosePreconditioner(double h) {
   // On the device block-Jacobi (its solve reads those blocks only), as for a short step.
-  const double crossings = deviceSolve_ ? 0.0 : elasticWaveCrossings(h);
-  const Status s = preconditioner_.chooseForStep(crossings, preconditionerMesh(desc_.material.density), matrix_);
-  if (!ok(s)) log(LogLevel::Warning, "deformable '%s': %s; block-Jacobi from now on", desc_.name.c_str(), lastError());
+  preconditioner_.chooseForStep(deviceSolve_ ? 0.0 : elasticWaveCrossings(h), matrix_);
 }
 
 void DeformableBody::contactImpulses(TaskSystem& tasks, Array<Vec3>* impulses) {

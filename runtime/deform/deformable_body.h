@@ -260,7 +260,6 @@ class DeformableBody {
   // Node spacings an elastic pressure wave crosses in a step of h, as the step system sees it:
   // sqrt((h² + h β) / (1 + h α)) c_p / spacing (Rayleigh's α and β as assembleStepSystem's).
   double elasticWaveCrossings(double h) const;
-  StepPreconditioner::Mesh preconditionerMesh(double density) const;
   // Constraint impulse of each contact from the solved velocities: A v' − b at its node.
   void contactImpulses(TaskSystem& tasks, Array<Vec3>* impulses);
   Status checkNode(const char* what, int32_t node) const;

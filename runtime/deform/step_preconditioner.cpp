@@ -36,43 +36,14 @@ Preconditioner chosen(Preconditioner asked, int degree, int32_t nodeCount) {
 
 Status StepPreconditioner::build(const DeformableSolverSettings& settings, const Mesh& mesh,
                                  const BlockSparseMatrix<double>& matrix) {
-  settings_ = settings;
   kind_ = chosen(settings.preconditioner, mesh.degree, mesh.nodeCount);
   // Linear elements only: on the default scene's small cubic jelly p-multigrid's setup cost more
   // than the block-Jacobi iterations it saved (docs/choices.md, Preconditioner).
   const bool autoSmall = settings.preconditioner == Preconditioner::Auto && kind_ == Preconditioner::BlockJacobi;
   longStepKind_ = autoSmall && mesh.degree == 1 ? Preconditioner::Multigrid : Preconditioner::BlockJacobi;
   nodeCount_ = mesh.nodeCount;
-  diagInverse_.resize(9 * static_cast<size_t>(mesh.nodeCount));
-  return kind_ == Preconditioner::BlockJacobi ? Status::Ok : buildMultigrid(kind_, settings, mesh, matrix);
-}
-
-Status StepPreconditioner::chooseForStep(double waveCrossings, const Mesh& mesh,
-                                         const BlockSparseMatrix<double>& matrix) {
-  if (longStepKind_ == Preconditioner::BlockJacobi) return Status::Ok;
-  if (!(waveCrossings > kMultigridWaveCrossings)) {
-    kind_ = Preconditioner::BlockJacobi;
-    return Status::Ok;
-  }
-  if (!longStepBuilt_) {
-    const Status built = buildMultigrid(longStepKind_, settings_, mesh, matrix);
-    if (!ok(built)) {
-      longStepKind_ = kind_ = Preconditioner::BlockJacobi;  // block-Jacobi for good
-      return built;
-    }
-    longStepBuilt_ = true;
-  }
-  kind_ = longStepKind_;
-  // Dampings from this step's matrix, kept for its contact passes' updates: which earlier steps
-  // were long is not part of a saved world's state, and a restored one must continue bitwise.
-  multigrid_.restartDampingCount();
-  return Status::Ok;
-}
-
-Status StepPreconditioner::buildMultigrid(Preconditioner kind, const DeformableSolverSettings& settings,
-                                          const Mesh& mesh, const BlockSparseMatrix<double>& matrix) {
-  if (kind == Preconditioner::Multigrid) multigrid_.build(matrix);
-  if (kind == Preconditioner::PMultigrid) {
+  if (kind_ == Preconditioner::Multigrid) multigrid_.build(matrix);
+  if (kind_ == Preconditioner::PMultigrid) {
     DegreeHierarchy hierarchy;
     VP_TRY(buildDegreeHierarchy(pMultigridDegrees(mesh.degree), mesh.elementNodes, mesh.elements, mesh.nodeCount,
                                 &hierarchy));
@@ -87,8 +58,25 @@ Status StepPreconditioner::buildMultigrid(Preconditioner kind, const DeformableS
     pMultigrid_.build(matrix, std::move(hierarchy.prolongations), pMultigridSettings(mesh.degree),
                       std::move(rediscretized));
   }
-  nodeFilters_.assign(9 * static_cast<size_t>(mesh.nodeCount), 0.0);
+  if (needsRefresh()) nodeFilters_.assign(9 * static_cast<size_t>(mesh.nodeCount), 0.0);
+  diagInverse_.resize(9 * static_cast<size_t>(mesh.nodeCount));
   return Status::Ok;
+}
+
+void StepPreconditioner::chooseForStep(double waveCrossings, const BlockSparseMatrix<double>& matrix) {
+  if (longStepKind_ == Preconditioner::BlockJacobi) return;
+  if (!(waveCrossings > kMultigridWaveCrossings)) {
+    kind_ = Preconditioner::BlockJacobi;
+    return;
+  }
+  if (nodeFilters_.empty()) {  // the first long step
+    multigrid_.build(matrix);
+    nodeFilters_.assign(9 * static_cast<size_t>(nodeCount_), 0.0);
+  }
+  kind_ = longStepKind_;
+  // Dampings from this step's matrix, kept for its contact passes' updates: which earlier steps
+  // were long is not part of a saved world's state, and a restored one must continue bitwise.
+  multigrid_.restartDampingCount();
 }
 
 void StepPreconditioner::refresh(TaskSystem& tasks, const BlockSparseMatrix<double>& matrix, const double* positions,

@@ -41,8 +41,8 @@ class StepPreconditioner {
   // elastic wave crosses at most kMultigridWaveCrossings node spacings, else aggregation
   // multigrid (built the first time it is needed). Block-Jacobi's CG iterations grow with the
   // crossings, the multigrid's do not: a body paced by a liquid steps several frames at once.
-  // A fixed choice stays as it is. Should the multigrid fail to build, block-Jacobi stays for good.
-  Status chooseForStep(double waveCrossings, const Mesh& mesh, const BlockSparseMatrix<double>& matrix);
+  // A fixed choice stays as it is.
+  void chooseForStep(double waveCrossings, const BlockSparseMatrix<double>& matrix);
   // The preconditioner of the step being solved (build's choice until a step chose).
   Preconditioner kind() const { return kind_; }
   // Block-Jacobi's inverse diagonal block of a node (9, row-major), for the assembly to write.
@@ -58,14 +58,9 @@ class StepPreconditioner {
   void scaleMasses(double ratio);
 
  private:
-  Status buildMultigrid(Preconditioner kind, const DeformableSolverSettings& settings, const Mesh& mesh,
-                        const BlockSparseMatrix<double>& matrix);
-
   Preconditioner kind_ = Preconditioner::BlockJacobi;
   // Auto below kMultigridMinNodes: the multigrid for long steps (BlockJacobi: the choice is fixed).
   Preconditioner longStepKind_ = Preconditioner::BlockJacobi;
-  bool longStepBuilt_ = false;
-  DeformableSolverSettings settings_;
   int32_t nodeCount_ = 0;
   Array<double> diagInverse_;  // 9 per node
   AggregationMultigrid multigrid_;
