@@ -19,7 +19,7 @@ packages=(
   python3-matplotlib python3-pil mono-mcs mono-runtime
   # the default scene's jelly: /usr/share/assimp/models/Collada/duck.dae (a box without it)
   assimp-testmodels
-  # the fuzz targets (scripts/fuzz.sh): clang with libFuzzer and its sanitizer runtimes
+  # the asan preset and the fuzz targets (scripts/fuzz.sh): clang, libFuzzer, sanitizer runtimes
   clang libclang-rt-14-dev
 )
 

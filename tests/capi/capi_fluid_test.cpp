@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "capi_test_support.h"
+#include "raw_enum_calls.h"
 
 namespace {
 
@@ -146,11 +147,8 @@ TEST(CApiFluid, GettersCheckCapacitiesAndArguments) {
   EXPECT_EQ(vpFluidGetField(fluid, vpFluidField_Pressure, small.data(), 10), vpStatus_InvalidArgument);
   EXPECT_TRUE(lastErrorContains("capacity = 10"));
   std::vector<float> cells(16 * 16 * 16);
-  // A C host may pass any int as the enum; in C++ even loading such an enum value is undefined,
-  // so the call goes through the same function with an int parameter (the C ABI is identical).
-  using RawGetField = vpStatus (*)(vpFluidId, int32_t, float*, int64_t);
-  const RawGetField getFieldRaw = reinterpret_cast<RawGetField>(&vpFluidGetField);
-  EXPECT_EQ(getFieldRaw(fluid, 42, cells.data(), 4096), vpStatus_InvalidArgument);
+  // A C host may pass any int as the enum: the call is made from C (raw_enum_calls.c).
+  EXPECT_EQ(rawFluidGetField(fluid, 42, cells.data(), 4096), vpStatus_InvalidArgument);
   EXPECT_TRUE(lastErrorContains("field = 42"));
   vpVec3 nanPoint{NAN, 0, 0}, out{};
   EXPECT_EQ(vpFluidSampleVelocity(fluid, &nanPoint, 1, &out), vpStatus_InvalidArgument);

@@ -273,10 +273,10 @@ struct BoxOnPinnedJelly {
       EXPECT_LT(drift, 1e-3);
       EXPECT_NEAR(gap, 0.0, 0.01);
     }
-    void print(const char* box) const {
+    void print(const char* label) const {
       std::printf("%s on a pinned jelly after %.0f s: over the last 0.5 s at most %.4f m/s, moved %.2e m; its bottom "
                   "%.4f m from the jelly's top; read speed %.4f m/s; %d contact begin(s), %d end(s)\n",
-                  box, frames / 60.0, fastest, drift, gap, readSpeed, begins, ends);
+                  label, frames / 60.0, fastest, drift, gap, readSpeed, begins, ends);
     }
   };
   // Its speed is read from its motion over each frame: the velocity a host reads after a step

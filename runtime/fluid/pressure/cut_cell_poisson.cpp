@@ -185,7 +185,7 @@ namespace {
 // that is more than round-off of a fluid cell's diagonal.
 inline double dirichletRemainder(double diag, const double couplings[6]) {
   const double rest = diag - couplings[0] - couplings[1] - couplings[2] - couplings[3] - couplings[4] - couplings[5];
-  return (diag > 0.0) & (rest > 1e-12 * diag) ? rest : 0.0;
+  return ((diag > 0.0) & (rest > 1e-12 * diag)) ? rest : 0.0;
 }
 
 }  // namespace
