@@ -9,6 +9,7 @@
 
 #include "beam_step_system.h"
 #include "gpu_kernels/device_query.h"
+#include "../unit/random_values.h"
 
 namespace vp::gpu_test {
 namespace {
@@ -115,7 +116,7 @@ TEST_F(DeviceBlockSystemTest, FusedAndUnfusedCgSolveTheBeamStepLikeTheCpu) {
   NodeConstraints sliding = clampedOnly;
   for (int32_t i = 0; i < sys->matrix().blockRows; i += 5) {
     if (sliding.kind[i] != NodeConstraints::kFree) continue;
-    Vec3 n(g(rng), g(rng), g(rng));
+    Vec3 n = testing_values::randomVector(g, rng);
     n.normalize();
     sliding.kind[i] = NodeConstraints::kContact;
     for (int k = 0; k < 3; ++k) sliding.normal[3 * size_t(i) + k] = n[k];

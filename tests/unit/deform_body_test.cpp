@@ -7,6 +7,7 @@
 #include "deform/deformable_body.h"
 #include "deform_test_util.h"
 #include "geometry/box_tet_mesh.h"
+#include "random_values.h"
 
 namespace vp {
 namespace {
@@ -20,7 +21,7 @@ TetMesh irregularBox() {
   std::uniform_real_distribution<double> jitter(-0.06, 0.06);
   for (int k = 1; k < 3; ++k)
     for (int j = 1; j < 3; ++j)
-      for (int i = 1; i < 3; ++i) mesh.vertices[i + 4 * (j + 4 * k)] += Vec3(jitter(rng), jitter(rng), jitter(rng));
+      for (int i = 1; i < 3; ++i) mesh.vertices[i + 4 * (j + 4 * k)] += testing_values::randomVector(jitter, rng);
   return mesh;
 }
 
@@ -60,7 +61,7 @@ double maxNodeForce(const Array<double>& f) {
 
 Mat3 randomRotation(std::mt19937& rng) {
   std::normal_distribution<double> g;
-  return Quat(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix();
+  return testing_values::randomQuaternion(g, rng).toRotationMatrix();
 }
 
 // Patch test: under any affine deformation every interior node is in equilibrium (the
@@ -226,7 +227,7 @@ TEST(DeformableBody, RenderMeshFollowsARigidMotionExactly) {
   SurfaceMesh render;
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(0.05, 0.95);
-  for (int i = 0; i < 50; ++i) render.vertices.push_back(kLo + kSize.cwiseProduct(Vec3(u(rng), u(rng), u(rng))));
+  for (int i = 0; i < 50; ++i) render.vertices.push_back(kLo + kSize.cwiseProduct(testing_values::randomVector(u, rng)));
   for (int i = 0; i + 2 < 50; i += 3) render.triangles.push_back({i, i + 1, i + 2});
   desc.renderMesh = render;
   std::unique_ptr<DeformableBody> body;

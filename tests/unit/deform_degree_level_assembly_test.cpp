@@ -12,6 +12,7 @@
 #include "deform/deformable_body.h"
 #include "deform_test_util.h"
 #include "geometry/box_tet_mesh.h"
+#include "random_values.h"
 
 namespace vp {
 namespace {
@@ -32,7 +33,7 @@ struct DeformedBody {
     d.mesh = makeBoxTetMesh({3, 2, 1}, Vec3(3, 2, 1), Vec3::Zero());
     std::mt19937 rng(11);
     std::uniform_real_distribution<double> u(-0.1, 0.1);
-    for (Vec3& v : d.mesh.vertices) v += Vec3(u(rng), u(rng), u(rng));
+    for (Vec3& v : d.mesh.vertices) v += testing_values::randomVector(u, rng);
     d.material.youngsModulus = 1e6;
     d.material.poissonRatio = 0.45;
     d.solver.preconditioner = Preconditioner::BlockJacobi;
@@ -47,7 +48,8 @@ struct DeformedBody {
     std::vector<double> x(body->restPositions().begin(), body->restPositions().end());
     for (size_t i = 0; i < x.size() / 3; ++i) {
       Eigen::Vector3d p(x[3 * i], x[3 * i + 1], x[3 * i + 2]);
-      p += Eigen::Vector3d(0.3 * p.y() * p.y(), bend(rng), bend(rng));
+      const double dy = bend(rng), dz = bend(rng);  // one a statement: a fixed order
+      p += Eigen::Vector3d(0.3 * p.y() * p.y(), dy, dz);
       p = R * p;
       for (int k = 0; k < 3; ++k) x[3 * i + k] = p[k];
     }

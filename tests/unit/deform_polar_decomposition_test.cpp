@@ -9,6 +9,7 @@
 #include <random>
 
 #include "deform_test_util.h"
+#include "random_values.h"
 
 namespace vp {
 namespace {
@@ -164,7 +165,7 @@ TEST(DeformPolarDecomposition, IterativeMatchesSvdWhenWarmStarted) {
     const Mat3R f = q * s;
     const Eigen::Matrix3d reference = svdRotation(f);
     // Warm start: last frame's rotation, off by up to ~0.3 rad about a random axis.
-    const Eigen::Vector3d axis = Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
+    const Eigen::Vector3d axis = testing_values::randomVector(normal, rng).normalized();
     const Eigen::Quaterniond start(Eigen::AngleAxisd(0.3, axis) * reference);
     double quat[4] = {start.w(), start.x(), start.y(), start.z()};
     Mat3R r;
@@ -190,7 +191,7 @@ TEST(DeformPolarDecomposition, IterativeConvergesFromAnyStartForNonInvertedF) {
     const Eigen::Matrix3d reference = svdRotation(f);
     // Up to 3.1 rad from the answer, i.e. nearly the opposite rotation.
     const double angle = 3.1 * (trial + 1) / 200.0;
-    const Eigen::Vector3d axis = Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
+    const Eigen::Vector3d axis = testing_values::randomVector(normal, rng).normalized();
     const Eigen::Quaterniond start(Eigen::AngleAxisd(angle, axis) * reference);
     double quat[4] = {start.w(), start.x(), start.y(), start.z()};
     Mat3R r;

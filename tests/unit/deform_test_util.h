@@ -9,6 +9,7 @@
 #include "deform/deformable_body.h"
 #include "linalg/block_sparse_matrix.h"
 #include "linalg/node_prolongation.h"
+#include "random_values.h"
 
 namespace vp::deform_test {
 
@@ -19,17 +20,12 @@ inline void randomTet(std::mt19937& rng, double corners[12]) {
   std::uniform_real_distribution<double> scale(0.3, 3.0);
   std::uniform_real_distribution<double> offset(-5.0, 5.0);
   const double ref[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
-  Eigen::Quaterniond q(std::normal_distribution<double>()(rng),
-                       std::normal_distribution<double>()(rng),
-                       std::normal_distribution<double>()(rng),
-                       std::normal_distribution<double>()(rng));
-  q.normalize();
-  const Eigen::Matrix3d rot = q.toRotationMatrix();
+  std::normal_distribution<double> normal;
+  const Eigen::Matrix3d rot = testing_values::randomQuaternion(normal, rng).toRotationMatrix();
   const double s = scale(rng);
-  const Eigen::Vector3d t(offset(rng), offset(rng), offset(rng));
+  const Eigen::Vector3d t = testing_values::randomVector(offset, rng);
   for (int i = 0; i < 4; ++i) {
-    Eigen::Vector3d p(ref[3 * i] + jitter(rng), ref[3 * i + 1] + jitter(rng),
-                      ref[3 * i + 2] + jitter(rng));
+    Eigen::Vector3d p = Eigen::Vector3d(ref[3 * i], ref[3 * i + 1], ref[3 * i + 2]) + testing_values::randomVector(jitter, rng);
     p = rot * (s * p) + t;
     for (int a = 0; a < 3; ++a) corners[3 * i + a] = p[a];
   }
@@ -37,9 +33,7 @@ inline void randomTet(std::mt19937& rng, double corners[12]) {
 
 inline Eigen::Matrix3d randomRotation(std::mt19937& rng) {
   std::normal_distribution<double> n;
-  Eigen::Quaterniond q(n(rng), n(rng), n(rng), n(rng));
-  q.normalize();
-  return q.toRotationMatrix();
+  return testing_values::randomQuaternion(n, rng).toRotationMatrix();
 }
 
 inline Eigen::Matrix3d randomMatrix(std::mt19937& rng, double lo = -1.0, double hi = 1.0) {

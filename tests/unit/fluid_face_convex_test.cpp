@@ -4,6 +4,7 @@
 // sqrt(#boundary samples)/n^2 (~1e-5 at n = 2000) so this leaves the path's own error visible.
 #include "collide/face_coverage.h"
 #include "fluid_face_test_util.h"
+#include "random_values.h"
 
 #include <gtest/gtest.h>
 
@@ -67,8 +68,9 @@ TEST(FluidFaceBox, RandomPosesAgainstSupersampling2000) {
   double maxErr = 0.0;
   int partial = 0;
   for (int t = 0; t < 4; ++t) {
-    const ColliderShape s = box({e(rng), e(rng), e(rng)}, testutil::randomRotation(rng),
-                                {u(rng), u(rng), u(rng)});
+    const Eigen::Vector3d halfExtents = testing_values::randomVector(e, rng);
+    const Eigen::Quaterniond rotation = testutil::randomRotation(rng);
+    const ColliderShape s = box(halfExtents, rotation, testing_values::randomVector(u, rng));
     const AxisFace f = testutil::unitFace(t % 3);
     const double got = coveredFraction(s, f);
     const double ref = testutil::supersample(f, 2000, [&](const Eigen::Vector3d& x) {
@@ -118,10 +120,10 @@ TEST(FluidFacePlane, AnalyticAndRandom) {
   for (int t = 0; t < 6; ++t) {
     ColliderShape p;
     p.kind = ShapeKind::Plane;
-    p.planeNormal = Eigen::Vector3d(u(rng), u(rng), u(rng));
+    p.planeNormal = testing_values::randomVector(u, rng);
     p.planeOffset = 0.5 * u(rng);
     p.rotation = testutil::randomRotation(rng);
-    p.translation = Eigen::Vector3d(u(rng), u(rng), u(rng)) * 0.3;
+    p.translation = testing_values::randomVector(u, rng) * 0.3;
     const AxisFace f = testutil::unitFace(t % 3);
     const double got = coveredFraction(p, f);
     const double ref = testutil::supersample(f, 800, [&](const Eigen::Vector3d& x) {
@@ -154,7 +156,7 @@ TEST(FluidFaceHull, OctahedronRandomPoses) {
   int partial = 0;
   for (int t = 0; t < 6; ++t) {
     s.rotation = testutil::randomRotation(rng);
-    s.translation = Eigen::Vector3d(u(rng), u(rng), u(rng));
+    s.translation = testing_values::randomVector(u, rng);
     const Eigen::Quaterniond qi = s.rotation.conjugate();
     const AxisFace f = testutil::unitFace(t % 3);
     const double got = coveredFraction(s, f);
@@ -180,14 +182,14 @@ TEST(FluidFaceHull, RandomHullOfCubeCornersPlusInteriorEqualsBox) {
     hull.hullPoints.push_back(Eigen::Vector3d(c & 1 ? he.x() : -he.x(), c & 2 ? he.y() : -he.y(),
                                               c & 4 ? he.z() : -he.z()));
   for (int i = 0; i < 200; ++i)
-    hull.hullPoints.push_back(0.999 * he.cwiseProduct(Eigen::Vector3d(u(rng), u(rng), u(rng))));
+    hull.hullPoints.push_back(0.999 * he.cwiseProduct(testing_values::randomVector(u, rng)));
   std::shuffle(hull.hullPoints.begin(), hull.hullPoints.end(), rng);
   PreparedCollider ph;
   ASSERT_EQ(prepareCollider(hull, &ph), Status::Ok) << lastError();
   EXPECT_EQ(ph.localPlanes.size(), 6u);
   for (int t = 0; t < 20; ++t) {
     const Eigen::Quaterniond q = testutil::randomRotation(rng);
-    const Eigen::Vector3d tr(0.5 * u(rng), 0.5 * u(rng), 0.5 * u(rng));
+    const Eigen::Vector3d tr = 0.5 * testing_values::randomVector(u, rng);
     ASSERT_EQ(setColliderPose(&ph, q, tr), Status::Ok);
     ColliderShape b = box(he, q, tr);
     const AxisFace f = testutil::unitFace(t % 3, Eigen::Vector3d::Zero(), 0.7);
@@ -200,7 +202,7 @@ TEST(FluidFaceHull, RandomPointCloudHullContainsAllPointsAndIsTight) {
   std::normal_distribution<double> g(0.0, 1.0);
   ColliderShape hull;
   hull.kind = ShapeKind::ConvexHull;
-  for (int i = 0; i < 60; ++i) hull.hullPoints.push_back(Eigen::Vector3d(g(rng), g(rng), g(rng)));
+  for (int i = 0; i < 60; ++i) hull.hullPoints.push_back(testing_values::randomVector(g, rng));
   PreparedCollider ph;
   ASSERT_EQ(prepareCollider(hull, &ph), Status::Ok) << lastError();
   // Every plane supports the hull: all points inside, at least 3 points on it.

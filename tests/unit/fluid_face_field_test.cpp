@@ -3,6 +3,7 @@
 #include "collide/face_coverage_detail.h"
 #include "fluid/solids/face_fraction_field.h"
 #include "fluid_face_test_util.h"
+#include "random_values.h"
 
 #include <gtest/gtest.h>
 
@@ -219,7 +220,7 @@ TEST(FluidFaceUnion, OverlappingCollidersAgainstSupersampling) {
     b.halfHeight = 0.4;
     b.halfExtents = Eigen::Vector3d(0.3, 0.2, 0.4);
     b.rotation = testutil::randomRotation(rng);
-    b.translation = Eigen::Vector3d(u(rng), u(rng), u(rng));
+    b.translation = testing_values::randomVector(u, rng);
     PreparedCollider pa = prepared(a), pb = prepared(b);
     const PreparedCollider* list[] = {&pa, &pb};
     const AxisFace f = testutil::unitFace(t % 3);
@@ -301,7 +302,8 @@ TEST(FluidFaceUnion, RandomPolyhedraAndASphereAgainstSupersampling) {
   int overlapping = 0;
   for (int t = 0; t < 8; ++t) {
     std::vector<ColliderShape> shapes;
-    shapes.push_back(sphere({u(rng), u(rng), u(rng)}, 0.3 + 0.1 * std::fabs(u(rng))));
+    const Eigen::Vector3d centre = testing_values::randomVector(u, rng);
+    shapes.push_back(sphere(centre, 0.3 + 0.1 * std::fabs(u(rng))));
     ColliderShape b = box({u(rng), u(rng), u(rng)}, {0.3, 0.15, 0.4});
     b.rotation = testutil::randomRotation(rng);
     shapes.push_back(b);

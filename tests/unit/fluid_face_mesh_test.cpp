@@ -5,6 +5,7 @@
 #include "collide/face_coverage.h"
 #include "fluid/solids/face_fraction_field.h"
 #include "fluid_face_test_util.h"
+#include "random_values.h"
 
 #include <gtest/gtest.h>
 
@@ -140,7 +141,7 @@ TEST(FluidFaceMesh, CubeAsTrianglesEqualsBox) {
   int partial = 0;
   for (int t = 0; t < 40; ++t) {
     const Eigen::Quaterniond q = testutil::randomRotation(rng);
-    const Eigen::Vector3d tr(u(rng), u(rng), u(rng));
+    const Eigen::Vector3d tr = testing_values::randomVector(u, rng);
     ASSERT_EQ(setColliderPose(&pm, q, tr), Status::Ok);
     ColliderShape b;
     b.kind = ShapeKind::Box;
@@ -211,7 +212,7 @@ TEST(FluidFaceMesh, IcosphereEqualsHullOfItsVertices) {
   std::uniform_real_distribution<double> u(-0.5, 0.5);
   for (int t = 0; t < 40; ++t) {
     const Eigen::Quaterniond q = testutil::randomRotation(rng);
-    const Eigen::Vector3d tr(u(rng), u(rng), u(rng));
+    const Eigen::Vector3d tr = testing_values::randomVector(u, rng);
     ASSERT_EQ(setColliderPose(&pm, q, tr), Status::Ok);
     ASSERT_EQ(setColliderPose(&ph, q, tr), Status::Ok);
     const AxisFace f = testutil::unitFace(t % 3, Eigen::Vector3d::Zero(), 0.6);

@@ -3,6 +3,7 @@
 // The supersampling (800^2 midpoint) error is ~1e-5, so 1e-3 checks the path's own bound.
 #include "collide/face_coverage.h"
 #include "fluid_face_test_util.h"
+#include "random_values.h"
 
 #include <gtest/gtest.h>
 
@@ -58,8 +59,9 @@ void randomAgainstSupersampling(ShapeKind kind, unsigned seed, const char* name)
   double maxErr = 0.0;
   int partial = 0;
   for (int t = 0; t < 10; ++t) {
-    const ColliderShape s = round(kind, rr(rng), kind == ShapeKind::Cylinder ? 0.05 + hh(rng) : hh(rng),
-                                  testutil::randomRotation(rng), {u(rng), u(rng), u(rng)});
+    const double radius = rr(rng), halfHeight = kind == ShapeKind::Cylinder ? 0.05 + hh(rng) : hh(rng);
+    const Eigen::Quaterniond rotation = testutil::randomRotation(rng);
+    const ColliderShape s = round(kind, radius, halfHeight, rotation, testing_values::randomVector(u, rng));
     const AxisFace f = testutil::unitFace(t % 3);
     const double got = coveredFraction(s, f);
     const double ref = testutil::supersample(f, 800, [&](const Eigen::Vector3d& x) {

@@ -3,6 +3,7 @@
 #include "collide/face_coverage.h"
 #include "collide/face_coverage_detail.h"
 #include "fluid_face_test_util.h"
+#include "random_values.h"
 
 #include <gtest/gtest.h>
 
@@ -96,10 +97,8 @@ TEST(FluidFaceSphere, RandomAgainstSupersampling) {
   double maxErr = 0.0;
   int partial = 0;
   for (int t = 0; t < 9; ++t) {
-    // One draw a statement: the cases must not depend on the order the compiler evaluates a
-    // call's arguments in.
-    const double radius = 0.3 + 0.5 * std::fabs(u(rng)), x = u(rng), y = u(rng), z = u(rng);
-    const ColliderShape s = sphere({x, y, z}, radius);
+    const double radius = 0.3 + 0.5 * std::fabs(u(rng));
+    const ColliderShape s = sphere(testing_values::randomVector(u, rng), radius);
     const AxisFace f = testutil::unitFace(t % 3);
     const double got = coveredFraction(s, f);
     const double ref = testutil::supersample(f, 800, [&](const Eigen::Vector3d& x) {

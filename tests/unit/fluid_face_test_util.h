@@ -4,6 +4,7 @@
 #pragma once
 
 #include "collide/face_coverage.h"
+#include "random_values.h"
 
 #include <Eigen/Geometry>
 #include <cmath>
@@ -14,8 +15,7 @@ namespace testutil {
 
 inline Eigen::Quaterniond randomRotation(std::mt19937& rng) {
   std::normal_distribution<double> g(0.0, 1.0);
-  Eigen::Quaterniond q(g(rng), g(rng), g(rng), g(rng));
-  return q.normalized();
+  return testing_values::randomQuaternion(g, rng);
 }
 
 // Inside test in the shape's local frame, from the definitions in collider_shape.h.

@@ -4,6 +4,7 @@
 #include "geometry/voxel_tetrahedralizer.h"
 
 #include "geometry_test_shapes.h"
+#include "random_values.h"
 
 #include <gtest/gtest.h>
 
@@ -41,7 +42,7 @@ Array<Eigen::Vector3d> randomPointsInBall(size_t n, double radius, unsigned seed
   std::uniform_real_distribution<double> u(-radius, radius);
   Array<Eigen::Vector3d> points;
   while (points.size() < n) {
-    Eigen::Vector3d p(u(rng), u(rng), u(rng));
+    Eigen::Vector3d p = testing_values::randomVector(u, rng);
     if (p.norm() < radius) points.push_back(p);
   }
   return points;
@@ -87,7 +88,7 @@ TEST(GeometryEmbedding, OutsidePointsGetTheNearestTet) {
   std::mt19937 rng(2);
   std::normal_distribution<double> g;
   for (int i = 0; i < 300; ++i) {
-    const Eigen::Vector3d dir = Eigen::Vector3d(g(rng), g(rng), g(rng)).normalized();
+    const Eigen::Vector3d dir = testing_values::randomVector(g, rng).normalized();
     points.push_back(dir * (1.6 + 0.01 * i));  // outside the hull (at most 1 + sqrt(3) h)
   }
   points.emplace_back(40.0, -3.0, 2.0);  // far outside the grid

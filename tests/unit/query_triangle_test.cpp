@@ -4,13 +4,14 @@
 #include <random>
 
 #include "query/triangle_queries.h"
+#include "random_values.h"
 
 namespace vp {
 namespace {
 
 Vec3 randomVec(std::mt19937& rng, double scale) {
   std::uniform_real_distribution<double> u(-scale, scale);
-  return Vec3(u(rng), u(rng), u(rng));
+  return testing_values::randomVector(u, rng);
 }
 
 TEST(TriangleQueries, ARayAimedAtAKnownPointHitsItWithItsBarycentrics) {
@@ -46,7 +47,7 @@ TEST(TriangleQueries, TriangleBoxOverlapAgreesWithPointsOfTheTriangleInTheBox) {
   int overlapping = 0, separate = 0;
   for (int trial = 0; trial < 400; ++trial) {
     const Vec3 a = randomVec(rng, 2), b = randomVec(rng, 2), c = randomVec(rng, 2);
-    const Vec3 centre = randomVec(rng, 1), half(0.2 + unit(rng), 0.2 + unit(rng), 0.2 + unit(rng));
+    const Vec3 centre = randomVec(rng, 1), half = Vec3::Constant(0.2) + testing_values::randomVector(unit, rng);
     const Mat3 axes = Quat(Eigen::AngleAxisd(6.3 * unit(rng), randomVec(rng, 1).normalized())).toRotationMatrix();
     bool sampleInside = false;
     for (int i = 0; i <= 60 && !sampleInside; ++i)

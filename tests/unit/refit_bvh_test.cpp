@@ -8,6 +8,7 @@
 
 #include "geometry/refit_bvh.h"
 #include "query/triangle_queries.h"
+#include "random_values.h"
 
 namespace vp {
 namespace {
@@ -22,8 +23,8 @@ Soup randomSoup(int count, std::mt19937& rng) {
   std::uniform_real_distribution<double> u(0.0, 1.0), e(-0.05, 0.05);
   Soup s;
   for (int t = 0; t < count; ++t) {
-    const Vec3 c(u(rng), u(rng), u(rng));
-    for (int k = 0; k < 3; ++k) s.x.push_back(c + Vec3(e(rng), e(rng), e(rng)));
+    const Vec3 c = testing_values::randomVector(u, rng);
+    for (int k = 0; k < 3; ++k) s.x.push_back(c + testing_values::randomVector(e, rng));
     s.triangles.push_back({3 * t, 3 * t + 1, 3 * t + 2});
   }
   return s;
@@ -38,15 +39,16 @@ bool boxTouchesTriangle(const Soup& s, int t, const Vec3& lo, const Vec3& hi) {
 void checkAgainstBruteForce(const RefitBvh& bvh, const Soup& s, std::mt19937& rng) {
   std::uniform_real_distribution<double> u(-0.2, 1.2);
   for (int q = 0; q < 50; ++q) {
-    const Vec3 a(u(rng), u(rng), u(rng)), b(u(rng), u(rng), u(rng));
+    const Vec3 a = testing_values::randomVector(u, rng), b = testing_values::randomVector(u, rng);
     const Vec3 lo = a.cwiseMin(b) * 0.5 + Vec3::Constant(0.25), hi = lo + (a - b).cwiseAbs() * 0.2;
     std::set<int> visited;
     bvh.visitBox(lo, hi, [&](int32_t t) { visited.insert(t); });
     for (int t = 0; t < static_cast<int>(s.triangles.size()); ++t)
       ASSERT_EQ(visited.count(t) == 1, boxTouchesTriangle(s, t, lo, hi)) << "box query and triangle " << t;
 
-    const Vec3 origin(u(rng), u(rng), -0.5);
-    const Vec3 direction = (Vec3(u(rng), u(rng), 1.5) - origin).normalized();
+    const double ox = u(rng), oy = u(rng), tx = u(rng), ty = u(rng);
+    const Vec3 origin(ox, oy, -0.5);
+    const Vec3 direction = (Vec3(tx, ty, 1.5) - origin).normalized();
     double nearest = std::numeric_limits<double>::infinity();
     for (const auto& tri : s.triangles) {
       TriangleRayHit h;
@@ -71,7 +73,7 @@ TEST(RefitBvh, QueriesMatchBruteForceAfterBuildAndAfterRefits) {
   checkAgainstBruteForce(bvh, s, rng);
   std::uniform_real_distribution<double> e(-0.1, 0.1);
   for (int round = 0; round < 3; ++round) {
-    for (Vec3& p : s.x) p += Vec3(e(rng), e(rng), e(rng)) + Vec3(0.3 * p.y(), 0.0, 0.0);  // shear and jitter
+    for (Vec3& p : s.x) p += testing_values::randomVector(e, rng) + Vec3(0.3 * p.y(), 0.0, 0.0);  // shear and jitter
     bvh.refit(s.x, s.triangles);
     checkAgainstBruteForce(bvh, s, rng);
   }
