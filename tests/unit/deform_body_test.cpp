@@ -227,7 +227,8 @@ TEST(DeformableBody, RenderMeshFollowsARigidMotionExactly) {
   SurfaceMesh render;
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(0.05, 0.95);
-  for (int i = 0; i < 50; ++i) render.vertices.push_back(kLo + kSize.cwiseProduct(testing_values::randomVector(u, rng)));
+  for (int i = 0; i < 50; ++i)
+    render.vertices.push_back(kLo + kSize.cwiseProduct(testing_values::randomVector(u, rng)));
   for (int i = 0; i + 2 < 50; i += 3) render.triangles.push_back({i, i + 1, i + 2});
   desc.renderMesh = render;
   std::unique_ptr<DeformableBody> body;

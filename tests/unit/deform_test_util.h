@@ -25,7 +25,8 @@ inline void randomTet(std::mt19937& rng, double corners[12]) {
   const double s = scale(rng);
   const Eigen::Vector3d t = testing_values::randomVector(offset, rng);
   for (int i = 0; i < 4; ++i) {
-    Eigen::Vector3d p = Eigen::Vector3d(ref[3 * i], ref[3 * i + 1], ref[3 * i + 2]) + testing_values::randomVector(jitter, rng);
+    Eigen::Vector3d p =
+        Eigen::Vector3d(ref[3 * i], ref[3 * i + 1], ref[3 * i + 2]) + testing_values::randomVector(jitter, rng);
     p = rot * (s * p) + t;
     for (int a = 0; a < 3; ++a) corners[3 * i + a] = p[a];
   }

@@ -137,8 +137,8 @@ TEST(FluidMacGrid, IndexingAndTrilinearSamplingOfLinearFields) {
   std::uniform_real_distribution<double> t(0.0, 1.0);
   for (int s = 0; s < 50; ++s) {
     // Points at least h/2 inside, where every component's stencil is interior.
-    const Eigen::Vector3d x =
-        spec.origin + spec.h * (Eigen::Vector3d(0.5, 0.5, 0.5) + Eigen::Vector3d(3.0, 4.0, 2.0).cwiseProduct(testing_values::randomVector(t, rng)));
+    const Eigen::Vector3d inBox = Eigen::Vector3d(3.0, 4.0, 2.0).cwiseProduct(testing_values::randomVector(t, rng));
+    const Eigen::Vector3d x = spec.origin + spec.h * (Eigen::Vector3d(0.5, 0.5, 0.5) + inBox);
     const Eigen::Vector3d v = grid.sampleVelocity(x);
     for (int a = 0; a < 3; ++a) EXPECT_NEAR(v[a], field(a, x), 1e-12);
   }
